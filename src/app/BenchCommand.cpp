@@ -1,0 +1,190 @@
+// `frugal bench render`: the same frame on every available backend, and with the file's triangle
+// order beside the vertex-cache order, in one process; JSON with medians and ratios. Timings cover
+// clear + draw + glFinish (no read-back), after warm-up frames that let llvmpipe compile its shaders.
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Cli.h"
+#include "app/Commands.h"
+#include "app/Options.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+
+const char* benchHelp() {
+    return R"(usage: frugal bench render [SCENE] [options]
+
+Renders the same frame repeatedly on each available GL backend (egl-device, egl-surfaceless,
+osmesa; or only --backend), once with the vertex-cache triangle order and once with the file's
+order, and prints JSON: median/min/max ms per frame, triangles per second, and ratios.
+Set LP_NUM_THREADS to choose llvmpipe's thread count.
+
+  --runs N              timed frames per variant (default 30)
+  --warmup N            untimed frames first (default 5)
+  --ids                 also write triangle ids (the id pass)
+)";
+}
+
+namespace {
+
+struct Sample {
+    std::string backend, renderer, order;
+    std::vector<double> ms;
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (args.empty() || (args[0] != "render" && args[0] != "-h" && args[0] != "--help")) {
+        err << "error: bench: expected 'bench render [SCENE] [options]'\n";
+        return kExitUsage;
+    }
+    RenderOptions options;
+    bool backendGiven = false, sceneGiven = false, ids = false;
+    int runs = 30, warmup = 5;
+    std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
+    ArgCursor cursor(rest);
+    while (!cursor.done() && cursor.error.empty()) {
+        const std::string flag = cursor.next();
+        if (flag == "-h" || flag == "--help") {
+            out << benchHelp() << sharedOptionsHelp();
+            return kExitOk;
+        }
+        if (flag == "--backend") backendGiven = true;
+        if (parseSharedOption(flag, cursor, options)) continue;
+        if (flag == "--runs" || flag == "--warmup") {
+            const std::optional<std::string> text = cursor.value(flag);
+            int n = 0;
+            if (text && (std::sscanf(text->c_str(), "%d", &n) != 1 || n < (flag == "--runs" ? 1 : 0) || n > 100000))
+                cursor.fail(flag + ": expected a whole number " + (flag == "--runs" ? "1" : "0") + " to 100000, got '" + *text + "'");
+            (flag == "--runs" ? runs : warmup) = n;
+        } else if (flag == "--ids") {
+            ids = true;
+        } else if (!flag.empty() && flag[0] == '-') {
+            cursor.fail(flag + ": unknown option (see 'frugal help bench')");
+        } else if (!sceneGiven) {
+            options.scene = flag;
+            sceneGiven = true;
+        } else {
+            cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
+        }
+    }
+    if (!cursor.error.empty()) {
+        err << "error: " << cursor.error << "\n";
+        return kExitUsage;
+    }
+
+    // Two loads of the same file: the only difference is the triangle order.
+    LoadOptions fileOrder = options.load;
+    fileOrder.optimizeOrder = false;
+    LoadOptions cacheOrder = options.load;
+    cacheOrder.optimizeOrder = true;
+    Result<Scene> optimized = loadScene(options.scene, cacheOrder);
+    if (!optimized) {
+        err << "error: " << optimized.error() << "\n";
+        return kExitError;
+    }
+    Result<Scene> original = loadScene(options.scene, fileOrder);
+    if (!original) {
+        err << "error: " << original.error() << "\n";
+        return kExitError;
+    }
+
+    std::vector<BackendChoice> choices;
+    if (backendGiven && options.backend != BackendChoice::Auto) choices = {options.backend};
+    else choices = {BackendChoice::EglDevice, BackendChoice::EglSurfaceless, BackendChoice::OsMesa};
+
+    nlohmann::json skipped = nlohmann::json::array();
+    std::vector<Sample> samples;
+    using Clock = std::chrono::steady_clock;
+    for (BackendChoice choice : choices) {
+        Result<std::unique_ptr<Backend>> created = createGlBackend(choice);
+        if (!created) {
+            skipped.push_back(created.error());
+            continue;
+        }
+        Backend& backend = **created;
+        const TargetHandle target = backend.createTarget(options.width, options.height);
+        if (target == kNoHandle) {
+            err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
+                << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
+            return kExitError;
+        }
+        for (const auto& [order, scene] : {std::pair<const char*, const Scene*>{"optimized", &*optimized}, {"file", &*original}}) {
+            const double time = frameTime(options, *scene, options.frames ? options.frames->first : 0);
+            const std::vector<glm::mat4> world = scene->worldTransforms(time);
+            Result<View> view = resolveCamera(*scene, world, time, options.camera, options.width, options.height);
+            if (!view) {
+                err << "error: " << options.scene << ": " << view.error() << "\n";
+                return kExitError;
+            }
+            FrameParams params;
+            params.view = view->view;
+            params.projection = view->projection;
+            params.writeIds = ids;
+            SceneRenderer renderer(backend, *scene);
+            Sample sample{backend.name(), backend.renderer(), order, {}};
+            for (int i = 0; i < warmup + runs; ++i) {
+                const auto t0 = Clock::now();
+                renderer.renderFrame(target, options.width, options.height, params, world, options.background);
+                backend.finish();
+                const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+                if (i >= warmup) sample.ms.push_back(ms);
+            }
+            if (!options.quiet)
+                err << backend.name() << " " << order << ": median " << fmt(median(sample.ms)) << " ms\n";
+            samples.push_back(std::move(sample));
+        }
+    }
+    if (samples.empty()) {
+        err << "error: bench: no backend available:";
+        for (const auto& why : skipped) err << " [" << why.get<std::string>() << "]";
+        err << "\n";
+        return kExitNoBackend;
+    }
+
+    const double triangles = double(optimized->triangleCount());
+    nlohmann::json results = nlohmann::json::array();
+    for (const Sample& s : samples) {
+        const double m = median(s.ms);
+        results.push_back({{"backend", s.backend}, {"renderer", s.renderer}, {"order", s.order}, {"median_ms", m},
+                           {"min_ms", *std::min_element(s.ms.begin(), s.ms.end())},
+                           {"max_ms", *std::max_element(s.ms.begin(), s.ms.end())},
+                           {"triangles_per_second", m > 0 ? triangles / (m / 1000.0) : 0.0}});
+    }
+    // Ratios: file order ÷ cache order per backend; every backend ÷ the first, cache order.
+    nlohmann::json ratios = nlohmann::json::object();
+    for (std::size_t i = 0; i + 1 < samples.size(); i += 2)
+        ratios["file_over_optimized"][samples[i].backend] = median(samples[i + 1].ms) / median(samples[i].ms);
+    for (std::size_t i = 2; i < samples.size(); i += 2)
+        ratios["over_" + samples[0].backend][samples[i].backend] = median(samples[i].ms) / median(samples[0].ms);
+
+    const char* threads = std::getenv("LP_NUM_THREADS");
+    nlohmann::json report = {
+        {"command", "bench render"},
+        {"scene", options.scene},
+        {"size", {options.width, options.height}},
+        {"triangles", optimized->triangleCount()},
+        {"ids", ids},
+        {"runs", runs},
+        {"warmup", warmup},
+        {"lp_num_threads", threads ? nlohmann::json(threads) : nlohmann::json(nullptr)},
+        {"results", results},
+        {"ratios", ratios},
+        {"skipped", skipped},
+    };
+    out << report.dump(2) << "\n";
+    return kExitOk;
+}
+
+}  // namespace frugal

@@ -1,0 +1,18 @@
+// The CLI's commands. Each returns an ExitCode (app/Cli.h).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace frugal {
+
+int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+
+const char* renderHelp();
+const char* infoHelp();
+const char* benchHelp();
+
+}  // namespace frugal

@@ -1,0 +1,214 @@
+#include "app/Options.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <ostream>
+#include <sstream>
+
+namespace frugal {
+
+std::string fmt(double value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", value);
+    return buf;
+}
+
+std::string ArgCursor::next() {
+    inlineValue_.reset();
+    std::string arg = args_[index_++];
+    const std::size_t eq = arg.find('=');
+    if (arg.rfind("--", 0) == 0 && eq != std::string::npos) {
+        inlineValue_ = arg.substr(eq + 1);
+        arg.resize(eq);
+    }
+    return arg;
+}
+
+std::optional<std::string> ArgCursor::value(const std::string& flag) {
+    if (inlineValue_) {
+        std::string v = *inlineValue_;
+        inlineValue_.reset();
+        return v;
+    }
+    if (done()) {
+        fail(flag + ": missing value");
+        return std::nullopt;
+    }
+    return args_[index_++];
+}
+
+namespace {
+
+bool parseDouble(const std::string& text, double& out) {
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    if (begin != end && *begin == '+') ++begin;
+    auto [stop, ec] = std::from_chars(begin, end, out);
+    return ec == std::errc() && stop == end && std::isfinite(out);
+}
+
+bool parseInt(const std::string& text, int& out) {
+    auto [stop, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+    return ec == std::errc() && stop == text.data() + text.size();
+}
+
+std::optional<glm::vec3> parseVec3(const std::string& flag, const std::string& text, ArgCursor& cursor) {
+    std::stringstream in(text);
+    std::string part;
+    std::vector<double> values;
+    while (std::getline(in, part, ',')) {
+        double v = 0.0;
+        if (!parseDouble(part, v)) break;
+        values.push_back(v);
+    }
+    if (values.size() != 3 || std::count(text.begin(), text.end(), ',') != 2) {
+        cursor.fail(flag + ": expected x,y,z (three finite numbers), got '" + text + "'");
+        return std::nullopt;
+    }
+    return glm::vec3(float(values[0]), float(values[1]), float(values[2]));
+}
+
+std::optional<double> number(const std::string& flag, ArgCursor& cursor, double lo, double hi) {
+    const std::optional<std::string> text = cursor.value(flag);
+    if (!text) return std::nullopt;
+    double v = 0.0;
+    if (!parseDouble(*text, v)) {
+        cursor.fail(flag + ": expected a number, got '" + *text + "'");
+        return std::nullopt;
+    }
+    if (v < lo || v > hi) {
+        cursor.fail(flag + ": " + *text + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
+        return std::nullopt;
+    }
+    return v;
+}
+
+}  // namespace
+
+bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& o) {
+    if (flag == "--size") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        const std::size_t x = text->find('x');
+        int w = 0, h = 0;
+        if (x == std::string::npos || !parseInt(text->substr(0, x), w) || !parseInt(text->substr(x + 1), h)) {
+            cursor.fail("--size: expected WxH such as 800x600, got '" + *text + "'");
+        } else if (w < 1 || h < 1 || w > 65536 || h > 65536) {
+            cursor.fail("--size " + *text + ": width and height must be 1 to 65536 (the backend may allow less)");
+        } else {
+            o.width = w;
+            o.height = h;
+        }
+    } else if (flag == "--backend") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        Result<BackendChoice> choice = parseBackendChoice(*text);
+        if (!choice) cursor.fail("--backend: " + choice.error());
+        else {
+            o.backend = *choice;
+            o.backendName = *text;
+        }
+    } else if (flag == "--camera") {
+        const std::optional<std::string> text = cursor.value(flag);
+        int index = 0;
+        if (text && (!parseInt(*text, index) || index < 0)) cursor.fail("--camera: expected a camera index (0, 1, ...), got '" + *text + "'");
+        else if (text) o.camera.sceneCamera = index;
+    } else if (flag == "--eye" || flag == "--target" || flag == "--up") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        const std::optional<glm::vec3> v = parseVec3(flag, *text, cursor);
+        if (!v) return true;
+        if (flag == "--eye") o.camera.eye = v;
+        else if (flag == "--target") o.camera.target = v;
+        else o.camera.up = *v;
+    } else if (flag == "--fov") {
+        if (auto v = number(flag, cursor, 1e-3, 179.999)) o.camera.yfovDegrees = float(*v);
+    } else if (flag == "--near") {
+        if (auto v = number(flag, cursor, 1e-30, 1e30)) o.camera.znear = float(*v);
+    } else if (flag == "--far") {
+        if (auto v = number(flag, cursor, 0, 1e30)) o.camera.zfar = float(*v);
+    } else if (flag == "--time") {
+        if (auto v = number(flag, cursor, -1e9, 1e9)) o.time = *v;
+    } else if (flag == "--fps") {
+        if (auto v = number(flag, cursor, 1e-3, 1e6)) o.fps = *v;
+    } else if (flag == "--frames") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        const std::size_t colon = text->find(':');
+        FrameRange range;
+        range.sequence = true;
+        if (colon == std::string::npos || !parseInt(text->substr(0, colon), range.first) ||
+            !parseInt(text->substr(colon + 1), range.last)) {
+            cursor.fail("--frames: expected A:B (first and last frame, inclusive), got '" + *text + "'");
+        } else if (range.first < 0 || range.last < range.first || range.last - range.first >= 1000000) {
+            cursor.fail("--frames " + *text + ": need 0 <= A <= B and at most 1000000 frames");
+        } else {
+            o.frames = range;
+        }
+    } else if (flag == "--background") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        std::stringstream in(*text);
+        std::string part;
+        std::vector<double> values;
+        double v = 0.0;
+        while (std::getline(in, part, ',') && parseDouble(part, v) && v >= 0.0 && v <= 1.0) values.push_back(v);
+        if ((values.size() != 3 && values.size() != 4) ||
+            std::count(text->begin(), text->end(), ',') != int(values.size()) - 1) {
+            cursor.fail("--background: expected r,g,b or r,g,b,a in [0,1], got '" + *text + "'");
+        } else {
+            o.background = glm::vec4(float(values[0]), float(values[1]), float(values[2]), values.size() == 4 ? float(values[3]) : 1.0f);
+        }
+    } else if (flag == "--cull-backfaces") {
+        o.load.objDoubleSided = false;
+    } else if (flag == "--file-order") {
+        o.load.optimizeOrder = false;
+    } else if (flag == "-q" || flag == "--quiet") {
+        o.quiet = true;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+const char* sharedOptionsHelp() {
+    return R"(  --size WxH            image size in pixels (default 800x600)
+  --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
+                        egl, egl-device, egl-surfaceless, osmesa
+  --camera N            use the scene's camera N (default: camera 0 if the scene has one,
+                        else a view that fits the scene's bounds)
+  --eye X,Y,Z           look from here (with --target, default the bounds' centre, and --up)
+  --target X,Y,Z
+  --up X,Y,Z            default 0,1,0
+  --fov DEGREES         vertical field of view (default: the camera's, or 40)
+  --near Z, --far Z     clip planes (default: the camera's, or around the scene); --far 0 = infinite
+  --time SECONDS        animation time of the frame (default 0)
+  --frames A:B          frames A to B inclusive, at --fps (default the scene's, 30)
+  --fps N
+  --background R,G,B[,A]  clear colour in [0,1] (default 0.12,0.13,0.15)
+  --cull-backfaces      draw OBJ files single-sided (OBJ is double-sided by default;
+                        glTF follows each material's doubleSided)
+  --file-order          keep the file's triangle order (default: reordered for the vertex cache)
+  -q, --quiet           no progress lines
+)";
+}
+
+double frameTime(const RenderOptions& options, const Scene& scene, int frame) {
+    if (!options.frames && options.time) return *options.time;
+    return double(frame) / options.fps.value_or(scene.fps);
+}
+
+Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
+    Result<Scene> scene = loadScene(options.scene, options.load);
+    if (!scene) return scene;
+    for (const std::string& warning : scene->warnings) err << "warning: " << warning << "\n";
+    if (!scene->unsupported.empty()) {
+        std::string names;
+        for (const std::string& name : scene->unsupported) names += (names.empty() ? "" : ", ") + name;
+        err << "warning: " << options.scene << ": not modelled, drawn without: " << names << "\n";
+    }
+    return scene;
+}
+
+}  // namespace frugal

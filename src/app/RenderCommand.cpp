@@ -1,0 +1,234 @@
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Cli.h"
+#include "app/Commands.h"
+#include "app/Options.h"
+#include "render/ImageIO.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+
+const char* renderHelp() {
+    return R"(usage: frugal render [SCENE] [-o FILE.png] [options]
+
+Renders SCENE (default builtin:default) offscreen and writes the colour image.
+
+outputs (each written to a temporary file and renamed, never left half-written):
+  -o, --output FILE     colour PNG (default frame.png). With --frames, FILE may hold a printf
+                        number such as out_%04d.png; otherwise _%04d is put before the extension
+  --depth FILE          depth: .png = 16-bit grey (top 16 of the 24 depth bits, 0 near, 65535 far),
+                        .pfm = float32 window z, exact
+  --ids FILE            triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian
+                        (R = low byte); 0 = background
+  --json FILE           metadata: scene counts, camera, backend, GL renderer, per-frame timings
+)";
+}
+
+namespace {
+
+struct Outputs {
+    std::string color = "frame.png";
+    std::string depth, ids, json;
+};
+
+bool hasExtension(const std::string& path, const std::string& ext) {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e == ext;
+}
+
+// The file name of frame `frame`: the pattern's single %d/%0Nd, or "_%04d" before the extension.
+std::string framePath(const std::string& pattern, int frame, bool sequence) {
+    if (!sequence) return pattern;
+    char number[32];
+    static const std::regex kSpec("%(0?[0-9]*)d");
+    std::smatch match;
+    if (std::regex_search(pattern, match, kSpec)) {
+        const int width = match[1].length() ? std::stoi(match[1].str()) : 0;
+        std::snprintf(number, sizeof number, "%0*d", width, frame);
+        return match.prefix().str() + number + match.suffix().str();
+    }
+    std::snprintf(number, sizeof number, "_%04d", frame);
+    const std::filesystem::path p(pattern);
+    return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
+std::string checkPattern(const std::string& flag, const std::string& path) {
+    const auto percents = std::count(path.begin(), path.end(), '%');
+    static const std::regex kOnly("[^%]*%0?[0-9]*d[^%]*");
+    if (percents > 1 || (percents == 1 && !std::regex_match(path, kOnly)))
+        return flag + " " + path + ": at most one %d (or %0Nd) and no other % in a file name";
+    return {};
+}
+
+nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    RenderOptions options;
+    Outputs outputs;
+    bool sceneGiven = false;
+    ArgCursor cursor(args);
+    while (!cursor.done() && cursor.error.empty()) {
+        const std::string flag = cursor.next();
+        if (flag == "-h" || flag == "--help") {
+            out << renderHelp() << sharedOptionsHelp();
+            return kExitOk;
+        }
+        if (parseSharedOption(flag, cursor, options)) continue;
+        if (flag == "-o" || flag == "--output" || flag == "--depth" || flag == "--ids" || flag == "--json") {
+            const std::optional<std::string> path = cursor.value(flag);
+            if (!path) break;
+            if (path->empty()) cursor.fail(flag + ": empty file name");
+            else if (flag == "--depth") outputs.depth = *path;
+            else if (flag == "--ids") outputs.ids = *path;
+            else if (flag == "--json") outputs.json = *path;
+            else outputs.color = *path;
+        } else if (!flag.empty() && flag[0] == '-' && flag != "-") {
+            cursor.fail(flag + ": unknown option (see 'frugal help render')");
+        } else if (!sceneGiven) {
+            options.scene = flag;
+            sceneGiven = true;
+        } else {
+            cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
+        }
+    }
+    if (cursor.error.empty() && !hasExtension(outputs.color, ".png"))
+        cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
+    if (cursor.error.empty() && !outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
+        cursor.fail("--depth " + outputs.depth + ": name it .png (16-bit) or .pfm (float32)");
+    if (cursor.error.empty() && !outputs.ids.empty() && !hasExtension(outputs.ids, ".png"))
+        cursor.fail("--ids " + outputs.ids + ": the id image is written as PNG; name it .png");
+    if (cursor.error.empty() && options.frames) {
+        for (const auto& [flag, path] : {std::pair{"-o", outputs.color}, {"--depth", outputs.depth}, {"--ids", outputs.ids}})
+            if (!path.empty()) {
+                const std::string problem = checkPattern(flag, path);
+                if (!problem.empty()) cursor.fail(problem);
+            }
+    }
+    if (!cursor.error.empty()) {
+        err << "error: " << cursor.error << "\n";
+        return kExitUsage;
+    }
+
+    Result<Scene> loaded = loadForRender(options, err);
+    if (!loaded) {
+        err << "error: " << loaded.error() << "\n";
+        return kExitError;
+    }
+    const Scene& scene = *loaded;
+
+    // Check the camera before opening a backend, so a bad camera is the only line printed.
+    const FrameRange range = options.frames.value_or(FrameRange{});
+    {
+        const double time = frameTime(options, scene, range.first);
+        Result<View> view = resolveCamera(scene, scene.worldTransforms(time), time, options.camera, options.width, options.height);
+        if (!view) {
+            err << "error: " << options.scene << ": " << view.error() << "\n";
+            return kExitError;
+        }
+    }
+
+    std::vector<std::string> log;
+    Result<std::unique_ptr<Backend>> created = createGlBackend(options.backend, &log);
+    if (!created) {
+        err << "error: --backend " << options.backendName << ": " << created.error() << "\n";
+        return kExitNoBackend;
+    }
+    Backend& backend = **created;
+    if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
+
+    const TargetHandle target = backend.createTarget(options.width, options.height);
+    if (target == kNoHandle) {
+        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
+            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
+        return kExitError;
+    }
+    SceneRenderer renderer(backend, scene);
+
+    const int frameCount = range.last - range.first + 1;
+    nlohmann::json frames = nlohmann::json::array();
+    nlohmann::json cameraJson;
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+
+    for (int frame = range.first; frame <= range.last; ++frame) {
+        const double time = frameTime(options, scene, frame);
+        const std::vector<glm::mat4> world = scene.worldTransforms(time);
+        Result<View> view = resolveCamera(scene, world, time, options.camera, options.width, options.height);
+        if (!view) {
+            err << "error: " << options.scene << ": " << view.error() << "\n";
+            return kExitError;
+        }
+        FrameParams params;
+        params.view = view->view;
+        params.projection = view->projection;
+        params.writeIds = !outputs.ids.empty();
+
+        const auto t0 = Clock::now();
+        renderer.renderFrame(target, options.width, options.height, params, world, options.background);
+        backend.finish();
+        const auto t1 = Clock::now();
+        const Buffers buffers = backend.readBack(target);
+        const auto t2 = Clock::now();
+
+        OutputSet files;
+        const bool sequence = range.sequence;
+        files.add(framePath(outputs.color, frame, sequence), encodeColorPng(buffers));
+        if (!outputs.depth.empty())
+            files.add(framePath(outputs.depth, frame, sequence),
+                      hasExtension(outputs.depth, ".pfm") ? encodeDepthPfm(buffers) : encodeDepthPng(buffers));
+        if (!outputs.ids.empty()) files.add(framePath(outputs.ids, frame, sequence), encodeIdPng(buffers));
+        Result<bool> written = files.commit();
+        if (!written) {
+            err << "error: " << written.error() << "\n";
+            return kExitError;
+        }
+        const auto t3 = Clock::now();
+
+        if (frame == range.first) {
+            cameraJson = {{"source", view->source}, {"eye", vec(view->eye)}, {"forward", vec(view->forward)},
+                          {"perspective", view->perspective}, {"yfov_degrees", glm::degrees(view->yfov)},
+                          {"znear", view->znear}, {"zfar", view->zfar}};
+        }
+        frames.push_back({{"frame", frame}, {"time", time}, {"render_ms", ms(t1 - t0)}, {"readback_ms", ms(t2 - t1)},
+                          {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});
+        if (!options.quiet) {
+            err << "frame " << frame << " (" << (frame - range.first + 1) << "/" << frameCount << "): "
+                << fmt(ms(t1 - t0)) << " ms -> " << framePath(outputs.color, frame, sequence) << "\n";
+        }
+    }
+
+    if (!outputs.json.empty()) {
+        nlohmann::json meta = {
+            {"scene", options.scene},
+            {"counts", {{"nodes", scene.nodes.size()}, {"meshes", scene.meshes.size()}, {"instances", scene.instances.size()},
+                        {"triangles", scene.triangleCount()}, {"materials", scene.materials.size()},
+                        {"textures", scene.textures.size()}, {"animations", scene.animations.size()}}},
+            {"unsupported", scene.unsupported},
+            {"size", {options.width, options.height}},
+            {"backend", backend.name()},
+            {"renderer", backend.renderer()},
+            {"backend_log", log},
+            {"camera", cameraJson},
+            {"frames", frames},
+        };
+        const std::string text = meta.dump(2) + "\n";
+        Result<bool> written = writeFileAtomic(outputs.json, Bytes(text.begin(), text.end()));
+        if (!written) {
+            err << "error: " << written.error() << "\n";
+            return kExitError;
+        }
+    }
+    if (!options.quiet && !range.sequence) out << "wrote " << outputs.color << "\n";
+    return kExitOk;
+}
+
+}  // namespace frugal

@@ -1,0 +1,932 @@
+// The OpenGL backend: render/Backend.h on a GL 3.3 core context, all GL through GlApi.
+//
+// Targets: one FBO each with three renderbuffers (renderbuffers, not textures: a target is only
+// drawn, cleared, blitted and read, never sampled): RGBA8 colour on attachment 0, R32UI triangle ids
+// on attachment 1, DEPTH_COMPONENT24 depth. A new target is cleared to transparent black, far depth
+// and id 0, so its contents are defined in both backends.
+//
+// Depth read-back: glReadPixels(GL_DEPTH_COMPONENT, GL_UNSIGNED_INT) returns the 24-bit value D
+// scaled to 32 bits; on Mesa that is D << 8 | D >> 16 (the exact conversion D·(2³²−1)/(2²⁴−1)
+// rounds to the same), so >> 8 gives D back. Clearing to depth 1.0 reads 0xFFFFFF and clearing to
+// 0.5 reads 0x800000 on llvmpipe (round to nearest, ties up: 0.5 · 0xFFFFFF = 8388607.5), checked by
+// DepthReadBackIsTheStored24BitValue in tests/gl/GlBackendGLTest.cpp.
+//
+// Vertex arithmetic (the software reference repeats it exactly, in float, with glm):
+//   u_mvp = (projection * view) * model       (projection * view computed once per frame)
+//   u_normalMatrix = transpose(inverse(mat3(model)))
+//   gl_Position = u_mvp * vec4(position, 1)
+//
+// Triangle ids: gl_PrimitiveID costs ≈3.5 ms per bunny frame on llvmpipe (DESIGN.md), so a frame
+// that writes ids draws each mesh unindexed from an "expanded" vertex buffer: 3 vertices per
+// triangle, in the mesh's triangle order, each carrying the flat attribute triangleSource[t]. It is
+// built on the first draw of the mesh with ids, from the mesh's own GL buffers (read back once, so
+// no CPU copy of every mesh is kept for a pass that may never run). Ranges become
+// glMultiDrawArrays over [3·first, 3·count). Without ids the mesh is drawn indexed
+// (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps its cleared 0.
+// Both paths run the same program on the same vertex values, so colour and depth are identical.
+//
+// GL state is cached (program, VAO, framebuffers, draw/read buffers per FBO, culling, scissor,
+// viewport, texture, uniforms) so a call that would not change anything is not made
+// (DESIGN.md, "Per-draw state changes on llvmpipe").
+#include "gl/GlBackend.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <utility>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/GlApi.h"
+#include "gl/Shaders.h"
+
+namespace frugal {
+
+Result<BackendChoice> parseBackendChoice(const std::string& text) {
+    if (text == "auto") return BackendChoice::Auto;
+    if (text == "egl") return BackendChoice::Egl;
+    if (text == "egl-device") return BackendChoice::EglDevice;
+    if (text == "egl-surfaceless") return BackendChoice::EglSurfaceless;
+    if (text == "osmesa") return BackendChoice::OsMesa;
+    return Error{"unknown GL backend '" + text +
+                 "' (expected auto, egl, egl-device, egl-surfaceless or osmesa)"};
+}
+
+namespace {
+
+// Vertex attribute locations, as in shaders/mesh.vert.
+enum Attribute : GLuint { kPosition = 0, kNormal = 1, kColor = 2, kUv = 3, kId = 4 };
+
+// Which colour attachments an FBO draws into; glDrawBuffers is per-FBO state.
+enum class DrawSet : std::uint8_t { Unknown, Color, ColorAndIds, Ids };
+
+struct GlTarget {
+    int width = 0, height = 0;
+    GLuint fbo = 0, color = 0, ids = 0, depth = 0;
+    DrawSet drawSet = DrawSet::Unknown;
+    GLenum readBuffer = GL_NONE;  // GL_NONE = not known
+};
+
+// Byte offsets of the attribute sections in a mesh's vertex buffer (positions first, at 0);
+// -1 = the mesh has no such attribute and the shader gets the constant current value.
+struct VertexLayout {
+    GLintptr normal = -1, color = -1, uv = -1, id = -1;
+    GLsizeiptr size = 0;
+};
+
+struct GlMesh {
+    std::uint32_t triangles = 0;
+    std::uint32_t vertices = 0;
+    GLuint vao = 0, vbo = 0, ibo = 0;
+    VertexLayout layout;
+    std::vector<std::uint32_t> triangleSource;
+    GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
+};
+
+// Handles are slot index + 1; kNoHandle (0) is never handed out. Freed slots are reused.
+template <class T>
+class Slots {
+public:
+    std::uint32_t add(T value) {
+        if (!free_.empty()) {
+            const std::uint32_t index = free_.back();
+            free_.pop_back();
+            items_[index] = std::move(value);
+            live_[index] = true;
+            return index + 1;
+        }
+        items_.push_back(std::move(value));
+        live_.push_back(true);
+        return std::uint32_t(items_.size());
+    }
+    T* find(std::uint32_t handle) {
+        if (handle == kNoHandle || handle > items_.size() || !live_[handle - 1]) return nullptr;
+        return &items_[handle - 1];
+    }
+    void remove(std::uint32_t handle) {
+        if (find(handle) == nullptr) return;
+        items_[handle - 1] = T{};
+        live_[handle - 1] = false;
+        free_.push_back(handle - 1);
+    }
+    template <class F>
+    void forEach(F&& f) {
+        for (std::size_t i = 0; i < items_.size(); ++i)
+            if (live_[i]) f(items_[i]);
+    }
+
+private:
+    std::vector<T> items_;
+    std::vector<bool> live_;
+    std::vector<std::uint32_t> free_;
+};
+
+// An info log on one line: newlines become "; ", trailing blanks and NULs go.
+std::string oneLine(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\0'))
+        text.pop_back();
+    std::string out;
+    for (char c : text) {
+        if (c == '\n')
+            out += "; ";
+        else if (c != '\r')
+            out += c;
+    }
+    return out;
+}
+
+Rect clipRect(const Rect& rect, int width, int height) {
+    const int x0 = std::max(rect.x, 0), y0 = std::max(rect.y, 0);
+    const int x1 = std::min(rect.x + std::max(rect.width, 0), width);
+    const int y1 = std::min(rect.y + std::max(rect.height, 0), height);
+    return Rect{x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
+GLint wrapMode(Wrap wrap) {
+    switch (wrap) {
+        case Wrap::Repeat: return GL_REPEAT;
+        case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+    }
+    return GL_REPEAT;
+}
+
+class GlBackend final : public Backend {
+public:
+    explicit GlBackend(std::unique_ptr<GlContext> context) : context_(std::move(context)) {}
+    GlBackend(const GlBackend&) = delete;
+    GlBackend& operator=(const GlBackend&) = delete;
+
+    ~GlBackend() override {
+        if (!initialised_) return;
+        activate();
+        targets_.forEach([this](GlTarget& t) { deleteTarget(t); });
+        meshes_.forEach([this](GlMesh& m) {
+            gl_.DeleteVertexArrays(1, &m.vao);
+            gl_.DeleteBuffers(1, &m.vbo);
+            gl_.DeleteBuffers(1, &m.ibo);
+            if (m.idVao) gl_.DeleteVertexArrays(1, &m.idVao);
+            if (m.idVbo) gl_.DeleteBuffers(1, &m.idVbo);
+        });
+        textures_.forEach([this](GLuint& t) { gl_.DeleteTextures(1, &t); });
+        gl_.DeleteTextures(1, &white_);
+        gl_.DeleteProgram(program_);
+        // context_ goes last (member order), with every object it held already deleted.
+    }
+
+    // Loads GL, checks the version, builds the program and sets the fixed state. "" or the reason.
+    std::string initialise();
+
+    std::string name() const override { return contextKindName(context_->kind()); }
+    std::string renderer() const override { return renderer_; }
+    int maxTargetSize() const override { return maxTargetSize_; }
+    const GlContext& context() const { return *context_; }
+
+    TargetHandle createTarget(int width, int height) override;
+    void destroyTarget(TargetHandle target) override;
+    MeshHandle uploadMesh(const Mesh& mesh) override;
+    TextureHandle uploadTexture(const Texture& texture) override;
+    void beginFrame(TargetHandle target, const FrameParams& frame) override;
+    void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
+    void clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
+               float depth) override;
+    void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth,
+              bool ids) override;
+    Buffers readBack(TargetHandle target) override;
+    void finish() override {
+        activate();
+        gl_.Finish();
+    }
+
+private:
+    // Makes our context current unless it is the frugal context this thread made current last
+    // (two backends, e.g. EGL and OSMesa, may be used in turn on one thread).
+    void activate() {
+        if (currentContext() != context_.get()) {
+            [[maybe_unused]] const bool ok = context_->makeCurrent();
+            assert(ok && "GlBackend: could not make the context current");
+        }
+    }
+
+    // A GL error here is a bug in this file (the inputs are validated), except running out of
+    // memory; debug builds say where and stop.
+    void check([[maybe_unused]] const char* where) {
+#ifndef NDEBUG
+        for (int i = 0; i < 8; ++i) {
+            const GLenum error = gl_.GetError();
+            if (error == GL_NO_ERROR) return;
+            std::fprintf(stderr, "frugal: %s: %s after %s\n", name().c_str(),
+                         glErrorName(error).c_str(), where);
+            assert(error == GL_OUT_OF_MEMORY && "GL error in GlBackend");
+        }
+#endif
+    }
+
+    void deleteTarget(GlTarget& t) {
+        if (cache_.drawFbo == t.fbo) cache_.drawFbo = 0;  // deleting a bound FBO binds 0
+        if (cache_.readFbo == t.fbo) cache_.readFbo = 0;
+        gl_.DeleteFramebuffers(1, &t.fbo);
+        const GLuint renderbuffers[] = {t.color, t.ids, t.depth};
+        gl_.DeleteRenderbuffers(3, renderbuffers);
+    }
+
+    // --- cached state -------------------------------------------------------------------------
+    void bindDrawFbo(GLuint fbo) {
+        if (cache_.drawFbo != fbo) gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        cache_.drawFbo = fbo;
+    }
+    void bindReadFbo(GLuint fbo) {
+        if (cache_.readFbo != fbo) gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        cache_.readFbo = fbo;
+    }
+    // Binds `t` for drawing with the given colour attachments enabled.
+    void drawInto(GlTarget& t, DrawSet set) {
+        bindDrawFbo(t.fbo);
+        if (t.drawSet == set) return;
+        static constexpr GLenum kColor[] = {GL_COLOR_ATTACHMENT0};
+        static constexpr GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        static constexpr GLenum kIds[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
+        switch (set) {
+            case DrawSet::Color: gl_.DrawBuffers(1, kColor); break;
+            case DrawSet::ColorAndIds: gl_.DrawBuffers(2, kBoth); break;
+            case DrawSet::Ids: gl_.DrawBuffers(2, kIds); break;
+            case DrawSet::Unknown: break;
+        }
+        t.drawSet = set;
+    }
+    void readFrom(GlTarget& t, GLenum attachment) {
+        bindReadFbo(t.fbo);
+        if (t.readBuffer != attachment) gl_.ReadBuffer(attachment);
+        t.readBuffer = attachment;
+    }
+    void setScissor(bool on, const Rect& rect = {}) {
+        if (cache_.scissorOn != int(on)) {
+            if (on)
+                gl_.Enable(GL_SCISSOR_TEST);
+            else
+                gl_.Disable(GL_SCISSOR_TEST);
+            cache_.scissorOn = int(on);
+        }
+        if (on && (rect.x != cache_.scissor.x || rect.y != cache_.scissor.y ||
+                   rect.width != cache_.scissor.width || rect.height != cache_.scissor.height)) {
+            gl_.Scissor(rect.x, rect.y, rect.width, rect.height);
+            cache_.scissor = rect;
+        }
+    }
+    void setViewport(int width, int height) {
+        if (cache_.viewportWidth == width && cache_.viewportHeight == height) return;
+        gl_.Viewport(0, 0, width, height);
+        cache_.viewportWidth = width;
+        cache_.viewportHeight = height;
+    }
+    void setCull(bool on) {
+        if (cache_.cullOn == int(on)) return;
+        if (on)
+            gl_.Enable(GL_CULL_FACE);
+        else
+            gl_.Disable(GL_CULL_FACE);
+        cache_.cullOn = int(on);
+    }
+    void bindVao(GLuint vao) {
+        if (cache_.vao != vao) gl_.BindVertexArray(vao);
+        cache_.vao = vao;
+    }
+    void bindTexture(GLuint texture) {
+        if (cache_.texture != texture) gl_.BindTexture(GL_TEXTURE_2D, texture);
+        cache_.texture = texture;
+    }
+    // Uniform setters that skip a value equal (bit for bit) to the one already set.
+    template <class T>
+    static bool changed(T& cached, bool& valid, const T& value) {
+        if (valid && std::memcmp(&cached, &value, sizeof(T)) == 0) return false;
+        cached = value;
+        valid = true;
+        return true;
+    }
+
+    void setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout);
+    bool buildIdPass(GlMesh& mesh);
+
+    std::unique_ptr<GlContext> context_;
+    GlApi gl_;
+    bool initialised_ = false;
+    std::string renderer_;
+    int maxTargetSize_ = 0, maxTextureSize_ = 0;
+
+    GLuint program_ = 0, white_ = 0;
+    struct {
+        GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, baseColor = -1,
+              toLight = -1, ambient = -1, diffuse = -1;
+    } loc_;
+    struct {
+        glm::mat4 mvp{};
+        glm::mat3 normalMatrix{};
+        glm::vec4 baseColorFactor{};
+        glm::vec3 toLight{};
+        float ambient = 0, diffuse = 0;
+        std::uint32_t firstId = 0;
+        bool mvpValid = false, normalValid = false, factorValid = false, lightValid = false,
+             ambientValid = false, diffuseValid = false, firstIdValid = false;
+    } uniforms_;
+    struct {
+        GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0;
+        int scissorOn = -1, cullOn = -1;
+        Rect scissor{-1, -1, -1, -1};
+        int viewportWidth = -1, viewportHeight = -1;
+    } cache_;
+
+    Slots<GlTarget> targets_;
+    Slots<GlMesh> meshes_;
+    Slots<GLuint> textures_;
+
+    TargetHandle frameTarget_ = kNoHandle;
+    FrameParams frame_;
+    glm::mat4 viewProjection_{1.0f};
+
+    // Scratch for the multi-draw argument arrays (no allocation per draw once grown).
+    std::vector<GLsizei> counts_;
+    std::vector<GLint> firsts_;
+    std::vector<const void*> offsets_;
+};
+
+std::string compileProgram(const GlApi& gl, GLuint* program) {
+    const char* names[] = {"mesh.vert", "mesh.frag"};
+    const GLenum stages[] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER};
+    GLuint shaders[2] = {0, 0};
+    std::string reason;
+    for (int i = 0; i < 2 && reason.empty(); ++i) {
+        const char* source = shaders::find(names[i]);
+        if (source == nullptr) {
+            reason = std::string("shader ") + names[i] + " is not embedded";
+            break;
+        }
+        shaders[i] = gl.CreateShader(stages[i]);
+        gl.ShaderSource(shaders[i], 1, &source, nullptr);
+        gl.CompileShader(shaders[i]);
+        GLint ok = GL_FALSE, length = 0;
+        gl.GetShaderiv(shaders[i], GL_COMPILE_STATUS, &ok);
+        if (ok != GL_TRUE) {
+            gl.GetShaderiv(shaders[i], GL_INFO_LOG_LENGTH, &length);
+            std::string log(std::size_t(std::max(length, 1)), '\0');
+            gl.GetShaderInfoLog(shaders[i], GLsizei(log.size()), nullptr, log.data());
+            reason = std::string(names[i]) + ": compile failed: " + oneLine(log);
+        }
+    }
+    if (reason.empty()) {
+        *program = gl.CreateProgram();
+        gl.AttachShader(*program, shaders[0]);
+        gl.AttachShader(*program, shaders[1]);
+        gl.LinkProgram(*program);
+        GLint ok = GL_FALSE, length = 0;
+        gl.GetProgramiv(*program, GL_LINK_STATUS, &ok);
+        if (ok != GL_TRUE) {
+            gl.GetProgramiv(*program, GL_INFO_LOG_LENGTH, &length);
+            std::string log(std::size_t(std::max(length, 1)), '\0');
+            gl.GetProgramInfoLog(*program, GLsizei(log.size()), nullptr, log.data());
+            reason = "mesh.vert + mesh.frag: link failed: " + oneLine(log);
+            gl.DeleteProgram(*program);
+            *program = 0;
+        }
+    }
+    for (GLuint shader : shaders)
+        if (shader) gl.DeleteShader(shader);  // flagged; freed with the program
+    return reason;
+}
+
+std::string GlBackend::initialise() {
+    if (!context_->makeCurrent()) return "could not make the context current";
+    if (std::string missing = gl_.load(*context_); !missing.empty()) return missing;
+
+    GLint major = 0, minor = 0;
+    gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
+    gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 33)
+        return "OpenGL 3.3 needed, the context has " + std::to_string(major) + "." +
+               std::to_string(minor);
+    const auto text = [this](GLenum e) {
+        const GLubyte* s = gl_.GetString(e);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    renderer_ = text(GL_RENDERER) + "; " + text(GL_VERSION);
+
+    GLint maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    gl_.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize_);
+    maxTargetSize_ = std::min({maxRenderbuffer, maxViewport[0], maxViewport[1]});
+
+    if (std::string reason = compileProgram(gl_, &program_); !reason.empty()) return reason;
+    loc_.mvp = gl_.GetUniformLocation(program_, "u_mvp");
+    loc_.normalMatrix = gl_.GetUniformLocation(program_, "u_normalMatrix");
+    loc_.firstId = gl_.GetUniformLocation(program_, "u_firstId");
+    loc_.baseColorFactor = gl_.GetUniformLocation(program_, "u_baseColorFactor");
+    loc_.baseColor = gl_.GetUniformLocation(program_, "u_baseColor");
+    loc_.toLight = gl_.GetUniformLocation(program_, "u_toLight");
+    loc_.ambient = gl_.GetUniformLocation(program_, "u_ambient");
+    loc_.diffuse = gl_.GetUniformLocation(program_, "u_diffuse");
+    // One program for everything: bound once, never switched.
+    gl_.UseProgram(program_);
+    gl_.Uniform1i(loc_.baseColor, 0);
+
+    // The fixed state (Backend.h): GL_LESS with depth writes, no blending (the default), no
+    // dithering (Mesa may dither 8-bit targets otherwise), counter-clockwise front faces.
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(GL_LESS);
+    gl_.DepthMask(GL_TRUE);
+    gl_.Disable(GL_DITHER);
+    gl_.Disable(GL_BLEND);
+    gl_.CullFace(GL_BACK);
+    gl_.FrontFace(GL_CCW);
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl_.ActiveTexture(GL_TEXTURE0);
+    setCull(false);
+    setScissor(false);
+
+    const std::uint8_t whitePixel[4] = {255, 255, 255, 255};
+    gl_.GenTextures(1, &white_);
+    bindTexture(white_);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, whitePixel);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+
+    const GLenum error = gl_.GetError();
+    if (error != GL_NO_ERROR) return glErrorName(error) + " while setting up the GL backend";
+    initialised_ = true;
+    return {};
+}
+
+TargetHandle GlBackend::createTarget(int width, int height) {
+    // Sizes outside what GL can attach or view are refused, not clamped: the caller reports them.
+    if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_)
+        return kNoHandle;
+    activate();
+    while (gl_.GetError() != GL_NO_ERROR) {
+    }
+
+    GlTarget t;
+    t.width = width;
+    t.height = height;
+    GLuint renderbuffers[3] = {0, 0, 0};
+    gl_.GenRenderbuffers(3, renderbuffers);
+    t.color = renderbuffers[0];
+    t.ids = renderbuffers[1];
+    t.depth = renderbuffers[2];
+    const GLenum formats[3] = {GL_RGBA8, GL_R32UI, GL_DEPTH_COMPONENT24};
+    for (int i = 0; i < 3; ++i) {
+        gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
+        gl_.RenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
+    }
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, 0);
+    gl_.GenFramebuffers(1, &t.fbo);
+    bindDrawFbo(t.fbo);
+    gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color);
+    gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, t.ids);
+    gl_.FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth);
+    const GLenum status = gl_.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+    const GLenum error = gl_.GetError();  // GL_OUT_OF_MEMORY for a size the heap cannot take
+    if (status != GL_FRAMEBUFFER_COMPLETE || error != GL_NO_ERROR) {
+        deleteTarget(t);
+        return kNoHandle;
+    }
+    const TargetHandle handle = targets_.add(t);
+    clear(handle, Rect{0, 0, width, height}, glm::vec4(0.0f), 1.0f);
+    return handle;
+}
+
+void GlBackend::destroyTarget(TargetHandle target) {
+    GlTarget* t = targets_.find(target);
+    if (t == nullptr) return;
+    activate();
+    deleteTarget(*t);
+    targets_.remove(target);
+    if (frameTarget_ == target) frameTarget_ = kNoHandle;
+    check("destroyTarget");
+}
+
+void GlBackend::setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout) {
+    bindVao(vao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, vbo);
+    if (ibo) gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // VAO state
+    const auto offset = [](GLintptr bytes) { return reinterpret_cast<const void*>(bytes); };
+    gl_.EnableVertexAttribArray(kPosition);
+    gl_.VertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, offset(0));
+    if (layout.normal >= 0) {
+        gl_.EnableVertexAttribArray(kNormal);
+        gl_.VertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, 0, offset(layout.normal));
+    }
+    if (layout.color >= 0) {
+        gl_.EnableVertexAttribArray(kColor);
+        gl_.VertexAttribPointer(kColor, 4, GL_FLOAT, GL_FALSE, 0, offset(layout.color));
+    }
+    if (layout.uv >= 0) {
+        gl_.EnableVertexAttribArray(kUv);
+        gl_.VertexAttribPointer(kUv, 2, GL_FLOAT, GL_FALSE, 0, offset(layout.uv));
+    }
+    if (layout.id >= 0) {
+        gl_.EnableVertexAttribArray(kId);
+        gl_.VertexAttribIPointer(kId, 1, GL_UNSIGNED_INT, 0, offset(layout.id));
+    }
+}
+
+MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
+    // Bad data gets kNoHandle, never a GL call that reads out of bounds: attribute arrays must
+    // match the positions (or be empty), indices come in threes and stay below the vertex count,
+    // triangleSource has one entry per triangle (or is empty: then triangle t has source t).
+    const std::size_t vertices = mesh.positions.size();
+    const std::size_t triangles = mesh.indices.size() / 3;
+    const auto fits = [vertices](std::size_t n) { return n == 0 || n == vertices; };
+    if (mesh.indices.size() % 3 != 0 || !fits(mesh.normals.size()) || !fits(mesh.colors.size()) ||
+        !fits(mesh.uvs.size()) || vertices > 0xFFFFFFFFu || triangles > 0x7FFFFFFFu / 3 ||
+        (!mesh.triangleSource.empty() && mesh.triangleSource.size() != triangles))
+        return kNoHandle;
+    for (std::uint32_t index : mesh.indices)
+        if (index >= vertices) return kNoHandle;
+
+    activate();
+    GlMesh m;
+    m.triangles = std::uint32_t(triangles);
+    m.vertices = std::uint32_t(vertices);
+    m.triangleSource = mesh.triangleSource;
+    if (m.triangleSource.empty()) {
+        m.triangleSource.resize(triangles);
+        for (std::uint32_t t = 0; t < m.triangles; ++t) m.triangleSource[t] = t;
+    }
+
+    // One buffer, one section per attribute (positions, normals, colours, uvs).
+    GLsizeiptr size = GLsizeiptr(vertices * sizeof(glm::vec3));
+    const auto section = [&size](std::size_t count, std::size_t elementSize) -> GLintptr {
+        if (count == 0) return -1;
+        const GLintptr at = size;
+        size += GLsizeiptr(count * elementSize);
+        return at;
+    };
+    m.layout.normal = section(mesh.normals.size(), sizeof(glm::vec3));
+    m.layout.color = section(mesh.colors.size(), sizeof(glm::vec4));
+    m.layout.uv = section(mesh.uvs.size(), sizeof(glm::vec2));
+    m.layout.size = size;
+    std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
+    const auto put = [&data](GLintptr at, const void* source, std::size_t bytes) {
+        if (at >= 0 && bytes > 0) std::memcpy(data.data() + at, source, bytes);
+    };
+    put(0, mesh.positions.data(), vertices * sizeof(glm::vec3));
+    put(m.layout.normal, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3));
+    put(m.layout.color, mesh.colors.data(), mesh.colors.size() * sizeof(glm::vec4));
+    put(m.layout.uv, mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2));
+
+    gl_.GenVertexArrays(1, &m.vao);
+    gl_.GenBuffers(1, &m.vbo);
+    gl_.GenBuffers(1, &m.ibo);
+    bindVao(m.vao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
+    gl_.BufferData(GL_ARRAY_BUFFER, size, data.data(), GL_STATIC_DRAW);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER,
+                   GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(),
+                   GL_STATIC_DRAW);
+    setVertexLayout(m.vao, m.vbo, m.ibo, m.layout);
+    check("uploadMesh");
+    return meshes_.add(std::move(m));
+}
+
+bool GlBackend::buildIdPass(GlMesh& m) {
+    // Read the mesh's buffers back through GL_COPY_READ_BUFFER (binding GL_ELEMENT_ARRAY_BUFFER
+    // would change the bound VAO's index buffer).
+    std::vector<std::uint8_t> vertexData(static_cast<std::size_t>(m.layout.size));
+    std::vector<std::uint32_t> indices(std::size_t(m.triangles) * 3);
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, m.vbo);
+    if (!vertexData.empty())
+        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, m.layout.size, vertexData.data());
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, m.ibo);
+    if (!indices.empty())
+        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0,
+                             GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data());
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+
+    // Same sections as the indexed buffer, 3 vertices per triangle, plus the id section.
+    const std::size_t n = indices.size();
+    VertexLayout expanded;
+    GLsizeiptr size = GLsizeiptr(n * sizeof(glm::vec3));
+    const auto section = [&size, n](GLintptr source, std::size_t elementSize) -> GLintptr {
+        if (source < 0) return -1;
+        const GLintptr at = size;
+        size += GLsizeiptr(n * elementSize);
+        return at;
+    };
+    expanded.normal = section(m.layout.normal, sizeof(glm::vec3));
+    expanded.color = section(m.layout.color, sizeof(glm::vec4));
+    expanded.uv = section(m.layout.uv, sizeof(glm::vec2));
+    expanded.id = section(0, sizeof(std::uint32_t));
+    expanded.size = size;
+    std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
+    const auto gather = [&](GLintptr from, GLintptr to, std::size_t elementSize) {
+        if (from < 0) return;
+        for (std::size_t k = 0; k < n; ++k)
+            std::memcpy(data.data() + to + k * elementSize,
+                        vertexData.data() + from + indices[k] * elementSize, elementSize);
+    };
+    gather(0, 0, sizeof(glm::vec3));
+    gather(m.layout.normal, expanded.normal, sizeof(glm::vec3));
+    gather(m.layout.color, expanded.color, sizeof(glm::vec4));
+    gather(m.layout.uv, expanded.uv, sizeof(glm::vec2));
+    for (std::size_t k = 0; k < n; ++k)
+        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t),
+                    &m.triangleSource[k / 3], sizeof(std::uint32_t));
+
+    gl_.GenVertexArrays(1, &m.idVao);
+    gl_.GenBuffers(1, &m.idVbo);
+    bindVao(m.idVao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, m.idVbo);
+    gl_.BufferData(GL_ARRAY_BUFFER, size, data.data(), GL_STATIC_DRAW);
+    setVertexLayout(m.idVao, m.idVbo, 0, expanded);
+    return gl_.GetError() == GL_NO_ERROR;
+}
+
+TextureHandle GlBackend::uploadTexture(const Texture& texture) {
+    if (texture.width <= 0 || texture.height <= 0 || texture.width > maxTextureSize_ ||
+        texture.height > maxTextureSize_ ||
+        texture.rgba.size() != std::size_t(texture.width) * std::size_t(texture.height) * 4)
+        return kNoHandle;
+    activate();
+    GLuint name = 0;
+    gl_.GenTextures(1, &name);
+    bindTexture(name);
+    // Rows as stored: the first row is v = 0, which is where glTF puts (0,0) (scene/Scene.h).
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, texture.rgba.data());
+    // Base level only (Scene.h: no mipmaps in either backend).
+    const GLint filter = texture.filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrapMode(texture.wrapS));
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrapMode(texture.wrapT));
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    if (gl_.GetError() != GL_NO_ERROR) {
+        gl_.DeleteTextures(1, &name);
+        cache_.texture = 0;
+        return kNoHandle;
+    }
+    return textures_.add(name);
+}
+
+void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
+    assert(targets_.find(target) != nullptr && "beginFrame: no such target");
+    if (targets_.find(target) == nullptr) return;
+    activate();
+    frameTarget_ = target;
+    frame_ = frame;
+    viewProjection_ = frame.projection * frame.view;
+    const Lighting& light = frame.lighting;
+    if (changed(uniforms_.toLight, uniforms_.lightValid, light.toLight))
+        gl_.Uniform3fv(loc_.toLight, 1, glm::value_ptr(light.toLight));
+    if (changed(uniforms_.ambient, uniforms_.ambientValid, light.ambient))
+        gl_.Uniform1f(loc_.ambient, light.ambient);
+    if (changed(uniforms_.diffuse, uniforms_.diffuseValid, light.diffuse))
+        gl_.Uniform1f(loc_.diffuse, light.diffuse);
+}
+
+void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
+    GlTarget* target = targets_.find(frameTarget_);
+    GlMesh* mesh = meshes_.find(params.mesh);
+    assert(target != nullptr && "draw: no beginFrame, or its target was destroyed");
+    assert(mesh != nullptr && "draw: no such mesh");
+    if (target == nullptr || mesh == nullptr) return;
+
+    // Ranges in the order given, adjacent ones merged (the triangle order is unchanged), clamped
+    // to the mesh (a range past the end is the caller's bug).
+    counts_.clear();
+    firsts_.clear();
+    std::uint32_t runFirst = 0, runEnd = 0;
+    bool open = false;
+    const auto flush = [&] {
+        if (open && runEnd > runFirst) {
+            firsts_.push_back(GLint(runFirst));
+            counts_.push_back(GLsizei(runEnd - runFirst));
+        }
+    };
+    for (const IndexRange& range : ranges) {
+        assert(std::uint64_t(range.firstTriangle) + range.triangleCount <= mesh->triangles &&
+               "draw: index range past the end of the mesh");
+        const std::uint32_t first = std::min(range.firstTriangle, mesh->triangles);
+        const std::uint32_t end =
+            first + std::min(range.triangleCount, mesh->triangles - first);
+        if (end == first) continue;
+        if (open && first == runEnd) {
+            runEnd = end;
+            continue;
+        }
+        flush();
+        runFirst = first;
+        runEnd = end;
+        open = true;
+    }
+    flush();
+    if (counts_.empty()) return;
+
+    activate();
+    const bool writeIds = frame_.writeIds;
+    drawInto(*target, writeIds ? DrawSet::ColorAndIds : DrawSet::Color);
+    setViewport(target->width, target->height);
+    setScissor(false);
+    setCull(!params.doubleSided);
+
+    GLuint texture = white_;
+    if (params.texture != kNoHandle) {
+        const GLuint* t = textures_.find(params.texture);
+        assert(t != nullptr && "draw: no such texture");
+        if (t) texture = *t;
+    }
+    bindTexture(texture);
+
+    const glm::mat4 mvp = viewProjection_ * params.model;
+    const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
+    if (changed(uniforms_.mvp, uniforms_.mvpValid, mvp))
+        gl_.UniformMatrix4fv(loc_.mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    if (changed(uniforms_.normalMatrix, uniforms_.normalValid, normalMatrix))
+        gl_.UniformMatrix3fv(loc_.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    if (changed(uniforms_.baseColorFactor, uniforms_.factorValid, params.baseColorFactor))
+        gl_.Uniform4fv(loc_.baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
+    if (writeIds && changed(uniforms_.firstId, uniforms_.firstIdValid, params.firstId))
+        gl_.Uniform1ui(loc_.firstId, params.firstId);
+
+    // Attributes the mesh lacks read the current generic value. That value is context state, and
+    // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
+    // set before every draw that needs it: normal +z, colour white, uv (0,0), id 0.
+    if (mesh->layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
+    if (mesh->layout.color < 0) gl_.VertexAttrib4f(kColor, 1.0f, 1.0f, 1.0f, 1.0f);
+    if (mesh->layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
+
+    if (writeIds) {
+        if (mesh->idVao == 0 && !buildIdPass(*mesh)) {
+            assert(false && "draw: could not build the id pass (out of memory?)");
+            return;
+        }
+        for (std::size_t i = 0; i < counts_.size(); ++i) {
+            firsts_[i] *= 3;
+            counts_[i] *= 3;
+        }
+        bindVao(mesh->idVao);
+        gl_.MultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
+    } else {
+        gl_.VertexAttribI4ui(kId, 0, 0, 0, 0);
+        offsets_.resize(counts_.size());
+        for (std::size_t i = 0; i < counts_.size(); ++i) {
+            offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 *
+                                                        sizeof(std::uint32_t));
+            counts_[i] *= 3;
+        }
+        bindVao(mesh->vao);
+        gl_.MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(),
+                              GLsizei(counts_.size()));
+    }
+    check("draw");
+}
+
+void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
+                      float depth) {
+    GlTarget* t = targets_.find(target);
+    assert(t != nullptr && "clear: no such target");
+    if (t == nullptr) return;
+    const Rect r = clipRect(rect, t->width, t->height);
+    if (r.empty()) return;
+    activate();
+    drawInto(*t, DrawSet::ColorAndIds);
+    setScissor(true, r);
+    const GLuint zero[4] = {0, 0, 0, 0};
+    const GLfloat clampedDepth = std::clamp(depth, 0.0f, 1.0f);
+    // Draw buffer indices, not attachments: 0 is colour, 1 is ids in the ColorAndIds set.
+    gl_.ClearBufferfv(GL_COLOR, 0, glm::value_ptr(color));
+    gl_.ClearBufferuiv(GL_COLOR, 1, zero);
+    gl_.ClearBufferfv(GL_DEPTH, 0, &clampedDepth);
+    check("clear");
+}
+
+void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
+                     bool depth, bool ids) {
+    GlTarget* source = targets_.find(from);
+    GlTarget* dest = targets_.find(to);
+    assert(source != nullptr && dest != nullptr && "copy: no such target");
+    if (source == nullptr || dest == nullptr || from == to) return;
+    assert(source->width == dest->width && source->height == dest->height &&
+           "copy: targets differ in size");
+    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width,
+                            dest->height);
+    if (r.empty() || !(color || depth || ids)) return;
+    activate();
+    // Blits obey the scissor test; the rectangle is the blit's own.
+    setScissor(false);
+    const int x1 = r.x + r.width, y1 = r.y + r.height;
+    // A blit writes every enabled draw buffer from the one read buffer, and a normalised colour
+    // buffer cannot be blitted into an integer one: colour and ids go in separate blits, each with
+    // only the matching draw buffer enabled. Depth rides along with the first blit.
+    GLbitfield depthBit = depth ? GL_DEPTH_BUFFER_BIT : 0;
+    if (color) {
+        readFrom(*source, GL_COLOR_ATTACHMENT0);
+        drawInto(*dest, DrawSet::Color);
+        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit,
+                            GL_NEAREST);
+        depthBit = 0;
+    }
+    if (ids) {
+        readFrom(*source, GL_COLOR_ATTACHMENT1);
+        drawInto(*dest, DrawSet::Ids);
+        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit,
+                            GL_NEAREST);
+        depthBit = 0;
+    }
+    if (depthBit) {
+        bindReadFbo(source->fbo);
+        bindDrawFbo(dest->fbo);
+        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, depthBit, GL_NEAREST);
+    }
+    check("copy");
+}
+
+Buffers GlBackend::readBack(TargetHandle target) {
+    Buffers out;
+    GlTarget* t = targets_.find(target);
+    assert(t != nullptr && "readBack: no such target");
+    if (t == nullptr) return out;
+    activate();
+    out.width = t->width;
+    out.height = t->height;
+    out.rgba.resize(out.pixelCount() * 4);
+    out.ids.resize(out.pixelCount());
+    out.depth.resize(out.pixelCount());
+    // Rows come bottom-up (window origin bottom-left), as Buffers wants. Pack alignment is 1.
+    readFrom(*t, GL_COLOR_ATTACHMENT0);
+    gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+    readFrom(*t, GL_COLOR_ATTACHMENT1);
+    gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
+    gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+                   out.depth.data());
+    // 32-bit normalised → the stored 24-bit value (see the top of this file).
+    for (std::uint32_t& d : out.depth) d >>= 8;
+    check("readBack");
+    return out;
+}
+
+// Creates the backend on `context`; the error is "<kind>: <reason>".
+Result<std::unique_ptr<Backend>> createOn(std::unique_ptr<GlContext> context) {
+    const std::string kind = contextKindName(context->kind());
+    auto backend = std::make_unique<GlBackend>(std::move(context));
+    if (std::string reason = backend->initialise(); !reason.empty())
+        return Error{kind + ": " + reason};
+    return std::unique_ptr<Backend>(std::move(backend));
+}
+
+}  // namespace
+
+// Returns nullptr when the backend cannot be set up on `context` (entry point missing, GL older
+// than 3.3, shader not compiling); createGlBackend says why.
+std::unique_ptr<Backend> makeGlBackend(std::unique_ptr<GlContext> context) {
+    if (!context) return nullptr;
+    auto result = createOn(std::move(context));
+    if (!result) return nullptr;
+    return std::move(*result);
+}
+
+Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice,
+                                                 std::vector<std::string>* log) {
+    using Factory = Result<std::unique_ptr<GlContext>> (*)();
+    std::vector<Factory> attempts;
+    const Factory hardwareDevice = [] { return createEglDeviceContext(false); };
+    const Factory anyDevice = [] { return createEglDeviceContext(true); };
+    switch (choice) {
+        case BackendChoice::Auto:
+            attempts = {hardwareDevice, createEglSurfacelessContext, createOsMesaContext};
+            break;
+        case BackendChoice::Egl: attempts = {hardwareDevice, createEglSurfacelessContext}; break;
+        case BackendChoice::EglDevice: attempts = {anyDevice}; break;
+        case BackendChoice::EglSurfaceless: attempts = {createEglSurfacelessContext}; break;
+        case BackendChoice::OsMesa: attempts = {createOsMesaContext}; break;
+    }
+
+    std::string reasons;
+    for (Factory factory : attempts) {
+        Result<std::unique_ptr<GlContext>> context = factory();
+        std::string line;
+        if (context) {
+            const std::string description = (*context)->description();
+            auto backend = createOn(std::move(*context));
+            if (backend) {
+                if (log)
+                    log->push_back((*backend)->name() + ": ok (" + description + "; " +
+                                   (*backend)->renderer() + ")");
+                return backend;
+            }
+            line = backend.error();
+        } else {
+            line = context.error();
+        }
+        if (log) log->push_back(line);
+        reasons += (reasons.empty() ? "" : "; ") + line;
+    }
+    return Error{"no usable GL context: " + reasons};
+}
+
+}  // namespace frugal

@@ -1,0 +1,86 @@
+// The OSMesa context: Mesa's off-screen library (gallium frontend, llvmpipe or softpipe), the
+// fallback when EGL is not there. The only file that includes OSMesa. Mesa 25.1 removed OSMesa.
+//
+// Include order matters here: <GL/glcorearb.h> (through gl/GlApi.h) must come before <GL/osmesa.h>,
+// whose <GL/gl.h> defines GL_VERSION_1_1 and would make glcorearb.h skip the 1.1 typedefs.
+#include "gl/GlApi.h"
+#include "gl/GlContext.h"
+
+#include <GL/osmesa.h>
+
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace frugal {
+namespace {
+
+class OsMesaContext final : public GlContext {
+public:
+    explicit OsMesaContext(OSMesaContext context) : context_(context) {}
+    OsMesaContext(const OsMesaContext&) = delete;
+    OsMesaContext& operator=(const OsMesaContext&) = delete;
+
+    ~OsMesaContext() override {
+        forgetCurrentContext(this);
+        // Unbind first so the thread is not left with a dangling current context; OSMesa accepts
+        // a null context for that.
+        if (OSMesaGetCurrentContext() == context_) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+        OSMesaDestroyContext(context_);
+    }
+
+    ContextKind kind() const override { return ContextKind::OsMesa; }
+
+    void* getProcAddress(const char* name) const override {
+        return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+    }
+
+    bool makeCurrent() override {
+        // OSMesa needs a colour buffer to be current; frugal draws into FBOs only, so a 1×1 RGBA
+        // buffer owned here is enough (it is the window-system framebuffer nobody uses).
+        if (OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1) != GL_TRUE)
+            return false;
+        noteCurrentContext(this);
+        return true;
+    }
+
+    std::string description() const override { return "OSMesa, 1x1 RGBA buffer"; }
+
+private:
+    OSMesaContext context_;
+    std::array<unsigned char, 4> buffer_{};
+};
+
+}  // namespace
+
+Result<std::unique_ptr<GlContext>> createOsMesaContext() {
+    // Mesa's gallium OSMesa (22.x, sw_screen_create) takes the screen named by GALLIUM_DRIVER and,
+    // when it is set and not empty, does not fall back: an unknown name gives a null screen that
+    // OSMesaCreateContextAttribs dereferences (measured: segfault for "nonexistent", "swrast",
+    // "zink", "kms_swrast"). Only the two software rasterizers work here, so check first.
+    if (const char* driver = std::getenv("GALLIUM_DRIVER"); driver != nullptr && *driver != '\0') {
+        if (std::strcmp(driver, "llvmpipe") != 0 && std::strcmp(driver, "softpipe") != 0)
+            return Error{std::string("osmesa: GALLIUM_DRIVER=") + driver +
+                         " is not a driver OSMesa has (llvmpipe, softpipe); unset it or pick one"};
+    }
+
+    // No depth/stencil/accum for the 1×1 window buffer: all rendering goes to FBOs.
+    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS, 0,
+                           OSMESA_STENCIL_BITS, 0,
+                           OSMESA_ACCUM_BITS, 0,
+                           OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION, 3,
+                           OSMESA_CONTEXT_MINOR_VERSION, 3,
+                           0};
+    OSMesaContext raw = OSMesaCreateContextAttribs(attribs, nullptr);
+    if (raw == nullptr)
+        return Error{"osmesa: OSMesaCreateContextAttribs(OpenGL 3.3 core) failed"};
+    auto context = std::make_unique<OsMesaContext>(raw);
+    if (!context->makeCurrent())
+        return Error{"osmesa: OSMesaMakeCurrent on a 1x1 RGBA buffer failed"};
+    return std::unique_ptr<GlContext>(std::move(context));
+}
+
+}  // namespace frugal

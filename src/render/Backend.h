@@ -1,0 +1,94 @@
+// The backend interface: what to draw, independent of how an API draws it (bgfx RendererContextI,
+// filament backend). Implemented by the GL backend (src/gl/) and the software reference
+// (src/software/). Plans made by cull/ and reuse/ are executed through this interface only.
+//
+// Render target: colour RGBA8 + depth 24-bit + triangle id R32UI, same formats in every backend.
+// Depth test GL_LESS, depth range [0,1], no blending. Draws are executed in call order, and within a
+// draw call the ranges in the order given, the triangles of a range in index-buffer order: that is
+// the documented order in which depth ties resolve (the first triangle drawn keeps the pixel).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "render/Image.h"
+#include "scene/Scene.h"
+
+namespace frugal {
+
+using TargetHandle = std::uint32_t;
+using MeshHandle = std::uint32_t;
+using TextureHandle = std::uint32_t;
+inline constexpr std::uint32_t kNoHandle = 0;
+
+// A run of triangles of one mesh, in units of triangles of its (reordered) index buffer.
+struct IndexRange {
+    std::uint32_t firstTriangle = 0;
+    std::uint32_t triangleCount = 0;
+};
+
+// The shading model, written once here and twice in code (shaders/mesh.frag and the software
+// backend):  rgb = base.rgb × (ambient + diffuse · max(0, n · toLight)),  a = base.a,
+// base = material factor × vertex colour × texture(uv). n is the interpolated world-space normal,
+// normalised, and negated on back faces of double-sided materials. Values are written unclamped to
+// the 8-bit target (the GL conversion clamps to [0,1] and rounds to nearest).
+struct Lighting {
+    glm::vec3 toLight = glm::normalize(glm::vec3(0.35f, 0.8f, 0.5f));  // world space, unit
+    float ambient = 0.3f;
+    float diffuse = 0.7f;
+};
+
+struct FrameParams {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    Lighting lighting;
+    bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
+};
+
+// Everything a draw needs besides the mesh's buffers.
+struct DrawParams {
+    MeshHandle mesh = kNoHandle;
+    glm::mat4 model{1.0f};
+    glm::vec4 baseColorFactor{1.0f};
+    TextureHandle texture = kNoHandle;  // kNoHandle = white
+    bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
+    std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+
+    virtual std::string name() const = 0;      // "egl-surfaceless", "osmesa", "software", ...
+    virtual std::string renderer() const = 0;  // GL_RENDERER / GL_VERSION, or a description
+
+    // Largest width or height createTarget accepts (GL_MAX_RENDERBUFFER_SIZE and GL_MAX_VIEWPORT_DIMS).
+    virtual int maxTargetSize() const = 0;
+    // kNoHandle when width or height is < 1 or > maxTargetSize(), or the allocation fails.
+    virtual TargetHandle createTarget(int width, int height) = 0;
+    virtual void destroyTarget(TargetHandle target) = 0;
+
+    virtual MeshHandle uploadMesh(const Mesh& mesh) = 0;
+    virtual TextureHandle uploadTexture(const Texture& texture) = 0;
+
+    // Starts drawing into `target` with the given camera and light; following draws use them.
+    virtual void beginFrame(TargetHandle target, const FrameParams& frame) = 0;
+    virtual void draw(const DrawParams& params, std::span<const IndexRange> ranges) = 0;
+
+    // Clears a rectangle of the target: colour to `color`, depth to `depth` (window z), ids to 0.
+    virtual void clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
+                       float depth = 1.0f) = 0;
+    // Copies a rectangle (same position) from one target to another of the same size.
+    virtual void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
+                      bool depth, bool ids) = 0;
+    // Reads the whole target back. Waits for the rendering to finish.
+    virtual Buffers readBack(TargetHandle target) = 0;
+    // Waits until all submitted work is done (for timing).
+    virtual void finish() = 0;
+};
+
+}  // namespace frugal

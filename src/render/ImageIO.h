@@ -1,0 +1,59 @@
+// Image files. Buffers hold rows bottom-up (GL window origin); every encoder here flips once, so
+// files are top row first as every viewer expects.
+//
+// - colour: 8-bit RGBA PNG;
+// - depth: 16-bit greyscale PNG holding the top 16 bits of the 24-bit depth (0 near, 65535 far), or
+//   PFM (portable float map, window z as float32) for the exact values;
+// - triangle ids: 8-bit RGBA PNG whose bytes are the 32-bit id, little-endian (R = bits 0-7,
+//   G = 8-15, B = 16-23, A = 24-31); 0 is the background.
+// Files are written atomically: to a temporary file in the same folder, then renamed, so an
+// interrupted run never leaves a half-written image.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/Image.h"
+#include "scene/Result.h"
+
+namespace frugal {
+
+using Bytes = std::vector<std::uint8_t>;
+
+// PNG encoder (zlib). `channels` 1..4, `bitDepth` 8 or 16 (16-bit samples given as uint16 in host
+// order), rows given top row first.
+Bytes encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst);
+
+Bytes encodeColorPng(const Buffers& buffers);
+Bytes encodeDepthPng(const Buffers& buffers);
+Bytes encodeDepthPfm(const Buffers& buffers);
+Bytes encodeIdPng(const Buffers& buffers);
+
+// Writes `bytes` to `path` atomically. Error: "<path>: <why>".
+Result<bool> writeFileAtomic(const std::string& path, const Bytes& bytes);
+
+// Several files that appear together or not at all: each is written to its temporary name first and
+// all are renamed only when every write succeeded.
+class OutputSet {
+public:
+    void add(std::string path, Bytes bytes);
+    Result<bool> commit();
+    bool empty() const { return files_.empty(); }
+
+private:
+    std::vector<std::pair<std::string, Bytes>> files_;
+};
+
+struct DecodedImage {
+    int width = 0, height = 0, channels = 0, bitDepth = 8;
+    std::vector<std::uint8_t> pixels8;    // when bitDepth == 8, top row first
+    std::vector<std::uint16_t> pixels16;  // when bitDepth == 16, top row first
+};
+// Reads a PNG (stb_image), keeping its channel count and bit depth.
+Result<DecodedImage> readPng(const std::string& path);
+
+// Buffers ⇄ images in file order.
+std::vector<std::uint8_t> flipRows(const std::uint8_t* rows, int width, int height, int bytesPerPixel);
+
+}  // namespace frugal

@@ -1,0 +1,35 @@
+// Draws a Scene through a Backend: uploads its meshes and textures once, then executes draw lists.
+#pragma once
+
+#include <vector>
+
+#include "render/Backend.h"
+#include "render/Plan.h"
+
+namespace frugal {
+
+class SceneRenderer {
+public:
+    // Uploads every mesh and texture of `scene`; both must outlive the renderer.
+    SceneRenderer(Backend& backend, const Scene& scene);
+
+    // Draws `list` with the node transforms `world` into the current frame (Backend::beginFrame
+    // must have been called). Materials follow the instance's mesh.
+    void draw(const DrawList& list, const std::vector<glm::mat4>& world);
+
+    // The usual full frame: clear the whole target to `background`, begin, draw everything.
+    void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
+                     const std::vector<glm::mat4>& world, const glm::vec4& background);
+
+    Backend& backend() { return backend_; }
+    const Scene& scene() const { return scene_; }
+
+private:
+    Backend& backend_;
+    const Scene& scene_;
+    DrawList full_;
+    std::vector<MeshHandle> meshes_;
+    std::vector<TextureHandle> textures_;
+};
+
+}  // namespace frugal

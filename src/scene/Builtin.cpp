@@ -1,0 +1,327 @@
+// Built-in procedural scenes. They use the same model as loaded files (nodes, TRS animation,
+// materials), so every later module treats them exactly like a glTF scene.
+//
+//   builtin:dominoes?polygons=804&static=0.5544&floor=0&seed=1
+//       A serpentine field of dominoes that fall one after another. One domino is a box of 6 quads
+//       (12 triangles), so polygons/6 dominoes. At every frame after the first, exactly
+//       k = round((1 − static) · dominoes) dominoes change pose (each falls over k frames and the next
+//       one starts a frame later), which makes the share of static polygons per frame a parameter:
+//       paper 000 uses 804 polygons / 55.44 % static and 1,404 / 98.66 %.
+//   builtin:cubes?count=28&seconds=10&seed=1
+//       N cubes spinning about random axes at random speeds (paper 003: 28 cubes = 168 quads).
+//   builtin:default
+//       The dominoes with a checkered floor: what `frugal render` draws with no scene.
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/Load.h"
+#include "scene/MeshBuild.h"
+
+namespace frugal {
+
+namespace {
+
+using Params = std::map<std::string, std::string>;
+
+struct ParamReader {
+    const std::string& scene;
+    Params params;
+    std::string error;
+
+    double number(const std::string& key, double fallback, double lo, double hi) {
+        auto it = params.find(key);
+        if (it == params.end()) return fallback;
+        const std::string text = it->second;
+        params.erase(it);
+        double value = 0.0;
+        auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+            fail(key + "=" + text + " is not a number");
+        } else if (value < lo || value > hi) {
+            fail(key + "=" + text + " is out of range [" + trim(lo) + ", " + trim(hi) + "]");
+        }
+        return value;
+    }
+    void fail(const std::string& why) {
+        if (error.empty()) error = scene + ": " + why;
+    }
+    static std::string trim(double v) {
+        char buf[32];
+        auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+        return std::string(buf, end);
+    }
+};
+
+// Box with flat faces: 24 vertices, 12 triangles, counter-clockwise outside.
+Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi, int material, const std::string& name) {
+    Mesh mesh;
+    mesh.name = name;
+    mesh.material = material;
+    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const glm::vec3& n : normals) {
+        // Two axes spanning the face, chosen so that u × v = n (counter-clockwise seen from outside).
+        const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(0, 0, n.y) : glm::vec3(-n.z, 0, n.x);
+        const glm::vec3 v = glm::cross(n, u);
+        const std::uint32_t base = std::uint32_t(mesh.positions.size());
+        const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (const glm::vec2& c : corners) {
+            const glm::vec3 unit = n + c.x * u + c.y * v;  // in [-1,1]^3
+            mesh.positions.push_back(glm::mix(lo, hi, (unit + 1.0f) * 0.5f));
+            mesh.normals.push_back(n);
+            mesh.uvs.push_back((c + 1.0f) * 0.5f);
+        }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(base + i);
+    }
+    return mesh;
+}
+
+Mesh makeQuad(float halfX, float halfZ, float uvRepeat, int material) {
+    Mesh mesh;
+    mesh.name = "floor";
+    mesh.material = material;
+    const glm::vec2 corners[4] = {{-1, -1}, {-1, 1}, {1, 1}, {1, -1}};  // y-up quad, CCW seen from above
+    for (const glm::vec2& c : corners) {
+        mesh.positions.push_back({c.x * halfX, 0.0f, c.y * halfZ});
+        mesh.normals.push_back({0, 1, 0});
+        mesh.uvs.push_back((c + 1.0f) * 0.5f * uvRepeat);
+    }
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    return mesh;
+}
+
+Texture makeChecker(int size, int cells) {
+    Texture texture;
+    texture.name = "checker";
+    texture.width = texture.height = size;
+    texture.filter = Filter::Nearest;
+    texture.rgba.resize(std::size_t(size) * size * 4);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const bool dark = ((x * cells / size) + (y * cells / size)) % 2 != 0;
+            std::uint8_t* p = &texture.rgba[(std::size_t(y) * size + x) * 4];
+            p[0] = dark ? 70 : 200;
+            p[1] = dark ? 80 : 205;
+            p[2] = dark ? 90 : 210;
+            p[3] = 255;
+        }
+    return texture;
+}
+
+glm::vec4 hueColor(float hue) {
+    const glm::vec3 k = glm::abs(glm::fract(glm::vec3(hue) + glm::vec3(0.0f, 2.0f / 3.0f, 1.0f / 3.0f)) * 6.0f - 3.0f);
+    return glm::vec4(glm::mix(glm::vec3(1.0f), glm::clamp(k - 1.0f, 0.0f, 1.0f), 0.7f), 1.0f);
+}
+
+int addCamera(Scene& scene, const glm::vec3& eye, const glm::vec3& target, float znear, float zfar) {
+    Node node;
+    node.name = "camera";
+    node.hasMatrix = true;
+    node.matrix = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
+    node.camera = int(scene.cameras.size());
+    Camera camera;
+    camera.name = "camera";
+    camera.node = int(scene.nodes.size());
+    camera.yfov = glm::radians(40.0f);
+    camera.znear = znear;
+    camera.zfar = zfar;
+    scene.cameras.push_back(camera);
+    scene.nodes.push_back(node);
+    scene.roots.push_back(camera.node);
+    return camera.node;
+}
+
+int addNode(Scene& scene, Node node, int parent) {
+    const int index = int(scene.nodes.size());
+    node.parent = parent;
+    scene.nodes.push_back(std::move(node));
+    if (parent >= 0) scene.nodes[parent].children.push_back(index);
+    else scene.roots.push_back(index);
+    return index;
+}
+
+Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
+    const double polygons = in.number("polygons", 804, 6, 6e6);
+    const double staticShare = in.number("static", 0.5544, 0.0, 1.0);
+    const bool floor = in.number("floor", defaultFloor ? 1 : 0, 0, 1) != 0.0;
+    if (!in.error.empty()) return Error{in.error};
+    const int count = std::max(1, int(std::lround(polygons / 6.0)));
+    const int moving = std::clamp(int(std::lround((1.0 - staticShare) * count)), 1, count);
+
+    Scene scene;
+    scene.fps = 30.0;
+    const float height = 2.0f, thickness = 0.3f, width = 1.0f, spacing = 1.2f, rowGap = 3.2f;
+    const int perRow = std::max(1, int(std::ceil(std::sqrt(count * 2.5))));
+    const int rows = (count + perRow - 1) / perRow;
+    const float rowLength = float(perRow - 1) * spacing;
+
+    const int kColours = 6;
+    for (int c = 0; c < kColours; ++c) {
+        Material material;
+        material.name = "domino" + std::to_string(c);
+        material.baseColorFactor = hueColor(float(c) / kColours);
+        scene.materials.push_back(material);
+        // The box sits behind its pivot (the front-bottom edge, at the origin), falling towards +z.
+        scene.meshes.push_back(makeBox({-width / 2, 0, -thickness}, {width / 2, height, 0}, c, "domino" + std::to_string(c)));
+    }
+
+    // A leaning domino rests on the next one: its top touches where the next one stands.
+    const float restAngle = std::asin(std::min(1.0f, spacing / height));
+    for (int i = 0; i < count; ++i) {
+        const int row = i / perRow, col = i % perRow;
+        const bool forward = row % 2 == 0;  // serpentine: odd rows run back
+        const float x = (forward ? float(col) : float(perRow - 1 - col)) * spacing - rowLength / 2;
+        const float z = (float(row) - float(rows - 1) / 2) * rowGap;
+        Node pivot;
+        pivot.name = "domino" + std::to_string(i);
+        pivot.translation = {x, 0.0f, z};
+        // Travel along ±x; the box falls towards its local +z, so turn local +z onto the travel direction.
+        const glm::quat facing = glm::angleAxis(forward ? glm::half_pi<float>() : -glm::half_pi<float>(), glm::vec3(0, 1, 0));
+        pivot.rotation = facing;
+        pivot.meshes.push_back(i % kColours);
+        const int node = addNode(scene, pivot, -1);
+
+        // Domino i falls during frames [i, i + moving]: one key per frame, accelerating (angle ∝ u²),
+        // so that between any two consecutive frames exactly `moving` dominoes change pose.
+        const float finalAngle = (i == count - 1 || col == perRow - 1) ? glm::half_pi<float>() : restAngle;
+        AnimChannel channel;
+        channel.node = node;
+        channel.path = AnimPath::Rotation;
+        channel.interpolation = Interp::Linear;
+        for (int k = 0; k <= moving; ++k) {
+            const float u = float(k) / float(moving);
+            const glm::quat q = facing * glm::angleAxis(finalAngle * u * u, glm::vec3(1, 0, 0));
+            // The same arithmetic as the frame times (frame / fps, in double, then float) so keys fall on frames exactly.
+            channel.times.push_back(float(double(i + k) / scene.fps));
+            channel.values.push_back({q.x, q.y, q.z, q.w});
+        }
+        Animation animation;
+        animation.name = pivot.name;
+        animation.channels.push_back(std::move(channel));
+        scene.animations.push_back(std::move(animation));
+    }
+
+    const float halfX = rowLength / 2 + 3.0f, halfZ = float(rows) * rowGap / 2 + 2.0f;
+    if (floor) {
+        Material material;
+        material.name = "floor";
+        material.baseColorTexture = 0;
+        scene.materials.push_back(material);
+        scene.textures.push_back(makeChecker(64, 8));
+        scene.meshes.push_back(makeQuad(halfX, halfZ, std::max(halfX, halfZ) / 4.0f, int(scene.materials.size()) - 1));
+        Node node;
+        node.name = "floor";
+        node.meshes.push_back(int(scene.meshes.size()) - 1);
+        addNode(scene, node, -1);
+    }
+    const float extent = std::max(halfX, halfZ);
+    addCamera(scene, {0.0f, extent * 1.1f, extent * 1.5f}, {0.0f, 0.0f, 0.0f}, 0.1f, extent * 6.0f);
+    return scene;
+}
+
+Result<Scene> makeCubes(ParamReader& in) {
+    const double count = in.number("count", 28, 1, 1e6);
+    const double seconds = in.number("seconds", 10, 0.1, 3600);
+    const double seed = in.number("seed", 1, 0, 4294967295.0);
+    if (!in.error.empty()) return Error{in.error};
+    const int n = int(count);
+
+    Scene scene;
+    scene.fps = 30.0;
+    std::mt19937 rng{static_cast<std::uint32_t>(seed)};
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const float side = 1.0f;
+    const float spread = 2.2f * std::cbrt(float(n)) * side;  // cubes overlap in screen space, by design
+    scene.meshes.reserve(n);
+    for (int i = 0; i < n; ++i) {
+        Material material;
+        material.name = "cube" + std::to_string(i);
+        material.baseColorFactor = hueColor(unit(rng));
+        scene.materials.push_back(material);
+        scene.meshes.push_back(makeBox(glm::vec3(-side / 2), glm::vec3(side / 2), i, material.name));
+
+        Node node;
+        node.name = material.name;
+        node.translation = (glm::vec3(unit(rng), unit(rng), unit(rng)) - 0.5f) * spread;
+        node.meshes.push_back(i);
+        const int index = addNode(scene, node, -1);
+
+        // Uniform rotation about a random axis: slerp between keys 1/16 turn apart is exact.
+        glm::vec3 axis(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+        axis = glm::length(axis) > 1e-3f ? glm::normalize(axis) : glm::vec3(0, 1, 0);
+        const float turnsPerSecond = 0.1f + 0.4f * unit(rng);
+        const float phase = unit(rng) * glm::two_pi<float>();
+        AnimChannel channel;
+        channel.node = index;
+        channel.path = AnimPath::Rotation;
+        const int keys = std::max(2, int(std::ceil(seconds * turnsPerSecond * 16.0)) + 1);
+        for (int k = 0; k < keys; ++k) {
+            const float t = float(seconds) * float(k) / float(keys - 1);
+            const glm::quat q = glm::angleAxis(phase + glm::two_pi<float>() * turnsPerSecond * t, axis);
+            channel.times.push_back(t);
+            channel.values.push_back({q.x, q.y, q.z, q.w});
+        }
+        Animation animation;
+        animation.name = node.name;
+        animation.channels.push_back(std::move(channel));
+        scene.animations.push_back(std::move(animation));
+    }
+    const float r = spread * 0.9f + side;
+    addCamera(scene, {0.0f, r * 0.6f, r * 2.2f}, glm::vec3(0.0f), 0.1f, r * 6.0f);
+    return scene;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> builtinScenes() {
+    return {
+        {"builtin:default", "the dominoes on a checkered floor (what `frugal render` draws with no scene)"},
+        {"builtin:dominoes", "falling dominoes; ?polygons=804&static=0.5544&floor=0 (6 polygons a domino)"},
+        {"builtin:cubes", "spinning cubes; ?count=28&seconds=10&seed=1"},
+    };
+}
+
+Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
+    const std::string prefix = "builtin:";
+    std::string rest = spec.substr(spec.rfind(prefix, 0) == 0 ? prefix.size() : 0);
+    std::string name = rest.substr(0, rest.find('?'));
+    ParamReader in{spec, {}, {}};
+    if (rest.size() > name.size()) {
+        std::string query = rest.substr(name.size() + 1);
+        std::size_t at = 0;
+        while (at <= query.size()) {
+            const std::size_t end = std::min(query.find('&', at), query.size());
+            const std::string pair = query.substr(at, end - at);
+            const std::size_t eq = pair.find('=');
+            if (pair.empty() || eq == std::string::npos || eq == 0)
+                return Error{spec + ": parameter '" + pair + "' is not key=value"};
+            in.params[pair.substr(0, eq)] = pair.substr(eq + 1);
+            at = end + 1;
+        }
+    }
+
+    Result<Scene> made = Error{""};
+    if (name == "default") made = makeDominoes(in, true);
+    else if (name == "dominoes") made = makeDominoes(in, false);
+    else if (name == "cubes") made = makeCubes(in);
+    else {
+        std::string known;
+        for (const auto& [n, _] : builtinScenes()) known += (known.empty() ? "" : ", ") + n;
+        return Error{spec + ": no such built-in scene (there are " + known + ")"};
+    }
+    if (!made) return made;
+    if (!in.params.empty()) return Error{spec + ": unknown parameter '" + in.params.begin()->first + "'"};
+
+    Scene& scene = *made;
+    scene.source = spec;
+    for (Mesh& mesh : scene.meshes) finalizeMesh(mesh, options.optimizeOrder);
+    scene.buildInstances();
+    return made;
+}
+
+}  // namespace frugal

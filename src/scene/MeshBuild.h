@@ -1,0 +1,25 @@
+// Shared last step of every loader: make a Mesh safe and fast to draw.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/Scene.h"
+
+namespace frugal {
+
+struct MeshBuildStats {
+    std::size_t droppedNonFinite = 0;  // triangles with a NaN/Inf position (never passed to GL)
+};
+
+// Requires indices.size() % 3 == 0, every index < positions.size(), and normals/colors/uvs either
+// empty or as long as positions (loaders validate this before calling).
+// - drops triangles that touch a non-finite position, and counts them;
+// - fills `triangleSource` with 0..n-1 if the loader left it empty;
+// - computes area-weighted vertex normals when `normals` is empty, and replaces non-finite or zero
+//   normals by the face normal;
+// - reorders triangles for the post-transform vertex cache (meshoptimizer) when `optimizeOrder`,
+//   carrying `triangleSource` along.
+MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrder);
+
+}  // namespace frugal

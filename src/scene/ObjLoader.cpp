@@ -1,0 +1,337 @@
+// Wavefront OBJ loader on top of tinyobjloader (Debian 2.0.0rc10, float build).
+//
+// tinyobjloader is asked not to triangulate: its triangulation reads positions through face indices
+// it has not checked (a wrong index in the file is an out-of-bounds read), and it silently skips some
+// bad faces. So faces come back as polygons, every index is validated here, and polygons are split:
+// quads along their shorter diagonal (as tinyobjloader does), larger polygons as fans, which assumes
+// they are convex and planar, as OBJ exporters write them.
+//
+// Conventions: texture v is flipped (v' = 1 − v) so that uv (0,0) is the first row of the image, as in
+// glTF (Scene.h). Of the materials only the diffuse colour Kd is used. One Mesh per (shape, material),
+// one root node per shape. OBJ has no culling flag: LoadOptions::objDoubleSided decides.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include <tiny_obj_loader.h>
+
+#include "scene/Load.h"
+#include "scene/MeshBuild.h"
+
+namespace frugal {
+
+namespace {
+
+struct Failure {
+    std::string message;
+};
+
+template <class... Args>
+std::string cat(const Args&... args) {
+    std::ostringstream out;
+    (out << ... << args);
+    return out.str();
+}
+
+template <class... Args>
+[[noreturn]] void fail(const Args&... args) {
+    throw Failure{cat(args...)};
+}
+
+// Library messages and names from the file become one printable line.
+std::string oneLine(std::string_view text, std::size_t maxLength = 200) {
+    std::string out;
+    for (char ch : text) {
+        if (out.size() >= maxLength) {
+            out += "...";
+            break;
+        }
+        const auto c = static_cast<unsigned char>(ch);
+        const char printable = (c < 0x20 || c == 0x7f) ? ' ' : ch;
+        if (!(printable == ' ' && (out.empty() || out.back() == ' '))) out += printable;
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    return out;
+}
+
+std::string readFile(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) fail("no such file");
+    if (ec) fail("cannot access (", ec.message(), ")");
+    if (std::filesystem::is_directory(status)) fail("is a directory, not a file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open for reading (", std::strerror(errno), ")");
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    if (size < 0) fail("cannot read (not a regular file?)");
+    in.seekg(0, std::ios::beg);
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    if (!in.read(bytes.data(), size)) fail("read error after ", in.gcount(), " of ", size, " bytes");
+    return bytes;
+}
+
+// Reads "mtllib" files relative to the OBJ's folder. tinyobjloader's own reader splits its base
+// directory at ':' (a search path), which breaks folders whose name contains one.
+class MtlReader : public tinyobj::MaterialReader {
+public:
+    explicit MtlReader(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string* warn, std::string* err) override {
+        std::ifstream in(dir_ / name);
+        if (!in) {
+            if (warn) *warn += "material library '" + name + "' not found\n";
+            return false;
+        }
+        tinyobj::LoadMtl(names, materials, &in, warn, err);
+        return true;
+    }
+
+private:
+    std::filesystem::path dir_;
+};
+
+struct ObjData {
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::vector<std::string> warnings;
+};
+
+ObjData parseObj(const std::string& path) {
+    std::string bytes = readFile(path);
+    if (bytes.empty()) fail("file is empty");
+    std::istringstream in(std::move(bytes));
+    MtlReader mtl(std::filesystem::path(path).parent_path());
+    ObjData obj;
+    std::string warnings, errors;
+    const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warnings, &errors, &in, &mtl,
+                                     /*triangulate=*/false, /*default_vcols_fallback=*/false);
+    if (!ok) fail(oneLine(errors.empty() ? "tinyobjloader failed" : errors));
+    // Non-fatal errors (a broken .mtl) are kept as warnings, one per line.
+    std::istringstream lines(warnings + errors);
+    for (std::string line; std::getline(lines, line);)
+        if (!oneLine(line).empty()) obj.warnings.push_back(oneLine(line));
+    return obj;
+}
+
+// The number of faces tinyobjloader records per polygon is an unsigned char: a polygon of more than
+// 255 vertices leaves the face list out of step with the index list.
+void checkFaces(const tinyobj::shape_t& shape, const std::string& where) {
+    std::size_t total = 0;
+    for (unsigned char n : shape.mesh.num_face_vertices) total += n;
+    if (total != shape.mesh.indices.size())
+        fail(where, ": a face has more than 255 vertices, which tinyobjloader cannot represent");
+}
+
+// tinyobjloader has already resolved relative (negative) indices against the counts read so far and
+// made them 0-based; -1 marks an absent texcoord or normal.
+void checkIndex(int index, std::size_t count, bool optional, const char* what, const std::string& where) {
+    if (optional && index == -1) return;
+    if (index < 0) fail(where, ": a relative ", what, " index points before the first ", what);
+    if (std::size_t(index) >= count)
+        fail(where, ": ", what, " index ", index + 1, " out of range, the file has ", count, " ", what, "s");
+}
+
+struct VertexKey {
+    int v, vt, vn;
+    bool operator==(const VertexKey&) const = default;
+};
+
+struct VertexKeyHash {
+    std::size_t operator()(const VertexKey& k) const {
+        return std::size_t(std::uint32_t(k.v)) * 0x9E3779B97F4A7C15ull ^ std::size_t(std::uint32_t(k.vt)) * 0xC2B2AE3Dull ^
+               std::size_t(std::uint32_t(k.vn)) * 0x165667B1ull;
+    }
+};
+
+// Builds one mesh from the faces of `shape` that use `material`, re-indexing the (v, vt, vn) triples
+// the faces use into one vertex list.
+class MeshBuilder {
+public:
+    MeshBuilder(const tinyobj::attrib_t& attrib, Mesh& mesh) : attrib_(attrib), mesh_(mesh) {}
+
+    void addFace(const tinyobj::index_t* corners, std::size_t n) {
+        std::uint32_t v[256];
+        for (std::size_t k = 0; k < n; ++k) v[k] = vertex(corners[k]);
+        if (n == 4) {
+            const glm::vec3 &p0 = mesh_.positions[v[0]], &p1 = mesh_.positions[v[1]], &p2 = mesh_.positions[v[2]],
+                            &p3 = mesh_.positions[v[3]];
+            const glm::vec3 d02 = p2 - p0, d13 = p3 - p1;
+            if (glm::dot(d02, d02) < glm::dot(d13, d13)) {
+                triangle(v[0], v[1], v[2]);
+                triangle(v[0], v[2], v[3]);
+            } else {
+                triangle(v[0], v[1], v[3]);
+                triangle(v[1], v[2], v[3]);
+            }
+            return;
+        }
+        for (std::size_t k = 1; k + 1 < n; ++k) triangle(v[0], v[k], v[k + 1]);
+    }
+
+    // Normals are kept only if every vertex has one (finalizeMesh computes them otherwise); texture
+    // coordinates if any vertex has one (the others get (0, 0)).
+    void finish() {
+        if (!allNormals_) mesh_.normals.clear();
+        if (!anyUv_) mesh_.uvs.clear();
+    }
+
+private:
+    const tinyobj::attrib_t& attrib_;
+    Mesh& mesh_;
+    std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> index_;
+    bool allNormals_ = true;
+    bool anyUv_ = false;
+
+    std::uint32_t vertex(const tinyobj::index_t& corner) {
+        const VertexKey key{corner.vertex_index, corner.texcoord_index, corner.normal_index};
+        const auto [it, inserted] = index_.try_emplace(key, std::uint32_t(mesh_.positions.size()));
+        if (!inserted) return it->second;
+        const std::size_t v = std::size_t(key.v);
+        mesh_.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
+        if (!attrib_.colors.empty())
+            mesh_.colors.emplace_back(attrib_.colors[3 * v], attrib_.colors[3 * v + 1], attrib_.colors[3 * v + 2], 1.0f);
+        if (key.vn >= 0) {
+            const std::size_t n = std::size_t(key.vn);
+            mesh_.normals.emplace_back(attrib_.normals[3 * n], attrib_.normals[3 * n + 1], attrib_.normals[3 * n + 2]);
+        } else {
+            allNormals_ = false;
+            mesh_.normals.emplace_back(0.0f);
+        }
+        if (key.vt >= 0) {
+            const std::size_t t = std::size_t(key.vt);
+            mesh_.uvs.emplace_back(attrib_.texcoords[2 * t], 1.0f - attrib_.texcoords[2 * t + 1]);
+            anyUv_ = true;
+        } else {
+            mesh_.uvs.emplace_back(0.0f);
+        }
+        return it->second;
+    }
+
+    void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) { mesh_.indices.insert(mesh_.indices.end(), {a, b, c}); }
+};
+
+Scene loadObjOrThrow(const std::string& path, const LoadOptions& options) {
+    const ObjData obj = parseObj(path);
+    const tinyobj::attrib_t& attrib = obj.attrib;
+    const std::size_t positions = attrib.vertices.size() / 3, texcoords = attrib.texcoords.size() / 2,
+                      normals = attrib.normals.size() / 3;
+
+    Scene scene;
+    scene.source = path;
+    for (const std::string& warning : obj.warnings) scene.warnings.push_back(cat(path, ": ", warning));
+    for (const tinyobj::material_t& src : obj.materials) {
+        Material material;
+        material.name = src.name;
+        material.baseColorFactor = glm::vec4(src.diffuse[0], src.diffuse[1], src.diffuse[2], 1.0f);
+        material.doubleSided = options.objDoubleSided;
+        scene.materials.push_back(material);
+    }
+    int defaultMaterial = -1;  // created when a face has no (known) material
+    std::vector<bool> materialUsed(obj.materials.size(), false);
+
+    for (std::size_t s = 0; s < obj.shapes.size(); ++s) {
+        const tinyobj::shape_t& shape = obj.shapes[s];
+        const std::string shapeName = shape.name.empty() ? cat("shape ", s) : shape.name;
+        const std::string shapeWhere = cat("shape '", oneLine(shapeName, 60), "'");
+        checkFaces(shape, shapeWhere);
+        if (!shape.lines.indices.empty()) scene.unsupported.push_back("OBJ lines (l)");
+        if (!shape.points.indices.empty()) scene.unsupported.push_back("OBJ points (p)");
+
+        // Faces grouped by material, groups in order of first use.
+        std::vector<int> groupMaterials;
+        std::vector<std::vector<std::size_t>> groupFaces;  // face numbers
+        std::vector<std::size_t> faceStart(shape.mesh.num_face_vertices.size());
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+            faceStart[f] = offset;
+            const std::size_t n = shape.mesh.num_face_vertices[f];
+            const std::string where = cat(shapeWhere, " face ", f + 1);
+            for (std::size_t k = 0; k < n; ++k) {
+                const tinyobj::index_t& corner = shape.mesh.indices[offset + k];
+                checkIndex(corner.vertex_index, positions, false, "position", where);
+                checkIndex(corner.texcoord_index, texcoords, true, "texcoord", where);
+                checkIndex(corner.normal_index, normals, true, "normal", where);
+            }
+            offset += n;
+            int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+            if (material < 0 || std::size_t(material) >= obj.materials.size()) {
+                if (defaultMaterial < 0) {
+                    defaultMaterial = int(scene.materials.size());
+                    Material fallback;
+                    fallback.name = "default";
+                    fallback.doubleSided = options.objDoubleSided;
+                    scene.materials.push_back(fallback);
+                }
+                material = defaultMaterial;
+            } else {
+                materialUsed[std::size_t(material)] = true;
+            }
+            auto it = std::find(groupMaterials.begin(), groupMaterials.end(), material);
+            if (it == groupMaterials.end()) {
+                groupMaterials.push_back(material);
+                groupFaces.emplace_back();
+                it = groupMaterials.end() - 1;
+            }
+            groupFaces[std::size_t(it - groupMaterials.begin())].push_back(f);
+        }
+
+        Node node;
+        node.name = shapeName;
+        for (std::size_t g = 0; g < groupMaterials.size(); ++g) {
+            Mesh mesh;
+            mesh.name = shapeName;
+            if (groupMaterials.size() > 1) mesh.name += " (" + scene.materials[std::size_t(groupMaterials[g])].name + ")";
+            mesh.material = groupMaterials[g];
+            MeshBuilder builder(attrib, mesh);
+            for (std::size_t f : groupFaces[g])
+                builder.addFace(&shape.mesh.indices[faceStart[f]], shape.mesh.num_face_vertices[f]);
+            builder.finish();
+            const MeshBuildStats stats = finalizeMesh(mesh, options.optimizeOrder);
+            if (stats.droppedNonFinite > 0)
+                scene.warnings.push_back(cat(path, ": mesh '", oneLine(mesh.name, 60), "': dropped ", stats.droppedNonFinite,
+                                             " triangles with non-finite positions"));
+            node.meshes.push_back(int(scene.meshes.size()));
+            scene.meshes.push_back(std::move(mesh));
+        }
+        scene.roots.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(std::move(node));
+    }
+
+    for (std::size_t m = 0; m < obj.materials.size(); ++m)
+        if (materialUsed[m] && !obj.materials[m].diffuse_texname.empty()) scene.unsupported.push_back("map_Kd textures");
+    std::sort(scene.unsupported.begin(), scene.unsupported.end());
+    scene.unsupported.erase(std::unique(scene.unsupported.begin(), scene.unsupported.end()), scene.unsupported.end());
+    if (scene.meshes.empty()) scene.warnings.push_back(path + ": no faces to draw");
+    scene.buildInstances();
+    return scene;
+}
+
+}  // namespace
+
+Result<Scene> loadObj(const std::string& path, const LoadOptions& options) {
+    try {
+        return loadObjOrThrow(path, options);
+    } catch (const Failure& failure) {
+        return Error{path + ": " + failure.message};
+    } catch (const std::bad_alloc&) {
+        return Error{path + ": out of memory"};
+    } catch (const std::exception& e) {
+        return Error{path + ": " + oneLine(e.what())};
+    } catch (...) {
+        return Error{path + ": unexpected error"};
+    }
+}
+
+}  // namespace frugal

@@ -1,0 +1,149 @@
+// The scene model every loader produces and every other module reads.
+//
+// Conventions (DESIGN.md, "Shared conventions"):
+// - Right-handed, column vectors, glm; units are whatever the file uses.
+// - Texture coordinates follow glTF: (0,0) is the first texel of the first row of the image as stored
+//   in the file (its top-left). The OBJ loader flips v to match.
+// - A Mesh is one triangle list with one material (a glTF primitive). Its triangles are kept in a
+//   vertex-cache-friendly order (meshoptimizer); `triangleSource[t]` names the primitive index that
+//   triangle t had in the file, so triangle IDs stay stable whatever the order.
+// - Global triangle id = instance.firstId + triangleSource[t]; 0 is the background.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace frugal {
+
+enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+enum class Filter : std::uint8_t { Nearest, Linear };
+
+// Decoded RGBA8 image, rows in file order (first row = v 0).
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+    // Magnification/minification filter, no mipmaps: the GL path and the software reference sample
+    // the base level only. A sampler asking for mipmaps is rendered without and reported.
+    Filter filter = Filter::Linear;
+};
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    int baseColorTexture = -1;  // index into Scene::textures, -1 = none
+    bool doubleSided = false;   // false: back faces are culled (glTF); true: both sides lit
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;  // always filled (computed when the file has none)
+    std::vector<glm::vec4> colors;   // empty = white
+    std::vector<glm::vec2> uvs;      // empty = no texture coordinates
+    std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
+    std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file
+    int material = -1;                          // -1 = default material (white, single-sided)
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct Node {
+    std::string name;
+    int parent = -1;
+    std::vector<int> children;
+    // Local transform: matrix when `hasMatrix`, else T * R * S (glTF order).
+    bool hasMatrix = false;
+    glm::mat4 matrix{1.0f};
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+    glm::vec3 scale{1.0f};
+    std::vector<int> meshes;  // indices into Scene::meshes (a glTF mesh's primitives)
+    int camera = -1;
+};
+
+// One drawn mesh: a (node, mesh) pair. Instances are numbered in a stable order (node order, then
+// the node's primitive order); that order is also the draw order.
+struct Instance {
+    int node = -1;
+    int mesh = -1;
+    std::uint32_t firstId = 1;  // id of the mesh's source primitive 0 in this instance
+};
+
+struct Camera {
+    std::string name;
+    int node = -1;  // camera looks down the node's -Z, +Y up (glTF)
+    bool perspective = true;
+    float yfov = 0.8f;   // radians
+    float aspect = 0.0f; // 0 = take the viewport's
+    float znear = 0.01f;
+    float zfar = 0.0f;   // 0 = infinite (perspective only)
+    float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
+};
+
+enum class AnimPath : std::uint8_t { Translation, Rotation, Scale };
+enum class Interp : std::uint8_t { Step, Linear, CubicSpline };
+
+struct AnimChannel {
+    int node = -1;
+    AnimPath path = AnimPath::Translation;
+    Interp interpolation = Interp::Linear;
+    std::vector<float> times;      // strictly increasing, finite
+    std::vector<glm::vec4> values; // xyz (T, S) or xyzw quaternion (R); ×3 for CubicSpline (in, value, out)
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimChannel> channels;
+};
+
+struct Bounds {
+    glm::vec3 min{1e30f};
+    glm::vec3 max{-1e30f};
+    bool empty() const { return min.x > max.x; }
+    void add(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+};
+
+struct Scene {
+    std::string source;  // file path or builtin name
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Node> nodes;
+    std::vector<int> roots;
+    std::vector<Instance> instances;
+    std::vector<Camera> cameras;
+    std::vector<Animation> animations;
+    // Features in the file that frugal does not model, by name ("skins", "morph targets",
+    // "KHR_materials_clearcoat", ...). Reported by `frugal info` and as a warning on render.
+    std::vector<std::string> unsupported;
+    // Non-fatal problems found while loading (dropped triangles, ...), one line each.
+    std::vector<std::string> warnings;
+    // Frames per second the scene's animation is meant to be sampled at (builtins set it).
+    double fps = 30.0;
+
+    // Rebuilds `instances` (and their ids) from the node hierarchy. Loaders call it last.
+    void buildInstances();
+    std::size_t triangleCount() const;  // over instances
+    double duration() const;            // last key time of any animation, 0 if static
+    // World matrix of every node at `time` seconds (animations sampled, hierarchy applied).
+    std::vector<glm::mat4> worldTransforms(double time) const;
+    Bounds bounds(double time) const;
+};
+
+// Samples one channel at `time` (clamped to its key range). Rotations are slerped (Linear) or
+// Hermite-interpolated and normalised (CubicSpline).
+glm::vec4 sampleChannel(const AnimChannel& channel, double time);
+
+glm::mat4 localMatrix(const Node& node);
+
+}  // namespace frugal

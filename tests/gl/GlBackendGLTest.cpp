@@ -1,0 +1,623 @@
+// The GL backend on every context kind this build has (EGL surfaceless, EGL device with the software
+// device allowed, OSMesa): known colours, depths and ids at known pixels, culling, the id pass against
+// the indexed pass, clears, copies, read-back scaling, repeatability, and EGL vs OSMesa identity.
+//
+// Meshes are built here in clip space (identity matrices) unless a test says otherwise. Target
+// 64×48: NDC (x, y) lands at window ((x+1)·32, (y+1)·24); rows are bottom-up.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "TestSupport.h"
+#include "gl/GlBackend.h"
+#include "gl/GlContext.h"
+#include "render/ImageIO.h"
+
+namespace frugal {
+namespace {
+
+constexpr int kWidth = 64;
+constexpr int kHeight = 48;
+const glm::vec4 kBackground{0.2f, 0.4f, 0.6f, 1.0f};  // exact in 8 bits: 51, 102, 153
+
+Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
+    switch (kind) {
+        case ContextKind::EglDevice: return createEglDeviceContext(/*allowSoftwareDevice=*/true);
+        case ContextKind::EglSurfaceless: return createEglSurfacelessContext();
+        case ContextKind::OsMesa: return createOsMesaContext();
+    }
+    return Error{"unknown kind"};
+}
+
+// A backend of `kind`, or nullptr with the reason added as a test failure: every kind this build
+// has must work on the machines the tests run on.
+std::unique_ptr<Backend> makeBackend(ContextKind kind) {
+    Result<std::unique_ptr<GlContext>> context = createContext(kind);
+    if (!context) {
+        ADD_FAILURE() << context.error();
+        return nullptr;
+    }
+    std::unique_ptr<Backend> backend = makeGlBackend(std::move(*context));
+    if (!backend) ADD_FAILURE() << contextKindName(kind) << ": backend set-up failed";
+    return backend;
+}
+
+std::uint8_t unorm8(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+std::uint32_t depth24(float windowZ) { return std::uint32_t(std::lround(double(windowZ) * kDepthMax)); }
+
+std::size_t at(const Buffers& b, int x, int y) { return std::size_t(y) * std::size_t(b.width) + std::size_t(x); }
+
+// Colour at (x, y) equals `expected` within `tolerance` per channel (GL's float→8-bit rounding).
+::testing::AssertionResult colorIs(const Buffers& b, int x, int y, glm::vec4 expected, int tolerance = 1) {
+    const std::uint8_t* p = &b.rgba[at(b, x, y) * 4];
+    for (int c = 0; c < 4; ++c) {
+        const int want = unorm8(expected[c]);
+        if (std::abs(int(p[c]) - want) > tolerance)
+            return ::testing::AssertionFailure()
+                   << "pixel (" << x << ", " << y << ") is " << int(p[0]) << " " << int(p[1]) << " " << int(p[2])
+                   << " " << int(p[3]) << ", expected " << int(unorm8(expected[0])) << " "
+                   << int(unorm8(expected[1])) << " " << int(unorm8(expected[2])) << " " << int(unorm8(expected[3]))
+                   << " (±" << tolerance << ")";
+    }
+    return ::testing::AssertionSuccess();
+}
+
+// Two triangles, both at NDC z = 0.5 (window z 0.75), normal +z:
+//   triangle 0 (source 7): counter-clockwise (front), left half, centroid at window (16, 17.6);
+//   triangle 1 (source 3): clockwise (back), right half, centroid at window (48, 17.6).
+Mesh frontAndBack() {
+    Mesh m;
+    m.positions = {{-0.9f, -0.8f, 0.5f}, {-0.1f, -0.8f, 0.5f}, {-0.5f, 0.8f, 0.5f},
+                   {0.1f, -0.8f, 0.5f},  {0.5f, 0.8f, 0.5f},   {0.9f, -0.8f, 0.5f}};
+    m.normals.assign(6, glm::vec3(0.0f, 0.0f, 1.0f));
+    m.indices = {0, 1, 2, 3, 4, 5};
+    m.triangleSource = {7, 3};
+    return m;
+}
+constexpr int kFrontX = 16, kBackX = 48, kCentroidY = 17;
+const std::uint32_t kTriangleDepth = depth24(0.75f);
+
+// Light straight along +z so the front face gets ambient + diffuse and the flipped back face gets
+// the ambient alone: 0.25 + 0.5 = 0.75 and 0.25.
+FrameParams simpleFrame(bool writeIds = true) {
+    FrameParams frame;
+    frame.lighting.toLight = glm::vec3(0.0f, 0.0f, 1.0f);
+    frame.lighting.ambient = 0.25f;
+    frame.lighting.diffuse = 0.5f;
+    frame.writeIds = writeIds;
+    return frame;
+}
+const glm::vec4 kFactor{1.0f, 0.5f, 0.25f, 1.0f};
+
+std::vector<IndexRange> all(const Mesh& m) { return {IndexRange{0, std::uint32_t(m.triangleCount())}}; }
+
+Buffers drawTwoTriangles(Backend& backend, bool doubleSided, bool writeIds) {
+    const Mesh mesh = frontAndBack();
+    const MeshHandle handle = backend.uploadMesh(mesh);
+    EXPECT_NE(handle, kNoHandle);
+    const TargetHandle target = backend.createTarget(kWidth, kHeight);
+    EXPECT_NE(target, kNoHandle);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend.beginFrame(target, simpleFrame(writeIds));
+    DrawParams params;
+    params.mesh = handle;
+    params.baseColorFactor = kFactor;
+    params.doubleSided = doubleSided;
+    params.firstId = 100;
+    backend.draw(params, all(mesh));
+    Buffers out = backend.readBack(target);
+    backend.destroyTarget(target);
+    return out;
+}
+
+// A denser scene for comparisons: overlapping triangles at many depths through a perspective camera,
+// with vertex colours, a linearly filtered repeating texture, two instances (one double-sided), and
+// ranges given out of order. Deterministic (a fixed LCG).
+struct Lcg {
+    std::uint32_t state = 12345u;
+    float next() {  // [0, 1)
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    }
+    float in(float lo, float hi) { return lo + (hi - lo) * next(); }
+};
+
+Mesh randomMesh(int triangles) {
+    Lcg rng;
+    Mesh m;
+    for (int t = 0; t < triangles; ++t) {
+        const glm::vec3 centre{rng.in(-1, 1), rng.in(-1, 1), rng.in(-1, 1)};
+        for (int k = 0; k < 3; ++k) {
+            m.positions.push_back(centre + glm::vec3(rng.in(-0.9f, 0.9f), rng.in(-0.9f, 0.9f), rng.in(-0.3f, 0.3f)));
+            m.normals.push_back(glm::normalize(glm::vec3(rng.in(-1, 1), rng.in(-1, 1), rng.in(0.2f, 1))));
+            m.colors.push_back({rng.in(0.2f, 1), rng.in(0.2f, 1), rng.in(0.2f, 1), 1.0f});
+            m.uvs.push_back({rng.in(-0.5f, 1.5f), rng.in(-0.5f, 1.5f)});
+            m.indices.push_back(std::uint32_t(3 * t + k));
+        }
+        m.triangleSource.push_back(std::uint32_t(triangles - 1 - t));
+    }
+    return m;
+}
+
+Texture checkerTexture() {
+    Texture tex;
+    tex.width = 4;
+    tex.height = 4;
+    tex.filter = Filter::Linear;
+    tex.wrapS = Wrap::Repeat;
+    tex.wrapT = Wrap::MirroredRepeat;
+    for (int i = 0; i < 16; ++i) {
+        const bool dark = ((i % 4) + (i / 4)) % 2 == 0;
+        tex.rgba.insert(tex.rgba.end(), {std::uint8_t(dark ? 60 : 250), std::uint8_t(dark ? 90 : 240),
+                                         std::uint8_t(i * 16), 255});
+    }
+    return tex;
+}
+
+Buffers renderDenseScene(Backend& backend, bool writeIds) {
+    const Mesh mesh = randomMesh(60);
+    const MeshHandle handle = backend.uploadMesh(mesh);
+    const TextureHandle texture = backend.uploadTexture(checkerTexture());
+    EXPECT_NE(handle, kNoHandle);
+    EXPECT_NE(texture, kNoHandle);
+    const TargetHandle target = backend.createTarget(kWidth, kHeight);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    FrameParams frame;
+    frame.view = glm::lookAt(glm::vec3(0.3f, 0.4f, 2.6f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    frame.projection = glm::perspective(0.9f, float(kWidth) / kHeight, 0.5f, 10.0f);
+    frame.writeIds = writeIds;
+    backend.beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = handle;
+    params.texture = texture;
+    params.firstId = 1;
+    params.model = glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0));
+    const IndexRange ranges[] = {{0, 20}, {30, 30}, {20, 10}};
+    backend.draw(params, ranges);
+    params.doubleSided = true;
+    params.texture = kNoHandle;
+    params.baseColorFactor = {0.8f, 1.0f, 0.6f, 1.0f};
+    params.firstId = 1000;
+    params.model = glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(0.7f)), glm::vec3(0.4f, -0.2f, 0.5f));
+    backend.draw(params, all(mesh));
+    Buffers out = backend.readBack(target);
+    backend.destroyTarget(target);
+    return out;
+}
+
+// Saves colour and id images of both when they differ, for a look at the failure.
+::testing::AssertionResult identical(const Buffers& a, const Buffers& b, const std::string& name,
+                                     bool compareIds = true) {
+    const bool same = a.width == b.width && a.height == b.height && a.rgba == b.rgba && a.depth == b.depth &&
+                      (!compareIds || a.ids == b.ids);
+    if (same) return ::testing::AssertionSuccess();
+    const std::filesystem::path dir = test::freshDir(name);
+    (void)writeFileAtomic((dir / "a.png").string(), encodeColorPng(a));
+    (void)writeFileAtomic((dir / "b.png").string(), encodeColorPng(b));
+    (void)writeFileAtomic((dir / "a-ids.png").string(), encodeIdPng(a));
+    (void)writeFileAtomic((dir / "b-ids.png").string(), encodeIdPng(b));
+    std::size_t colour = 0, depth = 0, ids = 0;
+    for (std::size_t i = 0; i < std::min(a.pixelCount(), b.pixelCount()); ++i) {
+        colour += std::equal(&a.rgba[4 * i], &a.rgba[4 * i + 4], &b.rgba[4 * i]) ? 0 : 1;
+        depth += a.depth[i] != b.depth[i];
+        ids += a.ids[i] != b.ids[i];
+    }
+    return ::testing::AssertionFailure() << name << ": " << colour << " colour, " << depth << " depth, " << ids
+                                         << " id pixels differ; images in " << dir;
+}
+
+class GlBackendGLTest : public ::testing::TestWithParam<ContextKind> {
+protected:
+    void SetUp() override {
+        backend_ = makeBackend(GetParam());
+        if (!backend_) GTEST_SKIP() << "no backend (reported as a failure above)";
+    }
+    std::unique_ptr<Backend> backend_;
+};
+
+TEST_P(GlBackendGLTest, NameAndRenderer) {
+    EXPECT_EQ(backend_->name(), contextKindName(GetParam()));
+    const std::string renderer = backend_->renderer();
+    EXPECT_NE(renderer.find("; "), std::string::npos) << renderer;
+    EXPECT_NE(renderer.find("Core Profile"), std::string::npos) << renderer;
+    EXPECT_GE(backend_->maxTargetSize(), 4096);
+}
+
+TEST_P(GlBackendGLTest, DrawsKnownColourDepthAndIds) {
+    const Buffers b = drawTwoTriangles(*backend_, /*doubleSided=*/false, /*writeIds=*/true);
+    ASSERT_EQ(b.width, kWidth);
+    ASSERT_EQ(b.height, kHeight);
+    // Front face: factor × (0.25 + 0.5 · 1).
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f)));
+    EXPECT_NEAR(double(b.depth[at(b, kFrontX, kCentroidY)]), double(kTriangleDepth), 1.0);
+    EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
+    // Back face culled: background colour, far depth, id 0.
+    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, kBackground, 0));
+    EXPECT_EQ(b.depth[at(b, kBackX, kCentroidY)], kDepthMax);
+    EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], 0u);
+    // Outside both triangles.
+    for (auto [x, y] : {std::pair{0, 0}, std::pair{63, 47}, std::pair{32, 20}, std::pair{16, 45}}) {
+        EXPECT_TRUE(colorIs(b, x, y, kBackground, 0));
+        EXPECT_EQ(b.depth[at(b, x, y)], kDepthMax) << x << ", " << y;
+        EXPECT_EQ(b.ids[at(b, x, y)], 0u) << x << ", " << y;
+    }
+    // Every pixel is either the triangle (id 107, its depth) or background: nothing in between.
+    std::size_t covered = 0;
+    for (std::size_t i = 0; i < b.pixelCount(); ++i) {
+        if (b.ids[i] == 0) {
+            EXPECT_EQ(b.depth[i], kDepthMax) << "pixel " << i;
+        } else {
+            EXPECT_EQ(b.ids[i], 107u) << "pixel " << i;
+            ++covered;
+        }
+    }
+    // Area 0.8 × 1.6 / 2 NDC² = 0.64 of 4 → 16 % of 3072 pixels ≈ 491.
+    EXPECT_NEAR(double(covered), 491.5, 20.0);
+}
+
+TEST_P(GlBackendGLTest, DoubleSidedDrawsBackFacesWithFlippedNormal) {
+    const Buffers b = drawTwoTriangles(*backend_, /*doubleSided=*/true, /*writeIds=*/true);
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f)));
+    // The back face's normal is negated, so the light is behind it: ambient only.
+    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.25f, 1.0f)));
+    EXPECT_NEAR(double(b.depth[at(b, kBackX, kCentroidY)]), double(kTriangleDepth), 1.0);
+    EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], 103u);
+    EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
+}
+
+TEST_P(GlBackendGLTest, WithoutIdsLeavesIdsZeroAndGivesTheSameColourAndDepth) {
+    for (bool doubleSided : {false, true}) {
+        const Buffers with = drawTwoTriangles(*backend_, doubleSided, true);
+        const Buffers without = drawTwoTriangles(*backend_, doubleSided, false);
+        EXPECT_TRUE(identical(with, without, "ids-vs-none-simple", /*compareIds=*/false));
+        EXPECT_TRUE(std::all_of(without.ids.begin(), without.ids.end(), [](std::uint32_t id) { return id == 0; }));
+    }
+    const Buffers with = renderDenseScene(*backend_, true);
+    const Buffers without = renderDenseScene(*backend_, false);
+    EXPECT_TRUE(identical(with, without, "ids-vs-none-dense", /*compareIds=*/false));
+    EXPECT_TRUE(std::all_of(without.ids.begin(), without.ids.end(), [](std::uint32_t id) { return id == 0; }));
+    // The id pass itself: background exactly where nothing was drawn, valid ids elsewhere.
+    std::size_t drawn = 0;
+    for (std::size_t i = 0; i < with.pixelCount(); ++i) {
+        const std::uint32_t id = with.ids[i];
+        EXPECT_EQ(id == 0, with.depth[i] == kDepthMax) << "pixel " << i;
+        if (id == 0) continue;
+        ++drawn;
+        EXPECT_TRUE((id >= 1 && id <= 60) || (id >= 1000 && id < 1060)) << "pixel " << i << " id " << id;
+    }
+    EXPECT_GT(drawn, with.pixelCount() / 2) << "the dense scene should cover most of the target";
+}
+
+TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
+    Mesh mesh = frontAndBack();
+    std::swap(mesh.indices[3], mesh.indices[4]);  // make triangle 1 front-facing too
+    const MeshHandle handle = backend_->uploadMesh(mesh);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    for (bool writeIds : {true, false}) {
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->beginFrame(target, simpleFrame(writeIds));
+        DrawParams params;
+        params.mesh = handle;
+        params.firstId = 100;
+        const IndexRange second[] = {{1, 1}, {2, 0}};
+        backend_->draw(params, second);
+        const Buffers b = backend_->readBack(target);
+        EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, kBackground, 0)) << "writeIds " << writeIds;
+        EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, glm::vec4(0.75f, 0.75f, 0.75f, 1.0f))) << "writeIds " << writeIds;
+        EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], writeIds ? 103u : 0u);
+    }
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
+    // Two full-screen-ish triangles: source 0 at NDC z 0.5, source 1 at z -0.5 (nearer), then a
+    // third at exactly the nearer one's depth, drawn last: GL_LESS keeps the earlier one.
+    Mesh m;
+    const float zs[] = {0.5f, -0.5f, -0.5f};
+    for (int t = 0; t < 3; ++t) {
+        m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, zs[t]}, {3.0f, -3.0f, zs[t]}, {0.0f, 3.0f, zs[t]}});
+        m.colors.insert(m.colors.end(), 3, glm::vec4(t == 0, t == 1, t == 2, 1.0f));
+        m.indices.insert(m.indices.end(), {std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+        m.triangleSource.push_back(std::uint32_t(t));
+    }
+    m.normals.assign(9, glm::vec3(0, 0, 1));
+    const MeshHandle handle = backend_->uploadMesh(m);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    FrameParams frame = simpleFrame();
+    frame.lighting.ambient = 1.0f;
+    frame.lighting.diffuse = 0.0f;
+    backend_->beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = handle;
+    backend_->draw(params, all(m));
+    const Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(colorIs(b, 32, 24, {0, 1, 0, 1}, 0));
+    EXPECT_EQ(b.ids[at(b, 32, 24)], 2u);  // firstId 1 + source 1
+    EXPECT_NEAR(double(b.depth[at(b, 32, 24)]), double(depth24(0.25f)), 1.0);
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, TextureRowsAndNearestFilter) {
+    // A 2×2 texture on a quad covering the target, nearest filter: the first stored row is v = 0,
+    // which the quad maps to the bottom of the window.
+    Texture tex;
+    tex.width = 2;
+    tex.height = 2;
+    tex.filter = Filter::Nearest;
+    tex.rgba = {255, 0, 0, 255, 0, 255, 0, 255,      // row 0: red, green
+                0, 0, 255, 255, 255, 255, 255, 255};  // row 1: blue, white
+    Mesh quad;
+    quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    quad.normals.assign(4, glm::vec3(0, 0, 1));
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.triangleSource = {0, 1};
+    const MeshHandle mesh = backend_->uploadMesh(quad);
+    const TextureHandle texture = backend_->uploadTexture(tex);
+    ASSERT_NE(texture, kNoHandle);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    FrameParams frame = simpleFrame();
+    frame.lighting.ambient = 1.0f;
+    frame.lighting.diffuse = 0.0f;
+    backend_->beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = mesh;
+    params.texture = texture;
+    backend_->draw(params, all(quad));
+    const Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(colorIs(b, 10, 10, {1, 0, 0, 1}, 0));  // bottom left: row 0, texel 0
+    EXPECT_TRUE(colorIs(b, 50, 10, {0, 1, 0, 1}, 0));
+    EXPECT_TRUE(colorIs(b, 10, 40, {0, 0, 1, 1}, 0));
+    EXPECT_TRUE(colorIs(b, 50, 40, {1, 1, 1, 1}, 0));
+    backend_->destroyTarget(target);
+
+    Texture bad = tex;
+    bad.rgba.pop_back();
+    EXPECT_EQ(backend_->uploadTexture(bad), kNoHandle);
+}
+
+TEST_P(GlBackendGLTest, ClearsASubRectangle) {
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    ASSERT_NE(target, kNoHandle);
+    // A fresh target is cleared: transparent black, far, id 0.
+    Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(colorIs(b, 5, 5, {0, 0, 0, 0}, 0));
+    EXPECT_EQ(b.depth[at(b, 5, 5)], kDepthMax);
+
+    // Draw the front triangle so ids are non-zero, then clear a rectangle across it.
+    const Mesh mesh = frontAndBack();
+    const MeshHandle handle = backend_->uploadMesh(mesh);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->beginFrame(target, simpleFrame());
+    DrawParams params;
+    params.mesh = handle;
+    params.firstId = 100;
+    backend_->draw(params, all(mesh));
+    const Rect rect{10, 12, 8, 6};  // covers (16, 17), the front triangle's centroid
+    const glm::vec4 red{1, 0, 0, 1};
+    backend_->clear(target, rect, red, 0.25f);
+    b = backend_->readBack(target);
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const bool inside = x >= rect.x && x < rect.x + rect.width && y >= rect.y && y < rect.y + rect.height;
+            if (inside) {
+                ASSERT_TRUE(colorIs(b, x, y, red, 0));
+                ASSERT_EQ(b.ids[at(b, x, y)], 0u) << x << ", " << y;
+                ASSERT_NEAR(double(b.depth[at(b, x, y)]), double(depth24(0.25f)), 1.0) << x << ", " << y;
+            }
+        }
+    }
+    // Just outside the rectangle the triangle is still there.
+    EXPECT_EQ(b.ids[at(b, 16, rect.y + rect.height)], 107u);
+    EXPECT_EQ(b.ids[at(b, rect.x - 1, 10)], 107u);
+    // Drawing continues into the same frame after a clear.
+    backend_->draw(params, all(mesh));
+    b = backend_->readBack(target);
+    EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 0u) << "the cleared depth 0.25 is nearer than 0.75";
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, red, 0));
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, CopiesARectanglePerAttachment) {
+    const Mesh mesh = frontAndBack();
+    const MeshHandle handle = backend_->uploadMesh(mesh);
+    const TargetHandle source = backend_->createTarget(kWidth, kHeight);
+    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->beginFrame(source, simpleFrame());
+    DrawParams params;
+    params.mesh = handle;
+    params.firstId = 100;
+    params.doubleSided = true;
+    backend_->draw(params, all(mesh));
+    const Buffers src = backend_->readBack(source);
+
+    const TargetHandle dest = backend_->createTarget(kWidth, kHeight);
+    const glm::vec4 destColor{0, 0, 1, 1};
+    const Rect rect{12, 10, 40, 12};  // both centroids, part of each triangle and background
+    struct Case { bool color, depth, ids; } cases[] = {
+        {true, false, false}, {false, true, false}, {false, false, true}, {true, true, true}};
+    for (const Case& c : cases) {
+        backend_->clear(dest, Rect{0, 0, kWidth, kHeight}, destColor, 0.5f);
+        const Buffers before = backend_->readBack(dest);
+        backend_->copy(source, dest, rect, c.color, c.depth, c.ids);
+        const Buffers b = backend_->readBack(dest);
+        int changedColor = 0, changedDepth = 0, changedIds = 0;
+        for (int y = 0; y < kHeight; ++y) {
+            for (int x = 0; x < kWidth; ++x) {
+                const std::size_t i = at(b, x, y);
+                const bool inside = x >= rect.x && x < rect.x + rect.width && y >= rect.y && y < rect.y + rect.height;
+                const Buffers& colorFrom = inside && c.color ? src : before;
+                const Buffers& depthFrom = inside && c.depth ? src : before;
+                const Buffers& idsFrom = inside && c.ids ? src : before;
+                ASSERT_TRUE(std::equal(&b.rgba[4 * i], &b.rgba[4 * i + 4], &colorFrom.rgba[4 * i]))
+                    << "colour at " << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
+                ASSERT_EQ(b.depth[i], depthFrom.depth[i]) << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
+                ASSERT_EQ(b.ids[i], idsFrom.ids[i]) << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
+                changedColor += !std::equal(&b.rgba[4 * i], &b.rgba[4 * i + 4], &before.rgba[4 * i]);
+                changedDepth += b.depth[i] != before.depth[i];
+                changedIds += b.ids[i] != before.ids[i];
+            }
+        }
+        // The copy must have done something where asked (the source differs inside the rectangle).
+        EXPECT_EQ(changedColor > 0, c.color);
+        EXPECT_EQ(changedDepth > 0, c.depth);
+        EXPECT_EQ(changedIds > 0, c.ids);
+    }
+    // A frame drawn after copies still goes to its target with ids.
+    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->beginFrame(source, simpleFrame());
+    backend_->draw(params, all(mesh));
+    EXPECT_TRUE(identical(backend_->readBack(source), src, "draw-after-copy"));
+    backend_->destroyTarget(source);
+    backend_->destroyTarget(dest);
+}
+
+TEST_P(GlBackendGLTest, DepthReadBackIsTheStored24BitValue) {
+    const TargetHandle target = backend_->createTarget(4, 4);
+    const auto cleared = [&](float depth) {
+        backend_->clear(target, Rect{0, 0, 4, 4}, kBackground, depth);
+        return backend_->readBack(target).depth[5];
+    };
+    EXPECT_EQ(cleared(1.0f), 0xFFFFFFu);
+    EXPECT_EQ(cleared(0.0f), 0u);
+    // 0.5 · 0xFFFFFF = 8388607.5: llvmpipe rounds the tie up (documented in GlBackend.cpp).
+    EXPECT_EQ(cleared(0.5f), 0x800000u);
+    EXPECT_EQ(cleared(0.25f), depth24(0.25f));
+    EXPECT_EQ(cleared(2.0f), 0xFFFFFFu) << "clamped to [0, 1]";
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, TwoRendersAreIdentical) {
+    const Buffers a = renderDenseScene(*backend_, true);
+    const Buffers b = renderDenseScene(*backend_, true);
+    EXPECT_TRUE(identical(a, b, std::string("repeat-") + contextKindName(GetParam())));
+}
+
+TEST_P(GlBackendGLTest, OneByOneTarget) {
+    const TargetHandle target = backend_->createTarget(1, 1);
+    ASSERT_NE(target, kNoHandle);
+    Mesh big;
+    big.positions = {{-3, -3, 0}, {3, -3, 0}, {0, 3, 0}};
+    big.normals.assign(3, glm::vec3(0, 0, 1));
+    big.indices = {0, 1, 2};
+    big.triangleSource = {4};
+    const MeshHandle mesh = backend_->uploadMesh(big);
+    backend_->clear(target, Rect{0, 0, 1, 1}, kBackground);
+    backend_->beginFrame(target, simpleFrame());
+    DrawParams params;
+    params.mesh = mesh;
+    params.firstId = 10;
+    backend_->draw(params, all(big));
+    const Buffers b = backend_->readBack(target);
+    ASSERT_EQ(b.pixelCount(), 1u);
+    EXPECT_EQ(b.ids[0], 14u);
+    EXPECT_TRUE(colorIs(b, 0, 0, {0.75f, 0.75f, 0.75f, 1.0f}));
+    EXPECT_NEAR(double(b.depth[0]), double(depth24(0.5f)), 1.0);
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, BadSizesAndBadMeshesGiveNoHandle) {
+    const int max = backend_->maxTargetSize();
+    for (auto [w, h] : {std::pair{0, 0}, std::pair{0, 10}, std::pair{10, 0}, std::pair{-1, 5},
+                        std::pair{max + 1, 1}, std::pair{1, max + 1}})
+        EXPECT_EQ(backend_->createTarget(w, h), kNoHandle) << w << "×" << h;
+    // Still usable afterwards.
+    const TargetHandle ok = backend_->createTarget(2, 2);
+    EXPECT_NE(ok, kNoHandle);
+    backend_->destroyTarget(ok);
+
+    Mesh outOfRange = frontAndBack();
+    outOfRange.indices[4] = 6;
+    EXPECT_EQ(backend_->uploadMesh(outOfRange), kNoHandle);
+    Mesh notTriangles = frontAndBack();
+    notTriangles.indices.pop_back();
+    EXPECT_EQ(backend_->uploadMesh(notTriangles), kNoHandle);
+    Mesh shortNormals = frontAndBack();
+    shortNormals.normals.pop_back();
+    EXPECT_EQ(backend_->uploadMesh(shortNormals), kNoHandle);
+    Mesh shortSources = frontAndBack();
+    shortSources.triangleSource.pop_back();
+    EXPECT_EQ(backend_->uploadMesh(shortSources), kNoHandle);
+}
+
+TEST_P(GlBackendGLTest, MeshWithoutNormalsOrSourcesUsesDefaults) {
+    // No normals: +z; no triangleSource: triangle t has source t.
+    Mesh mesh = frontAndBack();
+    mesh.normals.clear();
+    mesh.triangleSource.clear();
+    const Buffers reference = drawTwoTriangles(*backend_, true, true);
+    const MeshHandle handle = backend_->uploadMesh(mesh);
+    ASSERT_NE(handle, kNoHandle);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->beginFrame(target, simpleFrame());
+    DrawParams params;
+    params.mesh = handle;
+    params.baseColorFactor = kFactor;
+    params.doubleSided = true;
+    params.firstId = 100;
+    backend_->draw(params, all(mesh));
+    const Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(identical(b, reference, "default-normals", /*compareIds=*/false));
+    EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 100u);
+    EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], 101u);
+    backend_->destroyTarget(target);
+}
+
+std::string kindName(const ::testing::TestParamInfo<ContextKind>& info) {
+    std::string name = contextKindName(info.param);
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Contexts, GlBackendGLTest, ::testing::ValuesIn(availableContextKinds()), kindName);
+
+// Same scene on every context kind: all run llvmpipe here, so the images must match byte for byte.
+TEST(GlBackendCrossContextGLTest, AllContextKindsGiveIdenticalImages) {
+    const std::vector<ContextKind> kinds = availableContextKinds();
+    if (kinds.size() < 2) GTEST_SKIP() << "only one context kind in this build";
+    std::vector<std::unique_ptr<Backend>> backends;
+    for (ContextKind kind : kinds) backends.push_back(makeBackend(kind));
+    for (const auto& b : backends) ASSERT_NE(b, nullptr);
+    // Render in turn, twice round, so the backends switch contexts between frames.
+    std::vector<Buffers> images;
+    for (int round = 0; round < 2; ++round)
+        for (auto& backend : backends) images.push_back(renderDenseScene(*backend, true));
+    for (std::size_t i = 1; i < images.size(); ++i)
+        EXPECT_TRUE(identical(images[0], images[i],
+                              std::string("cross-") + contextKindName(kinds[0]) + "-vs-" +
+                                  contextKindName(kinds[i % kinds.size()])));
+    const Buffers simpleFirst = drawTwoTriangles(*backends.front(), true, true);
+    for (std::size_t i = 1; i < backends.size(); ++i)
+        EXPECT_TRUE(identical(simpleFirst, drawTwoTriangles(*backends[i], true, true),
+                              std::string("cross-simple-") + contextKindName(kinds[i])));
+}
+
+// Two surfaceless contexts share one EGLDisplay; destroying one must not break the other.
+TEST(GlBackendCrossContextGLTest, SurfacelessContextsShareTheDisplaySafely) {
+    const auto kinds = availableContextKinds();
+    if (std::find(kinds.begin(), kinds.end(), ContextKind::EglSurfaceless) == kinds.end())
+        GTEST_SKIP() << "EGL not built";
+    auto first = makeBackend(ContextKind::EglSurfaceless);
+    auto second = makeBackend(ContextKind::EglSurfaceless);
+    ASSERT_TRUE(first && second);
+    const Buffers before = renderDenseScene(*second, true);
+    first.reset();
+    EXPECT_TRUE(identical(before, renderDenseScene(*second, true), "surfaceless-after-destroy"));
+    second.reset();
+    // And the display comes back after the last one went.
+    auto third = makeBackend(ContextKind::EglSurfaceless);
+    ASSERT_TRUE(third);
+    EXPECT_TRUE(identical(before, renderDenseScene(*third, true), "surfaceless-recreated"));
+}
+
+}  // namespace
+}  // namespace frugal

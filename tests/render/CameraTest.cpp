@@ -1,0 +1,108 @@
+// Camera resolution and the projection conventions (GL clip space, window z in [0,1]).
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render/Camera.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+namespace {
+
+Scene unitScene() {
+    Scene scene;
+    Mesh mesh;
+    mesh.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, 1}};
+    mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    mesh.indices = {0, 1, 2};
+    mesh.triangleSource = {0};
+    scene.meshes.push_back(mesh);
+    Node node;
+    node.meshes = {0};
+    scene.nodes.push_back(node);
+    scene.roots = {0};
+    scene.buildInstances();
+    return scene;
+}
+
+glm::vec3 toNdc(const View& v, const glm::vec3& p) {
+    const glm::vec4 clip = v.projection * v.view * glm::vec4(p, 1.0f);
+    return glm::vec3(clip) / clip.w;
+}
+
+TEST(CameraTest, AutoFramingKeepsTheBoundsInsideTheFrustum) {
+    const Scene scene = unitScene();
+    Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, {}, 800, 600);
+    ASSERT_TRUE(view) << view.error();
+    for (const glm::vec3& p : scene.meshes[0].positions) {
+        const glm::vec3 ndc = toNdc(*view, p);
+        EXPECT_LE(std::abs(ndc.x), 1.0f);
+        EXPECT_LE(std::abs(ndc.y), 1.0f);
+        EXPECT_LE(std::abs(ndc.z), 1.0f);
+    }
+    EXPECT_EQ(view->source, "auto (fit bounds)");
+}
+
+TEST(CameraTest, LookAtPutsTheTargetAtTheCentreAndUpIsUp) {
+    const Scene scene = unitScene();
+    CameraSpec spec;
+    spec.eye = glm::vec3(0, 0, 10);
+    spec.target = glm::vec3(0, 0, 0);
+    Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 64, 64);
+    ASSERT_TRUE(view) << view.error();
+    const glm::vec3 centre = toNdc(*view, {0, 0, 0});
+    EXPECT_NEAR(centre.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(centre.y, 0.0f, 1e-6f);
+    EXPECT_GT(toNdc(*view, {0, 1, 0}).y, 0.0f);  // world +y is window up (origin bottom-left)
+    EXPECT_GT(toNdc(*view, {1, 0, 0}).x, 0.0f);  // right-handed: +x is right when looking down -z
+    // Nearer points get smaller depth (GL_LESS keeps the nearest).
+    EXPECT_LT(toNdc(*view, {0, 0, 1}).z, toNdc(*view, {0, 0, -1}).z);
+}
+
+TEST(CameraTest, SceneCamerasFollowTheirNodeAndAnInfiniteFar) {
+    Scene scene = unitScene();
+    Node node;
+    node.translation = {0, 0, 5};
+    node.camera = 0;
+    scene.nodes.push_back(node);
+    Camera camera;
+    camera.node = 1;
+    camera.yfov = glm::radians(60.0f);
+    camera.znear = 0.5f;
+    camera.zfar = 0.0f;  // infinite
+    scene.cameras.push_back(camera);
+    Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, {}, 100, 100);
+    ASSERT_TRUE(view) << view.error();
+    EXPECT_EQ(view->source, "scene camera 0");
+    EXPECT_NEAR(toNdc(*view, {0, 0, 0}).x, 0.0f, 1e-6f);
+    EXPECT_LT(toNdc(*view, {0, 0, -1e6f}).z, 1.0f);  // far away is still in front of the far plane
+}
+
+TEST(CameraTest, BadCamerasAreErrorsWithNumbers) {
+    const Scene scene = unitScene();
+    const auto world = scene.worldTransforms(0);
+    CameraSpec spec;
+    spec.sceneCamera = 2;
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera 2: the scene has 0 cameras");
+    spec = {};
+    spec.eye = glm::vec3(0, 5, 0);
+    spec.target = glm::vec3(0, 0, 0);
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera: up (0,1,0) is parallel to the view direction");
+    spec.eye = glm::vec3(0, 0, 0);
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera: eye and target must differ and be finite");
+    spec = {};
+    spec.znear = 5.0f;
+    spec.zfar = 1.0f;
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "--far 1: must exceed near 5");
+}
+
+TEST(CameraTest, FullDrawListCoversEveryInstanceInOrder) {
+    const Scene scene = unitScene();
+    const DrawList list = fullDrawList(scene);
+    ASSERT_EQ(list.size(), 1u);
+    EXPECT_EQ(list[0].instance, 0);
+    ASSERT_EQ(list[0].ranges.size(), 1u);
+    EXPECT_EQ(list[0].ranges[0].triangleCount, 1u);
+}
+
+}  // namespace
+}  // namespace frugal

@@ -1,0 +1,83 @@
+// Built-in procedural scenes: parameters, counts and the per-frame static share.
+#include <gtest/gtest.h>
+
+#include "scene/Load.h"
+
+namespace frugal {
+namespace {
+
+// Instances whose world transform changes between frame f-1 and f.
+int changedInstances(const Scene& scene, int frame) {
+    const std::vector<glm::mat4> before = scene.worldTransforms((frame - 1) / scene.fps);
+    const std::vector<glm::mat4> now = scene.worldTransforms(frame / scene.fps);
+    int changed = 0;
+    for (const Instance& instance : scene.instances)
+        if (before[instance.node] != now[instance.node]) ++changed;
+    return changed;
+}
+
+struct DominoCase {
+    const char* spec;
+    std::size_t polygons;  // quads
+    int moving;
+};
+
+TEST(BuiltinTest, DominoesMatchThePaperSceneSizes) {
+    const DominoCase cases[] = {
+        {"builtin:dominoes", 804, 60},                                  // paper 000: 804 polygons, 55.44 % static
+        {"builtin:dominoes?polygons=1404&static=0.9866", 1404, 3},      // 1,404 polygons, 98.66 % static
+    };
+    for (const DominoCase& c : cases) {
+        SCOPED_TRACE(c.spec);
+        Result<Scene> scene = loadScene(c.spec);
+        ASSERT_TRUE(scene) << scene.error();
+        EXPECT_EQ(scene->triangleCount(), 2 * c.polygons);
+        for (int frame : {c.moving, c.moving + 5, int(c.polygons / 6) - 1}) EXPECT_EQ(changedInstances(*scene, frame), c.moving);
+        EXPECT_EQ(scene->cameras.size(), 1u);
+    }
+}
+
+TEST(BuiltinTest, DefaultHasATexturedFloor) {
+    Result<Scene> scene = loadScene("builtin:default");
+    ASSERT_TRUE(scene) << scene.error();
+    EXPECT_EQ(scene->textures.size(), 1u);
+    EXPECT_EQ(scene->triangleCount(), 2u * 804 + 2);
+}
+
+TEST(BuiltinTest, CubesSpinAndAreReproducible) {
+    Result<Scene> a = loadScene("builtin:cubes");
+    Result<Scene> b = loadScene("builtin:cubes?count=28&seed=1");
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(a->triangleCount(), 28u * 12);
+    EXPECT_EQ(a->worldTransforms(1.0), b->worldTransforms(1.0));
+    EXPECT_EQ(changedInstances(*a, 3), 28);
+    Result<Scene> c = loadScene("builtin:cubes?seed=2");
+    ASSERT_TRUE(c);
+    EXPECT_NE(a->worldTransforms(1.0), c->worldTransforms(1.0));
+}
+
+TEST(BuiltinTest, BadSpecsGetOneLineErrors) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes)"},
+        {"builtin:cubes?count=abc", "builtin:cubes?count=abc: count=abc is not a number"},
+        {"builtin:cubes?count=0", "builtin:cubes?count=0: count=0 is out of range [1, 1e+06]"},
+        {"builtin:dominoes?static=2", "builtin:dominoes?static=2: static=2 is out of range [0, 1]"},
+        {"builtin:dominoes?colour=red", "builtin:dominoes?colour=red: unknown parameter 'colour'"},
+        {"builtin:dominoes?polygons", "builtin:dominoes?polygons: parameter 'polygons' is not key=value"},
+        {"builtin:cubes?count=nan", "builtin:cubes?count=nan: count=nan is not a number"},
+    };
+    for (const auto& [spec, message] : cases) {
+        Result<Scene> scene = loadScene(spec);
+        ASSERT_FALSE(scene) << spec;
+        EXPECT_EQ(scene.error(), message);
+    }
+}
+
+TEST(BuiltinTest, UnknownFormatsAndMissingFiles) {
+    EXPECT_EQ(loadScene("/nonexistent/scene.fbx").error(), "/nonexistent/scene.fbx: no such file");
+    EXPECT_EQ(loadScene("/etc/hostname").error(),
+              "/etc/hostname: unknown scene format '' (frugal reads .gltf, .glb, .obj and builtin:NAME)");
+}
+
+}  // namespace
+}  // namespace frugal
