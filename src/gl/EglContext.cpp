@@ -17,8 +17,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <map>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -30,7 +28,9 @@ namespace {
 
 std::string eglErrorName(EGLint error) {
     switch (error) {
-#define FRUGAL_EGL_ERROR(e) case e: return #e;
+#define FRUGAL_EGL_ERROR(e) \
+    case e:                 \
+        return #e;
         FRUGAL_EGL_ERROR(EGL_SUCCESS)
         FRUGAL_EGL_ERROR(EGL_NOT_INITIALIZED)
         FRUGAL_EGL_ERROR(EGL_BAD_ACCESS)
@@ -48,7 +48,8 @@ std::string eglErrorName(EGLint error) {
         FRUGAL_EGL_ERROR(EGL_CONTEXT_LOST)
         FRUGAL_EGL_ERROR(EGL_BAD_DEVICE_EXT)
 #undef FRUGAL_EGL_ERROR
-        default: break;
+        default:
+            break;
     }
     char text[16];
     std::snprintf(text, sizeof text, "0x%04X", unsigned(error));
@@ -78,53 +79,23 @@ std::string galliumDriverHint() {
     return std::string(" (GALLIUM_DRIVER=") + driver + " is set)";
 }
 
-// eglInitialize/eglTerminate are not reference counted (unless EGL_KHR_display_reference, which
-// Mesa 22 lacks): eglGetPlatformDisplayEXT returns the same EGLDisplay for the same platform and
-// native display, so every surfaceless context in the process shares one display, and eglTerminate
-// by the first one destroyed would invalidate the others' contexts. frugal therefore counts its
-// own references and terminates only when the last frugal context on a display goes. A display
-// that was already initialised before frugal first touched it belongs to someone else (the host
-// application) and is never terminated by frugal. (The reverse, a host that initialises a display
-// frugal already holds, cannot be seen without EGL_KHR_display_reference.)
-class DisplayRegistry {
-public:
-    // Returns "" on success, else the reason (with the EGL error).
-    std::string acquire(EGLDisplay display) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        auto it = refs_.find(display);
-        if (it != refs_.end()) {
-            ++it->second;
-            return {};
-        }
-        // eglQueryString on an uninitialised display fails with EGL_NOT_INITIALIZED (EGL 1.5
-        // §3.3). Initialised already: borrowed, not counted, so release() never terminates it.
-        if (eglQueryString(display, EGL_VERSION) != nullptr) return {};
-        eglGetError();  // clear the EGL_NOT_INITIALIZED the probe raised
-        EGLint major = 0, minor = 0;
-        if (eglInitialize(display, &major, &minor) != EGL_TRUE)
-            return "eglInitialize failed: " + lastEglError();
-        refs_[display] = 1;
-        return {};
-    }
-
-    void release(EGLDisplay display) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        auto it = refs_.find(display);
-        if (it == refs_.end()) return;  // borrowed
-        if (--it->second == 0) {
-            eglTerminate(display);
-            refs_.erase(it);
-        }
-    }
-
-private:
-    std::mutex mutex_;
-    std::map<EGLDisplay, int> refs_;  // displays frugal initialised → live frugal contexts
-};
-
-DisplayRegistry& displays() {
-    static DisplayRegistry registry;  // lives until exit; contexts outliving main are the user's bug
-    return registry;
+// frugal initialises an EGL display and never terminates it; the display lives until the process
+// exits (the OS, or Mesa's own exit handler, reclaims it). Why not eglTerminate in the destructor:
+// - eglGetPlatformDisplayEXT returns the same EGLDisplay for the same platform and native display,
+//   so every surfaceless context in the process (and the host application's, if it has one) shares
+//   one display; eglTerminate is not reference counted (EGL_KHR_display_reference, which would make
+//   it so, is not in Mesa 22) and invalidates every context on the display at once;
+// - a reference count of frugal's own contexts fixes that, but then each new backend after the
+//   last one went re-initialises the display: measured here 13–35 ms per backend (the DRI driver
+//   and LLVM come back) against 2.5 ms with the display kept;
+// - Mesa 22 unloads its DRI driver on the last eglTerminate, which turns the driver's own small
+//   leaks into reports from an "<unknown module>" that no LSan suppression can name.
+// eglInitialize on an initialised display is a no-op that succeeds (EGL 1.5 §3.2), so no
+// bookkeeping is needed.
+std::string initialiseDisplay(EGLDisplay display) {
+    EGLint major = 0, minor = 0;
+    if (eglInitialize(display, &major, &minor) != EGL_TRUE) return "eglInitialize failed: " + lastEglError();
+    return {};
 }
 
 class EglContext final : public GlContext {
@@ -143,14 +114,12 @@ public:
             }
             eglDestroyContext(display_, context_);
         }
-        if (acquired_) displays().release(display_);
     }
 
     // Everything after eglGetPlatformDisplayEXT; returns "" or the reason.
     std::string create() {
-        std::string reason = displays().acquire(display_);
+        std::string reason = initialiseDisplay(display_);
         if (!reason.empty()) return reason;
-        acquired_ = true;
 
         const char* extensions = eglQueryString(display_, EGL_EXTENSIONS);
         const char* version = eglQueryString(display_, EGL_VERSION);
@@ -170,26 +139,28 @@ public:
         EGLConfig config = EGL_NO_CONFIG_KHR;
         if (!hasExtension(extensions, "EGL_KHR_no_config_context") &&
             !hasExtension(extensions, "EGL_MESA_configless_context")) {
-            const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                            EGL_SURFACE_TYPE, 0,  // any: we draw into FBOs
-                                            EGL_NONE};
+            // clang-format off
+            const EGLint configAttribs[] = {
+                EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                EGL_SURFACE_TYPE, 0,  // any: frugal draws into FBOs
+                EGL_NONE};
+            // clang-format on
             EGLint count = 0;
-            if (eglChooseConfig(display_, configAttribs, &config, 1, &count) != EGL_TRUE ||
-                count < 1)
-                return "no EGL config with EGL_OPENGL_BIT (eglChooseConfig: " + lastEglError() +
-                       ", " + std::to_string(count) + " configs)";
+            if (eglChooseConfig(display_, configAttribs, &config, 1, &count) != EGL_TRUE || count < 1)
+                return "no EGL config with EGL_OPENGL_BIT (eglChooseConfig: " + lastEglError() + ", " +
+                       std::to_string(count) + " configs)";
         }
 
+        // clang-format off
         const EGLint contextAttribs[] = {
             EGL_CONTEXT_MAJOR_VERSION_KHR, 3,
             EGL_CONTEXT_MINOR_VERSION_KHR, 3,
             EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
             EGL_NONE};
+        // clang-format on
         context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttribs);
-        if (context_ == EGL_NO_CONTEXT)
-            return "eglCreateContext(OpenGL 3.3 core) failed: " + lastEglError();
-        if (!makeCurrent())
-            return "eglMakeCurrent without a surface failed: " + lastEglError();
+        if (context_ == EGL_NO_CONTEXT) return "eglCreateContext(OpenGL 3.3 core) failed: " + lastEglError();
+        if (!makeCurrent()) return "eglMakeCurrent without a surface failed: " + lastEglError();
         return {};
     }
 
@@ -203,21 +174,26 @@ public:
     }
 
     bool makeCurrent() override {
+        releaseOtherContext(this);  // see gl/GlApi.h: an OSMesa context would otherwise stay bound
         // eglBindAPI is per thread; a context made on another thread must still bind as OpenGL.
         if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) return false;
-        if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE)
-            return false;
-        noteCurrentContext(this);
+        if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) return false;
+        noteCurrentContext(this, &EglContext::release);
         return true;
     }
 
     std::string description() const override { return description_; }
 
 private:
+    static void release(GlContext* context) {
+        auto* self = static_cast<EglContext*>(context);
+        eglBindAPI(EGL_OPENGL_API);
+        eglMakeCurrent(self->display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+
     ContextKind kind_;
     EGLDisplay display_;
     EGLContext context_ = EGL_NO_CONTEXT;
-    bool acquired_ = false;
     std::string description_;
 };
 
@@ -239,18 +215,14 @@ Result<std::unique_ptr<GlContext>> createEglSurfacelessContext() {
     const std::string who = "egl-surfaceless: ";
     const char* client = clientExtensions();
     for (const char* needed : {"EGL_EXT_platform_base", "EGL_MESA_platform_surfaceless"})
-        if (!hasExtension(client, needed))
-            return Error{who + "EGL client extension " + needed + " missing"};
-    auto getPlatformDisplay =
-        loadEgl<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
-    if (getPlatformDisplay == nullptr)
-        return Error{who + "eglGetPlatformDisplayEXT not found"};
+        if (!hasExtension(client, needed)) return Error{who + "EGL client extension " + needed + " missing"};
+    auto getPlatformDisplay = loadEgl<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
+    if (getPlatformDisplay == nullptr) return Error{who + "eglGetPlatformDisplayEXT not found"};
 
-    EGLDisplay display =
-        getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY)
-        return Error{who + "no EGL display (eglGetPlatformDisplayEXT failed: " + lastEglError() +
-                     ")" + galliumDriverHint()};
+        return Error{who + "no EGL display (eglGetPlatformDisplayEXT failed: " + lastEglError() + ")" +
+                     galliumDriverHint()};
     auto context = std::make_unique<EglContext>(ContextKind::EglSurfaceless, display);
     std::string reason = context->create();
     if (!reason.empty()) {
@@ -263,21 +235,19 @@ Result<std::unique_ptr<GlContext>> createEglSurfacelessContext() {
 Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevice) {
     const std::string who = "egl-device: ";
     const char* client = clientExtensions();
-    const bool enumeration = hasExtension(client, "EGL_EXT_device_base") ||
-                             (hasExtension(client, "EGL_EXT_device_enumeration") &&
-                              hasExtension(client, "EGL_EXT_device_query"));
-    if (!enumeration)
-        return Error{who + "EGL client extension EGL_EXT_device_enumeration missing"};
+    const bool enumeration =
+        hasExtension(client, "EGL_EXT_device_base") ||
+        (hasExtension(client, "EGL_EXT_device_enumeration") && hasExtension(client, "EGL_EXT_device_query"));
+    if (!enumeration) return Error{who + "EGL client extension EGL_EXT_device_enumeration missing"};
     for (const char* needed : {"EGL_EXT_platform_base", "EGL_EXT_platform_device"})
-        if (!hasExtension(client, needed))
-            return Error{who + "EGL client extension " + needed + " missing"};
+        if (!hasExtension(client, needed)) return Error{who + "EGL client extension " + needed + " missing"};
     auto queryDevices = loadEgl<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
     auto queryDeviceString = loadEgl<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
-    auto getPlatformDisplay =
-        loadEgl<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
+    auto getPlatformDisplay = loadEgl<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
     if (!queryDevices || !queryDeviceString || !getPlatformDisplay)
-        return Error{who + "eglQueryDevicesEXT, eglQueryDeviceStringEXT or "
-                           "eglGetPlatformDisplayEXT not found"};
+        return Error{who +
+                     "eglQueryDevicesEXT, eglQueryDeviceStringEXT or "
+                     "eglGetPlatformDisplayEXT not found"};
 
     EGLint count = 0;
     if (queryDevices(0, nullptr, &count) != EGL_TRUE)
@@ -320,15 +290,13 @@ Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevi
     }
 
     const std::string skippedText =
-        skipped > 0 ? std::to_string(skipped) + " software device" + (skipped > 1 ? "s" : "") +
-                          " skipped"
+        skipped > 0 ? std::to_string(skipped) + " software device" + (skipped > 1 ? "s" : "") + " skipped"
                     : std::string();
     if (failures.empty())
-        return Error{who + (allowSoftwareDevice ? "no EGL device" : "no hardware EGL device") +
-                     " (" + std::to_string(devices.size()) + " found" +
-                     (skippedText.empty() ? "" : ", " + skippedText) + ")"};
-    return Error{who + "no usable EGL device (" + failures +
-                 (skippedText.empty() ? "" : "; " + skippedText) + ")" + galliumDriverHint()};
+        return Error{who + (allowSoftwareDevice ? "no EGL device" : "no hardware EGL device") + " (" +
+                     std::to_string(devices.size()) + " found" + (skippedText.empty() ? "" : ", " + skippedText) + ")"};
+    return Error{who + "no usable EGL device (" + failures + (skippedText.empty() ? "" : "; " + skippedText) + ")" +
+                 galliumDriverHint()};
 }
 
 }  // namespace frugal

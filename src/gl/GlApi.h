@@ -18,78 +18,78 @@ class GlContext;
 
 // X(type, name): the pointer of type `type` is loaded from "gl" #name and called as gl.name(...).
 // Keep the list to what the backend calls; every entry must exist in GL 3.3 core.
-#define FRUGAL_GL_FUNCTIONS(X)                                       \
-    X(PFNGLGETERRORPROC, GetError)                                   \
-    X(PFNGLGETINTEGERVPROC, GetIntegerv)                             \
-    X(PFNGLGETSTRINGPROC, GetString)                                 \
-    X(PFNGLENABLEPROC, Enable)                                       \
-    X(PFNGLDISABLEPROC, Disable)                                     \
-    X(PFNGLDEPTHFUNCPROC, DepthFunc)                                 \
-    X(PFNGLDEPTHMASKPROC, DepthMask)                                 \
-    X(PFNGLCULLFACEPROC, CullFace)                                   \
-    X(PFNGLFRONTFACEPROC, FrontFace)                                 \
-    X(PFNGLVIEWPORTPROC, Viewport)                                   \
-    X(PFNGLSCISSORPROC, Scissor)                                     \
-    X(PFNGLFINISHPROC, Finish)                                       \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)                             \
-    X(PFNGLREADPIXELSPROC, ReadPixels)                               \
-    X(PFNGLREADBUFFERPROC, ReadBuffer)                               \
-    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                             \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                     \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)               \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                     \
-    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)     \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)       \
-    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                   \
-    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)             \
-    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                   \
-    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)             \
-    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                     \
-    X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                         \
-    X(PFNGLCLEARBUFFERUIVPROC, ClearBufferuiv)                       \
-    X(PFNGLGENBUFFERSPROC, GenBuffers)                               \
-    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                         \
-    X(PFNGLBINDBUFFERPROC, BindBuffer)                               \
-    X(PFNGLBUFFERDATAPROC, BufferData)                               \
-    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                   \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                     \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)               \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                     \
-    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)     \
-    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)             \
-    X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)           \
-    X(PFNGLVERTEXATTRIB2FPROC, VertexAttrib2f)                       \
-    X(PFNGLVERTEXATTRIB3FPROC, VertexAttrib3f)                       \
-    X(PFNGLVERTEXATTRIB4FPROC, VertexAttrib4f)                       \
-    X(PFNGLVERTEXATTRIBI4UIPROC, VertexAttribI4ui)                   \
-    X(PFNGLMULTIDRAWELEMENTSPROC, MultiDrawElements)                 \
-    X(PFNGLMULTIDRAWARRAYSPROC, MultiDrawArrays)                     \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                             \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                       \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                             \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                         \
-    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                               \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                         \
-    X(PFNGLCREATESHADERPROC, CreateShader)                           \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)                           \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)                         \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                             \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                   \
-    X(PFNGLDELETESHADERPROC, DeleteShader)                           \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                         \
-    X(PFNGLATTACHSHADERPROC, AttachShader)                           \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                             \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                           \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                 \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                         \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                               \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)               \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                                 \
-    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                               \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                                 \
-    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                               \
-    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                               \
-    X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                   \
+#define FRUGAL_GL_FUNCTIONS(X)                                   \
+    X(PFNGLGETERRORPROC, GetError)                               \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
+    X(PFNGLGETSTRINGPROC, GetString)                             \
+    X(PFNGLENABLEPROC, Enable)                                   \
+    X(PFNGLDISABLEPROC, Disable)                                 \
+    X(PFNGLDEPTHFUNCPROC, DepthFunc)                             \
+    X(PFNGLDEPTHMASKPROC, DepthMask)                             \
+    X(PFNGLCULLFACEPROC, CullFace)                               \
+    X(PFNGLFRONTFACEPROC, FrontFace)                             \
+    X(PFNGLVIEWPORTPROC, Viewport)                               \
+    X(PFNGLSCISSORPROC, Scissor)                                 \
+    X(PFNGLFINISHPROC, Finish)                                   \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                           \
+    X(PFNGLREADBUFFERPROC, ReadBuffer)                           \
+    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                         \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                 \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)           \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                 \
+    X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer) \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)   \
+    X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)               \
+    X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)         \
+    X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)               \
+    X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)         \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                 \
+    X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                     \
+    X(PFNGLCLEARBUFFERUIVPROC, ClearBufferuiv)                   \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                           \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
+    X(PFNGLBUFFERDATAPROC, BufferData)                           \
+    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)               \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)           \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                 \
+    X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray) \
+    X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
+    X(PFNGLVERTEXATTRIBIPOINTERPROC, VertexAttribIPointer)       \
+    X(PFNGLVERTEXATTRIB2FPROC, VertexAttrib2f)                   \
+    X(PFNGLVERTEXATTRIB3FPROC, VertexAttrib3f)                   \
+    X(PFNGLVERTEXATTRIB4FPROC, VertexAttrib4f)                   \
+    X(PFNGLVERTEXATTRIBI4UIPROC, VertexAttribI4ui)               \
+    X(PFNGLMULTIDRAWELEMENTSPROC, MultiDrawElements)             \
+    X(PFNGLMULTIDRAWARRAYSPROC, MultiDrawArrays)                 \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                         \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                   \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                         \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                     \
+    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                           \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                     \
+    X(PFNGLCREATESHADERPROC, CreateShader)                       \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                       \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                     \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                         \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)               \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                       \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                     \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                       \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                         \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                       \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)             \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                     \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                           \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)           \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
+    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                           \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                             \
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                           \
+    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                           \
+    X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)               \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)
 
 struct GlApi {
@@ -106,12 +106,17 @@ struct GlApi {
 // "GL_INVALID_OPERATION" etc., or "0x…" for a code this list does not know.
 std::string glErrorName(GLenum error);
 
-// The frugal context this thread made current last (GlContext.cpp). Every context's makeCurrent()
-// and creation record themselves here and their destructors clear it, so a backend skips the
-// eglMakeCurrent/OSMesaMakeCurrent call when its context is already current, yet switches back
-// when another frugal context (an EGL and an OSMesa backend side by side) was made current in
-// between. A context the host application makes current itself is not seen.
-void noteCurrentContext(const GlContext* context);
+// The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
+// different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after
+// OSMesaMakeCurrent, eglMakeCurrent of the EGL context that EGL still believes current is a no-op,
+// and every GL call then lands in the OSMesa context (Mesa's shared glapi holds one current
+// dispatch for both). So every makeCurrent() first calls releaseOtherContext(this), which unbinds
+// the previously recorded context through its own platform, then binds and records itself with
+// noteCurrentContext. Destructors call forgetCurrentContext. A backend skips makeCurrent when
+// currentContext() is already its own. Contexts the host application makes current are not seen.
+using ReleaseContext = void (*)(GlContext* context);
+void noteCurrentContext(GlContext* context, ReleaseContext release);
+void releaseOtherContext(const GlContext* next);
 void forgetCurrentContext(const GlContext* context);  // clears the record if it is `context`
 const GlContext* currentContext();
 

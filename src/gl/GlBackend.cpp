@@ -5,16 +5,22 @@
 // on attachment 1, DEPTH_COMPONENT24 depth. A new target is cleared to transparent black, far depth
 // and id 0, so its contents are defined in both backends.
 //
-// Depth read-back: glReadPixels(GL_DEPTH_COMPONENT, GL_UNSIGNED_INT) returns the 24-bit value D
-// scaled to 32 bits; on Mesa that is D << 8 | D >> 16 (the exact conversion D·(2³²−1)/(2²⁴−1)
-// rounds to the same), so >> 8 gives D back. Clearing to depth 1.0 reads 0xFFFFFF and clearing to
-// 0.5 reads 0x800000 on llvmpipe (round to nearest, ties up: 0.5 · 0xFFFFFF = 8388607.5), checked by
-// DepthReadBackIsTheStored24BitValue in tests/gl/GlBackendGLTest.cpp.
+// Depth read-back: glReadPixels(GL_DEPTH_COMPONENT, GL_UNSIGNED_INT) returns the stored 24-bit
+// value D as a 32-bit normalised integer, D·(2³²−1)/(2²⁴−1) = 256·D + D·255/(2²⁴−1), which is
+// 256·D plus at most 255, so >> 8 gives D back. Measured on llvmpipe (DepthReadBackIsTheStored24-
+// BitValue in tests/gl/GlBackendGLTest.cpp): clear depth 1.0 reads 0xFFFFFF, 0.0 reads 0, and 0.5
+// reads 0x800000: 0.5·0xFFFFFF = 8388607.5 is rounded up, not truncated to 0x7FFFFF.
 //
 // Vertex arithmetic (the software reference repeats it exactly, in float, with glm):
 //   u_mvp = (projection * view) * model       (projection * view computed once per frame)
 //   u_normalMatrix = transpose(inverse(mat3(model)))
 //   gl_Position = u_mvp * vec4(position, 1)
+//
+// Meshes: uploadMesh refuses (kNoHandle) attribute arrays that do not match the positions, index
+// counts not a multiple of 3, indices past the last vertex, and a triangleSource of the wrong
+// length. What a mesh may leave out (the software backend uses the same defaults): normals → (0,0,1),
+// colours → white, uvs → (0,0), triangleSource → t for triangle t. id = firstId + source, added in
+// the vertex stage in 32-bit unsigned arithmetic.
 //
 // Triangle ids: gl_PrimitiveID costs ≈3.5 ms per bunny frame on llvmpipe (DESIGN.md), so a frame
 // that writes ids draws each mesh unindexed from an "expanded" vertex buffer: 3 vertices per
@@ -35,10 +41,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <utility>
-
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <utility>
 
 #include "gl/GlApi.h"
 #include "gl/Shaders.h"
@@ -51,8 +56,7 @@ Result<BackendChoice> parseBackendChoice(const std::string& text) {
     if (text == "egl-device") return BackendChoice::EglDevice;
     if (text == "egl-surfaceless") return BackendChoice::EglSurfaceless;
     if (text == "osmesa") return BackendChoice::OsMesa;
-    return Error{"unknown GL backend '" + text +
-                 "' (expected auto, egl, egl-device, egl-surfaceless or osmesa)"};
+    return Error{"unknown GL backend '" + text + "' (expected auto, egl, egl-device, egl-surfaceless or osmesa)"};
 }
 
 namespace {
@@ -126,8 +130,7 @@ private:
 
 // An info log on one line: newlines become "; ", trailing blanks and NULs go.
 std::string oneLine(std::string text) {
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\0'))
-        text.pop_back();
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\0')) text.pop_back();
     std::string out;
     for (char c : text) {
         if (c == '\n')
@@ -147,9 +150,12 @@ Rect clipRect(const Rect& rect, int width, int height) {
 
 GLint wrapMode(Wrap wrap) {
     switch (wrap) {
-        case Wrap::Repeat: return GL_REPEAT;
-        case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
-        case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        case Wrap::Repeat:
+            return GL_REPEAT;
+        case Wrap::ClampToEdge:
+            return GL_CLAMP_TO_EDGE;
+        case Wrap::MirroredRepeat:
+            return GL_MIRRORED_REPEAT;
     }
     return GL_REPEAT;
 }
@@ -183,7 +189,6 @@ public:
     std::string name() const override { return contextKindName(context_->kind()); }
     std::string renderer() const override { return renderer_; }
     int maxTargetSize() const override { return maxTargetSize_; }
-    const GlContext& context() const { return *context_; }
 
     TargetHandle createTarget(int width, int height) override;
     void destroyTarget(TargetHandle target) override;
@@ -191,10 +196,8 @@ public:
     TextureHandle uploadTexture(const Texture& texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
-    void clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
-               float depth) override;
-    void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth,
-              bool ids) override;
+    void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
+    void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
     Buffers readBack(TargetHandle target) override;
     void finish() override {
         activate();
@@ -218,8 +221,7 @@ private:
         for (int i = 0; i < 8; ++i) {
             const GLenum error = gl_.GetError();
             if (error == GL_NO_ERROR) return;
-            std::fprintf(stderr, "frugal: %s: %s after %s\n", name().c_str(),
-                         glErrorName(error).c_str(), where);
+            std::fprintf(stderr, "frugal: %s: %s after %s\n", name().c_str(), glErrorName(error).c_str(), where);
             assert(error == GL_OUT_OF_MEMORY && "GL error in GlBackend");
         }
 #endif
@@ -250,10 +252,17 @@ private:
         static constexpr GLenum kBoth[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
         static constexpr GLenum kIds[] = {GL_NONE, GL_COLOR_ATTACHMENT1};
         switch (set) {
-            case DrawSet::Color: gl_.DrawBuffers(1, kColor); break;
-            case DrawSet::ColorAndIds: gl_.DrawBuffers(2, kBoth); break;
-            case DrawSet::Ids: gl_.DrawBuffers(2, kIds); break;
-            case DrawSet::Unknown: break;
+            case DrawSet::Color:
+                gl_.DrawBuffers(1, kColor);
+                break;
+            case DrawSet::ColorAndIds:
+                gl_.DrawBuffers(2, kBoth);
+                break;
+            case DrawSet::Ids:
+                gl_.DrawBuffers(2, kIds);
+                break;
+            case DrawSet::Unknown:
+                break;
         }
         t.drawSet = set;
     }
@@ -270,8 +279,8 @@ private:
                 gl_.Disable(GL_SCISSOR_TEST);
             cache_.scissorOn = int(on);
         }
-        if (on && (rect.x != cache_.scissor.x || rect.y != cache_.scissor.y ||
-                   rect.width != cache_.scissor.width || rect.height != cache_.scissor.height)) {
+        if (on && (rect.x != cache_.scissor.x || rect.y != cache_.scissor.y || rect.width != cache_.scissor.width ||
+                   rect.height != cache_.scissor.height)) {
             gl_.Scissor(rect.x, rect.y, rect.width, rect.height);
             cache_.scissor = rect;
         }
@@ -318,8 +327,8 @@ private:
 
     GLuint program_ = 0, white_ = 0;
     struct {
-        GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, baseColor = -1,
-              toLight = -1, ambient = -1, diffuse = -1;
+        GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, baseColor = -1, toLight = -1,
+              ambient = -1, diffuse = -1;
     } loc_;
     struct {
         glm::mat4 mvp{};
@@ -328,8 +337,8 @@ private:
         glm::vec3 toLight{};
         float ambient = 0, diffuse = 0;
         std::uint32_t firstId = 0;
-        bool mvpValid = false, normalValid = false, factorValid = false, lightValid = false,
-             ambientValid = false, diffuseValid = false, firstIdValid = false;
+        bool mvpValid = false, normalValid = false, factorValid = false, lightValid = false, ambientValid = false,
+             diffuseValid = false, firstIdValid = false;
     } uniforms_;
     struct {
         GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0;
@@ -404,8 +413,7 @@ std::string GlBackend::initialise() {
     gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
     gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < 33)
-        return "OpenGL 3.3 needed, the context has " + std::to_string(major) + "." +
-               std::to_string(minor);
+        return "OpenGL 3.3 needed, the context has " + std::to_string(major) + "." + std::to_string(minor);
     const auto text = [this](GLenum e) {
         const GLubyte* s = gl_.GetString(e);
         return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
@@ -462,8 +470,7 @@ std::string GlBackend::initialise() {
 
 TargetHandle GlBackend::createTarget(int width, int height) {
     // Sizes outside what GL can attach or view are refused, not clamped: the caller reports them.
-    if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_)
-        return kNoHandle;
+    if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_) return kNoHandle;
     activate();
     while (gl_.GetError() != GL_NO_ERROR) {
     }
@@ -585,9 +592,8 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     gl_.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
     gl_.BufferData(GL_ARRAY_BUFFER, size, data.data(), GL_STATIC_DRAW);
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
-    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER,
-                   GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(),
-                   GL_STATIC_DRAW);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                   mesh.indices.data(), GL_STATIC_DRAW);
     setVertexLayout(m.vao, m.vbo, m.ibo, m.layout);
     check("uploadMesh");
     return meshes_.add(std::move(m));
@@ -599,12 +605,11 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     std::vector<std::uint8_t> vertexData(static_cast<std::size_t>(m.layout.size));
     std::vector<std::uint32_t> indices(std::size_t(m.triangles) * 3);
     gl_.BindBuffer(GL_COPY_READ_BUFFER, m.vbo);
-    if (!vertexData.empty())
-        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, m.layout.size, vertexData.data());
+    if (!vertexData.empty()) gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, m.layout.size, vertexData.data());
     gl_.BindBuffer(GL_COPY_READ_BUFFER, m.ibo);
     if (!indices.empty())
-        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0,
-                             GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data());
+        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(indices.size() * sizeof(std::uint32_t)),
+                             indices.data());
     gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
 
     // Same sections as the indexed buffer, 3 vertices per triangle, plus the id section.
@@ -626,16 +631,16 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     const auto gather = [&](GLintptr from, GLintptr to, std::size_t elementSize) {
         if (from < 0) return;
         for (std::size_t k = 0; k < n; ++k)
-            std::memcpy(data.data() + to + k * elementSize,
-                        vertexData.data() + from + indices[k] * elementSize, elementSize);
+            std::memcpy(data.data() + to + k * elementSize, vertexData.data() + from + indices[k] * elementSize,
+                        elementSize);
     };
     gather(0, 0, sizeof(glm::vec3));
     gather(m.layout.normal, expanded.normal, sizeof(glm::vec3));
     gather(m.layout.color, expanded.color, sizeof(glm::vec4));
     gather(m.layout.uv, expanded.uv, sizeof(glm::vec2));
     for (std::size_t k = 0; k < n; ++k)
-        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t),
-                    &m.triangleSource[k / 3], sizeof(std::uint32_t));
+        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t), &m.triangleSource[k / 3],
+                    sizeof(std::uint32_t));
 
     gl_.GenVertexArrays(1, &m.idVao);
     gl_.GenBuffers(1, &m.idVbo);
@@ -656,8 +661,8 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
     gl_.GenTextures(1, &name);
     bindTexture(name);
     // Rows as stored: the first row is v = 0, which is where glTF puts (0,0) (scene/Scene.h).
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA,
-                   GL_UNSIGNED_BYTE, texture.rgba.data());
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                   texture.rgba.data());
     // Base level only (Scene.h: no mipmaps in either backend).
     const GLint filter = texture.filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
@@ -683,10 +688,8 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     const Lighting& light = frame.lighting;
     if (changed(uniforms_.toLight, uniforms_.lightValid, light.toLight))
         gl_.Uniform3fv(loc_.toLight, 1, glm::value_ptr(light.toLight));
-    if (changed(uniforms_.ambient, uniforms_.ambientValid, light.ambient))
-        gl_.Uniform1f(loc_.ambient, light.ambient);
-    if (changed(uniforms_.diffuse, uniforms_.diffuseValid, light.diffuse))
-        gl_.Uniform1f(loc_.diffuse, light.diffuse);
+    if (changed(uniforms_.ambient, uniforms_.ambientValid, light.ambient)) gl_.Uniform1f(loc_.ambient, light.ambient);
+    if (changed(uniforms_.diffuse, uniforms_.diffuseValid, light.diffuse)) gl_.Uniform1f(loc_.diffuse, light.diffuse);
 }
 
 void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
@@ -712,8 +715,7 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
         assert(std::uint64_t(range.firstTriangle) + range.triangleCount <= mesh->triangles &&
                "draw: index range past the end of the mesh");
         const std::uint32_t first = std::min(range.firstTriangle, mesh->triangles);
-        const std::uint32_t end =
-            first + std::min(range.triangleCount, mesh->triangles - first);
+        const std::uint32_t end = first + std::min(range.triangleCount, mesh->triangles - first);
         if (end == first) continue;
         if (open && first == runEnd) {
             runEnd = end;
@@ -775,19 +777,16 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
         gl_.VertexAttribI4ui(kId, 0, 0, 0, 0);
         offsets_.resize(counts_.size());
         for (std::size_t i = 0; i < counts_.size(); ++i) {
-            offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 *
-                                                        sizeof(std::uint32_t));
+            offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 * sizeof(std::uint32_t));
             counts_[i] *= 3;
         }
         bindVao(mesh->vao);
-        gl_.MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(),
-                              GLsizei(counts_.size()));
+        gl_.MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(), GLsizei(counts_.size()));
     }
     check("draw");
 }
 
-void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
-                      float depth) {
+void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) {
     GlTarget* t = targets_.find(target);
     assert(t != nullptr && "clear: no such target");
     if (t == nullptr) return;
@@ -805,16 +804,13 @@ void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& co
     check("clear");
 }
 
-void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
-                     bool depth, bool ids) {
+void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) {
     GlTarget* source = targets_.find(from);
     GlTarget* dest = targets_.find(to);
     assert(source != nullptr && dest != nullptr && "copy: no such target");
     if (source == nullptr || dest == nullptr || from == to) return;
-    assert(source->width == dest->width && source->height == dest->height &&
-           "copy: targets differ in size");
-    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width,
-                            dest->height);
+    assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
+    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
     if (r.empty() || !(color || depth || ids)) return;
     activate();
     // Blits obey the scissor test; the rectangle is the blit's own.
@@ -827,15 +823,13 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     if (color) {
         readFrom(*source, GL_COLOR_ATTACHMENT0);
         drawInto(*dest, DrawSet::Color);
-        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit,
-                            GL_NEAREST);
+        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);
         depthBit = 0;
     }
     if (ids) {
         readFrom(*source, GL_COLOR_ATTACHMENT1);
         drawInto(*dest, DrawSet::Ids);
-        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit,
-                            GL_NEAREST);
+        gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);
         depthBit = 0;
     }
     if (depthBit) {
@@ -862,36 +856,24 @@ Buffers GlBackend::readBack(TargetHandle target) {
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     readFrom(*t, GL_COLOR_ATTACHMENT1);
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
-    gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
-                   out.depth.data());
+    gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
     // 32-bit normalised → the stored 24-bit value (see the top of this file).
     for (std::uint32_t& d : out.depth) d >>= 8;
     check("readBack");
     return out;
 }
 
-// Creates the backend on `context`; the error is "<kind>: <reason>".
-Result<std::unique_ptr<Backend>> createOn(std::unique_ptr<GlContext> context) {
+}  // namespace
+
+Result<std::unique_ptr<Backend>> makeGlBackend(std::unique_ptr<GlContext> context) {
+    if (!context) return Error{"no GL context"};
     const std::string kind = contextKindName(context->kind());
     auto backend = std::make_unique<GlBackend>(std::move(context));
-    if (std::string reason = backend->initialise(); !reason.empty())
-        return Error{kind + ": " + reason};
+    if (std::string reason = backend->initialise(); !reason.empty()) return Error{kind + ": " + reason};
     return std::unique_ptr<Backend>(std::move(backend));
 }
 
-}  // namespace
-
-// Returns nullptr when the backend cannot be set up on `context` (entry point missing, GL older
-// than 3.3, shader not compiling); createGlBackend says why.
-std::unique_ptr<Backend> makeGlBackend(std::unique_ptr<GlContext> context) {
-    if (!context) return nullptr;
-    auto result = createOn(std::move(context));
-    if (!result) return nullptr;
-    return std::move(*result);
-}
-
-Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice,
-                                                 std::vector<std::string>* log) {
+Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice, std::vector<std::string>* log) {
     using Factory = Result<std::unique_ptr<GlContext>> (*)();
     std::vector<Factory> attempts;
     const Factory hardwareDevice = [] { return createEglDeviceContext(false); };
@@ -900,10 +882,18 @@ Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice,
         case BackendChoice::Auto:
             attempts = {hardwareDevice, createEglSurfacelessContext, createOsMesaContext};
             break;
-        case BackendChoice::Egl: attempts = {hardwareDevice, createEglSurfacelessContext}; break;
-        case BackendChoice::EglDevice: attempts = {anyDevice}; break;
-        case BackendChoice::EglSurfaceless: attempts = {createEglSurfacelessContext}; break;
-        case BackendChoice::OsMesa: attempts = {createOsMesaContext}; break;
+        case BackendChoice::Egl:
+            attempts = {hardwareDevice, createEglSurfacelessContext};
+            break;
+        case BackendChoice::EglDevice:
+            attempts = {anyDevice};
+            break;
+        case BackendChoice::EglSurfaceless:
+            attempts = {createEglSurfacelessContext};
+            break;
+        case BackendChoice::OsMesa:
+            attempts = {createOsMesaContext};
+            break;
     }
 
     std::string reasons;
@@ -912,11 +902,10 @@ Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice,
         std::string line;
         if (context) {
             const std::string description = (*context)->description();
-            auto backend = createOn(std::move(*context));
+            auto backend = makeGlBackend(std::move(*context));
             if (backend) {
                 if (log)
-                    log->push_back((*backend)->name() + ": ok (" + description + "; " +
-                                   (*backend)->renderer() + ")");
+                    log->push_back((*backend)->name() + ": ok (" + description + "; " + (*backend)->renderer() + ")");
                 return backend;
             }
             line = backend.error();

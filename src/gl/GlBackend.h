@@ -27,7 +27,8 @@ Result<BackendChoice> parseBackendChoice(const std::string& text);
 Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice,
                                                  std::vector<std::string>* log = nullptr);
 
-// A GL backend on an existing context (takes ownership).
-std::unique_ptr<Backend> makeGlBackend(std::unique_ptr<GlContext> context);
+// A GL backend on an existing context (takes ownership). Error "<kind>: <reason>" when the context
+// lacks an entry point, is older than GL 3.3, or a shader does not compile.
+Result<std::unique_ptr<Backend>> makeGlBackend(std::unique_ptr<GlContext> context);
 
 }  // namespace frugal

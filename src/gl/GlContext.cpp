@@ -5,20 +5,35 @@
 namespace frugal {
 
 namespace {
-thread_local const GlContext* tCurrentContext = nullptr;
+struct CurrentContext {
+    GlContext* context = nullptr;
+    ReleaseContext release = nullptr;
+};
+thread_local CurrentContext tCurrent;
 }  // namespace
 
-void noteCurrentContext(const GlContext* context) { tCurrentContext = context; }
-void forgetCurrentContext(const GlContext* context) {
-    if (tCurrentContext == context) tCurrentContext = nullptr;
+void noteCurrentContext(GlContext* context, ReleaseContext release) { tCurrent = {context, release}; }
+
+void releaseOtherContext(const GlContext* next) {
+    if (tCurrent.context == nullptr || tCurrent.context == next) return;
+    tCurrent.release(tCurrent.context);
+    tCurrent = {};
 }
-const GlContext* currentContext() { return tCurrentContext; }
+
+void forgetCurrentContext(const GlContext* context) {
+    if (tCurrent.context == context) tCurrent = {};
+}
+
+const GlContext* currentContext() { return tCurrent.context; }
 
 const char* contextKindName(ContextKind kind) {
     switch (kind) {
-        case ContextKind::EglDevice: return "egl-device";
-        case ContextKind::EglSurfaceless: return "egl-surfaceless";
-        case ContextKind::OsMesa: return "osmesa";
+        case ContextKind::EglDevice:
+            return "egl-device";
+        case ContextKind::EglSurfaceless:
+            return "egl-surfaceless";
+        case ContextKind::OsMesa:
+            return "osmesa";
     }
     return "unknown";
 }

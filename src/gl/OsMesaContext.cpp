@@ -3,10 +3,12 @@
 //
 // Include order matters here: <GL/glcorearb.h> (through gl/GlApi.h) must come before <GL/osmesa.h>,
 // whose <GL/gl.h> defines GL_VERSION_1_1 and would make glcorearb.h skip the 1.1 typedefs.
+// clang-format off
 #include "gl/GlApi.h"
 #include "gl/GlContext.h"
 
 #include <GL/osmesa.h>
+// clang-format on
 
 #include <array>
 #include <cstdlib>
@@ -39,9 +41,9 @@ public:
     bool makeCurrent() override {
         // OSMesa needs a colour buffer to be current; frugal draws into FBOs only, so a 1×1 RGBA
         // buffer owned here is enough (it is the window-system framebuffer nobody uses).
-        if (OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1) != GL_TRUE)
-            return false;
-        noteCurrentContext(this);
+        releaseOtherContext(this);  // see gl/GlApi.h: unbinds an EGL context first
+        if (OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1) != GL_TRUE) return false;
+        noteCurrentContext(this, [](GlContext*) { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); });
         return true;
     }
 
@@ -66,20 +68,21 @@ Result<std::unique_ptr<GlContext>> createOsMesaContext() {
     }
 
     // No depth/stencil/accum for the 1×1 window buffer: all rendering goes to FBOs.
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                           OSMESA_DEPTH_BITS, 0,
-                           OSMESA_STENCIL_BITS, 0,
-                           OSMESA_ACCUM_BITS, 0,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                           OSMESA_CONTEXT_MINOR_VERSION, 3,
-                           0};
+    // clang-format off
+    const int attribs[] = {
+        OSMESA_FORMAT, OSMESA_RGBA,
+        OSMESA_DEPTH_BITS, 0,
+        OSMESA_STENCIL_BITS, 0,
+        OSMESA_ACCUM_BITS, 0,
+        OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+        OSMESA_CONTEXT_MAJOR_VERSION, 3,
+        OSMESA_CONTEXT_MINOR_VERSION, 3,
+        0};
+    // clang-format on
     OSMesaContext raw = OSMesaCreateContextAttribs(attribs, nullptr);
-    if (raw == nullptr)
-        return Error{"osmesa: OSMesaCreateContextAttribs(OpenGL 3.3 core) failed"};
+    if (raw == nullptr) return Error{"osmesa: OSMesaCreateContextAttribs(OpenGL 3.3 core) failed"};
     auto context = std::make_unique<OsMesaContext>(raw);
-    if (!context->makeCurrent())
-        return Error{"osmesa: OSMesaMakeCurrent on a 1x1 RGBA buffer failed"};
+    if (!context->makeCurrent()) return Error{"osmesa: OSMesaMakeCurrent on a 1x1 RGBA buffer failed"};
     return std::unique_ptr<GlContext>(std::move(context));
 }
 

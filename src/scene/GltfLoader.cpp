@@ -18,6 +18,8 @@
 // scenes) every root node, so that a bare node list still renders. Nodes outside that scene are kept,
 // so node indices match the file and animation targets stay valid, but they get no meshes and so
 // no instances.
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -27,17 +29,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <glm/gtc/type_ptr.hpp>
-#include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
 
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
@@ -81,9 +81,10 @@ std::string oneLine(std::string_view text, std::size_t maxLength = 200) {
             ++i;
             continue;
         }
-        const std::size_t length = (c >= 0xC2 && c <= 0xDF) ? 2 : (c >= 0xE0 && c <= 0xEF) ? 3
-                                   : (c >= 0xF0 && c <= 0xF4)  ? 4
-                                                               : 0;
+        const std::size_t length = (c >= 0xC2 && c <= 0xDF)   ? 2
+                                   : (c >= 0xE0 && c <= 0xEF) ? 3
+                                   : (c >= 0xF0 && c <= 0xF4) ? 4
+                                                              : 0;
         bool valid = length > 0 && i + length <= text.size();
         for (std::size_t k = 1; valid && k < length; ++k)
             valid = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
@@ -124,14 +125,15 @@ std::string readFile(const std::string& path) {
     return bytes;
 }
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF", little-endian
+constexpr std::uint32_t kGlbMagic = 0x46546C67;   // "glTF", little-endian
 constexpr std::uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
 constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 
 // GLB fields are little-endian; assembled byte by byte so the host's order does not matter.
 std::uint32_t readU32(std::string_view bytes, std::size_t offset) {
     std::uint32_t value = 0;
-    for (std::size_t k = 0; k < 4; ++k) value |= std::uint32_t(static_cast<unsigned char>(bytes[offset + k])) << (8 * k);
+    for (std::size_t k = 0; k < 4; ++k)
+        value |= std::uint32_t(static_cast<unsigned char>(bytes[offset + k])) << (8 * k);
     return value;
 }
 
@@ -216,8 +218,10 @@ void checkNesting(std::string_view text) {
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (inString) {
-            if (c == '\\') ++i;
-            else if (c == '"') inString = false;
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
         } else if (c == '"') {
             inString = true;
         } else if (c == '{' || c == '[') {
@@ -230,15 +234,22 @@ void checkNesting(std::string_view text) {
 
 std::string describe(const Json& v) {
     switch (v.type()) {
-    case Json::value_t::null: return "null";
-    case Json::value_t::boolean: return v.get<bool>() ? "true" : "false";
-    case Json::value_t::string: return cat("string \"", oneLine(v.get_ref<const std::string&>(), 40), "\"");
-    case Json::value_t::object: return "an object";
-    case Json::value_t::array: return "an array";
-    case Json::value_t::number_integer:
-    case Json::value_t::number_unsigned:
-    case Json::value_t::number_float: return v.dump();
-    default: return "an unexpected value";
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return v.get<bool>() ? "true" : "false";
+        case Json::value_t::string:
+            return cat("string \"", oneLine(v.get_ref<const std::string&>(), 40), "\"");
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::array:
+            return "an array";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+        case Json::value_t::number_float:
+            return v.dump();
+        default:
+            return "an unexpected value";
     }
 }
 
@@ -264,9 +275,9 @@ Json parseJson(std::string_view text) {
 // "extensions" (an object of objects) and "extras" (anything).
 
 enum class Kind : std::uint8_t {
-    Index,        // integer in [0, 2^31): tinygltf stores indices as int
-    Count,        // non-negative integer
-    Integer,      // integer that fits an int
+    Index,    // integer in [0, 2^31): tinygltf stores indices as int
+    Count,    // non-negative integer
+    Integer,  // integer that fits an int
     Number,
     Boolean,
     String,
@@ -562,59 +573,59 @@ void checkEnums(const Json& v, const Field& field, const std::string& where) {
 
 void checkValue(const Json& v, const Field& field, const std::string& where) {
     switch (field.kind) {
-    case Kind::Index:
-        if (!isIndex(v)) wrongType(where, "a non-negative integer below 2^31", v);
-        break;
-    case Kind::Count:
-        if (!v.is_number_unsigned()) wrongType(where, "a non-negative integer", v);
-        break;
-    case Kind::Integer:
-        if (!isInt(v)) wrongType(where, "an integer", v);
-        break;
-    case Kind::Number:
-        if (!v.is_number()) wrongType(where, "a number", v);
-        break;
-    case Kind::Boolean:
-        if (!v.is_boolean()) wrongType(where, "true or false", v);
-        break;
-    case Kind::String:
-        if (!v.is_string()) wrongType(where, "a string", v);
-        break;
-    case Kind::Object:
-        if (!v.is_object()) wrongType(where, "an object", v);
-        checkObject(v, *field.schema, where);
-        break;
-    case Kind::ObjectArray:
-        checkArray(v, where);
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            if (!v[i].is_object()) wrongType(element(where, i), "an object", v[i]);
-            checkObject(v[i], *field.schema, element(where, i));
-        }
-        break;
-    case Kind::IndexArray:
-        checkArray(v, where);
-        for (std::size_t i = 0; i < v.size(); ++i)
-            if (!isIndex(v[i])) wrongType(element(where, i), "a non-negative integer below 2^31", v[i]);
-        break;
-    case Kind::NumberArray:
-        checkArray(v, where);
-        for (std::size_t i = 0; i < v.size(); ++i)
-            if (!v[i].is_number()) wrongType(element(where, i), "a number", v[i]);
-        if (field.length != 0 && v.size() != field.length)
-            fail(where, ": expected ", field.length, " numbers, got ", v.size());
-        break;
-    case Kind::StringArray:
-        checkArray(v, where);
-        for (std::size_t i = 0; i < v.size(); ++i)
-            if (!v[i].is_string()) wrongType(element(where, i), "a string", v[i]);
-        break;
-    case Kind::IndexMap:
-        checkIndexMap(v, where);
-        break;
-    case Kind::IndexMapArray:
-        checkArray(v, where);
-        for (std::size_t i = 0; i < v.size(); ++i) checkIndexMap(v[i], element(where, i));
-        break;
+        case Kind::Index:
+            if (!isIndex(v)) wrongType(where, "a non-negative integer below 2^31", v);
+            break;
+        case Kind::Count:
+            if (!v.is_number_unsigned()) wrongType(where, "a non-negative integer", v);
+            break;
+        case Kind::Integer:
+            if (!isInt(v)) wrongType(where, "an integer", v);
+            break;
+        case Kind::Number:
+            if (!v.is_number()) wrongType(where, "a number", v);
+            break;
+        case Kind::Boolean:
+            if (!v.is_boolean()) wrongType(where, "true or false", v);
+            break;
+        case Kind::String:
+            if (!v.is_string()) wrongType(where, "a string", v);
+            break;
+        case Kind::Object:
+            if (!v.is_object()) wrongType(where, "an object", v);
+            checkObject(v, *field.schema, where);
+            break;
+        case Kind::ObjectArray:
+            checkArray(v, where);
+            for (std::size_t i = 0; i < v.size(); ++i) {
+                if (!v[i].is_object()) wrongType(element(where, i), "an object", v[i]);
+                checkObject(v[i], *field.schema, element(where, i));
+            }
+            break;
+        case Kind::IndexArray:
+            checkArray(v, where);
+            for (std::size_t i = 0; i < v.size(); ++i)
+                if (!isIndex(v[i])) wrongType(element(where, i), "a non-negative integer below 2^31", v[i]);
+            break;
+        case Kind::NumberArray:
+            checkArray(v, where);
+            for (std::size_t i = 0; i < v.size(); ++i)
+                if (!v[i].is_number()) wrongType(element(where, i), "a number", v[i]);
+            if (field.length != 0 && v.size() != field.length)
+                fail(where, ": expected ", field.length, " numbers, got ", v.size());
+            break;
+        case Kind::StringArray:
+            checkArray(v, where);
+            for (std::size_t i = 0; i < v.size(); ++i)
+                if (!v[i].is_string()) wrongType(element(where, i), "a string", v[i]);
+            break;
+        case Kind::IndexMap:
+            checkIndexMap(v, where);
+            break;
+        case Kind::IndexMapArray:
+            checkArray(v, where);
+            for (std::size_t i = 0; i < v.size(); ++i) checkIndexMap(v[i], element(where, i));
+            break;
     }
     checkEnums(v, field, where);
 }
@@ -622,7 +633,8 @@ void checkValue(const Json& v, const Field& field, const std::string& where) {
 void checkObject(const Json& object, const Schema& schema, const std::string& where) {
     // Wrong types first: a wrong-typed field says more about the file than a missing one.
     for (const Field& field : schema.fields)
-        if (const auto it = object.find(field.name); it != object.end()) checkValue(*it, field, child(where, field.name));
+        if (const auto it = object.find(field.name); it != object.end())
+            checkValue(*it, field, child(where, field.name));
     for (const Field& field : schema.fields)
         if (field.required && !object.contains(field.name))
             fail(where.empty() ? "glTF root" : where, ": missing required property '", field.name, "'");
@@ -699,8 +711,8 @@ void forEach(const Json& object, const char* key, const std::string& where, Fn f
 }
 
 struct Collections {
-    Collection accessors, animations, buffers, bufferViews, cameras, images, materials, meshes, nodes, samplers,
-        scenes, skins, textures;
+    Collection accessors, animations, buffers, bufferViews, cameras, images, materials, meshes, nodes, samplers, scenes,
+        skins, textures;
     explicit Collections(const Json& root)
         : accessors(collection(root, "accessors", "accessor", "accessors")),
           animations(collection(root, "animations", "animation", "animations")),
@@ -722,7 +734,8 @@ void checkAsset(const Json& asset) {
     if (version.rfind("2.", 0) != 0) fail("asset.version: glTF ", oneLine(version, 20), " is not supported (2.x only)");
     if (asset.contains("minVersion")) {
         const std::string& minVersion = asset["minVersion"].get_ref<const std::string&>();
-        if (minVersion != "2.0") fail("asset.minVersion: the file needs glTF ", oneLine(minVersion, 20), ", frugal reads 2.0");
+        if (minVersion != "2.0")
+            fail("asset.minVersion: the file needs glTF ", oneLine(minVersion, 20), ", frugal reads 2.0");
     }
 }
 
@@ -737,7 +750,8 @@ void checkDraco(const Json& accessors, const Json& primitive, std::size_t mesh, 
     bool ok = !primitive.contains("indices") || plain(primitive["indices"]);
     for (const auto& [name, index] : primitive["attributes"].items()) ok = ok && plain(index);
     if (!ok)
-        fail("mesh ", mesh, " primitive ", p, ": compressed with KHR_draco_mesh_compression, which frugal cannot "
+        fail("mesh ", mesh, " primitive ", p,
+             ": compressed with KHR_draco_mesh_compression, which frugal cannot "
              "decode, and has no uncompressed fallback");
 }
 
@@ -753,7 +767,8 @@ void checkMeshReferences(const Json& root, const Collections& n) {
             });
             checkDraco(accessors, primitive, m, p);
             // tinygltf rejects index accessors without a bufferView (all-zero or sparse-only).
-            if (primitive.contains("indices") && !accessors[primitive["indices"].get<std::size_t>()].contains("bufferView"))
+            if (primitive.contains("indices") &&
+                !accessors[primitive["indices"].get<std::size_t>()].contains("bufferView"))
                 fail(child(where, "indices"), ": accessor ", primitive["indices"].get<std::size_t>(),
                      " has no bufferView, which frugal does not support for indices");
         });
@@ -858,16 +873,16 @@ void checkNodeGraph(const Json& root, const Collections& n) {
         for (int c : cycle) text += cat(text.empty() ? "" : " -> ", c);
         fail("nodes form a cycle: ", text);
     }
-    forEach(root, "scenes", "", [&](const Json& scene, std::size_t, const std::string& where) {
+    std::vector<int> listedBy(nodes.size(), -1);  // last scene that listed the node as a root
+    forEach(root, "scenes", "", [&](const Json& scene, std::size_t s, const std::string& where) {
         checkIndexArray(scene, "nodes", n.nodes, where);
         const Json& roots = member(scene, "nodes");
-        std::vector<bool> listed(nodes.size(), false);
         for (std::size_t k = 0; k < roots.size(); ++k) {
             const int r = roots[k].get<int>();
             if (parent[r] >= 0)
                 fail(where, ".nodes[", k, "]: node ", r, " is not a root, it is a child of node ", parent[r]);
-            if (listed[r]) fail(where, ".nodes: node ", r, " is listed twice");
-            listed[r] = true;
+            if (listedBy[r] == int(s)) fail(where, ".nodes: node ", r, " is listed twice");
+            listedBy[r] = int(s);
         }
     });
     if (root.contains("scene")) checkIndexValue(root["scene"], n.scenes, "scene");
@@ -945,8 +960,9 @@ void checkBuffers(const Json& root, const std::filesystem::path& dir, const GlbP
             std::vector<unsigned char> data;
             std::string mime;
             if (!tinygltf::DecodeDataURI(&data, mime, uri, 0, false) || data.empty())
-                fail(uriWhere, ": cannot decode the data URI (frugal reads base64 application/octet-stream or "
-                               "application/gltf-buffer)");
+                fail(uriWhere,
+                     ": cannot decode the data URI (frugal reads base64 application/octet-stream or "
+                     "application/gltf-buffer)");
             if (data.size() != byteLength)
                 fail(uriWhere, ": the data URI holds ", data.size(), " bytes, byteLength says ", byteLength);
             return;
@@ -979,9 +995,10 @@ tinygltf::Model runTinygltf(std::string_view data, bool binary, const std::strin
     tinygltf::Model model;
     std::string error, warning;
     const auto size = static_cast<unsigned int>(data.size());
-    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                                         reinterpret_cast<const unsigned char*>(data.data()), size, baseDir)
-                           : loader.LoadASCIIFromString(&model, &error, &warning, data.data(), size, baseDir);
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                             reinterpret_cast<const unsigned char*>(data.data()), size, baseDir)
+               : loader.LoadASCIIFromString(&model, &error, &warning, data.data(), size, baseDir);
     // Its warnings are about images it could not load; the converter reports those that matter.
     if (!ok) fail("tinygltf: ", oneLine(error.empty() ? "unknown error" : error));
     return model;
@@ -992,51 +1009,78 @@ tinygltf::Model runTinygltf(std::string_view data, bool binary, const std::strin
 
 int componentSize(int componentType) {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // excluded by the schema check
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+        default:
+            return 0;  // excluded by the schema check
     }
 }
 
 const char* typeName(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "?";
+        case TINYGLTF_TYPE_SCALAR:
+            return "SCALAR";
+        case TINYGLTF_TYPE_VEC2:
+            return "VEC2";
+        case TINYGLTF_TYPE_VEC3:
+            return "VEC3";
+        case TINYGLTF_TYPE_VEC4:
+            return "VEC4";
+        case TINYGLTF_TYPE_MAT2:
+            return "MAT2";
+        case TINYGLTF_TYPE_MAT3:
+            return "MAT3";
+        case TINYGLTF_TYPE_MAT4:
+            return "MAT4";
+        default:
+            return "?";
     }
 }
 
 const char* componentTypeName(int componentType) {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    default: return "?";
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return "FLOAT";
+        default:
+            return "?";
     }
 }
 
 const char* modeName(int mode) {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-    default: return "?";
+        case TINYGLTF_MODE_POINTS:
+            return "POINTS";
+        case TINYGLTF_MODE_LINE:
+            return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP:
+            return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP:
+            return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLES:
+            return "TRIANGLES";
+        case TINYGLTF_MODE_TRIANGLE_STRIP:
+            return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN:
+            return "TRIANGLE_FAN";
+        default:
+            return "?";
     }
 }
 
@@ -1051,35 +1095,39 @@ T load(const unsigned char* p) {
 
 float decodeFloat(const unsigned char* p, int componentType, bool normalized) {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        const float v = load<std::int8_t>(p);
-        return normalized ? std::max(v / 127.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-        const float v = load<std::uint8_t>(p);
-        return normalized ? v / 255.0f : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        const float v = load<std::int16_t>(p);
-        return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        const float v = load<std::uint16_t>(p);
-        return normalized ? v / 65535.0f : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        const auto v = static_cast<float>(load<std::uint32_t>(p));
-        return normalized ? v / 4294967295.0f : v;
-    }
-    default: return load<float>(p);
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const float v = load<std::int8_t>(p);
+            return normalized ? std::max(v / 127.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const float v = load<std::uint8_t>(p);
+            return normalized ? v / 255.0f : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const float v = load<std::int16_t>(p);
+            return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const float v = load<std::uint16_t>(p);
+            return normalized ? v / 65535.0f : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            const auto v = static_cast<float>(load<std::uint32_t>(p));
+            return normalized ? v / 4294967295.0f : v;
+        }
+        default:
+            return load<float>(p);
     }
 }
 
 std::uint32_t decodeUint(const unsigned char* p, int componentType, bool) {
     switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return load<std::uint8_t>(p);
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
-    default: return load<std::uint32_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return load<std::uint8_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return load<std::uint16_t>(p);
+        default:
+            return load<std::uint32_t>(p);
     }
 }
 
@@ -1095,6 +1143,11 @@ struct AccessorRequest {
     std::span<const int> componentTypes;  // allowed component types, empty = any
 };
 
+// What one file may make the loader build. A small file can make a large scene: many primitives
+// can read one large accessor, many nodes can instance one large mesh.
+constexpr std::size_t kMaxSceneElements = std::size_t(1) << 28;  // vertices + indices over all meshes
+constexpr std::size_t kMaxInstances = std::size_t(1) << 24;
+
 class Converter {
 public:
     Converter(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
@@ -1109,16 +1162,25 @@ private:
     const LoadOptions& options_;
     std::vector<std::string> extensions_;
     Scene scene_;
-    std::vector<bool> meshConverted_;
     std::vector<std::vector<int>> meshPrimitives_;  // glTF mesh → indices into scene_.meshes
     std::vector<bool> materialUsed_;
-    std::map<int, int> textures_;  // glTF texture → index into scene_.textures, -1 = unusable
+    std::map<int, int> textures_;         // glTF texture → index into scene_.textures, -1 = unusable
+    std::vector<std::uint64_t> idCount_;  // per scene_ mesh: the triangle ids one instance of it takes
+    std::size_t elements_ = 0;            // vertices + indices read so far
+    std::size_t instances_ = 0;
+    std::uint64_t ids_ = 0;
+    std::vector<int> untextured_;  // scene_ meshes whose material's texture has no coordinates in them
 
     void report(const std::string& feature) {
         if (std::find(scene_.unsupported.begin(), scene_.unsupported.end(), feature) == scene_.unsupported.end())
             scene_.unsupported.push_back(feature);
     }
     void warn(const std::string& text) { scene_.warnings.push_back(cat(path_, ": ", text)); }
+    void countElements(std::size_t count, const std::string& where) {
+        elements_ += count;  // each count is bounded by the file size: no overflow
+        if (elements_ > kMaxSceneElements)
+            fail(where, ": the meshes need more than ", kMaxSceneElements, " vertices and indices, frugal's limit");
+    }
 
     void checkBufferViews() const;
     std::vector<int> chooseRoots() const;
@@ -1126,7 +1188,11 @@ private:
     void convertNodes();
     void convertMesh(int index);
     void convertPrimitive(int meshIndex, int primitiveIndex);
+    void readAttributes(const tinygltf::Primitive& primitive, const std::string& where, Mesh& mesh);
+    std::vector<std::uint32_t> readVertexList(const tinygltf::Primitive& primitive, const std::string& where,
+                                              std::size_t vertexCount);
     void convertMaterials();
+    void untextureMeshesWithoutUvs();
     int useTexture(int gltfTexture, int material);
     void convertAnimations();
     void addCamera(int node);
@@ -1163,9 +1229,8 @@ std::vector<T> Converter::read(int index, const std::string& use, AccessorReques
         for (int t : request.types) allowed += cat(allowed.empty() ? "" : " or ", typeName(t));
         fail(label, ": type ", typeName(a.type), ", expected ", allowed);
     }
-    if (!request.componentTypes.empty() &&
-        std::find(request.componentTypes.begin(), request.componentTypes.end(), a.componentType) ==
-            request.componentTypes.end())
+    if (!request.componentTypes.empty() && std::find(request.componentTypes.begin(), request.componentTypes.end(),
+                                                     a.componentType) == request.componentTypes.end())
         fail(label, ": component type ", componentTypeName(a.componentType), " is not allowed here");
     if (a.count == 0) fail(label, ": count must be at least 1");
     const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
@@ -1173,8 +1238,7 @@ std::vector<T> Converter::read(int index, const std::string& use, AccessorReques
     if (componentsOut) *componentsOut = components;
 
     std::size_t total = 0;
-    if (mulOverflows(a.count, std::size_t(components), total) ||
-        (a.bufferView < 0 && total > kMaxUnbackedComponents))
+    if (mulOverflows(a.count, std::size_t(components), total) || (a.bufferView < 0 && total > kMaxUnbackedComponents))
         fail(label, ": count ", a.count, " is too large");
 
     std::vector<T> values;
@@ -1207,8 +1271,7 @@ std::vector<T> Converter::read(int index, const std::string& use, AccessorReques
     // Sparse: the listed elements replace those of the base (or of the zeros).
     const auto& sparse = a.sparse;
     const std::size_t count = std::size_t(sparse.count);
-    if (count < 1 || count > a.count)
-        fail(label, ": sparse count ", sparse.count, " outside [1, ", a.count, "]");
+    if (count < 1 || count > a.count) fail(label, ": sparse count ", sparse.count, " outside [1, ", a.count, "]");
     auto sparseRange = [&](int viewIndex, int byteOffset, std::size_t elementSize, const char* what) {
         const tinygltf::BufferView& view = model_.bufferViews[std::size_t(viewIndex)];
         const std::size_t need = std::size_t(byteOffset) + count * elementSize;  // small: count ≤ a.count
@@ -1218,13 +1281,15 @@ std::vector<T> Converter::read(int index, const std::string& use, AccessorReques
     };
     const int indexType = sparse.indices.componentType;
     const std::size_t indexSize = std::size_t(componentSize(indexType));
-    const unsigned char* indices = sparseRange(sparse.indices.bufferView, sparse.indices.byteOffset, indexSize, "indices");
+    const unsigned char* indices =
+        sparseRange(sparse.indices.bufferView, sparse.indices.byteOffset, indexSize, "indices");
     const unsigned char* replacements = sparseRange(sparse.values.bufferView, sparse.values.byteOffset, size, "values");
     const std::size_t componentBytes = std::size_t(componentSize(a.componentType));
     std::int64_t previous = -1;
     for (std::size_t s = 0; s < count; ++s) {
         const std::uint32_t target = decodeUint(indices + s * indexSize, indexType, false);
-        if (target >= a.count) fail(label, ": sparse index ", target, " out of range, the accessor has ", a.count, " elements");
+        if (target >= a.count)
+            fail(label, ": sparse index ", target, " out of range, the accessor has ", a.count, " elements");
         if (std::int64_t(target) <= previous)
             fail(label, ": sparse indices must increase, ", target, " follows ", previous);
         previous = target;
@@ -1280,7 +1345,8 @@ Node Converter::convertNode(int index) const {
         glm::vec4 q;
         for (int k = 0; k < 4; ++k) q[k] = toFloat(src.rotation[std::size_t(k)], cat(where, ".rotation[", k, "]"));
         const float length = glm::length(q);
-        if (!(length > 0.0f) || !std::isfinite(length)) fail(where, ".rotation: not a unit quaternion (length ", length, ")");
+        if (!(length > 0.0f) || !std::isfinite(length))
+            fail(where, ".rotation: not a unit quaternion (length ", length, ")");
         q /= length;  // exporters write slightly denormalised quaternions
         node.rotation = glm::quat(q.w, q.x, q.y, q.z);
     }
@@ -1294,22 +1360,39 @@ void Converter::convertNodes() {
         for (int c : scene_.nodes[std::size_t(n)].children) scene_.nodes[std::size_t(c)].parent = n;
 
     scene_.roots = chooseRoots();
-    meshConverted_.assign(model_.meshes.size(), false);
     meshPrimitives_.assign(model_.meshes.size(), {});
     materialUsed_.assign(model_.materials.size(), false);
-    // Depth-first from the roots, in file order: the hierarchy is a forest (checked), so this ends.
-    std::vector<int> stack(scene_.roots.rbegin(), scene_.roots.rend());
+    // The nodes of the chosen scene: walk down from its roots (the hierarchy is a forest, checked).
+    std::vector<bool> inScene(model_.nodes.size(), false);
+    std::vector<bool> meshUsed(model_.meshes.size(), false);
+    std::vector<int> stack = scene_.roots;
     while (!stack.empty()) {
-        const int n = stack.back();
+        const tinygltf::Node& src = model_.nodes[std::size_t(stack.back())];
+        inScene[std::size_t(stack.back())] = true;
         stack.pop_back();
+        if (src.mesh >= 0) meshUsed[std::size_t(src.mesh)] = true;
+        stack.insert(stack.end(), src.children.begin(), src.children.end());
+    }
+    // Meshes in file order, then what the nodes refer to in node order: stable whatever the hierarchy.
+    for (int m = 0; m < int(model_.meshes.size()); ++m)
+        if (meshUsed[std::size_t(m)]) convertMesh(m);
+    for (int n = 0; n < int(model_.nodes.size()); ++n) {
+        if (!inScene[std::size_t(n)]) continue;
         const tinygltf::Node& src = model_.nodes[std::size_t(n)];
         if (src.mesh >= 0) {
-            convertMesh(src.mesh);
-            scene_.nodes[std::size_t(n)].meshes = meshPrimitives_[std::size_t(src.mesh)];
+            const std::vector<int>& meshes = meshPrimitives_[std::size_t(src.mesh)];
+            instances_ += meshes.size();
+            for (int m : meshes) ids_ += idCount_[std::size_t(m)];
+            if (instances_ > kMaxInstances)
+                fail("the scene has more than ", kMaxInstances, " mesh instances, frugal's limit");
+            // Global triangle ids are 32-bit and 0 is the background.
+            if (ids_ > std::numeric_limits<std::uint32_t>::max() - 1u)
+                fail("the scene instances more than ", std::numeric_limits<std::uint32_t>::max() - 1u,
+                     " triangles, more than 32-bit triangle ids can number");
+            scene_.nodes[std::size_t(n)].meshes = meshes;
         }
         if (src.camera >= 0) addCamera(n);
         if (src.skin >= 0) report("skins");
-        for (auto it = src.children.rbegin(); it != src.children.rend(); ++it) stack.push_back(*it);
     }
 }
 
@@ -1337,21 +1420,18 @@ void Converter::addCamera(int node) {
 }
 
 void Converter::convertMesh(int index) {
-    if (meshConverted_[std::size_t(index)]) return;
-    meshConverted_[std::size_t(index)] = true;
     const tinygltf::Mesh& mesh = model_.meshes[std::size_t(index)];
     for (int p = 0; p < int(mesh.primitives.size()); ++p) convertPrimitive(index, p);
 }
 
 // The triangles of a primitive, as indices into its vertex list, with glTF's winding rules
-// (spec 3.7.2.1): strip triangle i = (v_i, v_{i+1+i%2}, v_{i+2-i%2}), fan triangle i = (v_{i+1},
+// (spec, "Topology types"): strip triangle i = (v_i, v_{i+1+i%2}, v_{i+2-i%2}), fan triangle i = (v_{i+1},
 // v_{i+2}, v_0). Triangle i of a strip or fan is emitted at position i, so triangleSource stays the
 // identity that finalizeMesh fills in.
 std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& v, int mode, const std::string& where) {
     std::vector<std::uint32_t> out;
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (v.size() % 3 != 0)
-            fail(where, ": TRIANGLES with ", v.size(), " vertices, which is not a multiple of 3");
+        if (v.size() % 3 != 0) fail(where, ": TRIANGLES with ", v.size(), " vertices, which is not a multiple of 3");
         return v;
     }
     if (v.size() < 3) return out;
@@ -1368,98 +1448,111 @@ std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& v, int 
     return out;
 }
 
+int attributeAccessor(const tinygltf::Primitive& primitive, const std::string& name) {
+    const auto it = primitive.attributes.find(name);
+    return it == primitive.attributes.end() ? -1 : it->second;
+}
+
+// glm vectors are tightly packed floats, so an accessor read as floats copies straight in.
+template <class Vec>
+std::vector<Vec> toVectors(const std::vector<float>& values) {
+    std::vector<Vec> out(values.size() / Vec::length());
+    std::memcpy(out.data(), values.data(), out.size() * sizeof(Vec));
+    return out;
+}
+
+void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::string& where, Mesh& mesh) {
+    static constexpr int kVec2[] = {TINYGLTF_TYPE_VEC2};
+    static constexpr int kVec3[] = {TINYGLTF_TYPE_VEC3};
+    static constexpr int kVec34[] = {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
+    mesh.positions =
+        toVectors<glm::vec3>(readFloats(attributeAccessor(primitive, "POSITION"), "POSITION of " + where, kVec3));
+    const std::size_t vertexCount = mesh.positions.size();
+    countElements(vertexCount, where);
+    auto accessor = [&](const std::string& name) {
+        const int index = attributeAccessor(primitive, name);
+        if (index >= 0 && model_.accessors[std::size_t(index)].count != vertexCount)
+            fail("accessor ", index, " (", name, " of ", where, "): ", model_.accessors[std::size_t(index)].count,
+                 " elements, POSITION has ", vertexCount);
+        return index;
+    };
+
+    if (const int normal = accessor("NORMAL"); normal >= 0)
+        mesh.normals = toVectors<glm::vec3>(readFloats(normal, "NORMAL of " + where, kVec3));
+    if (const int color = accessor("COLOR_0"); color >= 0) {
+        int components = 0;
+        const std::vector<float> colors = readFloats(color, "COLOR_0 of " + where, kVec34, &components);
+        mesh.colors.assign(vertexCount, glm::vec4(1.0f));  // RGB colours get alpha 1
+        for (std::size_t v = 0; v < vertexCount; ++v)
+            for (int c = 0; c < components; ++c)
+                mesh.colors[v][c] = colors[v * std::size_t(components) + std::size_t(c)];
+    }
+    // The one set of texture coordinates frugal keeps is the one the base colour texture samples.
+    const tinygltf::TextureInfo* texture =
+        primitive.material >= 0
+            ? &model_.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture
+            : nullptr;
+    const bool textured = texture && texture->index >= 0;
+    const std::string uvName = cat("TEXCOORD_", textured ? texture->texCoord : 0);
+    if (const int uv = accessor(uvName); uv >= 0) {
+        mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
+    } else if (textured) {
+        warn(cat(where, ": material ", primitive.material, " samples its base colour texture with ", uvName,
+                 ", which the primitive lacks: drawn untextured"));
+        untextured_.push_back(int(scene_.meshes.size()));  // the index this mesh will get
+    }
+}
+
+// The primitive's vertex list: its indices, checked against the vertex count, or 0..n-1.
+std::vector<std::uint32_t> Converter::readVertexList(const tinygltf::Primitive& primitive, const std::string& where,
+                                                     std::size_t vertexCount) {
+    std::vector<std::uint32_t> vertices;
+    if (primitive.indices < 0) {
+        vertices.resize(vertexCount);
+        for (std::size_t v = 0; v < vertexCount; ++v) vertices[v] = std::uint32_t(v);
+        return vertices;
+    }
+    vertices = readIndices(primitive.indices, "indices of " + where);
+    countElements(vertices.size(), where);
+    for (std::uint32_t index : vertices)
+        if (index >= vertexCount)
+            fail("accessor ", primitive.indices, " (indices of ", where, "): index ", index, " out of range, mesh has ",
+                 vertexCount, " vertices");
+    return vertices;
+}
+
 void Converter::convertPrimitive(int meshIndex, int primitiveIndex) {
     const tinygltf::Mesh& gltfMesh = model_.meshes[std::size_t(meshIndex)];
     const tinygltf::Primitive& primitive = gltfMesh.primitives[std::size_t(primitiveIndex)];
     const std::string where = cat("mesh ", meshIndex, " primitive ", primitiveIndex);
-    auto attribute = [&](const std::string& name) {
-        const auto it = primitive.attributes.find(name);
-        return it == primitive.attributes.end() ? -1 : it->second;
-    };
-
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode < TINYGLTF_MODE_TRIANGLES) {
         report(cat("primitive mode ", modeName(mode)));
         return;
     }
     if (!primitive.targets.empty()) report("morph targets");
-    const int position = attribute("POSITION");
-    if (position < 0) {
+    if (attributeAccessor(primitive, "POSITION") < 0) {
         warn(cat(where, ": no POSITION attribute, not drawn"));
         return;
     }
 
-    static constexpr int kVec2[] = {TINYGLTF_TYPE_VEC2};
-    static constexpr int kVec3[] = {TINYGLTF_TYPE_VEC3};
-    static constexpr int kVec34[] = {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
     Mesh mesh;
     mesh.name = gltfMesh.name.empty() ? cat("mesh ", meshIndex) : gltfMesh.name;
     if (gltfMesh.primitives.size() > 1) mesh.name += cat(" #", primitiveIndex);
     mesh.material = primitive.material;
     if (primitive.material >= 0) materialUsed_[std::size_t(primitive.material)] = true;
-
-    const std::vector<float> positions = readFloats(position, "POSITION of " + where, kVec3);
-    const std::size_t vertexCount = positions.size() / 3;
-    auto checkCount = [&](int accessor, const char* name) {
-        const std::size_t count = model_.accessors[std::size_t(accessor)].count;
-        if (count != vertexCount)
-            fail("accessor ", accessor, " (", name, " of ", where, "): ", count, " elements, POSITION has ", vertexCount);
-    };
-    mesh.positions.resize(vertexCount);
-    std::memcpy(mesh.positions.data(), positions.data(), positions.size() * sizeof(float));
-
-    if (const int normal = attribute("NORMAL"); normal >= 0) {
-        checkCount(normal, "NORMAL");
-        const std::vector<float> normals = readFloats(normal, "NORMAL of " + where, kVec3);
-        mesh.normals.resize(vertexCount);
-        std::memcpy(mesh.normals.data(), normals.data(), normals.size() * sizeof(float));
-    }
-    if (const int color = attribute("COLOR_0"); color >= 0) {
-        checkCount(color, "COLOR_0");
-        int components = 0;
-        const std::vector<float> colors = readFloats(color, "COLOR_0 of " + where, kVec34, &components);
-        mesh.colors.resize(vertexCount, glm::vec4(1.0f));
-        for (std::size_t v = 0; v < vertexCount; ++v)
-            for (int c = 0; c < components; ++c) mesh.colors[v][c] = colors[v * std::size_t(components) + std::size_t(c)];
-    }
-    // The one set of texture coordinates frugal keeps is the one the base colour texture samples.
-    int texCoord = 0;
-    bool textured = false;
-    if (primitive.material >= 0) {
-        const auto& info = model_.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture;
-        textured = info.index >= 0;
-        if (textured) texCoord = info.texCoord;
-    }
-    const std::string uvName = cat("TEXCOORD_", texCoord);
-    if (const int uv = attribute(uvName); uv >= 0) {
-        checkCount(uv, uvName.c_str());
-        const std::vector<float> uvs = readFloats(uv, uvName + " of " + where, kVec2);
-        mesh.uvs.resize(vertexCount);
-        std::memcpy(mesh.uvs.data(), uvs.data(), uvs.size() * sizeof(float));
-    } else if (textured) {
-        warn(cat(where, ": material ", primitive.material, " samples its base colour texture with ", uvName,
-                 ", which the primitive lacks: drawn untextured"));
-    }
-
-    std::vector<std::uint32_t> vertices;
-    if (primitive.indices >= 0) {
-        vertices = readIndices(primitive.indices, "indices of " + where);
-        for (std::uint32_t index : vertices)
-            if (index >= vertexCount)
-                fail("accessor ", primitive.indices, " (indices of ", where, "): index ", index,
-                     " out of range, mesh has ", vertexCount, " vertices");
-    } else {
-        vertices.resize(vertexCount);
-        for (std::size_t v = 0; v < vertexCount; ++v) vertices[v] = std::uint32_t(v);
-    }
-    mesh.indices = triangulate(vertices, mode, where);
+    readAttributes(primitive, where, mesh);
+    mesh.indices = triangulate(readVertexList(primitive, where, mesh.positions.size()), mode, where);
 
     const MeshBuildStats stats = finalizeMesh(mesh, options_.optimizeOrder);
     if (stats.droppedNonFinite > 0) {
-        const std::string name = gltfMesh.name.empty() ? cat("mesh ", meshIndex) : cat("mesh '", oneLine(gltfMesh.name, 60), "'");
+        const std::string name =
+            gltfMesh.name.empty() ? cat("mesh ", meshIndex) : cat("mesh '", oneLine(gltfMesh.name, 60), "'");
         warn(cat(name, " primitive ", primitiveIndex, ": dropped ", stats.droppedNonFinite,
                  " triangles with non-finite positions"));
     }
+    const auto& source = mesh.triangleSource;
+    idCount_.push_back(source.empty() ? 0 : std::uint64_t(*std::max_element(source.begin(), source.end())) + 1);
     meshPrimitives_[std::size_t(meshIndex)].push_back(int(scene_.meshes.size()));
     scene_.meshes.push_back(std::move(mesh));
 }
@@ -1494,9 +1587,12 @@ bool toRgba8(const tinygltf::Image& image, std::vector<std::uint8_t>& rgba) {
 
 Wrap toWrap(int wrap) {
     switch (wrap) {
-    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
-    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
-    default: return Wrap::Repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+            return Wrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+            return Wrap::MirroredRepeat;
+        default:
+            return Wrap::Repeat;
     }
 }
 
@@ -1536,7 +1632,10 @@ int Converter::useTexture(int gltfTexture, int material) {
         return result;
     }
     Texture out;
-    out.name = !texture.name.empty() ? texture.name : !image.name.empty() ? image.name : image.uri.rfind("data:", 0) == 0 ? std::string() : image.uri;
+    out.name = !texture.name.empty()              ? texture.name
+               : !image.name.empty()              ? image.name
+               : image.uri.rfind("data:", 0) == 0 ? std::string()
+                                                  : image.uri;
     out.width = decoded.width;
     out.height = decoded.height;
     if (!toRgba8(decoded, out.rgba)) {
@@ -1551,11 +1650,13 @@ int Converter::useTexture(int gltfTexture, int material) {
         // One filter for both directions: the magnification filter, else the base-level part of the
         // minification filter (NEAREST_MIPMAP_* samples the base level with NEAREST).
         const int filter = sampler.magFilter >= 0 ? sampler.magFilter : sampler.minFilter;
-        out.filter = (filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
-                      filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
-                         ? Filter::Nearest
-                         : Filter::Linear;
-        if (sampler.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST) report("mipmaps (sampled base level only)");
+        out.filter =
+            (filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+             filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
+                ? Filter::Nearest
+                : Filter::Linear;
+        if (sampler.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST)
+            report("mipmaps (sampled base level only)");
     }
     result = int(scene_.textures.size());
     scene_.textures.push_back(std::move(out));
@@ -1584,6 +1685,23 @@ void Converter::convertMaterials() {
             report("emissiveFactor");
         if (src.pbrMetallicRoughness.baseColorTexture.index >= 0)
             material.baseColorTexture = useTexture(src.pbrMetallicRoughness.baseColorTexture.index, m);
+    }
+}
+
+// A mesh without the texture coordinates its material's texture needs gets a copy of the material
+// without the texture, so that a mesh with a textured material always has uvs.
+void Converter::untextureMeshesWithoutUvs() {
+    std::map<int, int> copies;  // material → its untextured copy
+    for (int m : untextured_) {
+        Mesh& mesh = scene_.meshes[std::size_t(m)];
+        const auto [it, added] = copies.try_emplace(mesh.material, int(scene_.materials.size()));
+        if (added) {
+            Material copy = scene_.materials[std::size_t(mesh.material)];
+            copy.name += " (untextured)";
+            copy.baseColorTexture = -1;
+            scene_.materials.push_back(copy);
+        }
+        mesh.material = it->second;
     }
 }
 
@@ -1618,18 +1736,23 @@ void Converter::convertAnimations() {
             for (std::size_t k = 0; k < out.times.size(); ++k) {
                 if (!std::isfinite(out.times[k])) fail(where, ": key time ", k, " is not finite");
                 if (k > 0 && !(out.times[k] > out.times[k - 1]))
-                    fail(where, ": key times must increase, time ", k, " (", out.times[k], ") follows ", out.times[k - 1]);
+                    fail(where, ": key times must increase, time ", k, " (", out.times[k], ") follows ",
+                         out.times[k - 1]);
             }
             const bool cubic = out.interpolation == Interp::CubicSpline;
-            if (cubic && out.times.size() < 2) fail(where, ": CUBICSPLINE needs at least 2 keys, got ", out.times.size());
+            if (cubic && out.times.size() < 2)
+                fail(where, ": CUBICSPLINE needs at least 2 keys, got ", out.times.size());
             const bool rotation = out.path == AnimPath::Rotation;
             int components = 0;
-            const std::span<const int> outputTypes = rotation ? std::span<const int>(kVec4) : std::span<const int>(kVec3);
-            const std::vector<float> values = readFloats(sampler.output, "output of " + where, outputTypes, &components);
+            const std::span<const int> outputTypes =
+                rotation ? std::span<const int>(kVec4) : std::span<const int>(kVec3);
+            const std::vector<float> values =
+                readFloats(sampler.output, "output of " + where, outputTypes, &components);
             const std::size_t expected = out.times.size() * (cubic ? 3 : 1);
             const std::size_t count = values.size() / std::size_t(components);
             if (count != expected)
-                fail(where, ": output has ", count, " elements, expected ", expected, cubic ? " (3 per key, CUBICSPLINE)" : " (one per key)");
+                fail(where, ": output has ", count, " elements, expected ", expected,
+                     cubic ? " (3 per key, CUBICSPLINE)" : " (one per key)");
             out.values.resize(count, glm::vec4(0.0f));
             for (std::size_t k = 0; k < count; ++k)
                 for (int i = 0; i < components; ++i) {
@@ -1651,6 +1774,7 @@ Scene Converter::run() {
     checkBufferViews();
     convertNodes();
     convertMaterials();
+    untextureMeshesWithoutUvs();
     convertAnimations();
     if (!model_.skins.empty()) report("skins");
     scene_.buildInstances();
@@ -1686,7 +1810,9 @@ Scene loadGltfOrThrow(const std::string& path, const LoadOptions& options) {
     collectExtensions(root, extensions);
 
     const std::string repacked = binary && !glb.canonical ? canonicalGlb(glb) : std::string();
-    const std::string_view forTinygltf = !binary ? std::string_view(file) : glb.canonical ? std::string_view(file) : std::string_view(repacked);
+    const std::string_view forTinygltf = !binary         ? std::string_view(file)
+                                         : glb.canonical ? std::string_view(file)
+                                                         : std::string_view(repacked);
     const std::string baseDir = dir.empty() ? std::string(".") : dir.string();
     const tinygltf::Model model = runTinygltf(forTinygltf, binary, baseDir);
     return Converter(model, path, options, std::move(extensions)).run();

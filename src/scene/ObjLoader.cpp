@@ -9,6 +9,8 @@
 // Conventions: texture v is flipped (v' = 1 − v) so that uv (0,0) is the first row of the image, as in
 // glTF (Scene.h). Of the materials only the diffuse colour Kd is used. One Mesh per (shape, material),
 // one root node per shape. OBJ has no culling flag: LoadOptions::objDoubleSided decides.
+#include <tiny_obj_loader.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -22,8 +24,6 @@
 #include <string_view>
 #include <unordered_map>
 #include <vector>
-
-#include <tiny_obj_loader.h>
 
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
@@ -150,8 +150,8 @@ struct VertexKey {
 
 struct VertexKeyHash {
     std::size_t operator()(const VertexKey& k) const {
-        return std::size_t(std::uint32_t(k.v)) * 0x9E3779B97F4A7C15ull ^ std::size_t(std::uint32_t(k.vt)) * 0xC2B2AE3Dull ^
-               std::size_t(std::uint32_t(k.vn)) * 0x165667B1ull;
+        return std::size_t(std::uint32_t(k.v)) * 0x9E3779B97F4A7C15ull ^
+               std::size_t(std::uint32_t(k.vt)) * 0xC2B2AE3Dull ^ std::size_t(std::uint32_t(k.vn)) * 0x165667B1ull;
     }
 };
 
@@ -201,7 +201,8 @@ private:
         const std::size_t v = std::size_t(key.v);
         mesh_.positions.emplace_back(attrib_.vertices[3 * v], attrib_.vertices[3 * v + 1], attrib_.vertices[3 * v + 2]);
         if (!attrib_.colors.empty())
-            mesh_.colors.emplace_back(attrib_.colors[3 * v], attrib_.colors[3 * v + 1], attrib_.colors[3 * v + 2], 1.0f);
+            mesh_.colors.emplace_back(attrib_.colors[3 * v], attrib_.colors[3 * v + 1], attrib_.colors[3 * v + 2],
+                                      1.0f);
         if (key.vn >= 0) {
             const std::size_t n = std::size_t(key.vn);
             mesh_.normals.emplace_back(attrib_.normals[3 * n], attrib_.normals[3 * n + 1], attrib_.normals[3 * n + 2]);
@@ -219,103 +220,131 @@ private:
         return it->second;
     }
 
-    void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) { mesh_.indices.insert(mesh_.indices.end(), {a, b, c}); }
+    void triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        mesh_.indices.insert(mesh_.indices.end(), {a, b, c});
+    }
+};
+
+class ObjConverter {
+public:
+    ObjConverter(const ObjData& obj, const std::string& path, const LoadOptions& options)
+        : obj_(obj), path_(path), options_(options), materialUsed_(obj.materials.size(), false) {}
+
+    Scene run() {
+        scene_.source = path_;
+        for (const std::string& warning : obj_.warnings) scene_.warnings.push_back(cat(path_, ": ", warning));
+        for (const tinyobj::material_t& src : obj_.materials) {
+            Material material;
+            material.name = src.name;
+            material.baseColorFactor = glm::vec4(src.diffuse[0], src.diffuse[1], src.diffuse[2], 1.0f);
+            material.doubleSided = options_.objDoubleSided;
+            scene_.materials.push_back(material);
+        }
+        for (std::size_t s = 0; s < obj_.shapes.size(); ++s) convertShape(s);
+        for (std::size_t m = 0; m < obj_.materials.size(); ++m)
+            if (materialUsed_[m] && !obj_.materials[m].diffuse_texname.empty()) report("map_Kd textures");
+        if (scene_.meshes.empty()) scene_.warnings.push_back(path_ + ": no faces to draw");
+        scene_.buildInstances();
+        return std::move(scene_);
+    }
+
+private:
+    const ObjData& obj_;
+    const std::string& path_;
+    const LoadOptions& options_;
+    Scene scene_;
+    int defaultMaterial_ = -1;  // created when a face has no (known) material
+    std::vector<bool> materialUsed_;
+
+    void report(const std::string& feature) {
+        if (std::find(scene_.unsupported.begin(), scene_.unsupported.end(), feature) == scene_.unsupported.end())
+            scene_.unsupported.push_back(feature);
+    }
+
+    int materialFor(int id) {
+        if (id >= 0 && std::size_t(id) < obj_.materials.size()) {
+            materialUsed_[std::size_t(id)] = true;
+            return id;
+        }
+        if (defaultMaterial_ < 0) {
+            defaultMaterial_ = int(scene_.materials.size());
+            Material fallback;
+            fallback.name = "default";
+            fallback.doubleSided = options_.objDoubleSided;
+            scene_.materials.push_back(fallback);
+        }
+        return defaultMaterial_;
+    }
+
+    // Validates every index of the shape and groups its faces by material, in order of first use.
+    struct FaceGroups {
+        std::vector<std::size_t> start;  // per face: its first entry in shape.mesh.indices
+        std::vector<int> materials;
+        std::vector<std::vector<std::size_t>> faces;
+    };
+    FaceGroups groupFaces(const tinyobj::shape_t& shape, const std::string& where) {
+        const tinyobj::attrib_t& attrib = obj_.attrib;
+        const std::size_t positions = attrib.vertices.size() / 3, texcoords = attrib.texcoords.size() / 2,
+                          normals = attrib.normals.size() / 3;
+        FaceGroups groups;
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+            groups.start.push_back(offset);
+            const std::string face = cat(where, " face ", f + 1);
+            for (std::size_t k = 0; k < shape.mesh.num_face_vertices[f]; ++k, ++offset) {
+                const tinyobj::index_t& corner = shape.mesh.indices[offset];
+                checkIndex(corner.vertex_index, positions, false, "position", face);
+                checkIndex(corner.texcoord_index, texcoords, true, "texcoord", face);
+                checkIndex(corner.normal_index, normals, true, "normal", face);
+            }
+            const int material = materialFor(f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1);
+            const auto it = std::find(groups.materials.begin(), groups.materials.end(), material);
+            const std::size_t g = std::size_t(it - groups.materials.begin());
+            if (it == groups.materials.end()) {
+                groups.materials.push_back(material);
+                groups.faces.emplace_back();
+            }
+            groups.faces[g].push_back(f);
+        }
+        return groups;
+    }
+
+    void convertShape(std::size_t s) {
+        const tinyobj::shape_t& shape = obj_.shapes[s];
+        const std::string name = shape.name.empty() ? cat("shape ", s) : shape.name;
+        const std::string where = shape.name.empty() ? name : cat("shape '", oneLine(name, 60), "'");
+        checkFaces(shape, where);
+        if (!shape.lines.indices.empty()) report("OBJ lines (l)");
+        if (!shape.points.indices.empty()) report("OBJ points (p)");
+        const FaceGroups groups = groupFaces(shape, where);
+
+        Node node;
+        node.name = name;
+        for (std::size_t g = 0; g < groups.materials.size(); ++g) {
+            Mesh mesh;
+            mesh.name = name;
+            if (groups.materials.size() > 1)
+                mesh.name += " (" + scene_.materials[std::size_t(groups.materials[g])].name + ")";
+            mesh.material = groups.materials[g];
+            MeshBuilder builder(obj_.attrib, mesh);
+            for (std::size_t f : groups.faces[g])
+                builder.addFace(&shape.mesh.indices[groups.start[f]], shape.mesh.num_face_vertices[f]);
+            builder.finish();
+            const MeshBuildStats stats = finalizeMesh(mesh, options_.optimizeOrder);
+            if (stats.droppedNonFinite > 0)
+                scene_.warnings.push_back(cat(path_, ": mesh '", oneLine(mesh.name, 60), "': dropped ",
+                                              stats.droppedNonFinite, " triangles with non-finite positions"));
+            node.meshes.push_back(int(scene_.meshes.size()));
+            scene_.meshes.push_back(std::move(mesh));
+        }
+        scene_.roots.push_back(int(scene_.nodes.size()));
+        scene_.nodes.push_back(std::move(node));
+    }
 };
 
 Scene loadObjOrThrow(const std::string& path, const LoadOptions& options) {
     const ObjData obj = parseObj(path);
-    const tinyobj::attrib_t& attrib = obj.attrib;
-    const std::size_t positions = attrib.vertices.size() / 3, texcoords = attrib.texcoords.size() / 2,
-                      normals = attrib.normals.size() / 3;
-
-    Scene scene;
-    scene.source = path;
-    for (const std::string& warning : obj.warnings) scene.warnings.push_back(cat(path, ": ", warning));
-    for (const tinyobj::material_t& src : obj.materials) {
-        Material material;
-        material.name = src.name;
-        material.baseColorFactor = glm::vec4(src.diffuse[0], src.diffuse[1], src.diffuse[2], 1.0f);
-        material.doubleSided = options.objDoubleSided;
-        scene.materials.push_back(material);
-    }
-    int defaultMaterial = -1;  // created when a face has no (known) material
-    std::vector<bool> materialUsed(obj.materials.size(), false);
-
-    for (std::size_t s = 0; s < obj.shapes.size(); ++s) {
-        const tinyobj::shape_t& shape = obj.shapes[s];
-        const std::string shapeName = shape.name.empty() ? cat("shape ", s) : shape.name;
-        const std::string shapeWhere = cat("shape '", oneLine(shapeName, 60), "'");
-        checkFaces(shape, shapeWhere);
-        if (!shape.lines.indices.empty()) scene.unsupported.push_back("OBJ lines (l)");
-        if (!shape.points.indices.empty()) scene.unsupported.push_back("OBJ points (p)");
-
-        // Faces grouped by material, groups in order of first use.
-        std::vector<int> groupMaterials;
-        std::vector<std::vector<std::size_t>> groupFaces;  // face numbers
-        std::vector<std::size_t> faceStart(shape.mesh.num_face_vertices.size());
-        std::size_t offset = 0;
-        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-            faceStart[f] = offset;
-            const std::size_t n = shape.mesh.num_face_vertices[f];
-            const std::string where = cat(shapeWhere, " face ", f + 1);
-            for (std::size_t k = 0; k < n; ++k) {
-                const tinyobj::index_t& corner = shape.mesh.indices[offset + k];
-                checkIndex(corner.vertex_index, positions, false, "position", where);
-                checkIndex(corner.texcoord_index, texcoords, true, "texcoord", where);
-                checkIndex(corner.normal_index, normals, true, "normal", where);
-            }
-            offset += n;
-            int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-            if (material < 0 || std::size_t(material) >= obj.materials.size()) {
-                if (defaultMaterial < 0) {
-                    defaultMaterial = int(scene.materials.size());
-                    Material fallback;
-                    fallback.name = "default";
-                    fallback.doubleSided = options.objDoubleSided;
-                    scene.materials.push_back(fallback);
-                }
-                material = defaultMaterial;
-            } else {
-                materialUsed[std::size_t(material)] = true;
-            }
-            auto it = std::find(groupMaterials.begin(), groupMaterials.end(), material);
-            if (it == groupMaterials.end()) {
-                groupMaterials.push_back(material);
-                groupFaces.emplace_back();
-                it = groupMaterials.end() - 1;
-            }
-            groupFaces[std::size_t(it - groupMaterials.begin())].push_back(f);
-        }
-
-        Node node;
-        node.name = shapeName;
-        for (std::size_t g = 0; g < groupMaterials.size(); ++g) {
-            Mesh mesh;
-            mesh.name = shapeName;
-            if (groupMaterials.size() > 1) mesh.name += " (" + scene.materials[std::size_t(groupMaterials[g])].name + ")";
-            mesh.material = groupMaterials[g];
-            MeshBuilder builder(attrib, mesh);
-            for (std::size_t f : groupFaces[g])
-                builder.addFace(&shape.mesh.indices[faceStart[f]], shape.mesh.num_face_vertices[f]);
-            builder.finish();
-            const MeshBuildStats stats = finalizeMesh(mesh, options.optimizeOrder);
-            if (stats.droppedNonFinite > 0)
-                scene.warnings.push_back(cat(path, ": mesh '", oneLine(mesh.name, 60), "': dropped ", stats.droppedNonFinite,
-                                             " triangles with non-finite positions"));
-            node.meshes.push_back(int(scene.meshes.size()));
-            scene.meshes.push_back(std::move(mesh));
-        }
-        scene.roots.push_back(int(scene.nodes.size()));
-        scene.nodes.push_back(std::move(node));
-    }
-
-    for (std::size_t m = 0; m < obj.materials.size(); ++m)
-        if (materialUsed[m] && !obj.materials[m].diffuse_texname.empty()) scene.unsupported.push_back("map_Kd textures");
-    std::sort(scene.unsupported.begin(), scene.unsupported.end());
-    scene.unsupported.erase(std::unique(scene.unsupported.begin(), scene.unsupported.end()), scene.unsupported.end());
-    if (scene.meshes.empty()) scene.warnings.push_back(path + ": no faces to draw");
-    scene.buildInstances();
-    return scene;
+    return ObjConverter(obj, path, options).run();
 }
 
 }  // namespace

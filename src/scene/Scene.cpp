@@ -99,7 +99,7 @@ std::vector<glm::mat4> Scene::worldTransforms(double time) const {
             if (channel.node < 0 || channel.node >= int(posed.size())) continue;
             Node& node = posed[channel.node];
             const glm::vec4 v = sampleChannel(channel, time);
-            // An animated node uses TRS even if the file gave a matrix (glTF forbids the mix).
+            // glTF animates only TRS nodes; the loaders reject an animated node that has a matrix.
             switch (channel.path) {
             case AnimPath::Translation: node.translation = glm::vec3(v); break;
             case AnimPath::Rotation: node.rotation = toQuat(v); break;

@@ -4,15 +4,15 @@
 //
 // Meshes are built here in clip space (identity matrices) unless a test says otherwise. Target
 // 64×48: NDC (x, y) lands at window ((x+1)·32, (y+1)·24); rows are bottom-up.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
@@ -28,9 +28,12 @@ const glm::vec4 kBackground{0.2f, 0.4f, 0.6f, 1.0f};  // exact in 8 bits: 51, 10
 
 Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
     switch (kind) {
-        case ContextKind::EglDevice: return createEglDeviceContext(/*allowSoftwareDevice=*/true);
-        case ContextKind::EglSurfaceless: return createEglSurfacelessContext();
-        case ContextKind::OsMesa: return createOsMesaContext();
+        case ContextKind::EglDevice:
+            return createEglDeviceContext(/*allowSoftwareDevice=*/true);
+        case ContextKind::EglSurfaceless:
+            return createEglSurfacelessContext();
+        case ContextKind::OsMesa:
+            return createOsMesaContext();
     }
     return Error{"unknown kind"};
 }
@@ -43,9 +46,12 @@ std::unique_ptr<Backend> makeBackend(ContextKind kind) {
         ADD_FAILURE() << context.error();
         return nullptr;
     }
-    std::unique_ptr<Backend> backend = makeGlBackend(std::move(*context));
-    if (!backend) ADD_FAILURE() << contextKindName(kind) << ": backend set-up failed";
-    return backend;
+    Result<std::unique_ptr<Backend>> backend = makeGlBackend(std::move(*context));
+    if (!backend) {
+        ADD_FAILURE() << backend.error();
+        return nullptr;
+    }
+    return std::move(*backend);
 }
 
 std::uint8_t unorm8(float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
@@ -61,10 +67,9 @@ std::size_t at(const Buffers& b, int x, int y) { return std::size_t(y) * std::si
         const int want = unorm8(expected[c]);
         if (std::abs(int(p[c]) - want) > tolerance)
             return ::testing::AssertionFailure()
-                   << "pixel (" << x << ", " << y << ") is " << int(p[0]) << " " << int(p[1]) << " " << int(p[2])
-                   << " " << int(p[3]) << ", expected " << int(unorm8(expected[0])) << " "
-                   << int(unorm8(expected[1])) << " " << int(unorm8(expected[2])) << " " << int(unorm8(expected[3]))
-                   << " (±" << tolerance << ")";
+                   << "pixel (" << x << ", " << y << ") is " << int(p[0]) << " " << int(p[1]) << " " << int(p[2]) << " "
+                   << int(p[3]) << ", expected " << int(unorm8(expected[0])) << " " << int(unorm8(expected[1])) << " "
+                   << int(unorm8(expected[2])) << " " << int(unorm8(expected[3])) << " (±" << tolerance << ")";
     }
     return ::testing::AssertionSuccess();
 }
@@ -155,8 +160,8 @@ Texture checkerTexture() {
     tex.wrapT = Wrap::MirroredRepeat;
     for (int i = 0; i < 16; ++i) {
         const bool dark = ((i % 4) + (i / 4)) % 2 == 0;
-        tex.rgba.insert(tex.rgba.end(), {std::uint8_t(dark ? 60 : 250), std::uint8_t(dark ? 90 : 240),
-                                         std::uint8_t(i * 16), 255});
+        tex.rgba.insert(tex.rgba.end(),
+                        {std::uint8_t(dark ? 60 : 250), std::uint8_t(dark ? 90 : 240), std::uint8_t(i * 16), 255});
     }
     return tex;
 }
@@ -352,8 +357,8 @@ TEST_P(GlBackendGLTest, TextureRowsAndNearestFilter) {
     tex.width = 2;
     tex.height = 2;
     tex.filter = Filter::Nearest;
-    tex.rgba = {255, 0, 0, 255, 0, 255, 0, 255,      // row 0: red, green
-                0, 0, 255, 255, 255, 255, 255, 255};  // row 1: blue, white
+    tex.rgba = {255, 0, 0,   255, 0,   255, 0,   255,   // row 0: red, green
+                0,   0, 255, 255, 255, 255, 255, 255};  // row 1: blue, white
     Mesh quad;
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     quad.normals.assign(4, glm::vec3(0, 0, 1));
@@ -442,8 +447,9 @@ TEST_P(GlBackendGLTest, CopiesARectanglePerAttachment) {
     const TargetHandle dest = backend_->createTarget(kWidth, kHeight);
     const glm::vec4 destColor{0, 0, 1, 1};
     const Rect rect{12, 10, 40, 12};  // both centroids, part of each triangle and background
-    struct Case { bool color, depth, ids; } cases[] = {
-        {true, false, false}, {false, true, false}, {false, false, true}, {true, true, true}};
+    struct Case {
+        bool color, depth, ids;
+    } cases[] = {{true, false, false}, {false, true, false}, {false, false, true}, {true, true, true}};
     for (const Case& c : cases) {
         backend_->clear(dest, Rect{0, 0, kWidth, kHeight}, destColor, 0.5f);
         const Buffers before = backend_->readBack(dest);
@@ -459,8 +465,10 @@ TEST_P(GlBackendGLTest, CopiesARectanglePerAttachment) {
                 const Buffers& idsFrom = inside && c.ids ? src : before;
                 ASSERT_TRUE(std::equal(&b.rgba[4 * i], &b.rgba[4 * i + 4], &colorFrom.rgba[4 * i]))
                     << "colour at " << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
-                ASSERT_EQ(b.depth[i], depthFrom.depth[i]) << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
-                ASSERT_EQ(b.ids[i], idsFrom.ids[i]) << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
+                ASSERT_EQ(b.depth[i], depthFrom.depth[i])
+                    << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
+                ASSERT_EQ(b.ids[i], idsFrom.ids[i])
+                    << x << ", " << y << " (copy " << c.color << c.depth << c.ids << ")";
                 changedColor += !std::equal(&b.rgba[4 * i], &b.rgba[4 * i + 4], &before.rgba[4 * i]);
                 changedDepth += b.depth[i] != before.depth[i];
                 changedIds += b.ids[i] != before.ids[i];
@@ -526,8 +534,8 @@ TEST_P(GlBackendGLTest, OneByOneTarget) {
 
 TEST_P(GlBackendGLTest, BadSizesAndBadMeshesGiveNoHandle) {
     const int max = backend_->maxTargetSize();
-    for (auto [w, h] : {std::pair{0, 0}, std::pair{0, 10}, std::pair{10, 0}, std::pair{-1, 5},
-                        std::pair{max + 1, 1}, std::pair{1, max + 1}})
+    for (auto [w, h] : {std::pair{0, 0}, std::pair{0, 10}, std::pair{10, 0}, std::pair{-1, 5}, std::pair{max + 1, 1},
+                        std::pair{1, max + 1}})
         EXPECT_EQ(backend_->createTarget(w, h), kNoHandle) << w << "×" << h;
     // Still usable afterwards.
     const TargetHandle ok = backend_->createTarget(2, 2);
@@ -587,18 +595,31 @@ TEST(GlBackendCrossContextGLTest, AllContextKindsGiveIdenticalImages) {
     std::vector<std::unique_ptr<Backend>> backends;
     for (ContextKind kind : kinds) backends.push_back(makeBackend(kind));
     for (const auto& b : backends) ASSERT_NE(b, nullptr);
+    // Give each context different GL object names (i extra targets and textures), so a call that
+    // reached the wrong context would touch the wrong objects instead of same-named twins.
+    for (std::size_t i = 0; i < backends.size(); ++i) {
+        for (std::size_t k = 0; k < i; ++k) {
+            EXPECT_NE(backends[i]->createTarget(8, 8), kNoHandle);
+            EXPECT_NE(backends[i]->uploadTexture(checkerTexture()), kNoHandle);
+        }
+    }
     // Render in turn, twice round, so the backends switch contexts between frames.
     std::vector<Buffers> images;
     for (int round = 0; round < 2; ++round)
         for (auto& backend : backends) images.push_back(renderDenseScene(*backend, true));
     for (std::size_t i = 1; i < images.size(); ++i)
-        EXPECT_TRUE(identical(images[0], images[i],
-                              std::string("cross-") + contextKindName(kinds[0]) + "-vs-" +
-                                  contextKindName(kinds[i % kinds.size()])));
+        EXPECT_TRUE(identical(
+            images[0], images[i],
+            std::string("cross-") + contextKindName(kinds[0]) + "-vs-" + contextKindName(kinds[i % kinds.size()])));
     const Buffers simpleFirst = drawTwoTriangles(*backends.front(), true, true);
     for (std::size_t i = 1; i < backends.size(); ++i)
         EXPECT_TRUE(identical(simpleFirst, drawTwoTriangles(*backends[i], true, true),
                               std::string("cross-simple-") + contextKindName(kinds[i])));
+    // Destroying one backend (its context not current) leaves the others working.
+    backends.front().reset();
+    for (std::size_t i = 1; i < backends.size(); ++i)
+        EXPECT_TRUE(identical(images[0], renderDenseScene(*backends[i], true),
+                              std::string("cross-after-destroy-") + contextKindName(kinds[i])));
 }
 
 // Two surfaceless contexts share one EGLDisplay; destroying one must not break the other.

@@ -5,17 +5,18 @@
 // those tests re-run this binary in a fresh process with the variable set: a hook that runs before
 // main() sees FRUGAL_GL_TEST_CHILD, does the one thing asked, prints the outcome and exits. The
 // parent's contexts and environment are untouched, and a crash in the child shows as a signal.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
+#include "gl/GlApi.h"
 #include "gl/GlBackend.h"
 #include "gl/GlContext.h"
 
@@ -91,10 +92,9 @@ TEST(GlContextGLTest, KindNamesAndOrder) {
 TEST(GlContextGLTest, EachKindGivesACurrentCoreContext) {
     for (ContextKind kind : availableContextKinds()) {
         SCOPED_TRACE(contextKindName(kind));
-        Result<std::unique_ptr<GlContext>> context =
-            kind == ContextKind::EglDevice  ? createEglDeviceContext(true)
-            : kind == ContextKind::OsMesa   ? createOsMesaContext()
-                                            : createEglSurfacelessContext();
+        Result<std::unique_ptr<GlContext>> context = kind == ContextKind::EglDevice ? createEglDeviceContext(true)
+                                                     : kind == ContextKind::OsMesa  ? createOsMesaContext()
+                                                                                    : createEglSurfacelessContext();
         ASSERT_TRUE(context) << context.error();
         EXPECT_EQ((*context)->kind(), kind);
         EXPECT_FALSE((*context)->description().empty());
@@ -112,6 +112,112 @@ TEST(GlContextGLTest, EachKindGivesACurrentCoreContext) {
         EXPECT_GE(major * 10 + minor, 33);
         EXPECT_EQ(profile & 1 /*GL_CONTEXT_CORE_PROFILE_BIT*/, 1);
     }
+}
+
+// Contexts of different platforms on one thread: each makeCurrent must reach its own context.
+// (Mesa 22 + libglvnd: without releasing the EGL context first, eglMakeCurrent after an
+// OSMesaMakeCurrent is a no-op and GL calls land in the OSMesa context.)
+TEST(GlContextGLTest, ContextsOfDifferentKindsTakeTurns) {
+    std::vector<std::unique_ptr<GlContext>> contexts;
+    for (ContextKind kind : availableContextKinds()) {
+        Result<std::unique_ptr<GlContext>> context = kind == ContextKind::EglDevice ? createEglDeviceContext(true)
+                                                     : kind == ContextKind::OsMesa  ? createOsMesaContext()
+                                                                                    : createEglSurfacelessContext();
+        ASSERT_TRUE(context) << context.error();
+        contexts.push_back(std::move(*context));
+    }
+    if (contexts.size() < 2) GTEST_SKIP() << "one context kind only";
+    using ClearColor = void (*)(float, float, float, float);
+    using GetFloatv = void (*)(unsigned, float*);
+    const auto red = [&](GlContext& c) {
+        float value[4] = {-1, -1, -1, -1};
+        reinterpret_cast<GetFloatv>(c.getProcAddress("glGetFloatv"))(0x0C22 /*GL_COLOR_CLEAR_VALUE*/, value);
+        return value[0];
+    };
+    for (std::size_t i = 0; i < contexts.size(); ++i) {
+        ASSERT_TRUE(contexts[i]->makeCurrent());
+        reinterpret_cast<ClearColor>(contexts[i]->getProcAddress("glClearColor"))(0.125f * float(i + 1), 0, 0, 0);
+    }
+    for (int round = 0; round < 2; ++round) {
+        for (std::size_t i = 0; i < contexts.size(); ++i) {
+            ASSERT_TRUE(contexts[i]->makeCurrent());
+            EXPECT_EQ(red(*contexts[i]), 0.125f * float(i + 1)) << contextKindName(contexts[i]->kind());
+        }
+        std::reverse(contexts.begin(), contexts.end());
+        for (std::size_t i = 0; i < contexts.size(); ++i) {
+            ASSERT_TRUE(contexts[i]->makeCurrent());
+            EXPECT_EQ(red(*contexts[i]), 0.125f * float(contexts.size() - i)) << contextKindName(contexts[i]->kind());
+        }
+        std::reverse(contexts.begin(), contexts.end());
+    }
+    // Destroying the current one leaves the others usable.
+    contexts.back().reset();
+    ASSERT_TRUE(contexts.front()->makeCurrent());
+    EXPECT_EQ(red(*contexts.front()), 0.125f);
+}
+
+// A real context whose getProcAddress can hide one entry point or swap in a replacement.
+class DoctoredContext final : public GlContext {
+public:
+    DoctoredContext(std::unique_ptr<GlContext> real, std::string name, void* replacement)
+        : real_(std::move(real)), name_(std::move(name)), replacement_(replacement) {}
+    ContextKind kind() const override { return real_->kind(); }
+    void* getProcAddress(const char* name) const override {
+        return name_ == name ? replacement_ : real_->getProcAddress(name);
+    }
+    bool makeCurrent() override { return real_->makeCurrent(); }
+    std::string description() const override { return real_->description(); }
+    GlContext& real() { return *real_; }
+
+private:
+    std::unique_ptr<GlContext> real_;
+    std::string name_;
+    void* replacement_;
+};
+
+std::unique_ptr<GlContext> anyContext() {
+    for (ContextKind kind : availableContextKinds()) {
+        Result<std::unique_ptr<GlContext>> context = kind == ContextKind::OsMesa      ? createOsMesaContext()
+                                                     : kind == ContextKind::EglDevice ? createEglDeviceContext(true)
+                                                                                      : createEglSurfacelessContext();
+        if (context) return std::move(*context);
+    }
+    return nullptr;
+}
+
+TEST(GlContextGLTest, AMissingEntryPointIsNamed) {
+    std::unique_ptr<GlContext> real = anyContext();
+    ASSERT_NE(real, nullptr);
+    const std::string kind = contextKindName(real->kind());
+    DoctoredContext doctored(std::move(real), "glMultiDrawArrays", nullptr);
+    GlApi api;
+    EXPECT_EQ(api.load(doctored), "GL entry point glMultiDrawArrays not found (" + kind + ")");
+    EXPECT_EQ(api.load(doctored.real()), "");
+    EXPECT_NE(api.MultiDrawArrays, nullptr);
+    // And no backend is made on such a context.
+    std::unique_ptr<GlContext> again = anyContext();
+    ASSERT_NE(again, nullptr);
+    EXPECT_EQ(makeGlBackend(std::make_unique<DoctoredContext>(std::move(again), "glBlitFramebuffer", nullptr)).error(),
+              kind + ": GL entry point glBlitFramebuffer not found (" + kind + ")");
+}
+
+// glShaderSource replaced by one that hands GL a broken shader: the backend is not made.
+PFNGLSHADERSOURCEPROC gRealShaderSource = nullptr;
+void APIENTRY brokenShaderSource(GLuint shader, GLsizei, const GLchar* const*, const GLint*) {
+    const char* broken = "#version 330 core\nvoid main() { this is not glsl }\n";
+    gRealShaderSource(shader, 1, &broken, nullptr);
+}
+
+TEST(GlContextGLTest, AShaderThatDoesNotCompileFailsTheBackend) {
+    std::unique_ptr<GlContext> real = anyContext();
+    ASSERT_NE(real, nullptr);
+    gRealShaderSource = reinterpret_cast<PFNGLSHADERSOURCEPROC>(real->getProcAddress("glShaderSource"));
+    ASSERT_NE(gRealShaderSource, nullptr);
+    Result<std::unique_ptr<Backend>> backend = makeGlBackend(
+        std::make_unique<DoctoredContext>(std::move(real), "glShaderSource", reinterpret_cast<void*>(&brokenShaderSource)));
+    ASSERT_FALSE(backend);
+    EXPECT_NE(backend.error().find("mesh"), std::string::npos) << backend.error();
+    EXPECT_EQ(backend.error().find('\n'), std::string::npos) << "one line";
 }
 
 TEST(GlContextGLTest, EglDeviceSkipsSoftwareDevicesUnlessAllowed) {
@@ -163,8 +269,7 @@ TEST(GlContextGLTest, AutoLogsEveryAttemptAndSaysWhatItChose) {
     // Lines before the chosen one are failures, each naming its kind.
     for (std::size_t i = 0; i + 1 < log.size(); ++i) {
         EXPECT_EQ(log[i].find(": ok"), std::string::npos) << log[i];
-        EXPECT_TRUE(log[i].rfind("egl-device: ", 0) == 0 || log[i].rfind("egl-surfaceless: ", 0) == 0)
-            << log[i];
+        EXPECT_TRUE(log[i].rfind("egl-device: ", 0) == 0 || log[i].rfind("egl-surfaceless: ", 0) == 0) << log[i];
     }
 }
 
@@ -218,8 +323,9 @@ TEST(GlContextGLTest, EglWithAnUnknownGalliumDriverFailsCleanlyAndSaysWhy) {
     const std::string outcome = inChild("egl", "nonexistent");
     EXPECT_EQ(outcome.rfind("error no usable GL context: egl-device: ", 0), 0u) << outcome;
     // Mesa 22 fails in eglInitialize; the message says so and points at the variable.
-    const std::string surfaceless = "; egl-surfaceless: no EGL display (eglInitialize failed: "
-                                    "EGL_NOT_INITIALIZED) (GALLIUM_DRIVER=nonexistent is set)";
+    const std::string surfaceless =
+        "; egl-surfaceless: no EGL display (eglInitialize failed: "
+        "EGL_NOT_INITIALIZED) (GALLIUM_DRIVER=nonexistent is set)";
     EXPECT_NE(outcome.find(surfaceless), std::string::npos) << outcome;
     EXPECT_EQ(outcome.find('\n'), std::string::npos);
 }
