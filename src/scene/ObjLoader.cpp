@@ -26,60 +26,14 @@
 #include <vector>
 
 #include "scene/Load.h"
+#include "scene/LoadSupport.h"
 #include "scene/MeshBuild.h"
 
 namespace frugal {
 
 namespace {
 
-struct Failure {
-    std::string message;
-};
-
-template <class... Args>
-std::string cat(const Args&... args) {
-    std::ostringstream out;
-    (out << ... << args);
-    return out.str();
-}
-
-template <class... Args>
-[[noreturn]] void fail(const Args&... args) {
-    throw Failure{cat(args...)};
-}
-
-// Library messages and names from the file become one printable line.
-std::string oneLine(std::string_view text, std::size_t maxLength = 200) {
-    std::string out;
-    for (char ch : text) {
-        if (out.size() >= maxLength) {
-            out += "...";
-            break;
-        }
-        const auto c = static_cast<unsigned char>(ch);
-        const char printable = (c < 0x20 || c == 0x7f) ? ' ' : ch;
-        if (!(printable == ' ' && (out.empty() || out.back() == ' '))) out += printable;
-    }
-    while (!out.empty() && out.back() == ' ') out.pop_back();
-    return out;
-}
-
-std::string readFile(const std::string& path) {
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (status.type() == std::filesystem::file_type::not_found) fail("no such file");
-    if (ec) fail("cannot access (", ec.message(), ")");
-    if (std::filesystem::is_directory(status)) fail("is a directory, not a file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open for reading (", std::strerror(errno), ")");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) fail("cannot read (not a regular file?)");
-    in.seekg(0, std::ios::beg);
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    if (!in.read(bytes.data(), size)) fail("read error after ", in.gcount(), " of ", size, " bytes");
-    return bytes;
-}
+using namespace load;
 
 // Reads "mtllib" files relative to the OBJ's folder. tinyobjloader's own reader splits its base
 // directory at ':' (a search path), which breaks folders whose name contains one.
