@@ -1,25 +1,79 @@
 #include "TestSupport.h"
 
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace frugal::test {
 
-std::filesystem::path outputDir() {
-    std::filesystem::path dir = FRUGAL_TEST_OUTPUT_DIR;
-    std::filesystem::create_directories(dir);
+namespace fs = std::filesystem;
+
+fs::path outputDir() {
+    fs::path dir = FRUGAL_TEST_OUTPUT_DIR;
+    fs::create_directories(dir);
     return dir;
 }
 
-std::filesystem::path freshDir(const std::string& name) {
-    std::filesystem::path dir = outputDir() / name;
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+fs::path freshDir(const std::string& name) {
+    fs::path dir = outputDir() / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
     return dir;
 }
 
-void writeFile(const std::filesystem::path& path, const std::string& text) {
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+void writeFile(const fs::path& path, const std::string& text) {
+    if (path.has_parent_path()) fs::create_directories(path.parent_path());
     std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string readAll(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::vector<std::string> CliRun::errLines() const {
+    std::vector<std::string> lines;
+    std::stringstream in(err);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+namespace {
+
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+}  // namespace
+
+CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
+    // (An ostringstream, not string +: GCC 12 -O3 reports a false -Wrestrict on the latter.)
+    std::ostringstream line;
+    line << "cd " << quote(dir.string()) << " && " << env << " " << quote(FRUGAL_CLI);
+    for (const std::string& a : args) line << " " << quote(a);
+    line << " >stdout.txt 2>stderr.txt";
+    const std::string command = line.str();
+    CliRun run;
+    const int raw = std::system(command.c_str());
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    run.out = readAll(dir / "stdout.txt");
+    run.err = readAll(dir / "stderr.txt");
+    fs::remove(dir / "stdout.txt");
+    fs::remove(dir / "stderr.txt");
+    return run;
 }
 
 }  // namespace frugal::test

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace frugal::test {
 
@@ -12,5 +13,20 @@ std::filesystem::path outputDir();
 std::filesystem::path freshDir(const std::string& name);
 // Writes `text` to `path` (creating folders).
 void writeFile(const std::filesystem::path& path, const std::string& text);
+// The whole file, or "" when it cannot be read.
+std::string readAll(const std::filesystem::path& path);
+// The names of the entries of `dir`, sorted.
+std::vector<std::string> filesIn(const std::filesystem::path& dir);
+
+// The `frugal` binary run in a child process: exit status, stdout and stderr.
+struct CliRun {
+    int status = -1;  // the exit status, or 128 + signal number
+    std::string out, err;
+    std::vector<std::string> errLines() const;
+};
+
+// Runs the frugal binary (FRUGAL_CLI) with `args` in `dir`, with an optional environment prefix
+// such as "GALLIUM_DRIVER=x". Its stdout/stderr go through files in `dir` that are removed after.
+CliRun runFrugal(const std::filesystem::path& dir, const std::vector<std::string>& args, const std::string& env = "");
 
 }  // namespace frugal::test

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/Backends.h"
 #include "app/Cli.h"
 #include "app/Commands.h"
 #include "app/Options.h"
@@ -18,9 +19,10 @@ namespace frugal {
 const char* benchHelp() {
     return R"(usage: frugal bench render [SCENE] [options]
 
-Renders the same frame repeatedly on each available GL backend (egl-device, egl-surfaceless,
-osmesa; or only --backend), once with the vertex-cache triangle order and once with the file's
-order, and prints JSON: median/min/max ms per frame, triangles per second, and ratios.
+Renders the same frame repeatedly on each available backend (egl-device, egl-surfaceless, osmesa
+and the software reference; or only --backend), once with the vertex-cache triangle order and once
+with the file's order, and prints JSON: median/min/max ms per frame, triangles per second, and
+ratios.
 Set LP_NUM_THREADS to choose llvmpipe's thread count.
 
   --runs N              timed frames per variant (default 30)
@@ -100,15 +102,20 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         return kExitError;
     }
 
-    std::vector<BackendChoice> choices;
-    if (backendGiven && options.backend != BackendChoice::Auto) choices = {options.backend};
-    else choices = {BackendChoice::EglDevice, BackendChoice::EglSurfaceless, BackendChoice::OsMesa};
+    // By default every GL context kind and the software reference, side by side.
+    std::vector<BackendSelection> choices;
+    if (backendGiven && (options.backend.software || options.backend.gl != BackendChoice::Auto)) {
+        choices = {options.backend};
+    } else {
+        choices = {{false, BackendChoice::EglDevice}, {false, BackendChoice::EglSurfaceless},
+                   {false, BackendChoice::OsMesa}, {true, BackendChoice::Auto}};
+    }
 
     nlohmann::json skipped = nlohmann::json::array();
     std::vector<Sample> samples;
     using Clock = std::chrono::steady_clock;
-    for (BackendChoice choice : choices) {
-        Result<std::unique_ptr<Backend>> created = createGlBackend(choice);
+    for (const BackendSelection& choice : choices) {
+        Result<std::unique_ptr<Backend>> created = openBackend(choice);
         if (!created) {
             skipped.push_back(created.error());
             continue;

@@ -15,21 +15,24 @@ usage:
   frugal render [SCENE] [-o FILE.png] [options]   render a frame or a sequence to PNG
   frugal info SCENE                               what a scene holds, and what frugal does not model
   frugal bench render [SCENE] [options]           frame time per backend, as JSON
+  frugal compare A.png B.png [options]            compare an image with a reference (B)
+  frugal diff [SCENE] [options]                   a GL render against the software reference
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
 )";
 
 const char* kExitCodes = R"(
-exit status: 0 success, 1 bad input or failed output, 2 bad command line,
+exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed output, or
+             (compare, diff) images outside tolerance, 2 bad command line,
              3 the requested backend is not available (no EGL display, no OSMesa, ...)
 )";
 
 void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
-    out << "with no SCENE, render and bench use builtin:default.\n";
-    out << "\nrun 'frugal help render' (or info, bench) for a command's options.\n" << kExitCodes;
+    out << "with no SCENE, render, bench and diff use builtin:default.\n";
+    out << "\nrun 'frugal help render' (or info, bench, compare, diff) for a command's options.\n" << kExitCodes;
 }
 
 }  // namespace
@@ -42,9 +45,11 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     const std::string& command = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (command == "-h" || command == "--help" || command == "help") {
-        if (!rest.empty() && rest[0] == "render") out << renderHelp() << kExitCodes;
+        if (!rest.empty() && rest[0] == "render") out << renderHelp() << sharedOptionsHelp() << kExitCodes;
         else if (!rest.empty() && rest[0] == "info") out << infoHelp() << kExitCodes;
-        else if (!rest.empty() && rest[0] == "bench") out << benchHelp() << kExitCodes;
+        else if (!rest.empty() && rest[0] == "bench") out << benchHelp() << sharedOptionsHelp() << kExitCodes;
+        else if (!rest.empty() && rest[0] == "compare") out << compareHelp() << kExitCodes;
+        else if (!rest.empty() && rest[0] == "diff") out << diffHelp() << sharedOptionsHelp() << kExitCodes;
         else printUsage(out);
         return kExitOk;
     }
@@ -55,7 +60,9 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (command == "render") return runRender(rest, out, err);
     if (command == "info") return runInfo(rest, out, err);
     if (command == "bench") return runBench(rest, out, err);
-    err << "error: unknown command '" << command << "' (commands: render, info, bench, help)\n";
+    if (command == "compare") return runCompare(rest, out, err);
+    if (command == "diff") return runDiff(rest, out, err);
+    err << "error: unknown command '" << command << "' (commands: render, info, bench, compare, diff, help)\n";
     return kExitUsage;
 }
 

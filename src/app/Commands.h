@@ -10,9 +10,13 @@ namespace frugal {
 int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
 const char* benchHelp();
+const char* compareHelp();
+const char* diffHelp();
 
 }  // namespace frugal

@@ -86,6 +86,24 @@ std::optional<double> number(const std::string& flag, ArgCursor& cursor, double 
 
 }  // namespace
 
+std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi) {
+    const std::optional<std::string> text = cursor.value(flag);
+    if (!text) return std::nullopt;
+    int v = 0;
+    if (!parseInt(*text, v) || v < lo || v > hi) {
+        cursor.fail(flag + ": expected a whole number " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" +
+                    *text + "'");
+        return std::nullopt;
+    }
+    return v;
+}
+
+std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color) {
+    std::array<std::uint8_t, 4> bytes{};
+    for (int k = 0; k < 4; ++k) bytes[k] = std::uint8_t(std::lround(std::clamp(color[k], 0.0f, 1.0f) * 255.0f));
+    return bytes;
+}
+
 bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& o) {
     if (flag == "--size") {
         const std::optional<std::string> text = cursor.value(flag);
@@ -103,7 +121,7 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
     } else if (flag == "--backend") {
         const std::optional<std::string> text = cursor.value(flag);
         if (!text) return true;
-        Result<BackendChoice> choice = parseBackendChoice(*text);
+        Result<BackendSelection> choice = parseBackendSelection(*text);
         if (!choice) cursor.fail("--backend: " + choice.error());
         else {
             o.backend = *choice;
@@ -175,7 +193,8 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
 const char* sharedOptionsHelp() {
     return R"(  --size WxH            image size in pixels (default 800x600)
   --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
-                        egl, egl-device, egl-surfaceless, osmesa
+                        egl, egl-device, egl-surfaceless, osmesa, or software (the CPU
+                        reference rasterizer, llvmpipe's rules, no GL)
   --camera N            use the scene's camera N (default: camera 0 if the scene has one,
                         else a view that fits the scene's bounds)
   --eye X,Y,Z           look from here (with --target, default the bounds' centre, and --up)

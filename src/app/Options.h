@@ -1,14 +1,16 @@
-// Command-line options shared by the commands that render (render, bench; later diff), and the
+// Command-line options shared by the commands that render (render, bench, diff), and the
 // set-up they share: load the scene, pick the backend, resolve the camera.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "gl/GlBackend.h"
+#include "app/Backends.h"
 #include "render/Camera.h"
 #include "scene/Load.h"
 
@@ -40,8 +42,8 @@ struct FrameRange {
 struct RenderOptions {
     std::string scene = "builtin:default";
     int width = 800, height = 600;
-    BackendChoice backend = BackendChoice::Auto;
-    std::string backendName = "auto";
+    BackendSelection backend;
+    std::string backendName = "auto";  // as given, for messages
     CameraSpec camera;
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;
@@ -56,6 +58,12 @@ struct RenderOptions {
 bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& options);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
+
+// The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
+std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
+
+// A clear colour as the 8-bit target holds it (GL's unorm conversion: clamp, ×255, round).
+std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color);
 
 // Scene time of frame `frame`.
 double frameTime(const RenderOptions& options, const Scene& scene, int frame);

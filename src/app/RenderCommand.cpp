@@ -137,7 +137,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
 
     std::vector<std::string> log;
-    Result<std::unique_ptr<Backend>> created = createGlBackend(options.backend, &log);
+    Result<std::unique_ptr<Backend>> created = openBackend(options.backend, &log);
     if (!created) {
         err << "error: --backend " << options.backendName << ": " << created.error() << "\n";
         return kExitNoBackend;

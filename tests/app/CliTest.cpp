@@ -1,11 +1,7 @@
 // The `frugal` command line, end to end: the real binary in a child process (exit status, stdout,
 // stderr, files left behind), over good scenes and every broken input the issue names.
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -17,60 +13,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int status = -1;
-    std::string out, err;
-    std::vector<std::string> errLines() const {
-        std::vector<std::string> lines;
-        std::stringstream in(err);
-        for (std::string line; std::getline(in, line);) lines.push_back(line);
-        return lines;
-    }
-};
-
-std::string readAll(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-// Runs the frugal binary with `args` in `dir`, with an optional environment prefix.
-CliRun frugal(const fs::path& dir, const std::vector<std::string>& args, const std::string& env = "") {
-    // (An ostringstream, not string +: GCC 12 -O3 reports a false -Wrestrict on the latter.)
-    std::ostringstream line;
-    line << "cd " << quote(dir.string()) << " && " << env << " " << quote(FRUGAL_CLI);
-    for (const std::string& a : args) line << " " << quote(a);
-    line << " >stdout.txt 2>stderr.txt";
-    const std::string command = line.str();
-    CliRun run;
-    const int raw = std::system(command.c_str());
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    run.out = readAll(dir / "stdout.txt");
-    run.err = readAll(dir / "stderr.txt");
-    fs::remove(dir / "stdout.txt");
-    fs::remove(dir / "stderr.txt");
-    return run;
-}
-
-std::vector<std::string> filesIn(const fs::path& dir) {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
+using test::CliRun;
+using test::filesIn;
+using test::readAll;
+using test::runFrugal;  // the frugal binary in a child process
 
 TEST(CliTest, HelpListsCommandsScenesAndExitCodes) {
     const fs::path dir = test::freshDir("CliHelp");
-    const CliRun run = frugal(dir, {"--help"});
+    const CliRun run = runFrugal(dir, {"--help"});
     EXPECT_EQ(run.status, 0);
-    for (const char* text : {"frugal render", "frugal info", "frugal bench render", "builtin:dominoes", "builtin:cubes", "exit status"})
+    for (const char* text : {"frugal render", "frugal info", "frugal bench render", "frugal compare", "frugal diff",
+                             "builtin:dominoes", "builtin:cubes", "exit status"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
-    const CliRun render = frugal(dir, {"render", "--help"});
+    const CliRun render = runFrugal(dir, {"render", "--help"});
     EXPECT_EQ(render.status, 0);
     for (const char* text : {"--size", "--backend", "--frames", "--depth", "--ids", "--json", "--camera"})
         EXPECT_NE(render.out.find(text), std::string::npos) << text;
@@ -78,7 +33,7 @@ TEST(CliTest, HelpListsCommandsScenesAndExitCodes) {
 
 TEST(CliTest, RendersTheDefaultSceneWithEveryOutput) {
     const fs::path dir = test::freshDir("CliDefault");
-    const CliRun run = frugal(dir, {"render", "-o", "f.png", "--size", "160x120", "--depth", "d.png", "--ids", "i.png", "--json", "m.json"});
+    const CliRun run = runFrugal(dir, {"render", "-o", "f.png", "--size", "160x120", "--depth", "d.png", "--ids", "i.png", "--json", "m.json"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"d.png", "f.png", "i.png", "m.json"}));
     Result<DecodedImage> color = readPng((dir / "f.png").string());
@@ -97,10 +52,10 @@ TEST(CliTest, RendersTheDefaultSceneWithEveryOutput) {
 
 TEST(CliTest, SequencesAreNumbered) {
     const fs::path dir = test::freshDir("CliFrames");
-    CliRun run = frugal(dir, {"render", "builtin:cubes?count=3", "--frames", "2:4", "--size", "32x24", "-o", "c.png", "-q"});
+    CliRun run = runFrugal(dir, {"render", "builtin:cubes?count=3", "--frames", "2:4", "--size", "32x24", "-o", "c.png", "-q"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"c_0002.png", "c_0003.png", "c_0004.png"}));
-    run = frugal(dir, {"render", "builtin:cubes?count=3", "--frames", "0:1", "--size", "32x24", "-o", "s%03d.png", "-q"});
+    run = runFrugal(dir, {"render", "builtin:cubes?count=3", "--frames", "0:1", "--size", "32x24", "-o", "s%03d.png", "-q"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_TRUE(fs::exists(dir / "s000.png") && fs::exists(dir / "s001.png"));
     // Animated frames differ.
@@ -109,7 +64,7 @@ TEST(CliTest, SequencesAreNumbered) {
 
 TEST(CliTest, InfoNamesWhatIsNotModelled) {
     const fs::path dir = test::freshDir("CliInfo");
-    const CliRun run = frugal(dir, {"info", "builtin:cubes"});
+    const CliRun run = runFrugal(dir, {"info", "builtin:cubes"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("triangles: 336"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("animations: 28"), std::string::npos) << run.out;
@@ -129,7 +84,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "--size", "0x600"}, 2, "error: --size 0x600: width and height must be 1 to 65536 (the backend may allow less)"},
         {{"render", "--size", "800"}, 2, "error: --size: expected WxH such as 800x600, got '800'"},
         {{"render", "--size", "65536x65536", "-q"}, 1, "error: --size 65536x65536: egl-surfaceless cannot create a target that large (at most 16384 pixels a side)"},
-        {{"render", "--backend", "vulkan"}, 2, "error: --backend: unknown GL backend 'vulkan' (expected auto, egl, egl-device, egl-surfaceless or osmesa)"},
+        {{"render", "--backend", "vulkan"}, 2, "error: --backend: unknown backend 'vulkan' (expected auto, egl, egl-device, egl-surfaceless, osmesa or software)"},
         {{"render", "--frames", "5:2"}, 2, "error: --frames 5:2: need 0 <= A <= B and at most 1000000 frames"},
         {{"render", "--fov", "nan"}, 2, "error: --fov: expected a number, got 'nan'"},
         {{"render", "--eye", "1,2"}, 2, "error: --eye: expected x,y,z (three finite numbers), got '1,2'"},
@@ -137,14 +92,14 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help render')"},
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
-        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, info, bench, help)"},
+        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, info, bench, compare, diff, help)"},
         {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME)"},
     };
     for (const BadCase& c : cases) {
         std::string joined;
         for (const std::string& a : c.args) joined += a + " ";
         SCOPED_TRACE(joined);
-        const CliRun run = frugal(dir, c.args);
+        const CliRun run = runFrugal(dir, c.args);
         EXPECT_EQ(run.status, c.status);
         EXPECT_EQ(run.err, c.message + "\n");
         EXPECT_EQ(filesIn(dir), std::vector<std::string>{"in"}) << "no output file may be left behind";
@@ -153,7 +108,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
 
 TEST(CliTest, OsMesaWithAMissingGalliumDriverFailsCleanly) {
     const fs::path dir = test::freshDir("CliGallium");
-    const CliRun run = frugal(dir, {"render", "--backend", "osmesa", "-q"}, "GALLIUM_DRIVER=nosuchdriver");
+    const CliRun run = runFrugal(dir, {"render", "--backend", "osmesa", "-q"}, "GALLIUM_DRIVER=nosuchdriver");
     EXPECT_EQ(run.status, 3);
     ASSERT_EQ(run.errLines().size(), 1u) << run.err;
     EXPECT_EQ(run.err.rfind("error: --backend osmesa: ", 0), 0u) << run.err;
@@ -177,7 +132,7 @@ TEST(CliTest, EveryAssimpGltfFileRendersOrFailsWithOneLine) {
     for (const fs::path& file : files) {
         SCOPED_TRACE(file.string());
         const fs::path dir = test::freshDir("CliAssimp");
-        const CliRun run = frugal(dir, {"render", file.string(), "--size", "64x48", "-o", "out.png", "-q"});
+        const CliRun run = runFrugal(dir, {"render", file.string(), "--size", "64x48", "-o", "out.png", "-q"});
         if (run.status == 0) {
             ++rendered;
             EXPECT_EQ(filesIn(dir), std::vector<std::string>{"out.png"});

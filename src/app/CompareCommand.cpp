@@ -1,0 +1,141 @@
+// `frugal compare A.png B.png`: an image against a reference, with the metrics of
+// report/ImageCompare.h. A is the image under test ("actual"), B the reference.
+#include <filesystem>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Cli.h"
+#include "app/Commands.h"
+#include "app/Options.h"
+#include "render/ImageIO.h"
+#include "report/ImageCompare.h"
+
+namespace frugal {
+
+const char* compareHelp() {
+    return R"(usage: frugal compare A.png B.png [--ids A_ids.png B_ids.png] [--tolerance N]
+                      [--mask FILE.png] [--json FILE] [--background R,G,B[,A]]
+
+Compares A (the image under test) with B (the reference), pixel by pixel, and prints how far they
+differ. A pixel fails when any channel, alpha included, differs by more than N 8-bit steps; the
+exit status is 0 when no pixel fails, 1 otherwise. Images are 8-bit PNGs (grey, grey+alpha, RGB or
+RGBA), of the same size.
+
+  --tolerance N         per-channel tolerance in 8-bit steps, 0 to 255 (default 0: identical)
+  --ids A_ids B_ids     frugal triangle-id PNGs of A and B (render --ids): coverage (id 0 is the
+                        background) and triangle-id mismatches are measured from them
+  --background R,G,B[,A]  without --ids, a pixel is background when every channel is within N of
+                        this colour, in [0,1] (default frugal's, 0.12,0.13,0.15)
+  --mask FILE.png       error mask: red where a pixel fails, B in grey elsewhere
+  --json FILE           the metrics as JSON (psnr_db is null when the images are identical)
+
+Reported: pixels beyond tolerance, largest channel difference and where, PSNR (inf when
+identical), coverage mismatches (geometry in one image, background in the other) and, with --ids,
+pixels covered in both whose triangle ids differ.
+)";
+}
+
+namespace {
+
+bool isPng(const std::string& path) {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e == ".png";
+}
+
+}  // namespace
+
+int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    std::vector<std::string> images;
+    std::string actualIds, referenceIds, maskPath, jsonPath;
+    RenderOptions colors;  // only --background is read into it
+    CompareOptions options;
+    ArgCursor cursor(args);
+    while (!cursor.done() && cursor.error.empty()) {
+        const std::string flag = cursor.next();
+        if (flag == "-h" || flag == "--help") {
+            out << compareHelp();
+            return kExitOk;
+        }
+        if (flag == "--background") {
+            parseSharedOption(flag, cursor, colors);
+        } else if (flag == "--tolerance") {
+            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 255)) options.tolerance = *n;
+        } else if (flag == "--ids") {
+            const std::optional<std::string> a = cursor.value(flag);
+            const std::optional<std::string> b = a && !cursor.done() ? cursor.value(flag) : std::nullopt;
+            if (a && (!b || a->empty() || b->empty() || (*b)[0] == '-'))
+                cursor.fail("--ids: expected two id images, A_ids.png B_ids.png");
+            else if (a && b) actualIds = *a, referenceIds = *b;
+        } else if (flag == "--mask" || flag == "--json") {
+            const std::optional<std::string> path = cursor.value(flag);
+            if (!path) break;
+            if (path->empty()) cursor.fail(flag + ": empty file name");
+            else if (flag == "--mask" && !isPng(*path)) cursor.fail("--mask " + *path + ": the mask is written as PNG; name it .png");
+            else (flag == "--mask" ? maskPath : jsonPath) = *path;
+        } else if (!flag.empty() && flag[0] == '-') {
+            cursor.fail(flag + ": unknown option (see 'frugal help compare')");
+        } else if (images.size() < 2) {
+            images.push_back(flag);
+        } else {
+            cursor.fail("unexpected argument '" + flag + "' (two images only: A.png B.png)");
+        }
+    }
+    if (cursor.error.empty() && images.size() != 2)
+        cursor.fail("compare: expected two images, A.png B.png (see 'frugal help compare')");
+    if (!cursor.error.empty()) {
+        err << "error: " << cursor.error << "\n";
+        return kExitUsage;
+    }
+    options.background = colorBytes(colors.background);
+    const std::string& actualPath = images[0];
+    const std::string& referencePath = images[1];
+
+    Result<Buffers> actual = readRenderPngs(actualPath, actualIds);
+    if (!actual) {
+        err << "error: " << actual.error() << "\n";
+        return kExitError;
+    }
+    Result<Buffers> reference = readRenderPngs(referencePath, referenceIds);
+    if (!reference) {
+        err << "error: " << reference.error() << "\n";
+        return kExitError;
+    }
+    if (actual->width != reference->width || actual->height != reference->height) {
+        err << "error: " << referencePath << ": " << reference->width << "x" << reference->height << ", but "
+            << actualPath << " is " << actual->width << "x" << actual->height << "\n";
+        return kExitError;
+    }
+    Result<ImageComparison> compared = compareBuffers(*actual, *reference, options);
+    if (!compared) {
+        err << "error: " << referencePath << ": " << compared.error() << "\n";
+        return kExitError;
+    }
+    const ImageComparison& c = *compared;
+
+    // The mask and the JSON appear together or not at all.
+    OutputSet files;
+    if (!maskPath.empty()) files.add(maskPath, encodeMaskPng(c));
+    if (!jsonPath.empty()) {
+        nlohmann::ordered_json j = {{"command", "compare"},
+                                    {"actual", {{"file", actualPath}, {"ids", actualIds.empty() ? nullptr : nlohmann::ordered_json(actualIds)}}},
+                                    {"reference", {{"file", referencePath}, {"ids", referenceIds.empty() ? nullptr : nlohmann::ordered_json(referenceIds)}}},
+                                    {"mask", maskPath.empty() ? nullptr : nlohmann::ordered_json(maskPath)}};
+        j.update(nlohmann::ordered_json::parse(comparisonJson(c)));
+        const std::string text = j.dump(2) + "\n";
+        files.add(jsonPath, Bytes(text.begin(), text.end()));
+    }
+    Result<bool> written = files.commit();
+    if (!written) {
+        err << "error: " << written.error() << "\n";
+        return kExitError;
+    }
+
+    out << actualPath << " vs " << referencePath << " (reference), " << c.width << "x" << c.height << ": "
+        << (c.passed() ? "PASS" : "FAIL") << "\n"
+        << comparisonSummary(c, actualPath, referencePath);
+    return c.passed() ? kExitOk : kExitError;
+}
+
+}  // namespace frugal

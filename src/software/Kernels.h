@@ -1,0 +1,78 @@
+// The hot loops of the software backend, compiled twice from Kernels.inl: once for AVX2 + FMA
+// (KernelsAvx2.cpp, chosen at run time when the CPU has both) and once as portable C++
+// (KernelsGeneric.cpp, fused or unfused to match what llvmpipe's JIT does on the host). Every
+// flavour computes the same bits (Rasterizer.h and Shading.h state the arithmetic); the tests run
+// the portable one against the AVX2 one.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "software/Rasterizer.h"
+#include "software/Shading.h"
+
+namespace frugal::sw {
+
+// Vertex stage input for vertices [begin, end) of one draw.
+struct VertexJob {
+    const glm::vec3* positions = nullptr;
+    const glm::vec3* normals = nullptr;  // nullptr: (0, 0, 1)
+    const glm::vec4* colors = nullptr;   // nullptr: white
+    const glm::vec2* uvs = nullptr;      // nullptr: (0, 0)
+    glm::mat4 mvp{1.0f};
+    glm::mat3 normalMatrix{1.0f};
+    Viewport viewport;
+    SetupVertex* out = nullptr;   // window position, 1/w, varyings
+    glm::vec4* clip = nullptr;    // clip-space position
+    std::uint8_t* mask = nullptr; // clip mask
+};
+
+// A render target's planes; rows are `stride` pixels apart (stride is a multiple of 8 so that an
+// eight-pixel span never reaches into the next row).
+struct TargetView {
+    std::uint32_t* color = nullptr;  // RGBA8, R in the low byte
+    std::uint32_t* depth = nullptr;  // 24-bit values
+    std::uint32_t* ids = nullptr;
+    int width = 0, height = 0, stride = 0;
+};
+
+inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;
+
+// One tile being rendered by one thread. Shading is deferred: raster() runs the depth test for every
+// triangle of the tile in order, writing depth (and ids, for draws that write them) and recording in
+// `winner` which triangle passed last; then shade() runs once per triangle in `won` for the pixels it
+// still owns. The result equals shading every fragment that passes, because nothing blends, and a
+// fragment's colour depends only on its own triangle and pixel.
+struct TileState {
+    TargetView target;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the tile's pixels: [x0, x1) × [y0, y1)
+    std::uint32_t winner[kTileSize * kTileSize];  // index into `won`, or kNoWinner
+    std::vector<const Triangle*> won;             // triangles that passed the depth test somewhere
+};
+
+struct Kernels {
+    const char* name;
+    void (*transform)(const VertexJob& job, std::size_t begin, std::size_t end);
+    // Coverage and depth test of one triangle within the tile; records winners.
+    void (*raster)(const Triangle& triangle, TileState& tile);
+    // Shades the pixels of the tile that `tile.won[index]` still owns.
+    void (*shade)(std::uint32_t index, const DrawShading& shading, TileState& tile);
+};
+
+// The kernels for this CPU: AVX2 when it has AVX2 and FMA and `allowSimd`, else the portable ones,
+// fused when the CPU has FMA.
+const Kernels& selectKernels(bool allowSimd);
+bool cpuHasFma();
+
+namespace avx2 {
+extern const Kernels kKernels;
+}
+namespace generic {
+extern const Kernels kFused;
+extern const Kernels kUnfused;
+}
+
+}  // namespace frugal::sw

@@ -1,0 +1,414 @@
+// Kernel bodies, included by KernelsAvx2.cpp and KernelsGeneric.cpp inside a flavour namespace after
+// Simd.h (no includes here). The arithmetic is the one Rasterizer.h and Shading.h document; where an
+// FMA is used it is written as fma/fmas, every other a·b + c is rounded twice (fp-contract=off).
+
+using simd::F8;
+using simd::I8;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Vertex stage (Rasterizer.h, 1.)
+
+void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
+    const glm::mat4& m = job.mvp;
+    const glm::mat3& nm = job.normalMatrix;
+    const Viewport& vp = job.viewport;
+    for (std::size_t i = begin; i < end; ++i) {
+        const glm::vec3 p = job.positions[i];
+        glm::vec4 c;
+        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
+        job.clip[i] = c;
+        job.mask[i] = std::uint8_t(clipMask(c));
+
+        SetupVertex& v = job.out[i];
+        const float oow = 1.0f / c.w;
+        v.x = simd::fmas(c.x * oow, vp.sx, vp.tx);
+        v.y = simd::fmas(c.y * oow, vp.sy, vp.ty);
+        v.z = simd::fmas(c.z * oow, 0.5f, 0.5f);
+        v.oow = oow;
+
+        const glm::vec3 n = job.normals ? job.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+        for (int r = 0; r < 3; ++r) v.a[r] = (nm[0][r] * n.x + nm[1][r] * n.y) + nm[2][r] * n.z;
+        const glm::vec4 color = job.colors ? job.colors[i] : glm::vec4(1.0f);
+        v.a[3] = color.r;
+        v.a[4] = color.g;
+        v.a[5] = color.b;
+        v.a[6] = color.a;
+        const glm::vec2 uv = job.uvs ? job.uvs[i] : glm::vec2(0.0f);
+        v.a[7] = uv.x;
+        v.a[8] = uv.y;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Coverage and depth (Rasterizer.h, 3. and 5.)
+
+inline std::int64_t max0(std::int64_t a) { return a > 0 ? a : 0; }
+inline std::int64_t min0(std::int64_t a) { return a < 0 ? a : 0; }
+
+void raster(const Triangle& t, TileState& tile) {
+    const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
+    const int x1 = t.x1 < tile.x1 - 1 ? t.x1 : tile.x1 - 1;
+    const int y0 = t.y0 > tile.y0 ? t.y0 : tile.y0;
+    const int y1 = t.y1 < tile.y1 - 1 ? t.y1 : tile.y1 - 1;
+    if (x0 > x1 || y0 > y1) return;
+
+    const F8 dzdx = simd::splat(t.dzdx), dzdy = simd::splat(t.dzdy), z0 = simd::splat(t.z0);
+    const I8 id = simd::splati(std::int32_t(t.id));
+    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), zscale = simd::splat(16777215.0f);
+    const I8 lane = simd::ramp(0);
+    const std::uint32_t stride = std::uint32_t(tile.target.stride);
+    std::uint32_t myIndex = kNoWinner;
+
+    for (int by = y0 & ~7; by <= y1; by += 8) {
+        for (int bx = x0 & ~7; bx <= x1; bx += 8) {
+            // Classify the 8×8 block against each edge: outside (skip), inside, or partial.
+            std::int32_t rowBase[3];
+            std::int32_t dx[3], dy[3];
+            int partial = 0;
+            bool reject = false;
+            for (int e = 0; e < 3; ++e) {
+                const Edge& edge = t.e[e];
+                const std::int64_t f0 = edge.k - std::int64_t(edge.dx) * bx + std::int64_t(edge.dy) * by;
+                const std::int64_t lo = f0 - 7 * max0(edge.dx) + 7 * min0(edge.dy);
+                const std::int64_t hi = f0 - 7 * min0(edge.dx) + 7 * max0(edge.dy);
+                if (hi < 0) {
+                    reject = true;
+                    break;
+                }
+                if (lo < 0) {  // |f0| < 7·(|dx| + |dy|) < 2^31 here (Rasterizer.h bounds the coordinates)
+                    rowBase[partial] = std::int32_t(f0);
+                    dx[partial] = edge.dx;
+                    dy[partial] = edge.dy;
+                    ++partial;
+                }
+            }
+            if (reject) continue;
+
+            const int ry0 = by > y0 ? by : y0;
+            const int ry1 = by + 7 < y1 ? by + 7 : y1;
+            const I8 px = lane + simd::splati(bx);
+            const I8 columns = simd::gt(px, simd::splati(x0 - 1)) & simd::gt(simd::splati(x1 + 1), px);
+            const F8 pxf = simd::tofloat(px);
+            for (int y = ry0; y <= ry1; ++y) {
+                I8 mask = columns;
+                for (int e = 0; e < partial; ++e) {
+                    const I8 f = simd::splati(rowBase[e] + dy[e] * (y - by)) - simd::splati(dx[e]) * lane;
+                    mask = simd::andnot(simd::sra(f, 31), mask);  // f ≥ 0
+                }
+                if (simd::laneBits(mask) == 0) continue;
+                F8 z = simd::fma(dzdy, simd::splat(float(y)), simd::fma(dzdx, pxf, z0));
+                z = simd::min(simd::max(z, zero), one);
+                const I8 zi = simd::toIntRound(z * zscale);
+                std::uint32_t* depthRow = tile.target.depth + std::size_t(y) * stride + bx;
+                const I8 old = simd::loadi(depthRow);
+                const I8 pass = mask & simd::gt(old, zi);
+                if (simd::laneBits(pass) == 0) continue;
+                simd::storeMasked(depthRow, pass, zi);
+                if (myIndex == kNoWinner) {
+                    myIndex = std::uint32_t(tile.won.size());
+                    tile.won.push_back(&t);
+                }
+                std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize + (bx - tile.x0);
+                simd::storeMasked(winnerRow, pass, simd::splati(std::int32_t(myIndex)));
+                // Ids now, not at shading: a later draw that does not write ids may win the pixel's
+                // colour and must leave this id in place.
+                if (t.writesId) simd::storeMasked(tile.target.ids + std::size_t(y) * stride + bx, pass, id);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Texture sampling (Shading.h), one lane at a time.
+
+inline float decode(std::uint32_t texel, int channel) {
+    return float((texel >> (8 * channel)) & 0xFFu) * float(1.0 / 255.0);
+}
+
+inline float fractOf(float a) { return a - std::floor(a); }
+inline float fractSafe(float a) { return std::fmin(fractOf(a), 0.99999994f); }
+inline bool isPowerOfTwo(int n) { return (n & (n - 1)) == 0; }
+inline std::int32_t ifloor(float a) { return simd::cvtRoundDown(a); }
+
+// AoS (8-bit) linear: texel indices and 8-bit weight along one axis.
+inline void aosLinearAxis(float coord, int size, Wrap wrap, int* i0, int* i1, int* weight) {
+    const int last = size - 1;
+    int c0;
+    if (wrap == Wrap::Repeat && !isPowerOfTwo(size)) {
+        float f = fractOf(coord) * float(size);
+        f = f * 256.0f;
+        c0 = simd::cvtRound(f) - 128;
+        *weight = c0 & 255;
+        c0 >>= 8;
+        if (c0 < 0) c0 = last;
+        if (c0 > last) c0 = last;
+        *i0 = c0;
+        *i1 = c0 != last ? c0 + 1 : 0;
+        return;
+    }
+    c0 = simd::cvtRound(coord * float(size * 256)) - 128;
+    *weight = c0 & 255;
+    c0 >>= 8;
+    if (wrap == Wrap::Repeat) {
+        c0 &= last;
+        *i0 = c0;
+        *i1 = c0 != last ? c0 + 1 : 0;
+    } else {  // clamp to edge
+        const bool lower = c0 >= 0, upper = c0 < last;
+        if (!lower) c0 = 0;
+        if (!upper) c0 = last;
+        *i0 = c0;
+        *i1 = c0 + (lower && upper ? 1 : 0);
+    }
+}
+
+inline int aosNearestAxis(float coord, int size, Wrap wrap) {
+    const int last = size - 1;
+    if (wrap == Wrap::Repeat) {
+        if (isPowerOfTwo(size)) return ifloor(coord * float(size)) & last;
+        return simd::cvtTrunc(fractSafe(coord) * float(size));
+    }
+    const int c = ifloor(coord * float(size));
+    return c < 0 ? 0 : (c > last ? last : c);
+}
+
+// 8-bit lerp with 8-bit weights, rounded (Shading.h).
+inline std::uint32_t lerp8(int w, std::uint32_t a, std::uint32_t b) {
+    std::uint32_t out = 0;
+    for (int c = 0; c < 4; ++c) {
+        const int v0 = int((a >> (8 * c)) & 0xFFu), v1 = int((b >> (8 * c)) & 0xFFu);
+        const int v = v0 + ((w * (v1 - v0) + 128) >> 8);
+        out |= std::uint32_t(v) << (8 * c);
+    }
+    return out;
+}
+
+// SoA (float) coordinate along one axis, linear filter.
+inline void soaLinearAxis(float coord, int size, Wrap wrap, int* i0, int* i1, float* weight) {
+    const int last = size - 1;
+    const float length = float(size);
+    float c;
+    switch (wrap) {
+        case Wrap::Repeat:
+            c = (isPowerOfTwo(size) ? coord : fractOf(coord)) * length - 0.5f;
+            break;
+        case Wrap::ClampToEdge:
+            c = std::fmin(coord * length, length) - 0.5f;
+            c = std::fmax(c, 0.0f);
+            break;
+        case Wrap::MirroredRepeat:
+        default: {
+            const float half = coord * 0.5f;
+            const float f = half - std::nearbyint(half);
+            c = std::fmax(std::fabs(f + f), 0.0f) * length - 0.5f;
+            break;
+        }
+    }
+    int c0 = ifloor(c);
+    *weight = c - float(c0);
+    int c1 = c0 + 1;
+    switch (wrap) {
+        case Wrap::Repeat:
+            if (isPowerOfTwo(size)) {
+                c0 &= last;
+                c1 &= last;
+            } else {
+                if (c0 < 0) c0 = last;
+                if (c1 == size) c1 = 0;
+            }
+            break;
+        case Wrap::ClampToEdge:
+            if (c1 > last) c1 = last;
+            break;
+        case Wrap::MirroredRepeat:
+        default:
+            if (c0 < 0) c0 = 0;
+            if (c1 > last) c1 = last;
+            break;
+    }
+    *i0 = c0 < 0 ? 0 : (c0 > last ? last : c0);  // only NaN/Inf coordinates need this
+    *i1 = c1 < 0 ? 0 : (c1 > last ? last : c1);
+}
+
+inline int soaNearestAxis(float coord, int size, Wrap wrap) {
+    const int last = size - 1;
+    int c;
+    switch (wrap) {
+        case Wrap::Repeat:
+            if (isPowerOfTwo(size)) return ifloor(coord * float(size)) & last;
+            c = simd::cvtTrunc(fractSafe(coord) * float(size));
+            break;
+        case Wrap::ClampToEdge:
+            c = simd::cvtTrunc(coord * float(size));
+            break;
+        case Wrap::MirroredRepeat:
+        default: {
+            const float half = coord * 0.5f;
+            const float f = half - std::nearbyint(half);
+            c = simd::cvtTrunc(std::fmax(std::fabs(f + f), 0.0f) * float(size));
+            break;
+        }
+    }
+    return c < 0 ? 0 : (c > last ? last : c);
+}
+
+// Texel at (s, t) as four floats.
+inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
+    const std::uint32_t* texels = tex.texels.data();
+    const int w = tex.width, h = tex.height;
+    if (tex.filter == Filter::Nearest) {
+        const int x = tex.aos ? aosNearestAxis(s, w, tex.wrapS) : soaNearestAxis(s, w, tex.wrapS);
+        const int y = tex.aos ? aosNearestAxis(t, h, tex.wrapT) : soaNearestAxis(t, h, tex.wrapT);
+        const std::uint32_t texel = texels[std::size_t(y) * w + x];
+        for (int c = 0; c < 4; ++c) out[c] = decode(texel, c);
+        return;
+    }
+    if (tex.aos) {
+        int x0, x1, y0, y1, ws, wt;
+        aosLinearAxis(s, w, tex.wrapS, &x0, &x1, &ws);
+        aosLinearAxis(t, h, tex.wrapT, &y0, &y1, &wt);
+        const std::uint32_t row0 = lerp8(ws, texels[std::size_t(y0) * w + x0], texels[std::size_t(y0) * w + x1]);
+        const std::uint32_t row1 = lerp8(ws, texels[std::size_t(y1) * w + x0], texels[std::size_t(y1) * w + x1]);
+        const std::uint32_t texel = lerp8(wt, row0, row1);
+        for (int c = 0; c < 4; ++c) out[c] = decode(texel, c);
+        return;
+    }
+    int x0, x1, y0, y1;
+    float ws, wt;
+    soaLinearAxis(s, w, tex.wrapS, &x0, &x1, &ws);
+    soaLinearAxis(t, h, tex.wrapT, &y0, &y1, &wt);
+    const std::uint32_t t00 = texels[std::size_t(y0) * w + x0], t01 = texels[std::size_t(y0) * w + x1];
+    const std::uint32_t t10 = texels[std::size_t(y1) * w + x0], t11 = texels[std::size_t(y1) * w + x1];
+    for (int c = 0; c < 4; ++c) {
+        const float a00 = decode(t00, c), a01 = decode(t01, c), a10 = decode(t10, c), a11 = decode(t11, c);
+        const float r0 = simd::fmas(ws, a01 - a00, a00);
+        const float r1 = simd::fmas(ws, a11 - a10, a10);
+        out[c] = simd::fmas(wt, r1 - r0, r0);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shading (Shading.h)
+
+struct Plane {
+    float a0, dadx, dady;
+};
+
+void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
+    const Triangle& t = *tile.won[index];
+    const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
+    const int x1 = t.x1 < tile.x1 - 1 ? t.x1 : tile.x1 - 1;
+    const int y0 = t.y0 > tile.y0 ? t.y0 : tile.y0;
+    const int y1 = t.y1 < tile.y1 - 1 ? t.y1 : tile.y1 - 1;
+
+    // Plane equations (Rasterizer.h, 4.): 1/w linear, the varyings premultiplied by 1/w.
+    const SetupVertex& v0 = *t.v[0];
+    const SetupVertex& v1 = *t.v[1];
+    const SetupVertex& v2 = *t.v[2];
+    const float x0c = v0.x - 0.5f, y0c = v0.y - 0.5f;
+    const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y;
+    const float dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+    const float e = dx01 * dy20, f = dy01 * dx20;
+    const float ooa = 1.0f / (e - f);
+    const float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
+    const auto plane = [&](float a0, float a1, float a2) {
+        const float da01 = a0 - a1, da20 = a2 - a0;
+        Plane p;
+        p.dadx = da01 * dy20o - da20 * dy01o;
+        p.dady = da20 * dx01o - da01 * dx20o;
+        p.a0 = a0 - (p.dadx * x0c + p.dady * y0c);
+        return p;
+    };
+    const Plane w = plane(v0.oow, v1.oow, v2.oow);
+    const bool textured = shading.texture != nullptr;
+    const int attributes = textured ? kAttributes : kAttributes - 2;
+    Plane a[kAttributes];
+    {
+        // Varyings 0..7 eight at a time (the same operations per lane as plane()), the ninth alone.
+        static_assert(kAttributes == 9, "eight varyings in one vector plus one");
+        const F8 a0 = simd::loadf(v0.a) * simd::splat(v0.oow);
+        const F8 a1 = simd::loadf(v1.a) * simd::splat(v1.oow);
+        const F8 a2 = simd::loadf(v2.a) * simd::splat(v2.oow);
+        const F8 da01 = a0 - a1, da20 = a2 - a0;
+        const F8 dadx = da01 * simd::splat(dy20o) - da20 * simd::splat(dy01o);
+        const F8 dady = da20 * simd::splat(dx01o) - da01 * simd::splat(dx20o);
+        const F8 at0 = a0 - (dadx * simd::splat(x0c) + dady * simd::splat(y0c));
+        float s0[8], sx[8], sy[8];
+        simd::storef(s0, at0);
+        simd::storef(sx, dadx);
+        simd::storef(sy, dady);
+        for (int i = 0; i < 8; ++i) a[i] = {s0[i], sx[i], sy[i]};
+        a[8] = plane(v0.a[8] * v0.oow, v1.a[8] * v1.oow, v2.a[8] * v2.oow);
+    }
+
+    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), c255 = simd::splat(255.0f);
+    const F8 lx = simd::splat(shading.toLight.x), ly = simd::splat(shading.toLight.y), lz = simd::splat(shading.toLight.z);
+    const F8 ambient = simd::splat(shading.ambient), diffuse = simd::splat(shading.diffuse);
+    const F8 factor[4] = {simd::splat(shading.factor.r), simd::splat(shading.factor.g), simd::splat(shading.factor.b),
+                          simd::splat(shading.factor.a)};
+    const I8 me = simd::splati(std::int32_t(index));
+    const I8 lane = simd::ramp(0);
+    const std::uint32_t stride = std::uint32_t(tile.target.stride);
+
+    for (int y = y0; y <= y1; ++y) {
+        const F8 py = simd::splat(float(y));
+        const std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize;
+        for (int bx = x0 & ~7; bx <= x1; bx += 8) {
+            const I8 mask = simd::eq(simd::loadi(winnerRow + (bx - tile.x0)), me);
+            if (simd::laneBits(mask) == 0) continue;
+            const F8 px = simd::tofloat(lane + simd::splati(bx));
+            const auto at = [&](const Plane& p) {
+                return simd::fma(simd::splat(p.dady), py, simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
+            };
+            const F8 oow = one / at(w);
+            F8 value[kAttributes];
+            for (int i = 0; i < attributes; ++i) value[i] = at(a[i]) * oow;
+
+            F8 texel[4] = {one, one, one, one};
+            if (textured) {
+                float s[8], tt[8], rgba[4][8];
+                simd::storef(s, value[7]);
+                simd::storef(tt, value[8]);
+                const unsigned bitsSet = simd::laneBits(mask);
+                for (int l = 0; l < 8; ++l) {
+                    float out[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                    if (bitsSet & (1u << l)) sample(*shading.texture, s[l], tt[l], out);
+                    for (int c = 0; c < 4; ++c) rgba[c][l] = out[c];
+                }
+                for (int c = 0; c < 4; ++c) texel[c] = simd::loadf(rgba[c]);
+            }
+            F8 base[4];
+            for (int c = 0; c < 4; ++c) base[c] = (factor[c] * value[3 + c]) * texel[c];
+
+            // normalize: v · (1/sqrt(dot(v, v))), dot reduced from the last component (NIR).
+            F8 nx = value[0], ny = value[1], nz = value[2];
+            const F8 len2 = (nz * nz + ny * ny) + nx * nx;
+            const F8 rsq = one / simd::sqrt(len2);
+            nx = nx * rsq;
+            ny = ny * rsq;
+            nz = nz * rsq;
+            if (!t.front) {
+                nx = simd::neg(nx);
+                ny = simd::neg(ny);
+                nz = simd::neg(nz);
+            }
+            const F8 lambert = simd::max((nz * lz + ny * ly) + nx * lx, zero);
+            const F8 k = ambient + diffuse * lambert;
+
+            I8 packed = simd::splati(0);
+            for (int c = 0; c < 4; ++c) {
+                const F8 value8 = c < 3 ? base[c] * k : base[c];
+                const F8 clamped = simd::min(simd::max(value8, zero), one);
+                const I8 byte = simd::toIntRound(clamped * c255);
+                packed = packed | simd::sll(byte, 8 * c);
+            }
+            simd::storeMasked(tile.target.color + std::size_t(y) * stride + bx, mask, packed);
+        }
+    }
+}
+
+}  // namespace
+
+inline Kernels kernelTable(const char* name) { return Kernels{name, &transform, &raster, &shade}; }

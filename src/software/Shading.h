@@ -1,0 +1,99 @@
+// Shading in the software backend: the fragment stage of shaders/mesh.frag as llvmpipe executes it,
+// texture sampling as llvmpipe's samplers do it, and the float → unorm8 / 24-bit conversions of
+// Mesa's clears. The per-pixel kernels live in Kernels.inl; this header holds their parameters and
+// the scalar rules.
+//
+// Varyings (lp_state_setup.c, lp_bld_interp.c). Every varying of mesh.vert is perspective-correct:
+// setup multiplies each vertex value by that vertex's 1/w and builds a plane from the products with
+// the arithmetic of Rasterizer.h (4.); per pixel, a = fma(dady, py, fma(dadx, px, a0)) and
+// w = 1 / fma(dwdy, py, fma(dwdx, px, w0)) from the plane of the vertices' 1/w, and the value is a · w
+// (a division, then a product: lp_build_rcp is a true division on x86).
+//
+// Fragment arithmetic, in float, in the order NIR gives llvmpipe (no fused operations, as found for
+// the vertex stage): base = (factor · colour) · texel; n = v · (1 / sqrt(dot(v, v))) with
+// dot = (x·x + y·y) + z·z; n = −n on back faces; lambert = max(0, (n.x·l.x + n.y·l.y) + n.z·l.z);
+// rgb = base.rgb · (ambient + diffuse · lambert); a = base.a.
+//
+// Colour output (lp_bld_conv.c, the AVX 8×32 float → 8-bit path): clamp to [0, 1], multiply by
+// 255.0f (rounded to float), round to nearest even. Mesa's float_to_ubyte (u_math.h), used for
+// clears, computes bits(f·(255/256) + 32768) instead; the two agree on every float in [0, 1] (checked
+// exhaustively), so one rule serves both. That is why clearing 0.3 gives 76: 0.3f·255 rounds to
+// exactly 76.5 in float, and 76.5 rounds to the even 76.
+//
+// Depth clears: a clear of the whole target goes to pipe->clear, util_pack_z: lrint(double(z) ·
+// 0xFFFFFF) (0.5 → 0x800000). A clear of part of the target is drawn by the state tracker as a quad
+// (st_cb_clear.c clear_with_quad) at z' = z·2 − 1, which the pipeline maps back with
+// fma(z', 0.5, 0.5) and stores like any fragment (Rasterizer.h, 5.). The two differ in the last bit
+// for some values, so both are reproduced.
+//
+// Texture sampling (no mipmaps: the base level only, as the GL backend sets it up). Texels are RGBA8;
+// a texel is decoded as float(x) · float(1/255).
+// - Wrap modes repeat and clamp-to-edge on both axes take llvmpipe's AoS 8-bit path
+//   (lp_bld_sample_aos.c). Linear: s·(size·256) rounded to an integer, minus 128; the low 8 bits are
+//   the weight, the rest the texel; the two texels of a row are blended per 8-bit channel as
+//   v0 + ((w·(v1 − v0) + 128) >> 8), first along x in both rows, then along y (lp_build_lerp_2d).
+//   The +128 is measured (a 2×1 texture blended across 64 pixels for eight pairs of texel values):
+//   the lp_build_lerp of current Mesa truncates, 22.3 rounds.
+//   Repeat on a power-of-two size masks the texel index; other sizes wrap through fract(s) first.
+//   Nearest: ⌊s·size⌋, masked (power of two), fract·size truncated (other sizes), or clamped.
+// - Any mirrored-repeat axis sends both axes through the SoA float path (lp_bld_sample_soa.c):
+//   coordinates and weights in float, the blend as fma(w, v1 − v0, v0) on decoded texels.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/Scene.h"
+
+namespace frugal::sw {
+
+struct SoftwareTexture {
+    int width = 0, height = 0;
+    std::vector<std::uint32_t> texels;  // RGBA8, little-endian (R in the low byte), row 0 = v 0
+    Filter filter = Filter::Linear;
+    Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+    bool aos = true;  // both axes repeat or clamp-to-edge: llvmpipe's AoS 8-bit path
+};
+
+// What the shading of one draw needs besides the pixels.
+struct DrawShading {
+    glm::vec4 factor{1.0f};
+    const SoftwareTexture* texture = nullptr;  // nullptr: the 1×1 white texture (texel 1.0 exactly)
+    glm::vec3 toLight{0.0f, 0.0f, 1.0f};
+    float ambient = 0.3f, diffuse = 0.7f;
+    bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
+};
+
+// float → unorm8 as llvmpipe converts colour (see above).
+inline std::uint8_t floatToUnorm8(float f) {
+    if (!(f > 0.0f)) return 0;  // also NaN, as float_to_ubyte
+    if (f >= 1.0f) return 255;
+    return std::uint8_t(std::nearbyint(f * 255.0f));
+}
+
+inline std::uint32_t packColor(const glm::vec4& c) {
+    return std::uint32_t(floatToUnorm8(c.r)) | std::uint32_t(floatToUnorm8(c.g)) << 8 |
+           std::uint32_t(floatToUnorm8(c.b)) << 16 | std::uint32_t(floatToUnorm8(c.a)) << 24;
+}
+
+// Depth value of glClear over the whole target (util_pack_z).
+inline std::uint32_t clearDepthWhole(float z) {
+    const double d = std::fmin(std::fmax(double(z), 0.0), 1.0);  // the GL backend clamps first
+    if (d == 1.0) return 0xFFFFFFu;
+    return std::uint32_t(std::lrint(d * double(0xFFFFFF)));
+}
+
+// Depth value of glClear over part of the target: a quad through the pipeline. `fused`: the host's
+// viewport transform fuses (Rasterizer.h, 1.).
+inline std::uint32_t clearDepthQuad(float z, bool fused) {
+    z = std::fmin(std::fmax(z, 0.0f), 1.0f);
+    const float ndc = z * 2.0f - 1.0f;
+    float window = fused ? std::fma(ndc, 0.5f, 0.5f) : ndc * 0.5f + 0.5f;
+    window = std::fmin(std::fmax(window, 0.0f), 1.0f);
+    return std::uint32_t(std::nearbyint(window * 16777215.0f));
+}
+
+}  // namespace frugal::sw
