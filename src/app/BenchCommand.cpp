@@ -121,29 +121,19 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             continue;
         }
         Backend& backend = **created;
-        const TargetHandle target = backend.createTarget(options.width, options.height);
-        if (target == kNoHandle) {
-            err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
-                << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
-            return kExitError;
-        }
+        const TargetHandle target = createTargetOrReport(backend, options, err);
+        if (target == kNoHandle) return kExitError;
         for (const auto& [order, scene] : {std::pair<const char*, const Scene*>{"optimized", &*optimized}, {"file", &*original}}) {
-            const double time = frameTime(options, *scene, options.frames ? options.frames->first : 0);
-            const std::vector<glm::mat4> world = scene->worldTransforms(time);
-            Result<View> view = resolveCamera(*scene, world, time, options.camera, options.width, options.height);
-            if (!view) {
-                err << "error: " << options.scene << ": " << view.error() << "\n";
+            Result<FrameSetup> setup = setUpFrame(options, *scene, options.frames ? options.frames->first : 0, ids);
+            if (!setup) {
+                err << "error: " << setup.error() << "\n";
                 return kExitError;
             }
-            FrameParams params;
-            params.view = view->view;
-            params.projection = view->projection;
-            params.writeIds = ids;
             SceneRenderer renderer(backend, *scene);
             Sample sample{backend.name(), backend.renderer(), order, {}};
             for (int i = 0; i < warmup + runs; ++i) {
                 const auto t0 = Clock::now();
-                renderer.renderFrame(target, options.width, options.height, params, world, options.background);
+                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background);
                 backend.finish();
                 const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
                 if (i >= warmup) sample.ms.push_back(ms);

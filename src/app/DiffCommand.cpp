@@ -96,13 +96,9 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     const Scene& scene = *loaded;
     const FrameRange range = options.frames.value_or(FrameRange{});
-    {
-        const double time = frameTime(options, scene, range.first);
-        Result<View> view = resolveCamera(scene, scene.worldTransforms(time), time, options.camera, options.width, options.height);
-        if (!view) {
-            err << "error: " << options.scene << ": " << view.error() << "\n";
-            return kExitError;
-        }
+    if (Result<FrameSetup> first = setUpFrame(options, scene, range.first, true); !first) {
+        err << "error: " << first.error() << "\n";
+        return kExitError;
     }
 
     std::vector<std::string> log;
@@ -123,12 +119,8 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     TargetHandle targets[2] = {kNoHandle, kNoHandle};
     for (int k = 0; k < 2; ++k) {
-        targets[k] = backends[k]->createTarget(options.width, options.height);
-        if (targets[k] == kNoHandle) {
-            err << "error: --size " << options.width << "x" << options.height << ": " << backends[k]->name()
-                << " cannot create a target that large (at most " << backends[k]->maxTargetSize() << " pixels a side)\n";
-            return kExitError;
-        }
+        targets[k] = createTargetOrReport(*backends[k], options, err);
+        if (targets[k] == kNoHandle) return kExitError;
     }
     SceneRenderer glRenderer(*backends[0], scene);
     SceneRenderer softwareRenderer(*backends[1], scene);
@@ -140,20 +132,16 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     int failedFrames = 0;
     for (int frame = range.first; frame <= range.last; ++frame) {
-        const double time = frameTime(options, scene, frame);
-        const std::vector<glm::mat4> world = scene.worldTransforms(time);
-        Result<View> view = resolveCamera(scene, world, time, options.camera, options.width, options.height);
-        if (!view) {
-            err << "error: " << options.scene << ": " << view.error() << "\n";
+        Result<FrameSetup> setup = setUpFrame(options, scene, frame, true);
+        if (!setup) {
+            err << "error: " << setup.error() << "\n";
             return kExitError;
         }
-        FrameParams params;
-        params.view = view->view;
-        params.projection = view->projection;
-        params.writeIds = true;
+        const double time = setup->time;
         Buffers images[2];
         for (int k = 0; k < 2; ++k) {
-            renderers[k]->renderFrame(targets[k], options.width, options.height, params, world, options.background);
+            renderers[k]->renderFrame(targets[k], options.width, options.height, setup->params, setup->world,
+                                      options.background);
             images[k] = backends[k]->readBack(targets[k]);
         }
         Result<ImageComparison> compared = compareBuffers(images[0], images[1], compare);

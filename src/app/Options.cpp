@@ -230,4 +230,26 @@ Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
     return scene;
 }
 
+Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
+    FrameSetup setup;
+    setup.time = frameTime(options, scene, frame);
+    setup.world = scene.worldTransforms(setup.time);
+    Result<View> view = resolveCamera(scene, setup.world, setup.time, options.camera, options.width, options.height);
+    if (!view) return Error{options.scene + ": " + view.error()};
+    setup.view = *view;
+    setup.params.view = view->view;
+    setup.params.projection = view->projection;
+    setup.params.writeIds = writeIds;
+    return setup;
+}
+
+TargetHandle createTargetOrReport(Backend& backend, const RenderOptions& options, std::ostream& err) {
+    const TargetHandle target = backend.createTarget(options.width, options.height);
+    if (target == kNoHandle) {
+        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
+            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
+    }
+    return target;
+}
+
 }  // namespace frugal

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/Backends.h"
+#include "render/Backend.h"
 #include "render/Camera.h"
 #include "scene/Load.h"
 
@@ -70,6 +71,20 @@ double frameTime(const RenderOptions& options, const Scene& scene, int frame);
 
 // Loads the scene and prints its warnings (unsupported features, dropped triangles) to `err`.
 Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err);
+
+// Everything one frame needs: its time, node transforms, camera and frame parameters.
+struct FrameSetup {
+    double time = 0.0;
+    std::vector<glm::mat4> world;
+    View view;
+    FrameParams params;
+};
+// Error: "<scene>: <camera problem>" (print it after "error: ").
+Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);
+
+// Creates the render target, or prints the one-line error (the size and the backend's limit) and
+// returns kNoHandle.
+TargetHandle createTargetOrReport(Backend& backend, const RenderOptions& options, std::ostream& err);
 
 // Numbers as the CLI prints them ("%g").
 std::string fmt(double value);

@@ -127,13 +127,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     // Check the camera before opening a backend, so a bad camera is the only line printed.
     const FrameRange range = options.frames.value_or(FrameRange{});
-    {
-        const double time = frameTime(options, scene, range.first);
-        Result<View> view = resolveCamera(scene, scene.worldTransforms(time), time, options.camera, options.width, options.height);
-        if (!view) {
-            err << "error: " << options.scene << ": " << view.error() << "\n";
-            return kExitError;
-        }
+    if (Result<FrameSetup> first = setUpFrame(options, scene, range.first, false); !first) {
+        err << "error: " << first.error() << "\n";
+        return kExitError;
     }
 
     std::vector<std::string> log;
@@ -145,12 +141,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     Backend& backend = **created;
     if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
 
-    const TargetHandle target = backend.createTarget(options.width, options.height);
-    if (target == kNoHandle) {
-        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
-            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
-        return kExitError;
-    }
+    const TargetHandle target = createTargetOrReport(backend, options, err);
+    if (target == kNoHandle) return kExitError;
     SceneRenderer renderer(backend, scene);
 
     const int frameCount = range.last - range.first + 1;
@@ -160,20 +152,16 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
 
     for (int frame = range.first; frame <= range.last; ++frame) {
-        const double time = frameTime(options, scene, frame);
-        const std::vector<glm::mat4> world = scene.worldTransforms(time);
-        Result<View> view = resolveCamera(scene, world, time, options.camera, options.width, options.height);
-        if (!view) {
-            err << "error: " << options.scene << ": " << view.error() << "\n";
+        Result<FrameSetup> setup = setUpFrame(options, scene, frame, !outputs.ids.empty());
+        if (!setup) {
+            err << "error: " << setup.error() << "\n";
             return kExitError;
         }
-        FrameParams params;
-        params.view = view->view;
-        params.projection = view->projection;
-        params.writeIds = !outputs.ids.empty();
+        const double time = setup->time;
+        const View& view = setup->view;
 
         const auto t0 = Clock::now();
-        renderer.renderFrame(target, options.width, options.height, params, world, options.background);
+        renderer.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background);
         backend.finish();
         const auto t1 = Clock::now();
         const Buffers buffers = backend.readBack(target);
@@ -194,9 +182,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const auto t3 = Clock::now();
 
         if (frame == range.first) {
-            cameraJson = {{"source", view->source}, {"eye", vec(view->eye)}, {"forward", vec(view->forward)},
-                          {"perspective", view->perspective}, {"yfov_degrees", glm::degrees(view->yfov)},
-                          {"znear", view->znear}, {"zfar", view->zfar}};
+            cameraJson = {{"source", view.source}, {"eye", vec(view.eye)}, {"forward", vec(view.forward)},
+                          {"perspective", view.perspective}, {"yfov_degrees", glm::degrees(view.yfov)},
+                          {"znear", view.znear}, {"zfar", view.zfar}};
         }
         frames.push_back({{"frame", frame}, {"time", time}, {"render_ms", ms(t1 - t0)}, {"readback_ms", ms(t2 - t1)},
                           {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});

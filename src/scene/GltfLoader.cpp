@@ -1753,17 +1753,7 @@ Scene loadGltfOrThrow(const std::string& path, const LoadOptions& options) {
 }  // namespace
 
 Result<Scene> loadGltf(const std::string& path, const LoadOptions& options) {
-    try {
-        return loadGltfOrThrow(path, options);
-    } catch (const Failure& failure) {
-        return Error{path + ": " + failure.message};
-    } catch (const std::bad_alloc&) {
-        return Error{path + ": out of memory"};
-    } catch (const std::exception& e) {
-        return Error{path + ": " + oneLine(e.what())};
-    } catch (...) {
-        return Error{path + ": unexpected error"};
-    }
+    return load::guard(path, [&] { return loadGltfOrThrow(path, options); });
 }
 
 }  // namespace frugal

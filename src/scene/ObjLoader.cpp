@@ -304,17 +304,7 @@ Scene loadObjOrThrow(const std::string& path, const LoadOptions& options) {
 }  // namespace
 
 Result<Scene> loadObj(const std::string& path, const LoadOptions& options) {
-    try {
-        return loadObjOrThrow(path, options);
-    } catch (const Failure& failure) {
-        return Error{path + ": " + failure.message};
-    } catch (const std::bad_alloc&) {
-        return Error{path + ": out of memory"};
-    } catch (const std::exception& e) {
-        return Error{path + ": " + oneLine(e.what())};
-    } catch (...) {
-        return Error{path + ": unexpected error"};
-    }
+    return load::guard(path, [&] { return loadObjOrThrow(path, options); });
 }
 
 }  // namespace frugal

@@ -139,7 +139,7 @@ inline void aosLinearAxis(float coord, int size, Wrap wrap, int* i0, int* i1, in
     if (wrap == Wrap::Repeat && !isPowerOfTwo(size)) {
         float f = fractOf(coord) * float(size);
         f = f * 256.0f;
-        c0 = simd::cvtRound(f) - 128;
+        c0 = std::int32_t(std::uint32_t(simd::cvtRound(f)) - 128u);  // wraps like the JIT for NaN/Inf
         *weight = c0 & 255;
         c0 >>= 8;
         if (c0 < 0) c0 = last;
@@ -148,7 +148,7 @@ inline void aosLinearAxis(float coord, int size, Wrap wrap, int* i0, int* i1, in
         *i1 = c0 != last ? c0 + 1 : 0;
         return;
     }
-    c0 = simd::cvtRound(coord * float(size * 256)) - 128;
+    c0 = std::int32_t(std::uint32_t(simd::cvtRound(coord * float(size * 256))) - 128u);
     *weight = c0 & 255;
     c0 >>= 8;
     if (wrap == Wrap::Repeat) {
