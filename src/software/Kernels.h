@@ -7,9 +7,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "software/Rasterizer.h"
 #include "software/Shading.h"
@@ -25,9 +24,9 @@ struct VertexJob {
     glm::mat4 mvp{1.0f};
     glm::mat3 normalMatrix{1.0f};
     Viewport viewport;
-    SetupVertex* out = nullptr;   // window position, 1/w, varyings
-    glm::vec4* clip = nullptr;    // clip-space position
-    std::uint8_t* mask = nullptr; // clip mask
+    SetupVertex* out = nullptr;    // window position, 1/w, varyings
+    glm::vec4* clip = nullptr;     // clip-space position
+    std::uint8_t* mask = nullptr;  // clip mask
 };
 
 // A render target's planes; rows are `stride` pixels apart (stride is a multiple of 8 so that an
@@ -48,7 +47,7 @@ inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;
 // fragment's colour depends only on its own triangle and pixel.
 struct TileState {
     TargetView target;
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the tile's pixels: [x0, x1) × [y0, y1)
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;           // the tile's pixels: [x0, x1) × [y0, y1)
     std::uint32_t winner[kTileSize * kTileSize];  // index into `won`, or kNoWinner
     std::vector<const Triangle*> won;             // triangles that passed the depth test somewhere
 };
@@ -73,6 +72,6 @@ extern const Kernels kKernels;
 namespace generic {
 extern const Kernels kFused;
 extern const Kernels kUnfused;
-}
+}  // namespace generic
 
 }  // namespace frugal::sw

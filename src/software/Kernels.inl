@@ -344,7 +344,8 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     }
 
     const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), c255 = simd::splat(255.0f);
-    const F8 lx = simd::splat(shading.toLight.x), ly = simd::splat(shading.toLight.y), lz = simd::splat(shading.toLight.z);
+    const F8 lx = simd::splat(shading.toLight.x), ly = simd::splat(shading.toLight.y),
+             lz = simd::splat(shading.toLight.z);
     const F8 ambient = simd::splat(shading.ambient), diffuse = simd::splat(shading.diffuse);
     const F8 factor[4] = {simd::splat(shading.factor.r), simd::splat(shading.factor.g), simd::splat(shading.factor.b),
                           simd::splat(shading.factor.a)};

@@ -20,8 +20,11 @@
 
 namespace frugal::sw::avx2 {
 #define FRUGAL_SW_SIMD_AVX2 1
+// Simd.h defines what Kernels.inl uses: the order matters.
+// clang-format off
 #include "software/Simd.h"
 #include "software/Kernels.inl"
+// clang-format on
 #undef FRUGAL_SW_SIMD_AVX2
 
 const Kernels kKernels = kernelTable("avx2");

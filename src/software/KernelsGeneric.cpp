@@ -14,15 +14,21 @@ namespace frugal::sw {
 
 namespace generic::fused {
 #define FRUGAL_SW_FUSED 1
+// Simd.h defines what Kernels.inl uses: the order matters.
+// clang-format off
 #include "software/Simd.h"
 #include "software/Kernels.inl"
+// clang-format on
 #undef FRUGAL_SW_FUSED
 }  // namespace generic::fused
 
 namespace generic::unfused {
 #define FRUGAL_SW_FUSED 0
+// Simd.h defines what Kernels.inl uses: the order matters.
+// clang-format off
 #include "software/Simd.h"
 #include "software/Kernels.inl"
+// clang-format on
 #undef FRUGAL_SW_FUSED
 }  // namespace generic::unfused
 

@@ -42,9 +42,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scene/Scene.h"
 

@@ -16,6 +16,8 @@
 // Included once per kernel flavour, inside that flavour's namespace (no include guard, no includes:
 // the including .cpp includes <cmath>, <cstdint>, <cstring> and, for AVX2, <immintrin.h> first).
 
+// One line per operation reads better here than clang-format's expansion.
+// clang-format off
 namespace simd {
 
 inline constexpr int kLanes = 8;
@@ -176,3 +178,4 @@ inline I8 gather(const std::int32_t* base, I8 index) { I8 r; FRUGAL_SW_LANES(r.v
 inline std::int32_t cvtRoundDown(float f) { return cvtRound(std::floor(f)); }
 
 }  // namespace simd
+// clang-format on

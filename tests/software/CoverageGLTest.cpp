@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
@@ -105,17 +106,18 @@ struct Tally {
         std::printf("[ %s ] %s\n", name.c_str(), summary().c_str());
     }
     std::string summary() const {
-        return std::to_string(draws) + " draws (" + std::to_string(failedDraws) + " failing), " + std::to_string(covered) +
-               " pixels covered; coverage differs at " + std::to_string(coverage) + ", depth at " + std::to_string(depth) +
-               " (worst " + std::to_string(depthWorst) + " LSB), ids at " + std::to_string(ids) + ", colour worst " +
-               std::to_string(colorWorst);
+        return std::to_string(draws) + " draws (" + std::to_string(failedDraws) + " failing), " +
+               std::to_string(covered) + " pixels covered; coverage differs at " + std::to_string(coverage) +
+               ", depth at " + std::to_string(depth) + " (worst " + std::to_string(depthWorst) + " LSB), ids at " +
+               std::to_string(ids) + ", colour worst " + std::to_string(colorWorst);
     }
 };
 
 // Triangle kinds (see the file comment); the clip-space ones use identity matrices.
 enum Kind { Random, Snapped, Centres, Edges, Sliver, Huge, Perspective, NearPlane, kKinds };
 const char* kindName(int k) {
-    static const char* names[] = {"random", "snapped", "centres", "edges", "sliver", "huge", "perspective", "near-plane"};
+    static const char* names[] = {"random", "snapped", "centres",     "edges",
+                                  "sliver", "huge",    "perspective", "near-plane"};
     return names[k];
 }
 
@@ -132,7 +134,9 @@ public:
     int integer(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
 
     // Window position → NDC (what the vertex stage maps back to nearly the same window position).
-    glm::vec3 fromWindow(float x, float y, float z) { return {(x - w_ * 0.5f) / (w_ * 0.5f), (y - h_ * 0.5f) / (h_ * 0.5f), z}; }
+    glm::vec3 fromWindow(float x, float y, float z) {
+        return {(x - w_ * 0.5f) / (w_ * 0.5f), (y - h_ * 0.5f) / (h_ * 0.5f), z};
+    }
 
     Case make(int kind) {
         Case c;
@@ -147,7 +151,8 @@ public:
                                    float(integer(-64, int(h_) * 256 + 64)) / 256.0f + 0.5f, z());
                 break;
             case Centres:
-                for (auto& p : c.p) p = fromWindow(float(integer(0, int(w_) - 1)) + 0.5f, float(integer(0, int(h_) - 1)) + 0.5f, z());
+                for (auto& p : c.p)
+                    p = fromWindow(float(integer(0, int(w_) - 1)) + 0.5f, float(integer(0, int(h_) - 1)) + 0.5f, z());
                 break;
             case Edges:
                 for (auto& p : c.p) p = fromWindow(float(integer(0, int(w_))), float(integer(0, int(h_))), z());
@@ -169,8 +174,9 @@ public:
                 const float spread = kind == NearPlane ? 3.0f : 1.5f;
                 for (auto& p : c.p) p = {uniform(-spread, spread), uniform(-spread, spread), uniform(-spread, spread)};
                 const glm::vec3 axis = glm::normalize(glm::vec3(uniform(-1, 1), uniform(-1, 1), 1.0f));
-                c.model = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f), 0.0f)),
-                                      uniform(-3.0f, 3.0f), axis);
+                c.model = glm::rotate(
+                    glm::translate(glm::mat4(1.0f), glm::vec3(uniform(-0.5f, 0.5f), uniform(-0.5f, 0.5f), 0.0f)),
+                    uniform(-3.0f, 3.0f), axis);
                 c.model = glm::scale(c.model, glm::vec3(uniform(0.5f, 1.5f)));
                 // NearPlane puts the eye inside the triangles' box, so many cross the near plane.
                 const float distance = kind == NearPlane ? uniform(0.0f, 1.0f) : uniform(4.0f, 6.0f);
@@ -188,7 +194,8 @@ public:
     // Per-vertex attributes, so shading is compared too.
     void decorate(Mesh& mesh) {
         for (std::size_t i = mesh.normals.size(); i < mesh.positions.size(); ++i) {
-            mesh.normals.push_back(glm::normalize(glm::vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)) + glm::vec3(1e-3f)));
+            mesh.normals.push_back(
+                glm::normalize(glm::vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)) + glm::vec3(1e-3f)));
             mesh.colors.push_back({uniform(0, 1), uniform(0, 1), uniform(0, 1), uniform(0.5f, 1)});
         }
     }
@@ -264,7 +271,8 @@ TEST_F(CoverageGLTest, ManyTrianglesPerDraw) {
             mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
             if (i % 50 == 1) {  // an exact duplicate of the previous triangle: a depth tie
                 const std::size_t n = mesh.positions.size();
-                mesh.positions.insert(mesh.positions.end(), {mesh.positions[n - 3], mesh.positions[n - 2], mesh.positions[n - 1]});
+                mesh.positions.insert(mesh.positions.end(),
+                                      {mesh.positions[n - 3], mesh.positions[n - 2], mesh.positions[n - 1]});
                 mesh.indices.insert(mesh.indices.end(), {std::uint32_t(n), std::uint32_t(n + 1), std::uint32_t(n + 2)});
                 ++i;
             }
@@ -280,7 +288,7 @@ TEST_F(CoverageGLTest, ManyTrianglesPerDraw) {
             frame.projection = glm::perspective(0.9f, float(width) / float(height), 0.5f, 20.0f);
             frame.writeIds = pass != 1;
             DrawParams draw;
-            draw.doubleSided = pass != 2;
+            draw.doubleSided = pass < 2;  // passes 2 and 3 cull back faces
             draw.firstId = 100;
             std::vector<IndexRange> ranges{{0, triangles}};
             if (pass == 3) ranges = {{4000, 1000}, {10, 990}, {1000, 1500}, {2500, 1500}, {5000, triangles - 5000}};
@@ -336,8 +344,8 @@ TEST_F(CoverageGLTest, DegenerateInputMatchesLlvmpipe) {
             DrawParams draw;
             draw.doubleSided = doubleSided;
             const auto out = twin.render(frame, draw, {{i, 1}});
-            test::expectMatches(std::string("Degenerate-") + inputs[i].name + (doubleSided ? "-both" : "-front"), out[0],
-                                out[1], 1.0, 0);
+            test::expectMatches(std::string("Degenerate-") + inputs[i].name + (doubleSided ? "-both" : "-front"),
+                                out[0], out[1], 1.0, 0);
         }
     }
 }
@@ -368,7 +376,8 @@ TEST_F(CoverageGLTest, DrawModuleCullsOnlyInClippedBatches) {
     for (int attempt = 0; attempt < 2000000 && slivers.size() < 40; ++attempt) {
         const glm::vec3 a{gen.uniform(-0.9f, 0.9f), gen.uniform(-0.9f, 0.9f), 0.0f};
         const glm::vec3 d{gen.uniform(-0.45f, 0.45f), gen.uniform(-0.45f, 0.45f), 0.0f};
-        const glm::vec3 p[3] = {a, a + d, a + d * gen.uniform(0.3f, 0.7f) + glm::vec3(-d.y, d.x, 0.0f) * gen.uniform(-2e-5f, 2e-5f)};
+        const glm::vec3 p[3] = {
+            a, a + d, a + d * gen.uniform(0.3f, 0.7f) + glm::vec3(-d.y, d.x, 0.0f) * gen.uniform(-2e-5f, 2e-5f)};
         if (flips(p)) slivers.push_back({p[0], p[1], p[2]});
     }
     ASSERT_EQ(slivers.size(), 40u);
@@ -397,7 +406,8 @@ TEST_F(CoverageGLTest, DrawModuleCullsOnlyInClippedBatches) {
         const Comparison c = compareBuffers(out[0], out[1]);
         EXPECT_EQ(c.coverage + c.depth + c.ids, 0u) << (ids ? "id pass: " : "indexed pass: ") << c.summary();
         EXPECT_GT(c.covered, 0u) << "the slivers after the boundary must draw something";
-        if (c.coverage + c.depth + c.ids) test::saveImages(ids ? "DrawModuleCull-ids" : "DrawModuleCull-indexed", out[0], out[1]);
+        if (c.coverage + c.depth + c.ids)
+            test::saveImages(ids ? "DrawModuleCull-ids" : "DrawModuleCull-indexed", out[0], out[1]);
     }
 }
 

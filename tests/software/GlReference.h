@@ -35,13 +35,13 @@ inline std::unique_ptr<Backend> makeReference() {
 
 struct Comparison {
     std::size_t pixels = 0;
-    std::size_t covered = 0;        // pixels the reference drew (depth below the clear value or id ≠ 0)
-    std::size_t coverage = 0;       // pixels drawn by one and not the other
-    std::size_t depth = 0;          // depth values that differ
-    std::uint32_t depthWorst = 0;   // largest difference in LSB
-    std::size_t ids = 0;            // ids that differ
-    std::size_t color = 0;          // pixels with any channel different
-    int colorWorst = 0;             // largest channel difference
+    std::size_t covered = 0;       // pixels the reference drew (depth below the clear value or id ≠ 0)
+    std::size_t coverage = 0;      // pixels drawn by one and not the other
+    std::size_t depth = 0;         // depth values that differ
+    std::uint32_t depthWorst = 0;  // largest difference in LSB
+    std::size_t ids = 0;           // ids that differ
+    std::size_t color = 0;         // pixels with any channel different
+    int colorWorst = 0;            // largest channel difference
     bool sizeMismatch = false;
 
     double idAgreement() const { return pixels ? 1.0 - double(ids) / double(pixels) : 1.0; }
@@ -55,10 +55,12 @@ struct Comparison {
 };
 
 // `drawn(i)`: whether pixel i was drawn, judged from depth against `clearDepth` (ids may be off).
-inline Comparison compareBuffers(const Buffers& reference, const Buffers& actual, std::uint32_t clearDepth = kDepthMax) {
+inline Comparison compareBuffers(const Buffers& reference, const Buffers& actual,
+                                 std::uint32_t clearDepth = kDepthMax) {
     Comparison c;
-    if (reference.width != actual.width || reference.height != actual.height || reference.rgba.size() != actual.rgba.size() ||
-        reference.depth.size() != actual.depth.size() || reference.ids.size() != actual.ids.size()) {
+    if (reference.width != actual.width || reference.height != actual.height ||
+        reference.rgba.size() != actual.rgba.size() || reference.depth.size() != actual.depth.size() ||
+        reference.ids.size() != actual.ids.size()) {
         c.sizeMismatch = true;
         return c;
     }
@@ -71,7 +73,7 @@ inline Comparison compareBuffers(const Buffers& reference, const Buffers& actual
         if (reference.depth[i] != actual.depth[i]) {
             ++c.depth;
             const std::uint32_t d = reference.depth[i] > actual.depth[i] ? reference.depth[i] - actual.depth[i]
-                                                                        : actual.depth[i] - reference.depth[i];
+                                                                         : actual.depth[i] - reference.depth[i];
             c.depthWorst = std::max(c.depthWorst, d);
         }
         c.ids += reference.ids[i] != actual.ids[i];

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
@@ -167,9 +168,9 @@ TEST_F(SceneGLTest, TextureSampling) {
                         backends[i]->draw(draw, {&all, 1});
                         out[i] = backends[i]->readBack(targets[i]);
                     }
-                    const std::string name = "Texture-" + std::to_string(size[0]) + "x" + std::to_string(size[1]) + "-" +
-                                             (filter == Filter::Linear ? "linear" : "nearest") + "-" + wrapNames[s] +
-                                             "-" + wrapNames[t];
+                    const std::string name = "Texture-" + std::to_string(size[0]) + "x" + std::to_string(size[1]) +
+                                             "-" + (filter == Filter::Linear ? "linear" : "nearest") + "-" +
+                                             wrapNames[s] + "-" + wrapNames[t];
                     test::expectMatches(name, out[0], out[1], 1.0, 0);
                 }
 }

@@ -1,0 +1,238 @@
+#include "software/Pipeline.h"
+
+#include <algorithm>
+#include <cassert>
+#include <iterator>
+#include <new>
+
+#pragma GCC optimize("fp-contract=off")
+
+namespace frugal::sw {
+
+namespace {
+
+// The draw module cuts each (merged) range into batches and runs its pipeline stages, face culling
+// among them, only for the batches in which a vertex needs clipping (Rasterizer.h, 2a). Batch sizes,
+// in triangles: the id pass draws arrays, split every 4095 vertices (max_vertices 4096, trimmed to
+// whole triangles, draw_split_tmp.h); the indexed pass is split every 1023 indices (vsplit
+// SEGMENT_SIZE 1024). Both measured at the boundary (CoverageGLTest.DrawModuleCullsOnlyInClippedBatches).
+constexpr std::uint32_t kArrayBatch = 4095 / 3;
+constexpr std::uint32_t kIndexedBatch = 1023 / 3;
+
+constexpr std::size_t kVertexChunk = 4096;   // vertices per vertex-stage task
+constexpr std::uint64_t kSetupChunk = 2048;  // triangles per setup task, at least
+
+}  // namespace
+
+Pipeline::Pipeline(int threads, bool simd) : kernels_(selectKernels(simd)), fused_(cpuHasFma()), pool_(threads) {
+    tiles_.resize(std::size_t(pool_.size()));
+    for (auto& tile : tiles_) tile = std::make_unique<TileState>();
+}
+
+Segment& Pipeline::newSegment() {
+    if (segmentCount_ == segments_.size()) segments_.push_back(std::make_unique<Segment>());
+    Segment& s = *segments_[segmentCount_++];
+    s.reset();
+    return s;
+}
+
+Pipeline::DrawRecord& Pipeline::newDraw() {
+    if (drawCount_ == draws_.size()) draws_.push_back(std::make_unique<DrawRecord>());
+    return *draws_[drawCount_++];
+}
+
+// The vertex stage for the vertices the draw's runs use, each once.
+void Pipeline::transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
+                                 std::uint64_t triangles) {
+    const std::size_t vertices = mesh.positions.size();
+    if (triangles * 3 >= vertices / 2) {
+        // Most of the mesh: every vertex, in parallel chunks.
+        const std::size_t chunks = (vertices + kVertexChunk - 1) / kVertexChunk;
+        pool_.run(chunks, [&](std::size_t c, int) {
+            kernels_.transform(job, c * kVertexChunk, std::min(vertices, (c + 1) * kVertexChunk));
+        });
+        return;
+    }
+    // A few ranges of a big mesh (a culled draw list): only the vertices they use.
+    const std::uint64_t serial = ++drawSerial_;
+    for (const Run& run : runs)
+        for (std::uint32_t t = run.first; t < run.end; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = mesh.indices[std::size_t(t) * 3 + k];
+                if (mesh.stamp[v] == serial) continue;
+                mesh.stamp[v] = serial;
+                kernels_.transform(job, v, v + 1);
+            }
+}
+
+// Clips, sets up and bins `count` triangles of the draw, starting `skip` triangles into its runs.
+void Pipeline::setup(const SetupJob& job, std::uint64_t skip, std::uint64_t count, Segment& segment) {
+    const int tilesX = (job.viewport.width + kTileSize - 1) / kTileSize;
+    const SoftwareMesh& mesh = *job.mesh;
+    const DrawRecord& record = *job.record;
+    const std::vector<Run>& runs = *job.runs;
+    const std::uint32_t* indices = mesh.indices.data();
+    const SetupVertex* vertices = record.vertices.data();
+    const auto emit = [&](const SetupVertex* a, const SetupVertex* b, const SetupVertex* c, std::uint32_t id,
+                          bool drawModuleCull) {
+        if (drawModuleCull && !drawModuleKeepsFront(a, b, c)) return;
+        Triangle t;
+        if (!setupTriangle(a, b, c, job.cullBack, job.viewport, &t)) return;
+        t.draw = job.drawIndex;
+        t.id = id;
+        t.writesId = record.shading.writeIds;
+        segment.triangles.push_back(t);
+        segment.bin(std::uint32_t(segment.triangles.size() - 1), tilesX);
+    };
+    for (std::size_t r = 0; r < runs.size() && count > 0; ++r) {
+        const std::uint64_t length = runs[r].end - runs[r].first;
+        if (skip >= length) {
+            skip -= length;
+            continue;
+        }
+        const auto first = std::uint32_t(runs[r].first + skip);
+        const auto end = std::uint32_t(std::min<std::uint64_t>(runs[r].end, first + count));
+        skip = 0;
+        count -= end - first;
+        for (std::uint32_t tri = first; tri < end; ++tri) {
+            const std::uint32_t i0 = indices[3 * std::size_t(tri)], i1 = indices[3 * std::size_t(tri) + 1],
+                                i2 = indices[3 * std::size_t(tri) + 2];
+            const unsigned m0 = record.mask[i0], m1 = record.mask[i1], m2 = record.mask[i2];
+            const std::uint32_t id = job.firstId + mesh.triangleSource[tri];  // 32-bit wrap, as in mesh.vert
+            const bool drawModuleCull =
+                job.cullBack && (*job.clippedBatch)[runs[r].batch + (tri - runs[r].first) / job.batchSize];
+            if ((m0 | m1 | m2) == 0) {
+                emit(&vertices[i0], &vertices[i1], &vertices[i2], id, drawModuleCull);
+            } else if ((m0 & m1 & m2) == 0) {
+                const glm::vec4* clip[3] = {&record.clip[i0], &record.clip[i1], &record.clip[i2]};
+                const SetupVertex* in[3] = {&vertices[i0], &vertices[i1], &vertices[i2]};
+                clipTriangle(clip, in, m0 | m1 | m2, job.viewport, segment.pool,
+                             [&](const SetupVertex* a, const SetupVertex* b, const SetupVertex* c) {
+                                 emit(a, b, c, id, drawModuleCull);
+                             });
+            }
+        }
+    }
+}
+
+void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& input,
+                    std::span<const IndexRange> ranges) {
+    assert((!pending() || (width == width_ && height == height_)) && "Pipeline::draw: flush before changing targets");
+    // Ranges in the order given, clamped to the mesh, adjacent ones merged (as the GL backend: the
+    // merged ranges are what the draw module splits into batches).
+    std::vector<Run> runs;
+    std::uint64_t triangles = 0;
+    for (const IndexRange& range : ranges) {
+        assert(std::uint64_t(range.firstTriangle) + range.triangleCount <= mesh.triangles &&
+               "draw: index range past the end of the mesh");
+        const std::uint32_t first = std::min(range.firstTriangle, mesh.triangles);
+        const std::uint32_t end = first + std::min(range.triangleCount, mesh.triangles - first);
+        if (end == first) continue;
+        triangles += end - first;
+        if (!runs.empty() && runs.back().end == first)
+            runs.back().end = end;
+        else
+            runs.push_back({first, end});
+    }
+    if (triangles == 0) return;
+    width_ = width;
+    height_ = height;
+
+    const auto drawIndex = std::uint32_t(drawCount_);
+    DrawRecord& record = newDraw();
+    const std::size_t vertices = mesh.positions.size();
+    try {
+        record.vertices.resize(vertices);
+        record.clip.resize(vertices);
+        record.mask.resize(vertices);
+    } catch (const std::bad_alloc&) {
+        --drawCount_;
+        assert(false && "draw: out of memory");
+        return;
+    }
+    record.shading = input.shading;
+
+    VertexJob vertexJob;
+    vertexJob.positions = mesh.positions.data();
+    vertexJob.normals = mesh.normals.empty() ? nullptr : mesh.normals.data();
+    vertexJob.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
+    vertexJob.uvs = mesh.uvs.empty() ? nullptr : mesh.uvs.data();
+    vertexJob.mvp = input.mvp;
+    vertexJob.normalMatrix = input.normalMatrix;
+    vertexJob.viewport = makeViewport(width, height);
+    vertexJob.out = record.vertices.data();
+    vertexJob.clip = record.clip.data();
+    vertexJob.mask = record.mask.data();
+    transformVertices(mesh, vertexJob, runs, triangles);
+
+    // Which draw-module batches run the pipeline (this only matters when back faces are culled).
+    const bool cullBack = !input.doubleSided;
+    const std::uint32_t batchSize = input.shading.writeIds ? kArrayBatch : kIndexedBatch;
+    std::vector<std::uint8_t> clippedBatch;
+    for (Run& run : runs) {
+        run.batch = std::uint32_t(clippedBatch.size());
+        clippedBatch.resize(clippedBatch.size() + (run.end - run.first + batchSize - 1) / batchSize, 0);
+        if (!cullBack) continue;
+        const std::uint32_t* index = mesh.indices.data() + std::size_t(run.first) * 3;
+        for (std::uint32_t tri = run.first; tri < run.end; ++tri, index += 3)
+            if ((record.mask[index[0]] | record.mask[index[1]] | record.mask[index[2]]) != 0)
+                clippedBatch[run.batch + (tri - run.first) / batchSize] = 1;
+    }
+
+    const SetupJob job{&mesh,    &record, vertexJob.viewport, drawIndex, input.firstId, batchSize,
+                       cullBack, &runs,   &clippedBatch};
+    if (pool_.size() > 1 && triangles >= 2 * kSetupChunk) {
+        // In parallel: chunk c goes to its own segment, and segments stay in submission order.
+        const auto chunks = std::size_t(
+            std::min<std::uint64_t>((triangles + kSetupChunk - 1) / kSetupChunk, std::uint64_t(pool_.size()) * 4));
+        std::vector<Segment*> chunkSegments(chunks);
+        for (Segment*& s : chunkSegments) s = &newSegment();
+        pool_.run(chunks, [&](std::size_t c, int) {
+            const std::uint64_t begin = triangles * c / chunks, end = triangles * (c + 1) / chunks;
+            setup(job, begin, end - begin, *chunkSegments[c]);
+        });
+    } else {
+        setup(job, 0, triangles, segmentCount_ > 0 ? *segments_[segmentCount_ - 1] : newSegment());
+    }
+}
+
+void Pipeline::flush(const TargetView& target) {
+    if (segmentCount_ == 0) {
+        drawCount_ = 0;
+        return;
+    }
+    assert(target.width == width_ && target.height == height_ && "Pipeline::flush: not the target drawn for");
+    const int tilesX = (target.width + kTileSize - 1) / kTileSize;
+    const int tilesY = (target.height + kTileSize - 1) / kTileSize;
+    const int tileCount = tilesX * tilesY;
+    pool_.run(segmentCount_, [&](std::size_t s, int) { segments_[s]->close(tileCount); });
+    pool_.run(std::size_t(tileCount), [&](std::size_t tileIndex, int worker) {
+        bool any = false;
+        for (std::size_t s = 0; s < segmentCount_ && !any; ++s)
+            any = segments_[s]->tileStart[tileIndex + 1] > segments_[s]->tileStart[tileIndex];
+        if (!any) return;
+        TileState& tile = *tiles_[std::size_t(worker)];
+        tile.target = target;
+        tile.x0 = int(tileIndex % std::size_t(tilesX)) * kTileSize;
+        tile.y0 = int(tileIndex / std::size_t(tilesX)) * kTileSize;
+        tile.x1 = std::min(tile.x0 + kTileSize, target.width);
+        tile.y1 = std::min(tile.y0 + kTileSize, target.height);
+        tile.won.clear();
+        std::fill(std::begin(tile.winner), std::end(tile.winner), kNoWinner);
+        for (std::size_t s = 0; s < segmentCount_; ++s) {
+            const Segment& segment = *segments_[s];
+            for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i)
+                kernels_.raster(segment.triangles[segment.sorted[i]], tile);
+        }
+        for (std::uint32_t w = 0; w < tile.won.size(); ++w) kernels_.shade(w, draws_[tile.won[w]->draw]->shading, tile);
+    });
+    discard();
+}
+
+void Pipeline::discard() {
+    for (std::size_t s = 0; s < segmentCount_; ++s) segments_[s]->reset();
+    segmentCount_ = 0;
+    drawCount_ = 0;
+}
+
+}  // namespace frugal::sw

@@ -1,0 +1,99 @@
+// The software backend's draw queue: from a draw call to pixels. draw() runs the vertex stage on the
+// vertices the draw uses (each once), clips, sets up and bins the triangles (Rasterizer.h), in
+// parallel chunks for large draws; flush() rasterizes and shades everything pending, one 64×64 tile
+// per thread at a time (Kernels.h). The order of submission is kept: chunks become segments in
+// order, and every tile walks the segments in order.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "render/Backend.h"
+#include "software/Kernels.h"
+#include "software/Rasterizer.h"
+#include "software/Shading.h"
+#include "software/ThreadPool.h"
+
+namespace frugal::sw {
+
+// A mesh as uploaded (validated by the backend, as the GL backend validates it).
+struct SoftwareMesh {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec4> colors;
+    std::vector<glm::vec2> uvs;
+    std::vector<std::uint32_t> indices, triangleSource;  // triangleSource filled in (t when the mesh had none)
+    std::uint32_t triangles = 0;
+    std::vector<std::uint64_t> stamp;  // per vertex: the draw that last transformed it (partial draws)
+};
+
+struct DrawInput {
+    glm::mat4 mvp{1.0f};           // (projection · view) · model, as GlBackend::draw computes it
+    glm::mat3 normalMatrix{1.0f};  // inverseTranspose(mat3(model))
+    DrawShading shading;
+    std::uint32_t firstId = 1;
+    bool doubleSided = false;
+};
+
+class Pipeline {
+public:
+    Pipeline(int threads, bool simd);
+
+    int threads() const { return pool_.size(); }
+    const char* kernelName() const { return kernels_.name; }
+    bool fusedViewport() const { return fused_; }
+    ThreadPool& pool() { return pool_; }
+
+    // Queues `ranges` of `mesh` for a target of `width` × `height`. Every draw queued until the next
+    // flush() must be for the same target.
+    void draw(SoftwareMesh& mesh, int width, int height, const DrawInput& input, std::span<const IndexRange> ranges);
+    bool pending() const { return segmentCount_ > 0; }
+    // Rasterizes what is queued into `target` (nothing pending: nothing to do) and empties the queue.
+    void flush(const TargetView& target);
+    // Forgets what is queued (its target is going away).
+    void discard();
+
+private:
+    struct Run {
+        std::uint32_t first, end;  // triangles [first, end)
+        std::uint32_t batch = 0;   // index of the run's first draw-module batch in the batch flags
+    };
+    struct DrawRecord {  // one draw's vertices and shading, alive until the flush
+        std::vector<SetupVertex> vertices;
+        std::vector<glm::vec4> clip;
+        std::vector<std::uint8_t> mask;
+        DrawShading shading;
+    };
+    struct SetupJob {  // what every setup chunk of one draw shares
+        const SoftwareMesh* mesh;
+        const DrawRecord* record;
+        Viewport viewport;
+        std::uint32_t drawIndex, firstId, batchSize;
+        bool cullBack;
+        const std::vector<Run>* runs;
+        const std::vector<std::uint8_t>* clippedBatch;
+    };
+
+    void transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
+                           std::uint64_t triangles);
+    void setup(const SetupJob& job, std::uint64_t skip, std::uint64_t count, Segment& segment);
+    Segment& newSegment();
+    DrawRecord& newDraw();
+
+    const Kernels& kernels_;
+    const bool fused_;
+    ThreadPool pool_;
+    std::vector<std::unique_ptr<TileState>> tiles_;  // one per thread
+    std::uint64_t drawSerial_ = 0;
+
+    // Queued work; records and segments are reused from flush to flush.
+    std::vector<std::unique_ptr<DrawRecord>> draws_;
+    std::size_t drawCount_ = 0;
+    std::vector<std::unique_ptr<Segment>> segments_;
+    std::size_t segmentCount_ = 0;
+    int width_ = 0, height_ = 0;  // of the target the queue is for
+};
+
+}  // namespace frugal::sw
