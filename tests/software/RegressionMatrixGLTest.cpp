@@ -1,0 +1,267 @@
+// The regression matrix: GL (llvmpipe) against the software reference on built-in scenes, the bunny
+// and an "extremes" set generated here, with each case's tolerance stated in one table. A failing
+// case writes actual, reference and error-mask PNGs to FRUGAL_TEST_OUTPUT_DIR/matrix-<case>/.
+// (The assimp glTF models and texture sampling are in SceneGLTest; single triangles in
+// CoverageGLTest.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <random>
+
+#include "GlReference.h"
+#include "render/Camera.h"
+#include "render/SceneRenderer.h"
+#include "report/ImageCompare.h"
+#include "scene/Load.h"
+#include "scene/MeshBuild.h"
+
+namespace frugal {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What a case may differ by. Everything measured so far is exact; a wider tolerance must say why.
+struct Tolerance {
+    std::size_t coverage = 0;      // pixels covered on one side only
+    std::uint32_t depthLsb = 0;    // 24-bit steps
+    double idAgreement = 0.9999;   // share of pixels with the same id (the task's bar)
+    int colour = 1;                // 8-bit steps (the task's bar)
+};
+
+struct MatrixCase {
+    std::string name;
+    std::function<Scene()> scene;
+    int width, height;
+    CameraSpec camera;
+    Tolerance tolerance;
+};
+
+Scene loaded(const std::string& spec) {
+    Result<Scene> scene = loadScene(spec);
+    EXPECT_TRUE(scene) << scene.error();
+    return scene ? std::move(*scene) : Scene{};
+}
+
+// One instance of `mesh` (finalised unless `raw`), white single- or double-sided material.
+Scene single(Mesh mesh, bool doubleSided = true, bool raw = false) {
+    Scene scene;
+    if (!raw) finalizeMesh(mesh, true);
+    mesh.material = 0;
+    scene.meshes.push_back(std::move(mesh));
+    Material material;
+    material.baseColorFactor = {0.9f, 0.7f, 0.4f, 1.0f};
+    material.doubleSided = doubleSided;
+    scene.materials.push_back(material);
+    Node node;
+    node.meshes = {0};
+    scene.nodes.push_back(node);
+    scene.roots = {0};
+    scene.buildInstances();
+    return scene;
+}
+
+// A UV sphere of radius `r` centred at `c`: smooth normals, a range of triangle sizes and slopes.
+Mesh sphere(float r, const glm::vec3& c = glm::vec3(0.0f), int rings = 24, int segments = 48) {
+    Mesh mesh;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j <= segments; ++j) {
+            const float theta = glm::pi<float>() * float(i) / float(rings);
+            const float phi = glm::two_pi<float>() * float(j) / float(segments);
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            mesh.positions.push_back(c + r * n);
+            mesh.normals.push_back(n);
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const std::uint32_t a = std::uint32_t(i * (segments + 1) + j), b = a + std::uint32_t(segments + 1);
+            mesh.indices.insert(mesh.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+        }
+    return mesh;
+}
+
+// Spheres from 0.01 to 900 units away: with near 1e-3 and far 1e3 the near/far ratio is 1e6.
+Scene depthRange() {
+    Mesh mesh;
+    float distance = 0.01f;
+    for (int k = 0; k < 8; ++k, distance *= 3.5f) {
+        Mesh s = sphere(distance * 0.3f, glm::vec3(distance * 0.4f * float(k % 3 - 1), 0.0f, -distance), 12, 24);
+        const auto base = std::uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), s.positions.begin(), s.positions.end());
+        mesh.normals.insert(mesh.normals.end(), s.normals.begin(), s.normals.end());
+        for (std::uint32_t i : s.indices) mesh.indices.push_back(base + i);
+    }
+    return single(mesh);
+}
+
+// Long thin triangles fanning through the view, some nearly edge-on.
+Scene slivers() {
+    Mesh mesh;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int t = 0; t < 400; ++t) {
+        const glm::vec3 a(u(rng) * 3, u(rng) * 3, u(rng));
+        const glm::vec3 dir = glm::normalize(glm::vec3(u(rng), u(rng), u(rng) * 0.2f));
+        const glm::vec3 side = glm::normalize(glm::cross(dir, glm::vec3(0, 0, 1))) * (1e-3f + 1e-2f * (u(rng) + 1));
+        const auto base = std::uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, a + dir * 6.0f, a + dir * 6.0f + side});
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+    }
+    return single(mesh);
+}
+
+// A ground plane 1e5 across under a camera 1 unit above it: triangles far larger than the viewport
+// that cross the near plane and every side plane.
+Scene groundPlane() {
+    Mesh mesh;
+    const float h = 5e4f;
+    mesh.positions = {{-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {0, 0.5f, -3}, {2, 0.5f, -6}, {-2, 1.5f, -6}};
+    mesh.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6};
+    return single(mesh);
+}
+
+// Vertices exactly on pixel centres and pixel edges of a 64×48 target (orthographic camera with one
+// world unit a pixel): the fill rule decides every shared edge.
+Scene pixelGrid() {
+    Mesh mesh;
+    for (int y = 0; y <= 12; ++y)
+        for (int x = 0; x <= 16; ++x) {
+            const float offset = (x + y) % 2 ? 0.5f : 0.0f;  // alternate centres and edges
+            mesh.positions.push_back({float(x * 4) + offset - 32.0f, float(y * 4) + offset - 24.0f, 0.0f});
+        }
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const std::uint32_t a = std::uint32_t(y * 17 + x), b = a + 17;
+            mesh.indices.insert(mesh.indices.end(), {a, a + 1, b + 1, a, b + 1, b});
+        }
+    Scene scene = single(mesh);
+    Node cameraNode;
+    cameraNode.translation = {0, 0, 10};
+    cameraNode.camera = 0;
+    scene.nodes.push_back(cameraNode);
+    Camera camera;
+    camera.node = 1;
+    camera.perspective = false;
+    camera.xmag = 32.0f;
+    camera.ymag = 24.0f;
+    camera.znear = 1.0f;
+    camera.zfar = 20.0f;
+    scene.cameras.push_back(camera);
+    return scene;
+}
+
+// NaN and Inf positions handed to the backends as they are (no finalizeMesh): both must drop the
+// same triangles and draw the rest identically.
+Scene nonFinite() {
+    Mesh mesh = sphere(1.0f);
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    for (std::size_t i = 0; i < mesh.positions.size(); i += 37) mesh.positions[i].x = (i / 37) % 2 ? nan : inf;
+    for (std::size_t i = 5; i < mesh.positions.size(); i += 53) mesh.positions[i].z = -inf;
+    return single(mesh, true, true);
+}
+
+Scene scaled(float scale) {
+    Mesh mesh = sphere(scale);
+    for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
+    return single(mesh, false);
+}
+
+CameraSpec lookFrom(glm::vec3 eye, glm::vec3 target, float znear, float zfar) {
+    CameraSpec spec;
+    spec.eye = eye;
+    spec.target = target;
+    spec.znear = znear;
+    spec.zfar = zfar;
+    return spec;
+}
+
+std::vector<MatrixCase> matrix() {
+    const std::string bunny = FRUGAL_BUNNY_OBJ;
+    return {
+        {"default-800x600", [] { return loaded("builtin:default"); }, 800, 600, {}, {}},
+        {"default-1920x1080", [] { return loaded("builtin:default"); }, 1920, 1080, {}, {}},
+        {"default-61x47", [] { return loaded("builtin:default"); }, 61, 47, {}, {}},
+        {"dominoes1404-800x600", [] { return loaded("builtin:dominoes?polygons=1404&static=0.9866"); }, 800, 600, {}, {}},
+        {"cubes-800x600", [] { return loaded("builtin:cubes"); }, 800, 600, {}, {}},
+        {"bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}},
+        {"bunny-1920x1080", [bunny] { return loaded(bunny); }, 1920, 1080, {}, {}},
+        {"bunny-61x47", [bunny] { return loaded(bunny); }, 61, 47, {}, {}},
+        {"bunny-1x1", [bunny] { return loaded(bunny); }, 1, 1, {}, {}},
+        {"default-4096x4096", [] { return loaded("builtin:default"); }, 4096, 4096, {}, {}},
+        {"tiny-coordinates-1e-6", [] { return scaled(1e-6f); }, 320, 240, {}, {}},
+        {"huge-coordinates-1e6", [] { return scaled(1e6f); }, 320, 240, {}, {}},
+        {"near-far-ratio-1e6", depthRange, 320, 240, lookFrom({0, 0, 0.001f}, {0, 0, -1}, 1e-3f, 1e3f), {}},
+        {"slivers", slivers, 320, 240, lookFrom({0, 0, 8}, {0, 0, 0}, 0.1f, 100.0f), {}},
+        {"huge-triangles-crossing-near", groundPlane, 320, 240, lookFrom({0, 1, 0}, {0, 0.2f, -10}, 0.05f, 1e5f), {}},
+        {"pixel-centre-edges", pixelGrid, 64, 48, {}, {}},
+        {"non-finite-vertices", nonFinite, 160, 120, lookFrom({0, 0, 4}, {0, 0, 0}, 0.1f, 10.0f), {}},
+    };
+}
+
+class RegressionMatrixGLTest : public ::testing::TestWithParam<MatrixCase> {};
+
+TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
+    const MatrixCase& c = GetParam();
+    const Scene scene = c.scene();
+    ASSERT_FALSE(scene.instances.empty());
+    std::unique_ptr<Backend> gl = test::makeReference();
+    ASSERT_NE(gl, nullptr);
+    std::unique_ptr<Backend> software = makeSoftwareBackend();
+
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    Result<View> view = resolveCamera(scene, world, 0.0, c.camera, c.width, c.height);
+    ASSERT_TRUE(view) << view.error();
+    FrameParams params;
+    params.view = view->view;
+    params.projection = view->projection;
+    Buffers images[2];
+    Backend* backends[2] = {gl.get(), software.get()};
+    for (int k = 0; k < 2; ++k) {
+        const TargetHandle target = backends[k]->createTarget(c.width, c.height);
+        ASSERT_NE(target, kNoHandle);
+        SceneRenderer renderer(*backends[k], scene);
+        renderer.renderFrame(target, c.width, c.height, params, world, glm::vec4(0.12f, 0.13f, 0.15f, 1.0f));
+        images[k] = backends[k]->readBack(target);
+    }
+
+    Result<ImageComparison> compared = compareBuffers(images[0], images[1]);
+    ASSERT_TRUE(compared) << compared.error();
+    const ImageComparison& r = *compared;
+    std::size_t covered = 0;
+    for (std::uint32_t id : images[1].ids) covered += id != 0;
+    const double idAgreement = 1.0 - double(r.idMismatches.value_or(0)) / double(r.pixels);
+    std::printf("[ matrix %s ] %zu covered, coverage %zu, depth worst %u LSB, ids %.6f, colour worst %d\n",
+                c.name.c_str(), covered, r.coverageMismatches(), r.depth ? r.depth->maxDifference : 0, idAgreement,
+                r.maxChannelDifference);
+    if (c.name != "bunny-1x1") {
+        EXPECT_GT(covered, 0u) << "a case that draws nothing tests nothing";
+    }
+
+    const bool ok = r.coverageMismatches() <= c.tolerance.coverage && r.depth &&
+                    r.depth->maxDifference <= c.tolerance.depthLsb && idAgreement >= c.tolerance.idAgreement &&
+                    r.maxChannelDifference <= c.tolerance.colour;
+    EXPECT_LE(r.coverageMismatches(), c.tolerance.coverage);
+    ASSERT_TRUE(r.depth.has_value());
+    EXPECT_LE(r.depth->maxDifference, c.tolerance.depthLsb);
+    EXPECT_GE(idAgreement, c.tolerance.idAgreement);
+    EXPECT_LE(r.maxChannelDifference, c.tolerance.colour);
+    if (!ok) {
+        const fs::path dir = test::freshDir("matrix-" + c.name);
+        (void)writeFileAtomic((dir / "actual.png").string(), encodeColorPng(images[0]));
+        (void)writeFileAtomic((dir / "reference.png").string(), encodeColorPng(images[1]));
+        (void)writeFileAtomic((dir / "mask.png").string(), encodeColorPng(r.mask));
+        ADD_FAILURE() << "images in " << dir;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, RegressionMatrixGLTest, ::testing::ValuesIn(matrix()), [](const auto& p) {
+    std::string name = p.param.name;
+    for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+    return name;
+});
+
+}  // namespace
+}  // namespace frugal
