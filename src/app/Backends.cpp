@@ -1,5 +1,7 @@
 #include "app/Backends.h"
 
+#include <cstdlib>
+
 #include "software/SoftwareBackend.h"
 
 namespace frugal {
@@ -23,9 +25,15 @@ std::string backendSelectionName(const BackendSelection& selection) {
     return "auto";
 }
 
-Result<std::unique_ptr<Backend>> openBackend(const BackendSelection& selection, std::vector<std::string>* log) {
-    if (!selection.software) return createGlBackend(selection.gl, log);
-    std::unique_ptr<Backend> backend = makeSoftwareBackend();
+Result<std::unique_ptr<Backend>> openBackend(const BackendSelection& selection, std::vector<std::string>* log,
+                                             int threads) {
+    if (!selection.software) {
+        if (threads > 0) setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 1);
+        return createGlBackend(selection.gl, log);
+    }
+    SoftwareOptions options;
+    options.threads = threads;
+    std::unique_ptr<Backend> backend = makeSoftwareBackend(options);
     if (!backend) return Error{"software: could not be created"};
     if (log) log->push_back("software: ok");
     return backend;

@@ -29,7 +29,9 @@ std::string backendSelectionName(const BackendSelection& selection);
 
 // Opens the selected backend. `log` receives one line per context tried (GL) or "software: ok".
 // Errors are GL context failures ("egl-surfaceless: ..."); the software backend always opens.
+// `threads` > 0 sets the rasterizer threads: the software backend's pool, and LP_NUM_THREADS for
+// llvmpipe (read when Mesa creates its screen, i.e. the first GL context of the process).
 Result<std::unique_ptr<Backend>> openBackend(const BackendSelection& selection,
-                                             std::vector<std::string>* log = nullptr);
+                                             std::vector<std::string>* log = nullptr, int threads = 0);
 
 }  // namespace frugal

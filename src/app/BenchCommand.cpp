@@ -23,7 +23,7 @@ Renders the same frame repeatedly on each available backend (egl-device, egl-sur
 and the software reference; or only --backend), once with the vertex-cache triangle order and once
 with the file's order, and prints JSON: median/min/max ms per frame, triangles per second, and
 ratios.
-Set LP_NUM_THREADS to choose llvmpipe's thread count.
+--threads N sets the thread count of every backend (llvmpipe and software) for a fair comparison.
 
   --runs N              timed frames per variant (default 30)
   --warmup N            untimed frames first (default 5)
@@ -115,7 +115,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     std::vector<Sample> samples;
     using Clock = std::chrono::steady_clock;
     for (const BackendSelection& choice : choices) {
-        Result<std::unique_ptr<Backend>> created = openBackend(choice);
+        Result<std::unique_ptr<Backend>> created = openBackend(choice, nullptr, options.threads);
         if (!created) {
             skipped.push_back(created.error());
             continue;
@@ -175,6 +175,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         {"ids", ids},
         {"runs", runs},
         {"warmup", warmup},
+        {"threads", options.threads > 0 ? nlohmann::json(options.threads) : nlohmann::json("default")},
         {"lp_num_threads", threads ? nlohmann::json(threads) : nlohmann::json(nullptr)},
         {"results", results},
         {"ratios", ratios},

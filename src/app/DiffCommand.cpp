@@ -102,12 +102,12 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
 
     std::vector<std::string> log;
-    Result<std::unique_ptr<Backend>> gl = openBackend(options.backend, &log);
+    Result<std::unique_ptr<Backend>> gl = openBackend(options.backend, &log, options.threads);
     if (!gl) {
         err << "error: --backend " << options.backendName << ": " << gl.error() << "\n";
         return kExitNoBackend;
     }
-    Result<std::unique_ptr<Backend>> software = openBackend(BackendSelection{true, BackendChoice::Auto});
+    Result<std::unique_ptr<Backend>> software = openBackend(BackendSelection{true, BackendChoice::Auto}, nullptr, options.threads);
     if (!software) {
         err << "error: software reference: " << software.error() << "\n";
         return kExitNoBackend;

@@ -127,6 +127,11 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
             o.backend = *choice;
             o.backendName = *text;
         }
+    } else if (flag == "--threads") {
+        if (auto v = number(flag, cursor, 1, 256)) {
+            if (*v != std::floor(*v)) cursor.fail("--threads: expected a whole number, got '" + fmt(*v) + "'");
+            else o.threads = int(*v);
+        }
     } else if (flag == "--camera") {
         const std::optional<std::string> text = cursor.value(flag);
         int index = 0;
@@ -195,6 +200,8 @@ const char* sharedOptionsHelp() {
   --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
                         egl, egl-device, egl-surfaceless, osmesa, or software (the CPU
                         reference rasterizer, llvmpipe's rules, no GL)
+  --threads N           rasterizer threads: the software backend's, and llvmpipe's (LP_NUM_THREADS);
+                        default every core
   --camera N            use the scene's camera N (default: camera 0 if the scene has one,
                         else a view that fits the scene's bounds)
   --eye X,Y,Z           look from here (with --target, default the bounds' centre, and --up)

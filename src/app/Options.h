@@ -45,6 +45,7 @@ struct RenderOptions {
     int width = 800, height = 600;
     BackendSelection backend;
     std::string backendName = "auto";  // as given, for messages
+    int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
     CameraSpec camera;
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;

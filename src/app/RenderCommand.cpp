@@ -133,7 +133,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
 
     std::vector<std::string> log;
-    Result<std::unique_ptr<Backend>> created = openBackend(options.backend, &log);
+    Result<std::unique_ptr<Backend>> created = openBackend(options.backend, &log, options.threads);
     if (!created) {
         err << "error: --backend " << options.backendName << ": " << created.error() << "\n";
         return kExitNoBackend;
