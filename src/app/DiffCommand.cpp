@@ -96,10 +96,6 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     const Scene& scene = *loaded;
     const FrameRange range = options.frames.value_or(FrameRange{});
-    if (Result<FrameSetup> first = setUpFrame(options, scene, range.first, true); !first) {
-        err << "error: " << first.error() << "\n";
-        return kExitError;
-    }
 
     std::vector<std::string> log;
     Result<std::unique_ptr<Backend>> gl = openBackend(options.backend, &log, options.threads);

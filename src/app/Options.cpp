@@ -228,6 +228,9 @@ double frameTime(const RenderOptions& options, const Scene& scene, int frame) {
 Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
     Result<Scene> scene = loadScene(options.scene, options.load);
     if (!scene) return scene;
+    // Check the first frame's camera before a backend is opened, so a bad camera is the only line.
+    const int first = options.frames ? options.frames->first : 0;
+    if (Result<FrameSetup> setup = setUpFrame(options, *scene, first, false); !setup) return Error{setup.error()};
     for (const std::string& warning : scene->warnings) err << "warning: " << warning << "\n";
     if (!scene->unsupported.empty()) {
         std::string names;

@@ -70,7 +70,8 @@ std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color);
 // Scene time of frame `frame`.
 double frameTime(const RenderOptions& options, const Scene& scene, int frame);
 
-// Loads the scene and prints its warnings (unsupported features, dropped triangles) to `err`.
+// Loads the scene, prints its warnings (unsupported features, dropped triangles) to `err`, and checks
+// the first frame's camera, so that a bad camera fails before any backend is opened.
 Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err);
 
 // Everything one frame needs: its time, node transforms, camera and frame parameters.

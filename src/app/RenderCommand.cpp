@@ -127,10 +127,6 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     // Check the camera before opening a backend, so a bad camera is the only line printed.
     const FrameRange range = options.frames.value_or(FrameRange{});
-    if (Result<FrameSetup> first = setUpFrame(options, scene, range.first, false); !first) {
-        err << "error: " << first.error() << "\n";
-        return kExitError;
-    }
 
     std::vector<std::string> log;
     Result<std::unique_ptr<Backend>> created = openBackend(options.backend, &log, options.threads);

@@ -541,18 +541,10 @@ void GlBackend::setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const Vertex
 }
 
 MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
-    // Bad data gets kNoHandle, never a GL call that reads out of bounds: attribute arrays must
-    // match the positions (or be empty), indices come in threes and stay below the vertex count,
-    // triangleSource has one entry per triangle (or is empty: then triangle t has source t).
+    // Bad data gets kNoHandle, never a GL call that reads out of bounds.
+    if (!isUploadable(mesh)) return kNoHandle;
     const std::size_t vertices = mesh.positions.size();
-    const std::size_t triangles = mesh.indices.size() / 3;
-    const auto fits = [vertices](std::size_t n) { return n == 0 || n == vertices; };
-    if (mesh.indices.size() % 3 != 0 || !fits(mesh.normals.size()) || !fits(mesh.colors.size()) ||
-        !fits(mesh.uvs.size()) || vertices > 0xFFFFFFFFu || triangles > 0x7FFFFFFFu / 3 ||
-        (!mesh.triangleSource.empty() && mesh.triangleSource.size() != triangles))
-        return kNoHandle;
-    for (std::uint32_t index : mesh.indices)
-        if (index >= vertices) return kNoHandle;
+    const std::size_t triangles = mesh.triangleCount();
 
     activate();
     GlMesh m;

@@ -59,6 +59,11 @@ struct DrawParams {
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
 };
 
+// The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute
+// arrays match the positions or are empty, indices come in threes and stay below the vertex count,
+// triangleSource has one entry per triangle or is empty (then triangle t has source t).
+bool isUploadable(const Mesh& mesh);
+
 class Backend {
 public:
     virtual ~Backend() = default;

@@ -144,15 +144,9 @@ void SoftwareBackend::destroyTarget(TargetHandle target) {
 
 MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
     // The GL backend's validation, so both backends accept and refuse the same meshes.
+    if (!isUploadable(mesh)) return kNoHandle;
     const std::size_t vertices = mesh.positions.size();
-    const std::size_t triangles = mesh.indices.size() / 3;
-    const auto fits = [vertices](std::size_t n) { return n == 0 || n == vertices; };
-    if (mesh.indices.size() % 3 != 0 || !fits(mesh.normals.size()) || !fits(mesh.colors.size()) ||
-        !fits(mesh.uvs.size()) || vertices > 0xFFFFFFFFu || triangles > 0x7FFFFFFFu / 3 ||
-        (!mesh.triangleSource.empty() && mesh.triangleSource.size() != triangles))
-        return kNoHandle;
-    for (std::uint32_t index : mesh.indices)
-        if (index >= vertices) return kNoHandle;
+    const std::size_t triangles = mesh.triangleCount();
     SwMesh m;
     try {
         m.positions = mesh.positions;
