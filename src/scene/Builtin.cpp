@@ -9,6 +9,10 @@
 //       paper 000 uses 804 polygons / 55.44 % static and 1,404 / 98.66 %.
 //   builtin:cubes?count=28&seconds=10&seed=1
 //       N cubes spinning about random axes at random speeds (paper 003: 28 cubes = 168 quads).
+//   builtin:copies?count=3&of=SCENE
+//       COUNT copies of another scene side by side along x (paper 002's "Bunny ×3"); every copy is
+//       its own set of instances with its own ids, the meshes are shared. SCENE's cameras are
+//       dropped (the view is fitted to the row). `of` comes last and may be any file or built-in.
 //   builtin:default
 //       The dominoes with a checkered floor: what `frugal render` draws with no scene.
 #include <algorithm>
@@ -46,6 +50,13 @@ struct ParamReader {
         } else if (value < lo || value > hi) {
             fail(key + "=" + text + " is out of range [" + trim(lo) + ", " + trim(hi) + "]");
         }
+        return value;
+    }
+    std::string text(const std::string& key) {
+        auto it = params.find(key);
+        if (it == params.end()) return {};
+        std::string value = it->second;
+        params.erase(it);
         return value;
     }
     void fail(const std::string& why) {
@@ -276,6 +287,49 @@ Result<Scene> makeCubes(ParamReader& in) {
     return scene;
 }
 
+Result<Scene> makeCopies(ParamReader& in, const LoadOptions& options) {
+    const double count = in.number("count", 3, 1, 1000);
+    const std::string of = in.text("of");
+    if (!in.error.empty()) return Error{in.error};
+    if (of.empty()) return Error{in.scene + ": parameter 'of' (the scene to copy) is missing"};
+    if (of.rfind("builtin:copies", 0) == 0) return Error{in.scene + ": copies of copies are not supported"};
+    Result<Scene> loaded = loadScene(of, options);
+    if (!loaded) return loaded;
+    const Scene& one = *loaded;
+
+    Scene scene;
+    scene.meshes = one.meshes;
+    scene.materials = one.materials;
+    scene.textures = one.textures;
+    scene.unsupported = one.unsupported;
+    scene.warnings = one.warnings;
+    scene.fps = one.fps;
+    const Bounds bounds = one.bounds(0.0);
+    const float step = bounds.empty() ? 1.0f : (bounds.max.x - bounds.min.x) * 1.1f;
+    const int n = int(count);
+    for (int k = 0; k < n; ++k) {
+        Node root;
+        root.name = "copy" + std::to_string(k);
+        root.translation = {(float(k) - float(n - 1) / 2.0f) * step, 0.0f, 0.0f};
+        const int rootIndex = addNode(scene, root, -1);
+        const int offset = int(scene.nodes.size());
+        for (const Node& source : one.nodes) {
+            Node node = source;
+            node.camera = -1;
+            node.parent = source.parent >= 0 ? source.parent + offset : rootIndex;
+            for (int& child : node.children) child += offset;
+            scene.nodes.push_back(std::move(node));
+        }
+        for (int r : one.roots) scene.nodes[rootIndex].children.push_back(r + offset);
+        for (const Animation& source : one.animations) {
+            Animation animation = source;
+            for (AnimChannel& channel : animation.channels) channel.node += offset;
+            scene.animations.push_back(std::move(animation));
+        }
+    }
+    return scene;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> builtinScenes() {
@@ -283,6 +337,7 @@ std::vector<std::pair<std::string, std::string>> builtinScenes() {
         {"builtin:default", "the dominoes on a checkered floor (what `frugal render` draws with no scene)"},
         {"builtin:dominoes", "falling dominoes; ?polygons=804&static=0.5544&floor=0 (6 polygons a domino)"},
         {"builtin:cubes", "spinning cubes; ?count=28&seconds=10&seed=1"},
+        {"builtin:copies", "copies of a scene side by side; ?count=3&of=SCENE (of last)"},
     };
 }
 
@@ -295,6 +350,10 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
         std::string query = rest.substr(name.size() + 1);
         std::size_t at = 0;
         while (at <= query.size()) {
+            if (query.compare(at, 3, "of=") == 0) {  // the copied scene's spec: the rest, '&' and all
+                in.params["of"] = query.substr(at + 3);
+                break;
+            }
             const std::size_t end = std::min(query.find('&', at), query.size());
             const std::string pair = query.substr(at, end - at);
             const std::size_t eq = pair.find('=');
@@ -309,6 +368,7 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
     if (name == "default") made = makeDominoes(in, true);
     else if (name == "dominoes") made = makeDominoes(in, false);
     else if (name == "cubes") made = makeCubes(in);
+    else if (name == "copies") made = makeCopies(in, options);
     else {
         std::string known;
         for (const auto& [n, _] : builtinScenes()) known += (known.empty() ? "" : ", ") + n;
@@ -319,7 +379,8 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
 
     Scene& scene = *made;
     scene.source = spec;
-    for (Mesh& mesh : scene.meshes) finalizeMesh(mesh, options.optimizeOrder);
+    if (name != "copies")  // the copied scene's loader finalised its meshes already
+        for (Mesh& mesh : scene.meshes) finalizeMesh(mesh, options.optimizeOrder);
     scene.buildInstances();
     return made;
 }

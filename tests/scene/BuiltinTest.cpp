@@ -58,7 +58,7 @@ TEST(BuiltinTest, CubesSpinAndAreReproducible) {
 
 TEST(BuiltinTest, BadSpecsGetOneLineErrors) {
     const std::pair<const char*, const char*> cases[] = {
-        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes)"},
+        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes, builtin:copies)"},
         {"builtin:cubes?count=abc", "builtin:cubes?count=abc: count=abc is not a number"},
         {"builtin:cubes?count=0", "builtin:cubes?count=0: count=0 is out of range [1, 1e+06]"},
         {"builtin:dominoes?static=2", "builtin:dominoes?static=2: static=2 is out of range [0, 1]"},
@@ -77,6 +77,31 @@ TEST(BuiltinTest, UnknownFormatsAndMissingFiles) {
     EXPECT_EQ(loadScene("/nonexistent/scene.fbx").error(), "/nonexistent/scene.fbx: no such file");
     EXPECT_EQ(loadScene("/etc/hostname").error(),
               "/etc/hostname: unknown scene format '' (frugal reads .gltf, .glb, .obj and builtin:NAME)");
+}
+
+}  // namespace
+}  // namespace frugal
+
+namespace frugal {
+namespace {
+
+TEST(BuiltinTest, CopiesLaySeveralScenesSideBySideWithTheirOwnIds) {
+    Result<Scene> one = loadScene("builtin:cubes?count=2&seed=5");
+    Result<Scene> three = loadScene("builtin:copies?count=3&of=builtin:cubes?count=2&seed=5");
+    ASSERT_TRUE(one) << one.error();
+    ASSERT_TRUE(three) << three.error();
+    EXPECT_EQ(three->triangleCount(), 3 * 24u);
+    EXPECT_EQ(three->meshes.size(), 2u) << "meshes are shared";
+    EXPECT_TRUE(three->cameras.empty());
+    ASSERT_EQ(three->instances.size(), 6u);
+    EXPECT_EQ(three->instances[5].firstId, 1u + 5 * 12);
+    // Copies sit apart along x and keep animating.
+    const Bounds b = three->bounds(0.0);
+    EXPECT_GT(b.max.x - b.min.x, 2.5f * (one->bounds(0.0).max.x - one->bounds(0.0).min.x));
+    EXPECT_NE(three->worldTransforms(0.0), three->worldTransforms(1.0));
+
+    EXPECT_EQ(loadScene("builtin:copies?count=2").error(), "builtin:copies?count=2: parameter 'of' (the scene to copy) is missing");
+    EXPECT_EQ(loadScene("builtin:copies?of=/nonexistent.obj").error(), "/nonexistent.obj: no such file");
 }
 
 }  // namespace

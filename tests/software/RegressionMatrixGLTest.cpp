@@ -188,6 +188,7 @@ std::vector<MatrixCase> matrix() {
         {"bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}},
         {"bunny-1920x1080", [bunny] { return loaded(bunny); }, 1920, 1080, {}, {}},
         {"bunny-61x47", [bunny] { return loaded(bunny); }, 61, 47, {}, {}},
+        {"three-bunnies-800x600", [bunny] { return loaded("builtin:copies?count=3&of=" + bunny); }, 800, 600, {}, {}},
         {"bunny-1x1", [bunny] { return loaded(bunny); }, 1, 1, {}, {}},
         {"default-4096x4096", [] { return loaded("builtin:default"); }, 4096, 4096, {}, {}},
         {"tiny-coordinates-1e-6", [] { return scaled(1e-6f); }, 320, 240, {}, {}},
