@@ -125,7 +125,6 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
     const Scene& scene = *loaded;
 
-    // Check the camera before opening a backend, so a bad camera is the only line printed.
     const FrameRange range = options.frames.value_or(FrameRange{});
 
     std::vector<std::string> log;
