@@ -76,4 +76,28 @@ CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, cons
     return run;
 }
 
+Scene oneMeshScene(Mesh mesh, const Material& material) {
+    Scene scene;
+    mesh.material = 0;
+    scene.meshes.push_back(std::move(mesh));
+    scene.materials.push_back(material);
+    Node node;
+    node.meshes = {0};
+    scene.nodes.push_back(node);
+    scene.roots = {0};
+    scene.buildInstances();
+    return scene;
+}
+
+int addCameraNode(Scene& scene, Camera camera, const glm::vec3& position) {
+    Node node;
+    node.translation = position;
+    node.camera = int(scene.cameras.size());
+    camera.node = int(scene.nodes.size());
+    scene.roots.push_back(camera.node);
+    scene.nodes.push_back(node);
+    scene.cameras.push_back(camera);
+    return node.camera;
+}
+
 }  // namespace frugal::test

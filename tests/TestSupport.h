@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/Scene.h"
+
 namespace frugal::test {
 
 // Folder for images and other files a test writes (actual/expected/diff on failure).
@@ -28,5 +30,10 @@ struct CliRun {
 // Runs the frugal binary (FRUGAL_CLI) with `args` in `dir`, with an optional environment prefix
 // such as "GALLIUM_DRIVER=x". Its stdout/stderr go through files in `dir` that are removed after.
 CliRun runFrugal(const std::filesystem::path& dir, const std::vector<std::string>& args, const std::string& env = "");
+
+// A scene with one root node drawing `mesh` with `material` (the mesh gets material 0).
+Scene oneMeshScene(Mesh mesh, const Material& material = {});
+// Adds a root node at `position`, looking down -z, that carries `camera`; returns the camera's index.
+int addCameraNode(Scene& scene, Camera camera, const glm::vec3& position);
 
 }  // namespace frugal::test

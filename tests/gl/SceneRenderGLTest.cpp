@@ -84,31 +84,18 @@ protected:
 // A single square facing the camera, coloured by its material: the shading formula, checked
 // against the number computed here (Backend.h, Lighting).
 TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
-    Scene scene;
     Mesh quad;
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     quad.indices = {0, 1, 2, 0, 2, 3};
-    quad.material = 0;
     finalizeMesh(quad, false);
-    scene.meshes.push_back(quad);
     Material material;
     material.baseColorFactor = {0.8f, 0.4f, 0.2f, 1.0f};
-    scene.materials.push_back(material);
-    Node node;
-    node.meshes = {0};
-    scene.nodes.push_back(node);
-    scene.roots = {0};
-    Node cameraNode;
-    cameraNode.translation = {0, 0, 4};
-    cameraNode.camera = 0;
-    scene.nodes.push_back(cameraNode);
+    Scene scene = test::oneMeshScene(quad, material);
     Camera camera;
-    camera.node = 1;
     camera.yfov = glm::radians(60.0f);
     camera.znear = 1.0f;
     camera.zfar = 10.0f;
-    scene.cameras.push_back(camera);
-    scene.buildInstances();
+    test::addCameraNode(scene, camera, {0, 0, 4});
 
     const Frame frame = render(*backend, scene, 64, 48);
     const Lighting light;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "TestSupport.h"
 #include "render/Camera.h"
 #include "render/SceneRenderer.h"
 
@@ -9,19 +10,12 @@ namespace frugal {
 namespace {
 
 Scene unitScene() {
-    Scene scene;
     Mesh mesh;
     mesh.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, 1}};
     mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     mesh.indices = {0, 1, 2};
     mesh.triangleSource = {0};
-    scene.meshes.push_back(mesh);
-    Node node;
-    node.meshes = {0};
-    scene.nodes.push_back(node);
-    scene.roots = {0};
-    scene.buildInstances();
-    return scene;
+    return test::oneMeshScene(mesh);
 }
 
 glm::vec3 toNdc(const View& v, const glm::vec3& p) {
@@ -60,16 +54,11 @@ TEST(CameraTest, LookAtPutsTheTargetAtTheCentreAndUpIsUp) {
 
 TEST(CameraTest, SceneCamerasFollowTheirNodeAndAnInfiniteFar) {
     Scene scene = unitScene();
-    Node node;
-    node.translation = {0, 0, 5};
-    node.camera = 0;
-    scene.nodes.push_back(node);
     Camera camera;
-    camera.node = 1;
     camera.yfov = glm::radians(60.0f);
     camera.znear = 0.5f;
     camera.zfar = 0.0f;  // infinite
-    scene.cameras.push_back(camera);
+    test::addCameraNode(scene, camera, {0, 0, 5});
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, {}, 100, 100);
     ASSERT_TRUE(view) << view.error();
     EXPECT_EQ(view->source, "scene camera 0");

@@ -47,20 +47,11 @@ Scene loaded(const std::string& spec) {
 
 // One instance of `mesh` (finalised unless `raw`), white single- or double-sided material.
 Scene single(Mesh mesh, bool doubleSided = true, bool raw = false) {
-    Scene scene;
     if (!raw) finalizeMesh(mesh, true);
-    mesh.material = 0;
-    scene.meshes.push_back(std::move(mesh));
     Material material;
     material.baseColorFactor = {0.9f, 0.7f, 0.4f, 1.0f};
     material.doubleSided = doubleSided;
-    scene.materials.push_back(material);
-    Node node;
-    node.meshes = {0};
-    scene.nodes.push_back(node);
-    scene.roots = {0};
-    scene.buildInstances();
-    return scene;
+    return test::oneMeshScene(std::move(mesh), material);
 }
 
 // A UV sphere of radius `r` centred at `c`: smooth normals, a range of triangle sizes and slopes.
@@ -137,18 +128,13 @@ Scene pixelGrid() {
             mesh.indices.insert(mesh.indices.end(), {a, a + 1, b + 1, a, b + 1, b});
         }
     Scene scene = single(mesh);
-    Node cameraNode;
-    cameraNode.translation = {0, 0, 10};
-    cameraNode.camera = 0;
-    scene.nodes.push_back(cameraNode);
     Camera camera;
-    camera.node = 1;
     camera.perspective = false;
     camera.xmag = 32.0f;
     camera.ymag = 24.0f;
     camera.znear = 1.0f;
     camera.zfar = 20.0f;
-    scene.cameras.push_back(camera);
+    test::addCameraNode(scene, camera, {0, 0, 10});
     return scene;
 }
 
