@@ -9,7 +9,7 @@
 
 #include "gl/GlBackend.h"
 #include "render/Backend.h"
-#include "scene/Result.h"
+#include "base/Result.h"
 
 namespace frugal {
 

@@ -10,8 +10,8 @@
 
 #include "app/Backends.h"
 #include "app/Cli.h"
+#include "app/Command.h"
 #include "app/Commands.h"
-#include "app/Options.h"
 #include "render/SceneRenderer.h"
 
 namespace frugal {
@@ -52,39 +52,24 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         return kExitUsage;
     }
     RenderOptions options;
-    bool backendGiven = false, sceneGiven = false, ids = false;
+    bool ids = false;
     int runs = 30, warmup = 5;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
-    ArgCursor cursor(rest);
-    while (!cursor.done() && cursor.error.empty()) {
-        const std::string flag = cursor.next();
-        if (flag == "-h" || flag == "--help") {
-            out << benchHelp() << sharedOptionsHelp();
-            return kExitOk;
-        }
-        if (flag == "--backend") backendGiven = true;
-        if (parseSharedOption(flag, cursor, options)) continue;
-        if (flag == "--runs" || flag == "--warmup") {
-            const std::optional<std::string> text = cursor.value(flag);
-            int n = 0;
-            if (text && (std::sscanf(text->c_str(), "%d", &n) != 1 || n < (flag == "--runs" ? 1 : 0) || n > 100000))
-                cursor.fail(flag + ": expected a whole number " + (flag == "--runs" ? "1" : "0") + " to 100000, got '" + *text + "'");
-            (flag == "--runs" ? runs : warmup) = n;
+    CommandLine command{"bench", benchHelp(), &options};
+    command.option = [&](const std::string& flag, ArgCursor& cursor) {
+        if (flag == "--runs") {
+            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 100000)) runs = *n;
+        } else if (flag == "--warmup") {
+            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 100000)) warmup = *n;
         } else if (flag == "--ids") {
             ids = true;
-        } else if (!flag.empty() && flag[0] == '-') {
-            cursor.fail(flag + ": unknown option (see 'frugal help bench')");
-        } else if (!sceneGiven) {
-            options.scene = flag;
-            sceneGiven = true;
         } else {
-            cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
+            return false;
         }
-    }
-    if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
-    }
+        return true;
+    };
+    command.positional = sceneArgument(options);
+    if (std::optional<int> status = parseCommandLine(command, rest, out, err)) return *status;
 
     // Two loads of the same file: the only difference is the triangle order.
     LoadOptions fileOrder = options.load;
@@ -104,7 +89,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
 
     // By default every GL context kind and the software reference, side by side.
     std::vector<BackendSelection> choices;
-    if (backendGiven && (options.backend.software || options.backend.gl != BackendChoice::Auto)) {
+    if (options.backend.software || options.backend.gl != BackendChoice::Auto) {
         choices = {options.backend};
     } else {
         choices = {{false, BackendChoice::EglDevice}, {false, BackendChoice::EglSurfaceless},
@@ -115,21 +100,23 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     std::vector<Sample> samples;
     using Clock = std::chrono::steady_clock;
     for (const BackendSelection& choice : choices) {
-        Result<std::unique_ptr<Backend>> created = openBackend(choice, nullptr, options.threads);
-        if (!created) {
-            skipped.push_back(created.error());
+        int status = kExitOk;
+        Result<Session> opened = openSession(choice, options, status);
+        if (!opened) {
+            skipped.push_back(opened.error());
             continue;
         }
-        Backend& backend = **created;
-        const TargetHandle target = createTargetOrReport(backend, options, err);
-        if (target == kNoHandle) return kExitError;
+        Backend& backend = *opened->backend;
         for (const auto& [order, scene] : {std::pair<const char*, const Scene*>{"optimized", &*optimized}, {"file", &*original}}) {
             Result<FrameSetup> setup = setUpFrame(options, *scene, options.frames ? options.frames->first : 0, ids);
             if (!setup) {
                 err << "error: " << setup.error() << "\n";
                 return kExitError;
             }
-            SceneRenderer renderer(backend, *scene);
+            // Each order is its own upload, drawn into the one target.
+            if (int prepared = prepareSession(*opened, options, *scene, err); prepared != kExitOk) return prepared;
+            SceneRenderer& renderer = *opened->renderer;
+            const TargetHandle target = opened->target;
             Sample sample{backend.name(), backend.renderer(), order, {}};
             for (int i = 0; i < warmup + runs; ++i) {
                 const auto t0 = Clock::now();

@@ -37,32 +37,50 @@ void printUsage(std::ostream& out) {
 
 }  // namespace
 
+namespace {
+
+struct CommandEntry {
+    const char* name;
+    int (*run)(const std::vector<std::string>&, std::ostream&, std::ostream&);
+    const char* (*help)();
+    bool sharedOptions;  // renders: its help lists the shared options
+};
+
+const CommandEntry kCommands[] = {
+    {"render", runRender, renderHelp, true}, {"info", runInfo, infoHelp, false},
+    {"bench", runBench, benchHelp, true},    {"compare", runCompare, compareHelp, false},
+    {"diff", runDiff, diffHelp, true},
+};
+
+const CommandEntry* findCommand(const std::string& name) {
+    for (const CommandEntry& entry : kCommands)
+        if (name == entry.name) return &entry;
+    return nullptr;
+}
+
+}  // namespace
+
 int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     if (args.empty()) {
         printUsage(err);
         return kExitUsage;
     }
-    const std::string& command = args[0];
+    const std::string& name = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
-    if (command == "-h" || command == "--help" || command == "help") {
-        if (!rest.empty() && rest[0] == "render") out << renderHelp() << sharedOptionsHelp() << kExitCodes;
-        else if (!rest.empty() && rest[0] == "info") out << infoHelp() << kExitCodes;
-        else if (!rest.empty() && rest[0] == "bench") out << benchHelp() << sharedOptionsHelp() << kExitCodes;
-        else if (!rest.empty() && rest[0] == "compare") out << compareHelp() << kExitCodes;
-        else if (!rest.empty() && rest[0] == "diff") out << diffHelp() << sharedOptionsHelp() << kExitCodes;
+    if (name == "-h" || name == "--help" || name == "help") {
+        const CommandEntry* entry = rest.empty() ? nullptr : findCommand(rest[0]);
+        if (entry) out << entry->help() << (entry->sharedOptions ? sharedOptionsHelp() : "") << kExitCodes;
         else printUsage(out);
         return kExitOk;
     }
-    if (command == "--version") {
+    if (name == "--version") {
         out << "frugal 0.1.0\n";
         return kExitOk;
     }
-    if (command == "render") return runRender(rest, out, err);
-    if (command == "info") return runInfo(rest, out, err);
-    if (command == "bench") return runBench(rest, out, err);
-    if (command == "compare") return runCompare(rest, out, err);
-    if (command == "diff") return runDiff(rest, out, err);
-    err << "error: unknown command '" << command << "' (commands: render, info, bench, compare, diff, help)\n";
+    if (const CommandEntry* entry = findCommand(name)) return entry->run(rest, out, err);
+    std::string names;
+    for (const CommandEntry& entry : kCommands) names += std::string(entry.name) + ", ";
+    err << "error: unknown command '" << name << "' (commands: " << names << "help)\n";
     return kExitUsage;
 }
 

@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Cli.h"
+#include "app/Command.h"
 #include "app/Commands.h"
-#include "app/Options.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {
@@ -51,13 +51,8 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     std::string actualIds, referenceIds, maskPath, jsonPath;
     RenderOptions colors;  // only --background is read into it
     CompareOptions options;
-    ArgCursor cursor(args);
-    while (!cursor.done() && cursor.error.empty()) {
-        const std::string flag = cursor.next();
-        if (flag == "-h" || flag == "--help") {
-            out << compareHelp();
-            return kExitOk;
-        }
+    CommandLine command{"compare", compareHelp()};
+    command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (flag == "--background") {
             parseSharedOption(flag, cursor, colors);
         } else if (flag == "--tolerance") {
@@ -70,24 +65,23 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
             else if (a && b) actualIds = *a, referenceIds = *b;
         } else if (flag == "--mask" || flag == "--json") {
             const std::optional<std::string> path = cursor.value(flag);
-            if (!path) break;
+            if (!path) return true;
             if (path->empty()) cursor.fail(flag + ": empty file name");
             else if (flag == "--mask" && !isPng(*path)) cursor.fail("--mask " + *path + ": the mask is written as PNG; name it .png");
             else (flag == "--mask" ? maskPath : jsonPath) = *path;
-        } else if (!flag.empty() && flag[0] == '-') {
-            cursor.fail(flag + ": unknown option (see 'frugal help compare')");
-        } else if (images.size() < 2) {
-            images.push_back(flag);
         } else {
-            cursor.fail("unexpected argument '" + flag + "' (two images only: A.png B.png)");
+            return false;
         }
-    }
-    if (cursor.error.empty() && images.size() != 2)
-        cursor.fail("compare: expected two images, A.png B.png (see 'frugal help compare')");
-    if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
-    }
+        return true;
+    };
+    command.positional = [&images](const std::string& argument, ArgCursor& cursor) {
+        if (images.size() < 2) images.push_back(argument);
+        else cursor.fail("unexpected argument '" + argument + "' (two images only: A.png B.png)");
+    };
+    command.finish = [&images](ArgCursor& cursor) {
+        if (images.size() != 2) cursor.fail("compare: expected two images, A.png B.png (see 'frugal help compare')");
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     options.background = colorBytes(colors.background);
     const std::string& actualPath = images[0];
     const std::string& referencePath = images[1];

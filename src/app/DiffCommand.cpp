@@ -10,9 +10,9 @@
 
 #include "app/Backends.h"
 #include "app/Cli.h"
+#include "app/Command.h"
 #include "app/Commands.h"
-#include "app/Options.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 #include "report/ImageCompare.h"
 
@@ -20,7 +20,7 @@ namespace frugal {
 
 namespace {
 
-// The software backend follows llvmpipe's rasterization rules (../shared/LLVMPIPE-RULES.md). On
+// The software backend follows llvmpipe's rasterization rules (src/software/Rasterizer.h). On
 // Mesa 22.3.6 llvmpipe it matches bit for bit (colour, ids and depth): builtin:default, 30 frames of
 // builtin:cubes, the bunny at 800x600 and every renderable glTF file of assimp-testmodels all have a
 // largest channel difference of 0. The default still allows 2 steps, because the shading is the same
@@ -55,38 +55,27 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     CompareOptions compare;
     compare.tolerance = kDefaultTolerance;
     std::string outDir, jsonPath;
-    bool sceneGiven = false;
-    ArgCursor cursor(args);
-    while (!cursor.done() && cursor.error.empty()) {
-        const std::string flag = cursor.next();
-        if (flag == "-h" || flag == "--help") {
-            out << diffHelp() << sharedOptionsHelp();
-            return kExitOk;
-        }
-        if (parseSharedOption(flag, cursor, options)) continue;
+    CommandLine command{"diff", diffHelp(), &options};
+    command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (flag == "--tolerance") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 0, 255)) compare.tolerance = *n;
         } else if (flag == "--out" || flag == "--json") {
             const std::optional<std::string> path = cursor.value(flag);
-            if (!path) break;
+            if (!path) return true;
             if (path->empty()) cursor.fail(flag + ": empty " + (flag == "--out" ? "folder" : "file") + " name");
             else (flag == "--out" ? outDir : jsonPath) = *path;
-        } else if (!flag.empty() && flag[0] == '-') {
-            cursor.fail(flag + ": unknown option (see 'frugal help diff')");
-        } else if (!sceneGiven) {
-            options.scene = flag;
-            sceneGiven = true;
         } else {
-            cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
+            return false;
         }
-    }
-    if (cursor.error.empty() && options.backend.software)
-        cursor.fail("--backend software: diff compares a GL backend with the software reference; choose auto, egl, "
-                    "egl-device, egl-surfaceless or osmesa");
-    if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
-    }
+        return true;
+    };
+    command.positional = sceneArgument(options);
+    command.finish = [&options](ArgCursor& cursor) {
+        if (options.backend.software)
+            cursor.fail("--backend software: diff compares a GL backend with the software reference; choose auto, egl, "
+                        "egl-device, egl-surfaceless or osmesa");
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     compare.background = colorBytes(options.background);
 
     Result<Scene> loaded = loadForRender(options, err);
@@ -97,30 +86,29 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     const Scene& scene = *loaded;
     const FrameRange range = options.frames.value_or(FrameRange{});
 
-    std::vector<std::string> log;
-    Result<std::unique_ptr<Backend>> gl = openBackend(options.backend, &log, options.threads);
-    if (!gl) {
-        err << "error: --backend " << options.backendName << ": " << gl.error() << "\n";
-        return kExitNoBackend;
+    // The GL backend under test, then the software reference.
+    Session sessions[2];
+    const BackendSelection selections[2] = {options.backend, BackendSelection{true, BackendChoice::Auto}};
+    const std::string labels[2] = {"--backend " + options.backendName, "software reference"};
+    for (int k = 0; k < 2; ++k) {
+        int status = kExitOk;
+        Result<Session> opened = openSession(selections[k], options, status);
+        if (!opened) {
+            err << "error: " << labels[k] << ": " << opened.error() << "\n";
+            return status;
+        }
+        sessions[k] = std::move(*opened);
     }
-    Result<std::unique_ptr<Backend>> software = openBackend(BackendSelection{true, BackendChoice::Auto}, nullptr, options.threads);
-    if (!software) {
-        err << "error: software reference: " << software.error() << "\n";
-        return kExitNoBackend;
-    }
-    Backend* backends[2] = {gl->get(), software->get()};
+    Backend* backends[2] = {sessions[0].backend.get(), sessions[1].backend.get()};
     if (!options.quiet) {
         err << "backend: " << backends[0]->name() << " (" << backends[0]->renderer() << ")\n";
         err << "reference: " << backends[1]->name() << " (" << backends[1]->renderer() << ")\n";
     }
-    TargetHandle targets[2] = {kNoHandle, kNoHandle};
-    for (int k = 0; k < 2; ++k) {
-        targets[k] = createTargetOrReport(*backends[k], options, err);
-        if (targets[k] == kNoHandle) return kExitError;
-    }
-    SceneRenderer glRenderer(*backends[0], scene);
-    SceneRenderer softwareRenderer(*backends[1], scene);
-    SceneRenderer* renderers[2] = {&glRenderer, &softwareRenderer};
+    for (Session& session : sessions)
+        if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
+    const TargetHandle targets[2] = {sessions[0].target, sessions[1].target};
+    SceneRenderer* renderers[2] = {&*sessions[0].renderer, &*sessions[1].renderer};
+    const std::vector<std::string>& log = sessions[0].log;
 
     const std::string actualName = backends[0]->name(), referenceName = backends[1]->name();
     const bool writeAll = !outDir.empty();

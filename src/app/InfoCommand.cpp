@@ -1,8 +1,8 @@
 #include <ostream>
 
 #include "app/Cli.h"
+#include "app/Command.h"
 #include "app/Commands.h"
-#include "app/Options.h"
 
 namespace frugal {
 
@@ -17,25 +17,17 @@ animations, bounds at time 0, and every feature of the file that frugal does not
 int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     bool sceneGiven = false;
-    ArgCursor cursor(args);
-    while (!cursor.done() && cursor.error.empty()) {
-        const std::string flag = cursor.next();
-        if (flag == "-h" || flag == "--help") {
-            out << infoHelp();
-            return kExitOk;
-        }
-        if (flag == "--cull-backfaces") options.load.objDoubleSided = false;
-        else if (!flag.empty() && flag[0] == '-') cursor.fail(flag + ": unknown option (see 'frugal help info')");
-        else if (!sceneGiven) {
-            options.scene = flag;
-            sceneGiven = true;
-        } else cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
-    }
-    if (cursor.error.empty() && !sceneGiven) cursor.fail("info needs a SCENE (a file or builtin:NAME)");
-    if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
-    }
+    CommandLine command{"info", infoHelp()};
+    command.option = [&options](const std::string& flag, ArgCursor&) {
+        if (flag != "--cull-backfaces") return false;
+        options.load.objDoubleSided = false;
+        return true;
+    };
+    command.positional = sceneArgument(options, &sceneGiven);
+    command.finish = [&sceneGiven](ArgCursor& cursor) {
+        if (!sceneGiven) cursor.fail("info needs a SCENE (a file or builtin:NAME)");
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     Result<Scene> loaded = loadScene(options.scene, options.load);
     if (!loaded) {
         err << "error: " << loaded.error() << "\n";

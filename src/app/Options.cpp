@@ -8,12 +8,6 @@
 
 namespace frugal {
 
-std::string fmt(double value) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", value);
-    return buf;
-}
-
 std::string ArgCursor::next() {
     inlineValue_.reset();
     std::string arg = args_[index_++];
@@ -96,12 +90,6 @@ std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int l
         return std::nullopt;
     }
     return v;
-}
-
-std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color) {
-    std::array<std::uint8_t, 4> bytes{};
-    for (int k = 0; k < 4; ++k) bytes[k] = std::uint8_t(std::lround(std::clamp(color[k], 0.0f, 1.0f) * 255.0f));
-    return bytes;
 }
 
 bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& o) {
@@ -195,6 +183,13 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
     return true;
 }
 
+void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
+    const std::optional<float>& near = o.camera.znear;
+    const std::optional<float>& far = o.camera.zfar;
+    if (near && far && *far != 0.0f && !(*far > *near))
+        cursor.fail("--far " + fmt(*far) + ": must exceed --near " + fmt(*near));
+}
+
 const char* sharedOptionsHelp() {
     return R"(  --size WxH            image size in pixels (default 800x600)
   --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
@@ -220,9 +215,9 @@ const char* sharedOptionsHelp() {
 )";
 }
 
-double frameTime(const RenderOptions& options, const Scene& scene, int frame) {
+double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame) {
     if (!options.frames && options.time) return *options.time;
-    return double(frame) / options.fps.value_or(scene.fps);
+    return frameTime(frame, options.fps.value_or(scene.fps));
 }
 
 Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
@@ -241,15 +236,9 @@ Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
 }
 
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
-    FrameSetup setup;
-    setup.time = frameTime(options, scene, frame);
-    setup.world = scene.worldTransforms(setup.time);
-    Result<View> view = resolveCamera(scene, setup.world, setup.time, options.camera, options.width, options.height);
-    if (!view) return Error{options.scene + ": " + view.error()};
-    setup.view = *view;
-    setup.params.view = view->view;
-    setup.params.projection = view->projection;
-    setup.params.writeIds = writeIds;
+    Result<FrameSetup> setup =
+        frugal::setUpFrame(scene, options.camera, frameTimeOf(options, scene, frame), options.width, options.height, writeIds);
+    if (!setup) return Error{options.scene + ": " + setup.error()};
     return setup;
 }
 

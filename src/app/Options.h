@@ -1,5 +1,6 @@
-// Command-line options shared by the commands that render (render, bench, diff), and the
-// set-up they share: load the scene, pick the backend, resolve the camera.
+// Command-line options shared by the commands that render (render, bench, diff): the argument
+// cursor, the shared flags, and the command-line side of frame set-up (which frame, which time).
+// The frame itself is set up by the library (render/Frame.h).
 #pragma once
 
 #include <array>
@@ -11,8 +12,10 @@
 #include <vector>
 
 #include "app/Backends.h"
+#include "base/Format.h"
 #include "render/Backend.h"
 #include "render/Camera.h"
+#include "render/Frame.h"
 #include "scene/Load.h"
 
 namespace frugal {
@@ -58,37 +61,26 @@ struct RenderOptions {
 // Parses one shared option at the cursor (the flag already read into `flag`). Returns false if the
 // flag is not a shared one; usage errors go to cursor.error.
 bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& options);
+// Checks between shared options, once all are read: "--far 1: must exceed --near 5".
+void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
 
 // The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
 std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
 
-// A clear colour as the 8-bit target holds it (GL's unorm conversion: clamp, ×255, round).
-std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color);
-
-// Scene time of frame `frame`.
-double frameTime(const RenderOptions& options, const Scene& scene, int frame);
+// Scene time of frame `frame`: --time when no --frames, else frame / fps (--fps or the scene's).
+double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame);
 
 // Loads the scene, prints its warnings (unsupported features, dropped triangles) to `err`, and checks
 // the first frame's camera, so that a bad camera fails before any backend is opened.
 Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err);
 
-// Everything one frame needs: its time, node transforms, camera and frame parameters.
-struct FrameSetup {
-    double time = 0.0;
-    std::vector<glm::mat4> world;
-    View view;
-    FrameParams params;
-};
-// Error: "<scene>: <camera problem>" (print it after "error: ").
+// Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);
 
 // Creates the render target, or prints the one-line error (the size and the backend's limit) and
 // returns kNoHandle.
 TargetHandle createTargetOrReport(Backend& backend, const RenderOptions& options, std::ostream& err);
-
-// Numbers as the CLI prints them ("%g").
-std::string fmt(double value);
 
 }  // namespace frugal

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/Cli.h"
+#include "app/Command.h"
 #include "app/Commands.h"
-#include "app/Options.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 
 namespace frugal {
@@ -74,49 +74,34 @@ nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     Outputs outputs;
-    bool sceneGiven = false;
-    ArgCursor cursor(args);
-    while (!cursor.done() && cursor.error.empty()) {
-        const std::string flag = cursor.next();
-        if (flag == "-h" || flag == "--help") {
-            out << renderHelp() << sharedOptionsHelp();
-            return kExitOk;
-        }
-        if (parseSharedOption(flag, cursor, options)) continue;
-        if (flag == "-o" || flag == "--output" || flag == "--depth" || flag == "--ids" || flag == "--json") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (!path) break;
-            if (path->empty()) cursor.fail(flag + ": empty file name");
-            else if (flag == "--depth") outputs.depth = *path;
-            else if (flag == "--ids") outputs.ids = *path;
-            else if (flag == "--json") outputs.json = *path;
-            else outputs.color = *path;
-        } else if (!flag.empty() && flag[0] == '-' && flag != "-") {
-            cursor.fail(flag + ": unknown option (see 'frugal help render')");
-        } else if (!sceneGiven) {
-            options.scene = flag;
-            sceneGiven = true;
-        } else {
-            cursor.fail("unexpected argument '" + flag + "' (one SCENE only)");
-        }
-    }
-    if (cursor.error.empty() && !hasExtension(outputs.color, ".png"))
-        cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
-    if (cursor.error.empty() && !outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
-        cursor.fail("--depth " + outputs.depth + ": name it .png (16-bit) or .pfm (float32)");
-    if (cursor.error.empty() && !outputs.ids.empty() && !hasExtension(outputs.ids, ".png"))
-        cursor.fail("--ids " + outputs.ids + ": the id image is written as PNG; name it .png");
-    if (cursor.error.empty() && options.frames) {
-        for (const auto& [flag, path] : {std::pair{"-o", outputs.color}, {"--depth", outputs.depth}, {"--ids", outputs.ids}})
-            if (!path.empty()) {
-                const std::string problem = checkPattern(flag, path);
-                if (!problem.empty()) cursor.fail(problem);
-            }
-    }
-    if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
-    }
+    CommandLine command{"render", renderHelp(), &options};
+    command.option = [&outputs](const std::string& flag, ArgCursor& cursor) {
+        if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
+        const std::optional<std::string> path = cursor.value(flag);
+        if (!path) return true;
+        if (path->empty()) cursor.fail(flag + ": empty file name");
+        else if (flag == "--depth") outputs.depth = *path;
+        else if (flag == "--ids") outputs.ids = *path;
+        else if (flag == "--json") outputs.json = *path;
+        else outputs.color = *path;
+        return true;
+    };
+    command.positional = sceneArgument(options);
+    command.finish = [&outputs, &options](ArgCursor& cursor) {
+        if (!hasExtension(outputs.color, ".png"))
+            cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
+        else if (!outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
+            cursor.fail("--depth " + outputs.depth + ": name it .png (16-bit) or .pfm (float32)");
+        else if (!outputs.ids.empty() && !hasExtension(outputs.ids, ".png"))
+            cursor.fail("--ids " + outputs.ids + ": the id image is written as PNG; name it .png");
+        else if (options.frames)
+            for (const auto& [flag, path] : {std::pair{"-o", outputs.color}, {"--depth", outputs.depth}, {"--ids", outputs.ids}})
+                if (!path.empty()) {
+                    const std::string problem = checkPattern(flag, path);
+                    if (!problem.empty()) cursor.fail(problem);
+                }
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) {
@@ -127,18 +112,19 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     const FrameRange range = options.frames.value_or(FrameRange{});
 
-    std::vector<std::string> log;
-    Result<std::unique_ptr<Backend>> created = openBackend(options.backend, &log, options.threads);
-    if (!created) {
-        err << "error: --backend " << options.backendName << ": " << created.error() << "\n";
-        return kExitNoBackend;
+    int status = kExitOk;
+    Result<Session> opened = openSession(options.backend, options, status);
+    if (!opened) {
+        err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
+        return status;
     }
-    Backend& backend = **created;
+    Session& session = *opened;
+    Backend& backend = *session.backend;
     if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
-
-    const TargetHandle target = createTargetOrReport(backend, options, err);
-    if (target == kNoHandle) return kExitError;
-    SceneRenderer renderer(backend, scene);
+    if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
+    SceneRenderer& renderer = *session.renderer;
+    const TargetHandle target = session.target;
+    const std::vector<std::string>& log = session.log;
 
     const int frameCount = range.last - range.first + 1;
     nlohmann::json frames = nlohmann::json::array();

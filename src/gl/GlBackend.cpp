@@ -47,6 +47,8 @@
 
 #include "gl/GlApi.h"
 #include "gl/Shaders.h"
+#include "render/Handles.h"
+#include "render/IndexRanges.h"
 
 namespace frugal {
 
@@ -90,44 +92,6 @@ struct GlMesh {
     GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
 };
 
-// Handles are slot index + 1; kNoHandle (0) is never handed out. Freed slots are reused.
-template <class T>
-class Slots {
-public:
-    std::uint32_t add(T value) {
-        if (!free_.empty()) {
-            const std::uint32_t index = free_.back();
-            free_.pop_back();
-            items_[index] = std::move(value);
-            live_[index] = true;
-            return index + 1;
-        }
-        items_.push_back(std::move(value));
-        live_.push_back(true);
-        return std::uint32_t(items_.size());
-    }
-    T* find(std::uint32_t handle) {
-        if (handle == kNoHandle || handle > items_.size() || !live_[handle - 1]) return nullptr;
-        return &items_[handle - 1];
-    }
-    void remove(std::uint32_t handle) {
-        if (find(handle) == nullptr) return;
-        items_[handle - 1] = T{};
-        live_[handle - 1] = false;
-        free_.push_back(handle - 1);
-    }
-    template <class F>
-    void forEach(F&& f) {
-        for (std::size_t i = 0; i < items_.size(); ++i)
-            if (live_[i]) f(items_[i]);
-    }
-
-private:
-    std::vector<T> items_;
-    std::vector<bool> live_;
-    std::vector<std::uint32_t> free_;
-};
-
 // An info log on one line: newlines become "; ", trailing blanks and NULs go.
 std::string oneLine(std::string text) {
     while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\0')) text.pop_back();
@@ -139,13 +103,6 @@ std::string oneLine(std::string text) {
             out += c;
     }
     return out;
-}
-
-Rect clipRect(const Rect& rect, int width, int height) {
-    const int x0 = std::max(rect.x, 0), y0 = std::max(rect.y, 0);
-    const int x1 = std::min(rect.x + std::max(rect.width, 0), width);
-    const int y1 = std::min(rect.y + std::max(rect.height, 0), height);
-    return Rect{x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
 GLint wrapMode(Wrap wrap) {
@@ -189,6 +146,7 @@ public:
     std::string name() const override { return contextKindName(context_->kind()); }
     std::string renderer() const override { return renderer_; }
     int maxTargetSize() const override { return maxTargetSize_; }
+    int maxTextureSize() const override { return maxTextureSize_; }
 
     TargetHandle createTarget(int width, int height) override;
     void destroyTarget(TargetHandle target) override;
@@ -347,15 +305,16 @@ private:
         int viewportWidth = -1, viewportHeight = -1;
     } cache_;
 
-    Slots<GlTarget> targets_;
-    Slots<GlMesh> meshes_;
-    Slots<GLuint> textures_;
+    HandleTable<GlTarget> targets_;
+    HandleTable<GlMesh> meshes_;
+    HandleTable<GLuint> textures_;
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
     glm::mat4 viewProjection_{1.0f};
 
     // Scratch for the multi-draw argument arrays (no allocation per draw once grown).
+    std::vector<IndexRange> runs_;
     std::vector<GLsizei> counts_;
     std::vector<GLint> firsts_;
     std::vector<const void*> offsets_;
@@ -550,11 +509,7 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     GlMesh m;
     m.triangles = std::uint32_t(triangles);
     m.vertices = std::uint32_t(vertices);
-    m.triangleSource = mesh.triangleSource;
-    if (m.triangleSource.empty()) {
-        m.triangleSource.resize(triangles);
-        for (std::uint32_t t = 0; t < m.triangles; ++t) m.triangleSource[t] = t;
-    }
+    m.triangleSource = triangleSources(mesh);
 
     // One buffer, one section per attribute (positions, normals, colours, uvs).
     GLsizeiptr size = GLsizeiptr(vertices * sizeof(glm::vec3));
@@ -691,35 +646,13 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
     assert(mesh != nullptr && "draw: no such mesh");
     if (target == nullptr || mesh == nullptr) return;
 
-    // Ranges in the order given, adjacent ones merged (the triangle order is unchanged), clamped
-    // to the mesh (a range past the end is the caller's bug).
+    if (normalizeRanges(ranges, mesh->triangles, runs_) == 0) return;
     counts_.clear();
     firsts_.clear();
-    std::uint32_t runFirst = 0, runEnd = 0;
-    bool open = false;
-    const auto flush = [&] {
-        if (open && runEnd > runFirst) {
-            firsts_.push_back(GLint(runFirst));
-            counts_.push_back(GLsizei(runEnd - runFirst));
-        }
-    };
-    for (const IndexRange& range : ranges) {
-        assert(std::uint64_t(range.firstTriangle) + range.triangleCount <= mesh->triangles &&
-               "draw: index range past the end of the mesh");
-        const std::uint32_t first = std::min(range.firstTriangle, mesh->triangles);
-        const std::uint32_t end = first + std::min(range.triangleCount, mesh->triangles - first);
-        if (end == first) continue;
-        if (open && first == runEnd) {
-            runEnd = end;
-            continue;
-        }
-        flush();
-        runFirst = first;
-        runEnd = end;
-        open = true;
+    for (const IndexRange& run : runs_) {
+        firsts_.push_back(GLint(run.firstTriangle));
+        counts_.push_back(GLsizei(run.triangleCount));
     }
-    flush();
-    if (counts_.empty()) return;
 
     activate();
     const bool writeIds = frame_.writeIds;

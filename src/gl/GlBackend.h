@@ -7,7 +7,7 @@
 
 #include "gl/GlContext.h"
 #include "render/Backend.h"
-#include "scene/Result.h"
+#include "base/Result.h"
 
 namespace frugal {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/Result.h"
+#include "base/Result.h"
 
 namespace frugal {
 

@@ -73,6 +73,8 @@ public:
 
     // Largest width or height createTarget accepts (GL_MAX_RENDERBUFFER_SIZE and GL_MAX_VIEWPORT_DIMS).
     virtual int maxTargetSize() const = 0;
+    // Largest width or height uploadTexture accepts (GL_MAX_TEXTURE_SIZE).
+    virtual int maxTextureSize() const = 0;
     // kNoHandle when width or height is < 1 or > maxTargetSize(), or the allocation fails.
     virtual TargetHandle createTarget(int width, int height) = 0;
     virtual void destroyTarget(TargetHandle target) = 0;

@@ -4,15 +4,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "base/Format.h"
+
 namespace frugal {
 
 namespace {
-
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
 
 glm::mat4 perspective(float yfov, float aspect, float znear, float zfar) {
     return zfar > 0.0f ? glm::perspective(yfov, aspect, znear, zfar) : glm::infinitePerspective(yfov, aspect, znear);
@@ -50,16 +46,16 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
         v.yfov = spec.yfovDegrees ? glm::radians(*spec.yfovDegrees) : camera.yfov;
         v.source = "scene camera " + std::to_string(index) + (camera.name.empty() ? "" : " '" + camera.name + "'");
         if (!camera.perspective) {
-            if (v.zfar <= v.znear) return Error{"camera " + std::to_string(index) + ": orthographic zfar " + num(v.zfar) + " must exceed znear " + num(v.znear)};
+            if (v.zfar <= v.znear) return Error{"camera " + std::to_string(index) + ": orthographic zfar " + fmt(v.zfar) + " must exceed znear " + fmt(v.znear)};
             v.projection = glm::ortho(-camera.xmag, camera.xmag, -camera.ymag, camera.ymag, v.znear, v.zfar);
             return v;
         }
         const float aspect = camera.aspect > 0.0f ? camera.aspect : viewportAspect;
-        if (!(v.znear > 0.0f)) return Error{"camera " + std::to_string(index) + ": znear " + num(v.znear) + " must be > 0"};
+        if (!(v.znear > 0.0f)) return Error{"camera " + std::to_string(index) + ": znear " + fmt(v.znear) + " must be > 0"};
         if (v.zfar != 0.0f && !(v.zfar > v.znear))
-            return Error{"camera " + std::to_string(index) + ": zfar " + num(v.zfar) + " must exceed znear " + num(v.znear)};
+            return Error{"camera " + std::to_string(index) + ": zfar " + fmt(v.zfar) + " must exceed znear " + fmt(v.znear)};
         if (!(v.yfov > 0.0f && v.yfov < glm::pi<float>()))
-            return Error{"camera " + std::to_string(index) + ": yfov " + num(glm::degrees(v.yfov)) + " degrees is outside (0, 180)"};
+            return Error{"camera " + std::to_string(index) + ": yfov " + fmt(glm::degrees(v.yfov)) + " degrees is outside (0, 180)"};
         v.projection = perspective(v.yfov, aspect, v.znear, v.zfar);
         return v;
     }
@@ -69,7 +65,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
     const float radius = std::max(bounds.radius(), 1e-6f);
     v.yfov = glm::radians(spec.yfovDegrees.value_or(40.0f));
     if (!(v.yfov > 0.0f && v.yfov < glm::pi<float>()))
-        return Error{"--fov " + num(glm::degrees(v.yfov)) + ": must be in (0, 180) degrees"};
+        return Error{"camera: yfov " + fmt(glm::degrees(v.yfov)) + " degrees is outside (0, 180)"};
 
     glm::vec3 eye, target;
     if (spec.eye) {
@@ -88,13 +84,19 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
     if (!(glm::length(forward) > 0.0f) || !std::isfinite(glm::length(forward)))
         return Error{"camera: eye and target must differ and be finite"};
     if (glm::length(glm::cross(glm::normalize(forward), spec.up)) < 1e-6f)
-        return Error{"camera: up (" + num(spec.up.x) + "," + num(spec.up.y) + "," + num(spec.up.z) + ") is parallel to the view direction"};
+        return Error{"camera: up (" + fmt(spec.up.x) + "," + fmt(spec.up.y) + "," + fmt(spec.up.z) + ") is parallel to the view direction"};
     // Default clip range: just around the scene, so depth precision goes where the scene is.
     const float distance = glm::length(center - eye);
     v.znear = spec.znear.value_or(std::max(distance - radius * 1.1f, std::max(distance, radius) * 1e-3f));
     v.zfar = spec.zfar.value_or(distance + radius * 1.1f);
-    if (!(v.znear > 0.0f)) return Error{"--near " + num(v.znear) + ": must be > 0"};
-    if (v.zfar != 0.0f && !(v.zfar > v.znear)) return Error{"--far " + num(v.zfar) + ": must exceed near " + num(v.znear)};
+    // Say which plane was given and which was fitted, so the caller can tell its user what to change.
+    const auto plane = [](const char* name, float value, bool given) {
+        return std::string(name) + " plane " + fmt(value) + (given ? "" : " (fitted to the scene)");
+    };
+    if (!(v.znear > 0.0f)) return Error{"camera: " + plane("near", v.znear, spec.znear.has_value()) + " must be > 0"};
+    if (v.zfar != 0.0f && !(v.zfar > v.znear))
+        return Error{"camera: " + plane("far", v.zfar, spec.zfar.has_value()) + " must exceed the " +
+                     plane("near", v.znear, spec.znear.has_value())};
     v.eye = eye;
     v.forward = glm::normalize(forward);
     v.view = glm::lookAt(eye, target, spec.up);

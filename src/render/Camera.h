@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/Result.h"
+#include "base/Result.h"
 #include "scene/Scene.h"
 
 namespace frugal {

@@ -1,33 +1,52 @@
 #include "render/SceneRenderer.h"
 
+#include <string>
+
 namespace frugal {
 
-DrawList fullDrawList(const Scene& scene) {
-    DrawList list;
-    list.reserve(scene.instances.size());
-    for (int i = 0; i < int(scene.instances.size()); ++i) {
-        const Mesh& mesh = scene.meshes[scene.instances[i].mesh];
-        if (mesh.triangleCount() == 0) continue;
-        list.push_back({i, {{0, std::uint32_t(mesh.triangleCount())}}});
-    }
-    return list;
-}
+namespace {
+
+std::string quoted(const std::string& name) { return name.empty() ? std::string() : " '" + name + "'"; }
+
+}  // namespace
 
 SceneRenderer::SceneRenderer(Backend& backend, const Scene& scene)
-    : backend_(backend), scene_(scene), full_(fullDrawList(scene)) {
-    meshes_.reserve(scene.meshes.size());
-    for (const Mesh& mesh : scene.meshes) meshes_.push_back(backend.uploadMesh(mesh));
-    textures_.reserve(scene.textures.size());
-    for (const Texture& texture : scene.textures) textures_.push_back(backend.uploadTexture(texture));
+    : backend_(&backend), scene_(&scene), full_(fullDrawList(scene)) {}
+
+Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene) {
+    SceneRenderer renderer(backend, scene);
+    renderer.meshes_.reserve(scene.meshes.size());
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const Mesh& mesh = scene.meshes[i];
+        const MeshHandle handle = backend.uploadMesh(mesh);
+        if (handle == kNoHandle)
+            return Error{"mesh " + std::to_string(i) + quoted(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
+                         " vertices, " + std::to_string(mesh.triangleCount()) + " triangles): " + backend.name() +
+                         (isUploadable(mesh) ? " could not store it (out of memory)"
+                                             : " refused it: its arrays break the upload contract (render/Backend.h)")};
+        renderer.meshes_.push_back(handle);
+    }
+    renderer.textures_.reserve(scene.textures.size());
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& texture = scene.textures[i];
+        const TextureHandle handle = backend.uploadTexture(texture);
+        if (handle == kNoHandle)
+            return Error{"texture " + std::to_string(i) + quoted(texture.name) + " (" + std::to_string(texture.width) +
+                         "x" + std::to_string(texture.height) + "): " + backend.name() +
+                         " refused it (its limit is " + std::to_string(backend.maxTextureSize()) +
+                         " pixels a side; or out of memory)"};
+        renderer.textures_.push_back(handle);
+    }
+    return renderer;
 }
 
 void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& world) {
     static const Material kDefault{};
     for (const DrawCommand& command : list) {
         if (command.ranges.empty()) continue;
-        const Instance& instance = scene_.instances[command.instance];
-        const Mesh& mesh = scene_.meshes[instance.mesh];
-        const Material& material = mesh.material >= 0 ? scene_.materials[mesh.material] : kDefault;
+        const Instance& instance = scene_->instances[command.instance];
+        const Mesh& mesh = scene_->meshes[instance.mesh];
+        const Material& material = mesh.material >= 0 ? scene_->materials[mesh.material] : kDefault;
         DrawParams params;
         params.mesh = meshes_[instance.mesh];
         params.model = world[instance.node];
@@ -35,14 +54,14 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
         params.doubleSided = material.doubleSided;
         params.firstId = instance.firstId;
-        backend_.draw(params, command.ranges);
+        backend_->draw(params, command.ranges);
     }
 }
 
 void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                                 const std::vector<glm::mat4>& world, const glm::vec4& background) {
-    backend_.clear(target, Rect{0, 0, width, height}, background, 1.0f);
-    backend_.beginFrame(target, frame);
+    backend_->clear(target, Rect{0, 0, width, height}, background, 1.0f);
+    backend_->beginFrame(target, frame);
     draw(full_, world);
 }
 

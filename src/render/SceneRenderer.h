@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "base/Result.h"
 #include "render/Backend.h"
 #include "render/Plan.h"
 
@@ -10,8 +11,10 @@ namespace frugal {
 
 class SceneRenderer {
 public:
-    // Uploads every mesh and texture of `scene`; both must outlive the renderer.
-    SceneRenderer(Backend& backend, const Scene& scene);
+    // Uploads every mesh and texture of `scene`; both must outlive the renderer. A mesh or texture
+    // the backend refuses is an error, never a part of the scene left out of every frame:
+    // "mesh 2 'name' (N vertices, M triangles): <backend> refused it ..." or the same for a texture.
+    static Result<SceneRenderer> create(Backend& backend, const Scene& scene);
 
     // Draws `list` with the node transforms `world` into the current frame (Backend::beginFrame
     // must have been called). Materials follow the instance's mesh.
@@ -21,12 +24,14 @@ public:
     void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                      const std::vector<glm::mat4>& world, const glm::vec4& background);
 
-    Backend& backend() { return backend_; }
-    const Scene& scene() const { return scene_; }
+    Backend& backend() { return *backend_; }
+    const Scene& scene() const { return *scene_; }
 
 private:
-    Backend& backend_;
-    const Scene& scene_;
+    SceneRenderer(Backend& backend, const Scene& scene);
+
+    Backend* backend_;
+    const Scene* scene_;
     DrawList full_;
     std::vector<MeshHandle> meshes_;
     std::vector<TextureHandle> textures_;

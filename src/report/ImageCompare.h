@@ -30,8 +30,8 @@
 #include <string>
 
 #include "render/Image.h"
-#include "render/ImageIO.h"
-#include "scene/Result.h"
+#include "io/ImageIO.h"
+#include "base/Result.h"
 
 namespace frugal {
 

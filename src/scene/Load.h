@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/Result.h"
+#include "base/Result.h"
 #include "scene/Scene.h"
 
 namespace frugal {

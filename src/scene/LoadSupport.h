@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "scene/Result.h"
+#include "base/Result.h"
 #include "scene/Scene.h"
 
 namespace frugal::load {

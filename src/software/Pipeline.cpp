@@ -5,6 +5,8 @@
 #include <iterator>
 #include <new>
 
+#include "render/IndexRanges.h"
+
 #pragma GCC optimize("fp-contract=off")
 
 namespace frugal::sw {
@@ -118,22 +120,13 @@ void Pipeline::setup(const SetupJob& job, std::uint64_t skip, std::uint64_t coun
 void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& input,
                     std::span<const IndexRange> ranges) {
     assert((!pending() || (width == width_ && height == height_)) && "Pipeline::draw: flush before changing targets");
-    // Ranges in the order given, clamped to the mesh, adjacent ones merged (as the GL backend: the
-    // merged ranges are what the draw module splits into batches).
+    // The merged ranges (render/IndexRanges.h), as the GL backend submits them: they are what the
+    // draw module splits into batches.
+    std::vector<IndexRange> merged;
+    const std::uint64_t triangles = normalizeRanges(ranges, mesh.triangles, merged);
     std::vector<Run> runs;
-    std::uint64_t triangles = 0;
-    for (const IndexRange& range : ranges) {
-        assert(std::uint64_t(range.firstTriangle) + range.triangleCount <= mesh.triangles &&
-               "draw: index range past the end of the mesh");
-        const std::uint32_t first = std::min(range.firstTriangle, mesh.triangles);
-        const std::uint32_t end = first + std::min(range.triangleCount, mesh.triangles - first);
-        if (end == first) continue;
-        triangles += end - first;
-        if (!runs.empty() && runs.back().end == first)
-            runs.back().end = end;
-        else
-            runs.push_back({first, end});
-    }
+    runs.reserve(merged.size());
+    for (const IndexRange& range : merged) runs.push_back({range.firstTriangle, range.firstTriangle + range.triangleCount});
     if (triangles == 0) return;
     width_ = width;
     height_ = height;

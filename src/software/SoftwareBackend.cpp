@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "render/Handles.h"
+#include "render/IndexRanges.h"
 #include "software/Pipeline.h"
 #include "software/Shading.h"
 
@@ -34,42 +36,6 @@ struct SwTarget {
     sw::TargetView view() { return {color.data(), depth.data(), ids.data(), width, height, stride}; }
 };
 
-// Handles are slot index + 1, as in the GL backend; freed slots are reused.
-template <class T>
-class Slots {
-public:
-    std::uint32_t add(T value) {
-        if (!free_.empty()) {
-            const std::uint32_t index = free_.back();
-            free_.pop_back();
-            items_[index] = std::make_unique<T>(std::move(value));
-            return index + 1;
-        }
-        items_.push_back(std::make_unique<T>(std::move(value)));
-        return std::uint32_t(items_.size());
-    }
-    T* find(std::uint32_t handle) {
-        if (handle == kNoHandle || handle > items_.size()) return nullptr;
-        return items_[handle - 1].get();
-    }
-    void remove(std::uint32_t handle) {
-        if (find(handle) == nullptr) return;
-        items_[handle - 1].reset();
-        free_.push_back(handle - 1);
-    }
-
-private:
-    std::vector<std::unique_ptr<T>> items_;
-    std::vector<std::uint32_t> free_;
-};
-
-Rect clipRect(const Rect& rect, int width, int height) {
-    const int x0 = std::max(rect.x, 0), y0 = std::max(rect.y, 0);
-    const int x1 = std::min(rect.x + std::max(rect.width, 0), width);
-    const int y1 = std::min(rect.y + std::max(rect.height, 0), height);
-    return Rect{x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
-}
-
 class SoftwareBackend final : public Backend {
 public:
     explicit SoftwareBackend(const SoftwareOptions& options)
@@ -82,6 +48,7 @@ public:
                std::to_string(pipeline_.threads()) + (pipeline_.threads() == 1 ? " thread)" : " threads)");
     }
     int maxTargetSize() const override { return kMaxSize; }
+    int maxTextureSize() const override { return kMaxSize; }
 
     TargetHandle createTarget(int width, int height) override;
     void destroyTarget(TargetHandle target) override;
@@ -106,9 +73,9 @@ private:
     }
 
     sw::Pipeline pipeline_;
-    Slots<SwTarget> targets_;
-    Slots<SwMesh> meshes_;
-    Slots<sw::SoftwareTexture> textures_;
+    HandleTable<SwTarget> targets_;
+    HandleTable<SwMesh> meshes_;
+    HandleTable<sw::SoftwareTexture> textures_;
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
@@ -155,11 +122,7 @@ MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
         m.uvs = mesh.uvs;
         m.indices = mesh.indices;
         m.triangles = std::uint32_t(triangles);
-        m.triangleSource = mesh.triangleSource;
-        if (m.triangleSource.empty()) {
-            m.triangleSource.resize(triangles);
-            for (std::uint32_t t = 0; t < m.triangles; ++t) m.triangleSource[t] = t;
-        }
+        m.triangleSource = triangleSources(mesh);
         m.stamp.assign(vertices, 0);
     } catch (const std::bad_alloc&) {
         return kNoHandle;

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {

@@ -17,7 +17,7 @@
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "gl/GlContext.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 
 namespace frugal {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
-#include "render/Camera.h"
-#include "render/ImageIO.h"
+#include "render/Frame.h"
+#include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
@@ -29,16 +29,13 @@ struct Frame {
 Frame render(Backend& backend, const Scene& scene, int w, int h, double time = 0.0, bool ids = true) {
     const TargetHandle target = backend.createTarget(w, h);
     EXPECT_NE(target, kNoHandle);
-    SceneRenderer renderer(backend, scene);
-    const auto world = scene.worldTransforms(time);
-    Result<View> view = resolveCamera(scene, world, time, {}, w, h);
-    EXPECT_TRUE(view) << view.error();
-    FrameParams params;
-    params.view = view->view;
-    params.projection = view->projection;
-    params.writeIds = ids;
-    renderer.renderFrame(target, w, h, params, world, kBackground);
-    Frame frame{backend.readBack(target), *view};
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    Result<FrameSetup> setup = setUpFrame(scene, {}, time, w, h, ids);
+    EXPECT_TRUE(renderer) << renderer.error();
+    EXPECT_TRUE(setup) << setup.error();
+    if (!renderer || !setup) return {};
+    renderer->renderFrame(target, w, h, setup->params, setup->world, kBackground);
+    Frame frame{backend.readBack(target), setup->view};
     backend.destroyTarget(target);
     return frame;
 }

@@ -17,7 +17,7 @@
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "render/Backend.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 #include "software/SoftwareBackend.h"
 
 namespace frugal::test {

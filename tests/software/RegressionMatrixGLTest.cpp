@@ -12,7 +12,7 @@
 #include <random>
 
 #include "GlReference.h"
-#include "render/Camera.h"
+#include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "report/ImageCompare.h"
 #include "scene/Load.h"
@@ -197,19 +197,16 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     ASSERT_NE(gl, nullptr);
     std::unique_ptr<Backend> software = makeSoftwareBackend();
 
-    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
-    Result<View> view = resolveCamera(scene, world, 0.0, c.camera, c.width, c.height);
-    ASSERT_TRUE(view) << view.error();
-    FrameParams params;
-    params.view = view->view;
-    params.projection = view->projection;
+    Result<FrameSetup> setup = setUpFrame(scene, c.camera, 0.0, c.width, c.height, true);
+    ASSERT_TRUE(setup) << setup.error();
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
         const TargetHandle target = backends[k]->createTarget(c.width, c.height);
         ASSERT_NE(target, kNoHandle);
-        SceneRenderer renderer(*backends[k], scene);
-        renderer.renderFrame(target, c.width, c.height, params, world, glm::vec4(0.12f, 0.13f, 0.15f, 1.0f));
+        Result<SceneRenderer> renderer = SceneRenderer::create(*backends[k], scene);
+        ASSERT_TRUE(renderer) << renderer.error();
+        renderer->renderFrame(target, c.width, c.height, setup->params, setup->world, glm::vec4(0.12f, 0.13f, 0.15f, 1.0f));
         images[k] = backends[k]->readBack(target);
     }
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "GlReference.h"
-#include "render/Camera.h"
+#include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "scene/Load.h"
 
@@ -29,16 +29,12 @@ const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
 Buffers renderScene(Backend& backend, const Scene& scene, int width, int height, double time, bool ids) {
     const TargetHandle target = backend.createTarget(width, height);
     EXPECT_NE(target, kNoHandle);
-    SceneRenderer renderer(backend, scene);
-    const std::vector<glm::mat4> world = scene.worldTransforms(time);
-    Result<View> view = resolveCamera(scene, world, time, {}, width, height);
-    EXPECT_TRUE(view) << view.error();
-    if (!view) return {};
-    FrameParams frame;
-    frame.view = view->view;
-    frame.projection = view->projection;
-    frame.writeIds = ids;
-    renderer.renderFrame(target, width, height, frame, world, kBackground);
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    Result<FrameSetup> setup = setUpFrame(scene, {}, time, width, height, ids);
+    EXPECT_TRUE(renderer) << renderer.error();
+    EXPECT_TRUE(setup) << setup.error();
+    if (!renderer || !setup) return {};
+    renderer->renderFrame(target, width, height, setup->params, setup->world, kBackground);
     Buffers out = backend.readBack(target);
     backend.destroyTarget(target);
     return out;

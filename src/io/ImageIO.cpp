@@ -1,4 +1,4 @@
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 
 #include <cerrno>
 #include <cstdio>

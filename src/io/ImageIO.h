@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "render/Image.h"
-#include "scene/Result.h"
+#include "base/Result.h"
 
 namespace frugal {
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "render/ImageIO.h"
+#include "io/ImageIO.h"
 
 namespace frugal {
 namespace {

@@ -1,0 +1,72 @@
+#include "app/Command.h"
+
+#include <ostream>
+
+#include "app/Cli.h"
+
+namespace frugal {
+
+std::optional<int> parseCommandLine(const CommandLine& command, const std::vector<std::string>& args,
+                                    std::ostream& out, std::ostream& err) {
+    ArgCursor cursor(args);
+    while (!cursor.done() && cursor.error.empty()) {
+        const std::string flag = cursor.next();
+        if (flag == "-h" || flag == "--help") {
+            out << command.help;
+            if (command.shared) out << sharedOptionsHelp();
+            return kExitOk;
+        }
+        if (command.shared && parseSharedOption(flag, cursor, *command.shared)) continue;
+        if (command.option && command.option(flag, cursor)) continue;
+        if (flag.size() > 1 && flag[0] == '-')
+            cursor.fail(flag + ": unknown option (see 'frugal help " + command.name + "')");
+        else if (command.positional)
+            command.positional(flag, cursor);
+        else
+            cursor.fail("unexpected argument '" + flag + "'");
+    }
+    if (cursor.error.empty() && command.shared) checkSharedOptions(*command.shared, cursor);
+    if (cursor.error.empty() && command.finish) command.finish(cursor);
+    if (!cursor.error.empty()) {
+        err << "error: " << cursor.error << "\n";
+        return kExitUsage;
+    }
+    return std::nullopt;
+}
+
+std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions& options, bool* given) {
+    return [&options, given, seen = false](const std::string& argument, ArgCursor& cursor) mutable {
+        if (seen) {
+            cursor.fail("unexpected argument '" + argument + "' (one SCENE only)");
+            return;
+        }
+        options.scene = argument;
+        seen = true;
+        if (given) *given = true;
+    };
+}
+
+Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options, int& status) {
+    Session session;
+    Result<std::unique_ptr<Backend>> backend = openBackend(selection, &session.log, options.threads);
+    if (!backend) {
+        status = kExitNoBackend;
+        return Error{backend.error()};
+    }
+    session.backend = std::move(*backend);
+    return session;
+}
+
+int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
+    if (session.target == kNoHandle) session.target = createTargetOrReport(*session.backend, options, err);
+    if (session.target == kNoHandle) return kExitError;
+    Result<SceneRenderer> renderer = SceneRenderer::create(*session.backend, scene);
+    if (!renderer) {
+        err << "error: " << options.scene << ": " << renderer.error() << "\n";
+        return kExitError;
+    }
+    session.renderer.emplace(std::move(*renderer));
+    return kExitOk;
+}
+
+}  // namespace frugal

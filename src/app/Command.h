@@ -1,0 +1,67 @@
+// The skeleton every command shares: one argument loop, and one way to open a backend with a
+// target and the scene uploaded. A command supplies its own flags, its positional arguments and its
+// work; messages, help and exit codes come out the same everywhere.
+//
+// Why not CLI11 (Debian libcli11-dev): the messages users and tests rely on ("error: --size 0x600:
+// width and height must be 1 to 65536 ...", "--wat: unknown option (see 'frugal help render')")
+// would each need a custom validator and a failure formatter to survive, the help texts are written
+// by hand and would be regenerated, and a ~25k-line header would compile into every command. What
+// frugal needs from a parser (flags with a value inline or next, positionals, one usage error) is
+// ArgCursor plus this loop.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/Options.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+
+struct CommandLine {
+    CommandLine(std::string name_, const char* help_, RenderOptions* shared_ = nullptr)
+        : name(std::move(name_)), help(help_), shared(shared_) {}
+
+    std::string name;        // as in "see 'frugal help NAME'"
+    const char* help;        // printed by -h/--help (followed by the shared options' help)
+    RenderOptions* shared;   // the shared render options are parsed into it, when given
+    // The command's own flags: false when `flag` is not one of them. Usage errors go to the cursor.
+    std::function<bool(const std::string& flag, ArgCursor& cursor)> option;
+    // A positional argument; fail the cursor when there is no room for it.
+    std::function<void(const std::string& argument, ArgCursor& cursor)> positional;
+    // Checks once every argument is read (missing positionals, flags that conflict).
+    std::function<void(ArgCursor& cursor)> finish;
+};
+
+// The one argument loop. Returns nothing when the command should go on, or the exit status to
+// return: kExitOk after -h/--help printed the help to `out`, kExitUsage after "error: <why>" on `err`.
+std::optional<int> parseCommandLine(const CommandLine& command, const std::vector<std::string>& args,
+                                    std::ostream& out, std::ostream& err);
+
+// The positional of the commands that render: one SCENE, "unexpected argument 'x' (one SCENE only)".
+std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions& options, bool* given = nullptr);
+
+// A backend with one target of the options' size and the scene uploaded: what render, bench and
+// diff draw into.
+struct Session {
+    std::unique_ptr<Backend> backend;
+    std::vector<std::string> log;  // the contexts tried (GL), or "software: ok"
+    TargetHandle target = kNoHandle;
+    std::optional<SceneRenderer> renderer;
+};
+
+// Opens `selection` with the options' thread count. On failure `status` is kExitNoBackend and the
+// message is the backend's reason (print it after "error: <label>: ").
+Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options, int& status);
+
+// Creates the target (unless the session has one) and uploads `scene` into an open session,
+// replacing the scene uploaded before. On failure prints the one error line
+// and returns the exit status (kExitError); returns kExitOk on success.
+int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err);
+
+}  // namespace frugal

@@ -1,0 +1,38 @@
+// Everything one frame needs before anything is drawn: its scene time, the node transforms at that
+// time, the camera, and the parameters a backend's beginFrame takes. Library work shared by the CLI,
+// culling, reuse and tests, so that all of them set up a frame the same way.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/Result.h"
+#include "render/Backend.h"
+#include "render/Camera.h"
+#include "scene/Scene.h"
+
+namespace frugal {
+
+// Scene time of frame `frame` (0-based) at `fps` frames per second.
+double frameTime(int frame, double fps);
+
+struct FrameSetup {
+    double time = 0.0;
+    std::vector<glm::mat4> world;  // per node, at `time`
+    View view;
+    FrameParams params;
+};
+
+// The frame at scene time `time`, seen through `camera` on a width × height target.
+// Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
+Result<FrameSetup> setUpFrame(const Scene& scene, const CameraSpec& camera, double time, int width, int height,
+                              bool writeIds);
+
+// A clear colour as the 8-bit target holds it (GL's unorm conversion: clamp to [0,1], ×255, round
+// to nearest).
+std::array<std::uint8_t, 4> colorBytes(const glm::vec4& color);
+
+}  // namespace frugal

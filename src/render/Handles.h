@@ -1,0 +1,49 @@
+// Handle tables for backend objects (targets, meshes, textures). A handle is slot index + 1, so
+// kNoHandle (0) is never handed out; freed slots are reused. Objects live behind unique_ptr: their
+// addresses stay valid while other objects are added or removed (the software backend keeps
+// pointers to meshes and textures in draws that are not rasterized yet).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace frugal {
+
+template <class T>
+class HandleTable {
+public:
+    std::uint32_t add(T value) {
+        auto item = std::make_unique<T>(std::move(value));
+        if (!free_.empty()) {
+            const std::uint32_t index = free_.back();
+            free_.pop_back();
+            items_[index] = std::move(item);
+            return index + 1;
+        }
+        items_.push_back(std::move(item));
+        return std::uint32_t(items_.size());
+    }
+    // nullptr for kNoHandle, a handle never handed out, or one removed.
+    T* find(std::uint32_t handle) const {
+        if (handle == 0 || handle > items_.size()) return nullptr;
+        return items_[handle - 1].get();
+    }
+    void remove(std::uint32_t handle) {
+        if (find(handle) == nullptr) return;
+        items_[handle - 1].reset();
+        free_.push_back(handle - 1);
+    }
+    template <class F>
+    void forEach(F&& f) {
+        for (const std::unique_ptr<T>& item : items_)
+            if (item) f(*item);
+    }
+
+private:
+    std::vector<std::unique_ptr<T>> items_;
+    std::vector<std::uint32_t> free_;
+};
+
+}  // namespace frugal
