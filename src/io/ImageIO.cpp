@@ -5,7 +5,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -36,7 +38,12 @@ std::vector<std::uint8_t> flipRows(const std::uint8_t* rows, int width, int heig
     return out;
 }
 
-Bytes encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst) {
+Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst) {
+    if (channels < 1 || channels > 4) return Error{"PNG encoder: channels must be 1 to 4, got " + std::to_string(channels)};
+    if (bitDepth != 8 && bitDepth != 16) return Error{"PNG encoder: bit depth must be 8 or 16, got " + std::to_string(bitDepth)};
+    if (width < 1 || height < 1)
+        return Error{"PNG encoder: width and height must be at least 1, got " + std::to_string(width) + "x" +
+                     std::to_string(height)};
     const std::size_t sampleBytes = bitDepth / 8;
     const std::size_t stride = std::size_t(width) * channels * sampleBytes;
     // Filter type 0 (none) per row; PNG stores 16-bit samples big-endian.
@@ -57,12 +64,15 @@ Bytes encodePng(int width, int height, int channels, int bitDepth, const void* r
             }
         }
     }
+    if (raw.size() > std::numeric_limits<uLong>::max() / 2)
+        return Error{"PNG encoder: " + std::to_string(raw.size()) + " bytes of pixels is more than zlib takes at once"};
     uLongf packedSize = compressBound(uLong(raw.size()));
     Bytes packed(packedSize);
-    compress2(packed.data(), &packedSize, raw.data(), uLong(raw.size()), 6);
+    if (const int z = compress2(packed.data(), &packedSize, raw.data(), uLong(raw.size()), 6); z != Z_OK)
+        return Error{"PNG encoder: zlib compress2 failed on " + std::to_string(raw.size()) + " bytes: " + zError(z)};
     packed.resize(packedSize);
 
-    static const std::uint8_t kColorType[5] = {0, 0, 4, 2, 6};  // grey, grey+alpha, RGB, RGBA
+    static const std::uint8_t kColorType[5] = {0, 0, 4, 2, 6};  // by channels: grey, grey+alpha, RGB, RGBA
     Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     Bytes header;
     put32(header, std::uint32_t(width));
@@ -78,12 +88,12 @@ Bytes encodePng(int width, int height, int channels, int bitDepth, const void* r
     return out;
 }
 
-Bytes encodeColorPng(const Buffers& b) {
+Result<Bytes> encodeColorPng(const Buffers& b) {
     const std::vector<std::uint8_t> rows = flipRows(b.rgba.data(), b.width, b.height, 4);
     return encodePng(b.width, b.height, 4, 8, rows.data());
 }
 
-Bytes encodeDepthPng(const Buffers& b) {
+Result<Bytes> encodeDepthPng(const Buffers& b) {
     std::vector<std::uint16_t> depth16(b.pixelCount());
     for (std::size_t i = 0; i < depth16.size(); ++i) depth16[i] = std::uint16_t(b.depth[i] >> 8);
     const std::vector<std::uint8_t> rows = flipRows(reinterpret_cast<const std::uint8_t*>(depth16.data()), b.width, b.height, 2);
@@ -104,7 +114,7 @@ Bytes encodeDepthPfm(const Buffers& b) {
     return out;
 }
 
-Bytes encodeIdPng(const Buffers& b) {
+Result<Bytes> encodeIdPng(const Buffers& b) {
     std::vector<std::uint8_t> bytes(b.pixelCount() * 4);
     for (std::size_t i = 0; i < b.ids.size(); ++i)
         for (int k = 0; k < 4; ++k) bytes[4 * i + k] = std::uint8_t(b.ids[i] >> (8 * k));
@@ -134,35 +144,65 @@ Result<bool> writeTemporary(const std::string& path, const std::string& temp, co
 
 }  // namespace
 
-Result<bool> writeFileAtomic(const std::string& path, const Bytes& bytes) {
+Result<bool> writeFileAtomic(const std::string& path, const Result<Bytes>& bytes) {
     OutputSet set;
     set.add(path, bytes);
     return set.commit();
 }
 
-void OutputSet::add(std::string path, Bytes bytes) { files_.emplace_back(std::move(path), std::move(bytes)); }
+void OutputSet::add(std::string path, Result<Bytes> bytes) { files_.emplace_back(std::move(path), std::move(bytes)); }
 
 Result<bool> OutputSet::commit() {
+    for (const auto& [path, bytes] : files_)
+        if (!bytes) return Error{path + ": cannot encode: " + bytes.error()};
+
     std::vector<std::string> temps;
-    auto removeTemps = [&] {
-        for (const std::string& temp : temps) std::remove(temp.c_str());
+    const auto removeAll = [](const std::vector<std::string>& paths) {
+        for (const std::string& p : paths) std::remove(p.c_str());
     };
     for (const auto& [path, bytes] : files_) {
         const std::string temp = temporaryName(path);
-        Result<bool> ok = writeTemporary(path, temp, bytes);
+        Result<bool> ok = writeTemporary(path, temp, *bytes);
         if (!ok) {
-            removeTemps();
+            removeAll(temps);
             return ok;
         }
         temps.push_back(temp);
     }
+
+    // Before a file is replaced its old contents get a second name (a hard link: the file itself
+    // never disappears), so a later failed rename can put them back.
+    std::vector<std::string> backups(files_.size());
+    const auto dropBackups = [&backups] {
+        for (const std::string& b : backups)
+            if (!b.empty()) std::remove(b.c_str());
+    };
     for (std::size_t i = 0; i < files_.size(); ++i) {
-        if (std::rename(temps[i].c_str(), files_[i].first.c_str()) != 0) {
+        const std::string& path = files_[i].first;
+        struct stat status {};
+        if (::lstat(path.c_str(), &status) != 0 || S_ISDIR(status.st_mode)) continue;  // nothing to keep
+        const std::string backup = path + ".old-" + std::to_string(::getpid());
+        std::remove(backup.c_str());
+        if (::link(path.c_str(), backup.c_str()) != 0) {
             const std::string why = std::strerror(errno);
-            removeTemps();
-            return Error{files_[i].first + ": cannot rename the finished file into place: " + why};
+            dropBackups();
+            removeAll(temps);
+            return Error{path + ": cannot keep the old file while replacing it: " + why};
         }
+        backups[i] = backup;
     }
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+        if (std::rename(temps[i].c_str(), files_[i].first.c_str()) == 0) continue;
+        const std::string why = std::strerror(errno);
+        for (std::size_t j = 0; j < i; ++j) {  // take back what was renamed
+            if (backups[j].empty()) std::remove(files_[j].first.c_str());
+            else if (std::rename(backups[j].c_str(), files_[j].first.c_str()) == 0) backups[j].clear();
+        }
+        dropBackups();
+        removeAll(std::vector<std::string>(temps.begin() + std::ptrdiff_t(i), temps.end()));
+        return Error{files_[i].first + ": cannot rename the finished file into place: " + why};
+    }
+    dropBackups();
     files_.clear();
     return true;
 }

@@ -22,27 +22,33 @@ namespace frugal {
 using Bytes = std::vector<std::uint8_t>;
 
 // PNG encoder (zlib). `channels` 1..4, `bitDepth` 8 or 16 (16-bit samples given as uint16 in host
-// order), rows given top row first.
-Bytes encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst);
+// order), rows given top row first, 1 to 2^31 − 1 pixels a side (the PNG limit). Errors:
+// "PNG encoder: <what>, got <value>" for a format PNG cannot hold, or zlib's failure.
+Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst);
 
-Bytes encodeColorPng(const Buffers& buffers);
-Bytes encodeDepthPng(const Buffers& buffers);
+Result<Bytes> encodeColorPng(const Buffers& buffers);
+Result<Bytes> encodeDepthPng(const Buffers& buffers);
 Bytes encodeDepthPfm(const Buffers& buffers);
-Bytes encodeIdPng(const Buffers& buffers);
+Result<Bytes> encodeIdPng(const Buffers& buffers);
 
-// Writes `bytes` to `path` atomically. Error: "<path>: <why>".
-Result<bool> writeFileAtomic(const std::string& path, const Bytes& bytes);
+// Writes `bytes` to `path` atomically. Error: "<path>: <why>" (also when `bytes` is an encoder's
+// error: then nothing is written).
+Result<bool> writeFileAtomic(const std::string& path, const Result<Bytes>& bytes);
 
-// Several files that appear together or not at all: each is written to its temporary name first and
-// all are renamed only when every write succeeded.
+// Several files that appear together or not at all. commit() writes each to a temporary name in
+// its folder; only when every write succeeded are they renamed into place, and if a rename fails,
+// the files already renamed are taken back: a file that existed before gets its old contents back,
+// a new one is removed. A file given as an encoder's error fails the commit before anything is
+// written. (A crash between two renames can still leave the first; nothing short of a journal
+// prevents that.)
 class OutputSet {
 public:
-    void add(std::string path, Bytes bytes);
+    void add(std::string path, Result<Bytes> bytes);
     Result<bool> commit();
     bool empty() const { return files_.empty(); }
 
 private:
-    std::vector<std::pair<std::string, Bytes>> files_;
+    std::vector<std::pair<std::string, Result<Bytes>>> files_;
 };
 
 struct DecodedImage {

@@ -219,7 +219,7 @@ Result<Buffers> readRenderPngs(const std::string& colorPath, const std::string& 
     return buffers;
 }
 
-Bytes encodeMaskPng(const ImageComparison& comparison) { return encodeColorPng(comparison.mask); }
+Result<Bytes> encodeMaskPng(const ImageComparison& comparison) { return encodeColorPng(comparison.mask); }
 
 std::string comparisonJson(const ImageComparison& c) {
     nlohmann::ordered_json coverage = nullptr;

@@ -92,7 +92,7 @@ Result<bool> addIdsFromPng(Buffers& buffers, const DecodedImage& ids);
 Result<Buffers> readRenderPngs(const std::string& colorPath, const std::string& idsPath = {});
 
 // The error mask as a PNG (rows flipped to top first, like every frugal image file).
-Bytes encodeMaskPng(const ImageComparison& comparison);
+Result<Bytes> encodeMaskPng(const ImageComparison& comparison);
 
 // The metrics as a JSON object (keys: size, pixels, tolerance, passed, failing_pixels,
 // failing_fraction, max_channel_difference, worst_pixel, identical, psnr_db (null when infinite),

@@ -1,6 +1,6 @@
 // The scene model every loader produces and every other module reads.
 //
-// Conventions (DESIGN.md, "Shared conventions"):
+// Conventions (shared by every module):
 // - Right-handed, column vectors, glm; units are whatever the file uses.
 // - Texture coordinates follow glTF: (0,0) is the first texel of the first row of the image as stored
 //   in the file (its top-left). The OBJ loader flips v to match.

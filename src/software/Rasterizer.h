@@ -2,9 +2,22 @@
 // per-tile coverage + depth pass. Shading is separate (src/software/Shading.h); the two meet in a
 // per-tile "winner" map: which triangle last passed the depth test at each pixel.
 //
-// What is reproduced, and from where (Mesa 22.3.6, llvmpipe on x86-64; ../shared/LLVMPIPE-RULES.md
-// for the experiment that started this; every rule below was re-checked against the GL backend by
-// tests/software/CoverageGLTest.cpp, which compares coverage and 24-bit depth pixel for pixel):
+// What is reproduced, and from where (Mesa 22.3.6, llvmpipe on x86-64). This header is the
+// project's statement of the rasterization rules it matches; every rule below is checked against
+// the GL backend by tests/software/CoverageGLTest.cpp, which compares coverage and 24-bit depth
+// pixel for pixel.
+//
+// How they were found. A first experiment drew single triangles into FBOs (256×256 and 61×47)
+// through EGL surfaceless and compared the read-back with a CPU model: with rules 1–3 below the model
+// reproduced llvmpipe's coverage exactly on 320,000 triangles (random vertices, vertices snapped to
+// the sub-pixel grid or lying on pixel centres and edges, slivers, triangles far larger than the
+// viewport, both windings, perspective triangles crossing the near plane). Its depth was then within
+// 7 LSB (98.9 % of pixels exact at 256×256); the evaluation order of the vertex transform (1.), the
+// clipper's starting vertex (2.) and the float rounding of the depth product (5.) made it exact.
+// Mesa's sources read: lp_setup_tri.c, lp_rast.h, lp_state_setup.c, draw_pipe_clip.c,
+// draw_cliptest_tmp.h, draw_pipe_cull.c, draw_pt_vsplit.c. Not covered, because frugal never uses
+// them: window-system framebuffers (flipped, bottom_edge_rule = 1), scissored draws, MSAA, polygon
+// offset, depth clamp, glClipControl, a viewport origin other than (0, 0).
 //
 // Conventions. Window coordinates y-up, origin bottom-left; pixel (px, py) has its centre at
 // (px + 0.5, py + 0.5) and is tested there only (no multisampling). Depth is window z in [0, 1] stored

@@ -1,5 +1,5 @@
 // The software reference backend: renders what the GL backend renders, with the rules of Mesa's
-// llvmpipe (../shared/LLVMPIPE-RULES.md), so that every GL image can be compared with it.
+// llvmpipe (stated in software/Rasterizer.h), so that every GL image can be compared with it.
 //
 // Same targets, formats and operations as render/Backend.h. The rules it reproduces, with their
 // sources in Mesa 22.3 and the experiments that settled what the sources leave open, are written

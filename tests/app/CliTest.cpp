@@ -80,6 +80,7 @@ struct BadCase {
 TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
     const fs::path dir = test::freshDir("CliBad");
     test::writeFile(dir / "in" / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    test::writeFile(dir / "in" / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const BadCase cases[] = {
         {{"render", "--size", "0x600"}, 2, "error: --size 0x600: width and height must be 1 to 65536 (the backend may allow less)"},
         {{"render", "--size", "800"}, 2, "error: --size: expected WxH such as 800x600, got '800'"},
@@ -94,6 +95,16 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
         {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, info, bench, compare, diff, help)"},
         {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME)"},
+        {{"render", "--near", "5", "--far", "1"}, 2, "error: --far 1: must exceed --near 5"},
+        // Only --near given: the library names the values, and which one it fitted.
+        {{"render", "in/tri.obj", "--near", "1000"}, 1,
+         "error: in/tri.obj: camera: far plane 2.88661 (fitted to the scene) must exceed the near plane 1000"},
+        {{"bench", "render", "--runs", "5x"}, 2, "error: --runs: expected a whole number 1 to 100000, got '5x'"},
+        {{"bench", "render", "--warmup", "-1"}, 2, "error: --warmup: expected a whole number 0 to 100000, got '-1'"},
+        {{"bench", "render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help bench')"},
+        {{"diff", "a", "b"}, 2, "error: unexpected argument 'b' (one SCENE only)"},
+        {{"compare", "a.png"}, 2, "error: compare: expected two images, A.png B.png (see 'frugal help compare')"},
+        {{"info", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help info')"},
     };
     for (const BadCase& c : cases) {
         std::string joined;

@@ -90,6 +90,54 @@ TEST(ImageIOTest, OutputSetLeavesNothingWhenAWriteFails) {
     EXPECT_TRUE(std::filesystem::is_empty(dir)) << "no final file and no temporary file may remain";
 }
 
+TEST(ImageIOTest, OutputSetTakesBackEarlierFilesWhenALaterRenameFails) {
+    const std::filesystem::path dir = test::freshDir("ImageIOTestRollback");
+    test::writeFile(dir / "old.png", "old contents");
+    // A non-empty folder where the third file should go: writing its temporary works, renaming
+    // the finished file over the folder does not.
+    test::writeFile(dir / "blocked.png" / "inside", "x");
+    OutputSet set;
+    set.add((dir / "old.png").string(), Bytes{'n', 'e', 'w'});
+    set.add((dir / "fresh.png").string(), Bytes{1});
+    set.add((dir / "blocked.png").string(), Bytes{2});
+    Result<bool> result = set.commit();
+    ASSERT_FALSE(result);
+    EXPECT_EQ(result.error().rfind((dir / "blocked.png").string() + ": cannot rename the finished file into place: ", 0), 0u)
+        << result.error();
+    EXPECT_EQ(test::readAll(dir / "old.png"), "old contents");
+    EXPECT_EQ(test::filesIn(dir), (std::vector<std::string>{"blocked.png", "old.png"}))
+        << "the new file is taken back; no temporary or backup remains";
+}
+
+TEST(ImageIOTest, OutputSetReplacesExistingFilesAndLeavesNoBackup) {
+    const std::filesystem::path dir = test::freshDir("ImageIOTestReplace");
+    test::writeFile(dir / "a.png", "old");
+    OutputSet set;
+    set.add((dir / "a.png").string(), Bytes{'n', 'e', 'w'});
+    set.add((dir / "b.png").string(), Bytes{'b'});
+    ASSERT_TRUE(set.commit());
+    EXPECT_EQ(test::readAll(dir / "a.png"), "new");
+    EXPECT_EQ(test::filesIn(dir), (std::vector<std::string>{"a.png", "b.png"}));
+}
+
+TEST(ImageIOTest, PngEncoderRefusesWhatPngCannotHoldAndWritesNothing) {
+    const std::uint8_t pixel[8] = {};
+    EXPECT_EQ(encodePng(1, 1, 5, 8, pixel).error(), "PNG encoder: channels must be 1 to 4, got 5");
+    EXPECT_EQ(encodePng(1, 1, 0, 8, pixel).error(), "PNG encoder: channels must be 1 to 4, got 0");
+    EXPECT_EQ(encodePng(1, 1, 4, 12, pixel).error(), "PNG encoder: bit depth must be 8 or 16, got 12");
+    EXPECT_EQ(encodePng(0, 1, 4, 8, pixel).error(), "PNG encoder: width and height must be at least 1, got 0x1");
+    for (int channels = 1; channels <= 4; ++channels) EXPECT_TRUE(encodePng(1, 1, channels, 16, pixel)) << channels;
+
+    const std::filesystem::path dir = test::freshDir("ImageIOTestEncoderError");
+    OutputSet set;
+    set.add((dir / "good.png").string(), encodePng(1, 1, 4, 8, pixel));
+    set.add((dir / "bad.png").string(), encodePng(1, 1, 7, 8, pixel));
+    Result<bool> result = set.commit();
+    ASSERT_FALSE(result);
+    EXPECT_EQ(result.error(), (dir / "bad.png").string() + ": cannot encode: PNG encoder: channels must be 1 to 4, got 7");
+    EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
 TEST(ImageIOTest, ReadPngRejectsGarbage) {
     const std::filesystem::path path = test::freshDir("ImageIOTestGarbage") / "x.png";
     test::writeFile(path, "not a png at all");

@@ -1,4 +1,6 @@
 // Built-in procedural scenes: parameters, counts and the per-frame static share.
+#include <array>
+
 #include <gtest/gtest.h>
 
 #include "scene/Load.h"
@@ -40,8 +42,63 @@ TEST(BuiltinTest, DominoesMatchThePaperSceneSizes) {
 TEST(BuiltinTest, DefaultHasATexturedFloor) {
     Result<Scene> scene = loadScene("builtin:default");
     ASSERT_TRUE(scene) << scene.error();
-    EXPECT_EQ(scene->textures.size(), 1u);
+    ASSERT_EQ(scene->textures.size(), 1u);
     EXPECT_EQ(scene->triangleCount(), 2u * 804 + 2);
+    Result<Scene> bare = loadScene("builtin:dominoes");
+    ASSERT_TRUE(bare) << bare.error();
+    EXPECT_TRUE(bare->textures.empty()) << "the floor is what builtin:default adds";
+
+    // Exactly one instance samples the texture: a flat two-triangle quad facing up, lying under
+    // every domino, with texture coordinates that repeat the checker.
+    int textured = -1;
+    for (int i = 0; i < int(scene->instances.size()); ++i) {
+        const Mesh& mesh = scene->meshes[scene->instances[i].mesh];
+        if (mesh.material >= 0 && scene->materials[mesh.material].baseColorTexture == 0) {
+            EXPECT_EQ(textured, -1) << "a second textured instance: " << i;
+            textured = i;
+        }
+    }
+    ASSERT_GE(textured, 0);
+    const Instance& floor = scene->instances[textured];
+    const Mesh& quad = scene->meshes[floor.mesh];
+    ASSERT_EQ(quad.triangleCount(), 2u);
+    ASSERT_EQ(quad.uvs.size(), quad.positions.size());
+    const glm::mat4 world = scene->worldTransforms(0.0)[floor.node];
+    Bounds quadBounds;
+    for (const glm::vec3& p : quad.positions) quadBounds.add(glm::vec3(world * glm::vec4(p, 1.0f)));
+    for (const glm::vec3& n : quad.normals) EXPECT_GT(glm::dot(glm::mat3(world) * n, glm::vec3(0, 1, 0)), 0.99f);
+    EXPECT_EQ(quadBounds.min.y, quadBounds.max.y) << "flat";
+    const Bounds all = bare->bounds(0.0);
+    EXPECT_LE(quadBounds.max.y, all.min.y + 1e-4f) << "under the dominoes";
+    EXPECT_LE(quadBounds.min.x, all.min.x);
+    EXPECT_GE(quadBounds.max.x, all.max.x);
+    EXPECT_LE(quadBounds.min.z, all.min.z);
+    EXPECT_GE(quadBounds.max.z, all.max.z);
+    float uvSpan = 0.0f;
+    for (const glm::vec2& uv : quad.uvs) uvSpan = std::max(uvSpan, std::max(uv.x, uv.y));
+    EXPECT_GT(uvSpan, 1.0f) << "the checker repeats across the floor";
+
+    // The texture is a checker: two colours, and every texel's right and upper neighbours in the
+    // next cell have the other colour.
+    const Texture& checker = scene->textures[0];
+    ASSERT_GT(checker.width, 1);
+    ASSERT_EQ(checker.rgba.size(), std::size_t(checker.width) * checker.height * 4);
+    const auto texel = [&](int x, int y) {
+        const std::uint8_t* p = &checker.rgba[(std::size_t(y) * checker.width + x) * 4];
+        return std::array<std::uint8_t, 4>{p[0], p[1], p[2], p[3]};
+    };
+    const auto light = texel(0, 0);
+    std::array<std::uint8_t, 4> dark{};
+    bool sawDark = false;
+    for (int y = 0; y < checker.height; ++y)
+        for (int x = 0; x < checker.width; ++x) {
+            const auto t = texel(x, y);
+            if (t == light) continue;
+            if (!sawDark) dark = t, sawDark = true;
+            EXPECT_EQ(t, dark) << "a third colour at " << x << "," << y;
+        }
+    ASSERT_TRUE(sawDark);
+    EXPECT_NE(texel(0, 0), texel(checker.width - 1, 0)) << "an even number of cells across: the corners differ";
 }
 
 TEST(BuiltinTest, CubesSpinAndAreReproducible) {

@@ -148,6 +148,12 @@ TEST(SceneTest, InstancesGetDisjointIdRanges) {
     EXPECT_EQ(scene.instances[1].firstId, 3u);
     EXPECT_EQ(scene.instances[2].firstId, 5u);
     EXPECT_EQ(scene.triangleCount(), 6u);
+
+    // A hand-built mesh without triangleSource: triangle t is source t, so its ids still get a range.
+    for (Mesh& m : scene.meshes) m.triangleSource.clear();
+    scene.buildInstances();
+    EXPECT_EQ(scene.instances[1].firstId, 3u);
+    EXPECT_EQ(scene.instances[2].firstId, 5u);
 }
 
 }  // namespace

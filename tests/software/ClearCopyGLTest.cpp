@@ -144,16 +144,46 @@ TEST_F(ClearCopyGLTest, RandomSequencesMatch) {
 // A copy between targets of different sizes is refused by contract (assert), a copy onto itself and
 // one with no planes do nothing; a clear of an empty rectangle does nothing.
 TEST_F(ClearCopyGLTest, NoOpsDoNothing) {
+    // Both targets hold a pattern in every plane (a draw writes ids), so a no-op that touched any
+    // pixel of any plane would show.
+    Mesh mesh;
+    mesh.positions = {{-1, -1, 0.2f}, {1, -1, -0.3f}, {0, 1, 0.1f}};
+    mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    mesh.indices = {0, 1, 2};
+    const IndexRange all{0, 1};
     for (Backend* backend : backends) {
         const TargetHandle a = backend->createTarget(16, 16), b = backend->createTarget(16, 16);
-        backend->clear(a, Rect{0, 0, 16, 16}, glm::vec4(1.0f), 0.25f);
+        const MeshHandle triangle = backend->uploadMesh(mesh);
+        ASSERT_NE(triangle, kNoHandle);
+        for (const TargetHandle t : {a, b}) {
+            backend->clear(t, Rect{0, 0, 16, 16}, glm::vec4(0.25f, 0.5f, 0.75f, 1.0f), 0.75f);
+            backend->clear(t, Rect{2, 3, 5, 7}, glm::vec4(1.0f, 0.0f, t == a ? 1.0f : 0.0f, 1.0f), 0.25f);
+            backend->beginFrame(t, FrameParams{});
+            DrawParams draw;
+            draw.mesh = triangle;
+            draw.firstId = t == a ? 100 : 200;
+            backend->draw(draw, {&all, 1});
+        }
+        const Buffers before[2] = {backend->readBack(a), backend->readBack(b)};
+        std::size_t ids = 0;
+        for (std::uint32_t id : before[1].ids) ids += id != 0;
+        ASSERT_GT(ids, 0u) << backend->name() << ": the draw must leave ids to protect";
+
         backend->copy(a, a, Rect{0, 0, 8, 8}, true, true, true);
         backend->copy(a, b, Rect{0, 0, 16, 16}, false, false, false);
+        backend->copy(a, b, Rect{3, 3, 0, 9}, true, true, true);
+        backend->copy(a, b, Rect{16, 0, 4, 4}, true, true, true);
         backend->clear(b, Rect{4, 4, 0, 5}, glm::vec4(1.0f), 0.0f);
+        backend->clear(b, Rect{4, 4, 5, -1}, glm::vec4(1.0f), 0.0f);
         backend->clear(b, Rect{20, 20, 5, 5}, glm::vec4(1.0f), 0.0f);
-        const Buffers out = backend->readBack(b);
-        EXPECT_EQ(out.rgba[0], 0) << backend->name();
-        EXPECT_EQ(out.depth[0], kDepthMax) << backend->name();
+        backend->clear(a, Rect{-9, 0, 9, 16}, glm::vec4(1.0f), 0.0f);
+
+        const Buffers after[2] = {backend->readBack(a), backend->readBack(b)};
+        for (int k = 0; k < 2; ++k) {
+            const test::Comparison c = test::compareBuffers(after[k], before[k]);
+            EXPECT_TRUE(c.color == 0 && c.depth == 0 && c.ids == 0 && !c.sizeMismatch)
+                << backend->name() << ", target " << (k == 0 ? "a" : "b") << ": " << c.summary();
+        }
         backend->destroyTarget(a);
         backend->destroyTarget(b);
     }

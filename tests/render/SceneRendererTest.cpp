@@ -1,0 +1,123 @@
+// SceneRenderer against a recording backend: what it uploads, the order and parameters of its calls,
+// and that a refused upload is an error instead of a mesh silently missing from every frame.
+#include <gtest/gtest.h>
+
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+namespace {
+
+// Records every call; refuses meshes and textures named "refuse".
+class RecordingBackend final : public Backend {
+public:
+    struct Draw {
+        DrawParams params;
+        std::vector<IndexRange> ranges;
+    };
+    std::vector<std::string> calls;
+    std::vector<Draw> draws;
+
+    std::string name() const override { return "recording"; }
+    std::string renderer() const override { return "test"; }
+    int maxTargetSize() const override { return 64; }
+    int maxTextureSize() const override { return 32; }
+    TargetHandle createTarget(int, int) override { return 1; }
+    void destroyTarget(TargetHandle) override {}
+    MeshHandle uploadMesh(const Mesh& mesh) override {
+        return mesh.name == "refuse" ? kNoHandle : MeshHandle(10 + meshes_++);
+    }
+    TextureHandle uploadTexture(const Texture& texture) override {
+        return texture.name == "refuse" ? kNoHandle : TextureHandle(20 + textures_++);
+    }
+    void beginFrame(TargetHandle, const FrameParams&) override { calls.push_back("begin"); }
+    void draw(const DrawParams& params, std::span<const IndexRange> ranges) override {
+        calls.push_back("draw");
+        draws.push_back({params, {ranges.begin(), ranges.end()}});
+    }
+    void clear(TargetHandle, const Rect&, const glm::vec4&, float) override { calls.push_back("clear"); }
+    void copy(TargetHandle, TargetHandle, const Rect&, bool, bool, bool) override { calls.push_back("copy"); }
+    Buffers readBack(TargetHandle) override { return {}; }
+    void finish() override {}
+
+private:
+    int meshes_ = 0, textures_ = 0;
+};
+
+Mesh oneTriangle(const std::string& name, int material) {
+    Mesh mesh;
+    mesh.name = name;
+    mesh.material = material;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    mesh.indices = {0, 1, 2};
+    return mesh;
+}
+
+// Node 0 draws mesh 1 (textured, double-sided material 1), node 1 draws mesh 0 (material 0).
+Scene twoMeshScene() {
+    Scene scene;
+    scene.meshes = {oneTriangle("a", 0), oneTriangle("b", 1)};
+    Material plain;
+    plain.baseColorFactor = glm::vec4(0.5f, 0.25f, 1.0f, 1.0f);
+    Material textured;
+    textured.baseColorTexture = 0;
+    textured.doubleSided = true;
+    scene.materials = {plain, textured};
+    Texture texture;
+    texture.name = "t";
+    texture.width = texture.height = 1;
+    texture.rgba = {1, 2, 3, 4};
+    scene.textures = {texture};
+    scene.nodes.resize(2);
+    scene.nodes[0].meshes = {1};
+    scene.nodes[1].meshes = {0};
+    scene.nodes[1].translation = glm::vec3(3, 0, 0);
+    scene.roots = {0, 1};
+    scene.buildInstances();
+    return scene;
+}
+
+TEST(SceneRendererTest, AFrameIsClearBeginThenEveryInstanceInOrderWithItsMaterial) {
+    const Scene scene = twoMeshScene();
+    RecordingBackend backend;
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    ASSERT_TRUE(renderer) << renderer.error();
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw"}));
+    ASSERT_EQ(backend.draws.size(), 2u);
+    const DrawParams& first = backend.draws[0].params;  // instance 0: node 0, mesh 1
+    EXPECT_EQ(first.mesh, 11u);
+    EXPECT_EQ(first.texture, 20u);
+    EXPECT_TRUE(first.doubleSided);
+    EXPECT_EQ(first.firstId, scene.instances[0].firstId);
+    const DrawParams& second = backend.draws[1].params;  // instance 1: node 1, mesh 0
+    EXPECT_EQ(second.mesh, 10u);
+    EXPECT_EQ(second.texture, kNoHandle);
+    EXPECT_FALSE(second.doubleSided);
+    EXPECT_EQ(second.baseColorFactor, scene.materials[0].baseColorFactor);
+    EXPECT_EQ(second.model, world[1]);
+    EXPECT_EQ(second.firstId, scene.instances[1].firstId);
+    EXPECT_NE(first.firstId, second.firstId);
+}
+
+TEST(SceneRendererTest, ARefusedUploadIsAnErrorThatNamesIt) {
+    Scene scene = twoMeshScene();
+    scene.meshes[1].name = "refuse";
+    RecordingBackend backend;
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+              "mesh 1 'refuse' (3 vertices, 1 triangles): recording could not store it (out of memory)");
+    scene.meshes[1].name = "b";
+    scene.meshes[1].indices.push_back(7);  // breaks the upload contract: not a multiple of 3
+    scene.meshes[1].name = "refuse";
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+              "mesh 1 'refuse' (3 vertices, 1 triangles): recording refused it: its arrays break the upload "
+              "contract (render/Backend.h)");
+    scene = twoMeshScene();
+    scene.textures[0].name = "refuse";
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+              "texture 0 'refuse' (1x1): recording refused it (its limit is 32 pixels a side; or out of memory)");
+}
+
+}  // namespace
+}  // namespace frugal
