@@ -2,27 +2,46 @@
 // the software backend:
 //   base = factor * vertex colour * texture(uv);  rgb = base.rgb * (ambient + diffuse * max(0, n.l))
 // with n the normalised interpolated normal, negated on back faces (seen only when double-sided).
+//
+// Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
+// FRUGAL_TEXTURE the texel is, so their factors are left out; without FRUGAL_IDS there is no id
+// output. Sampling a 1×1 white texture instead cost +0.64 ms per bunny frame on llvmpipe.
 #version 330 core
 
 in vec3 v_normal;
-in vec4 v_color;
-in vec2 v_uv;
-flat in uint v_id;
 
 uniform vec4 u_baseColorFactor;
-uniform sampler2D u_baseColor;  // a 1x1 white texture when the material has none
-uniform vec3 u_toLight;         // world space, unit
+uniform vec3 u_toLight;  // world space, unit
 uniform float u_ambient;
 uniform float u_diffuse;
 
 layout(location = 0) out vec4 o_color;
-layout(location = 1) out uint o_id;  // dropped (no draw buffer) when ids are not written
+
+#ifdef FRUGAL_COLORS
+in vec4 v_color;
+#endif
+#ifdef FRUGAL_TEXTURE
+in vec2 v_uv;
+uniform sampler2D u_baseColor;  // texture unit 0
+#endif
+#ifdef FRUGAL_IDS
+flat in uint v_id;
+layout(location = 1) out uint o_id;
+#endif
 
 void main() {
-    vec4 base = u_baseColorFactor * v_color * texture(u_baseColor, v_uv);
+    vec4 base = u_baseColorFactor;
+#ifdef FRUGAL_COLORS
+    base = base * v_color;
+#endif
+#ifdef FRUGAL_TEXTURE
+    base = base * texture(u_baseColor, v_uv);
+#endif
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     float lambert = max(0.0, dot(n, u_toLight));
     o_color = vec4(base.rgb * (u_ambient + u_diffuse * lambert), base.a);
+#ifdef FRUGAL_IDS
     o_id = v_id;
+#endif
 }

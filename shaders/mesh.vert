@@ -1,27 +1,45 @@
 // Mesh vertex stage. The arithmetic is kept to exactly what the software reference repeats in
 // float: u_mvp = (projection * view) * model and u_normalMatrix = transpose(inverse(mat3(model)))
 // are computed on the CPU with glm (GlBackend.cpp); this shader only applies them.
+//
+// Variants: GlBackend.cpp puts `#define`s after the #version line, one per input a draw uses:
+// FRUGAL_TEXTURE (uvs), FRUGAL_COLORS (vertex colours), FRUGAL_IDS (the id pass). A varying that is
+// not needed is not there at all: each costs llvmpipe setup and interpolation work per triangle and
+// per pixel (measured on the bunny frame, 800×600: the colour varying +0.49 ms, the flat id +0.24).
 #version 330 core
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec4 a_color;  // constant white when the mesh has no colours
-layout(location = 3) in vec2 a_uv;
-layout(location = 4) in uint a_id;     // triangle source index, only in the unindexed id pass
 
 uniform mat4 u_mvp;
 uniform mat3 u_normalMatrix;
-uniform uint u_firstId;  // a vertex-stage uniform: cheaper to change than a fragment one
 
 out vec3 v_normal;  // world space, not normalised
+
+#ifdef FRUGAL_COLORS
+layout(location = 2) in vec4 a_color;
 out vec4 v_color;
+#endif
+#ifdef FRUGAL_TEXTURE
+layout(location = 3) in vec2 a_uv;  // constant (0,0) when the mesh has no uvs
 out vec2 v_uv;
+#endif
+#ifdef FRUGAL_IDS
+layout(location = 4) in uint a_id;  // triangle source index, from the unindexed id pass
+uniform uint u_firstId;             // a vertex-stage uniform: cheaper to change than a fragment one
 flat out uint v_id;
+#endif
 
 void main() {
     gl_Position = u_mvp * vec4(a_position, 1.0);
     v_normal = u_normalMatrix * a_normal;
+#ifdef FRUGAL_COLORS
     v_color = a_color;
+#endif
+#ifdef FRUGAL_TEXTURE
     v_uv = a_uv;
+#endif
+#ifdef FRUGAL_IDS
     v_id = u_firstId + a_id;
+#endif
 }

@@ -1,10 +1,19 @@
 // `frugal bench render`: the same frame on every available backend, and with the file's triangle
 // order beside the vertex-cache order, in one process; JSON with medians and ratios. Timings cover
 // clear + draw + glFinish (no read-back), after warm-up frames that let llvmpipe compile its shaders.
+//
+// On a GL backend the same frame is also drawn by the minimal GL program (gl/MinimalFrame.h) on a
+// context of the same kind, and the timed frames alternate frugal, minimal, frugal, ... so that the
+// machine's noise (this runs on shared cores) hits both alike; the context switch between them is
+// made before the clock starts. "over_minimal" is frugal ÷ minimal: the backend's overhead.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +21,7 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
+#include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
 
 namespace frugal {
@@ -25,6 +35,13 @@ with the file's order, and prints JSON: median/min/max ms per frame, triangles p
 ratios.
 --threads N sets the thread count of every backend (llvmpipe and software) for a fair comparison.
 
+On each GL backend the frame is also drawn by a minimal GL program on its own context of the same
+kind (one program with position and normal, glClear, glDrawElements per instance), its timed frames
+alternating with frugal's: rows with "variant": "minimal", the ratios "over_minimal" (frugal ÷
+minimal, vertex-cache order) and "over_minimal_file_order", and "minimal_pixels_equal" (both colour
+images read back once, after timing). Scenes with textures or vertex colours, and --ids, have no
+minimal variant; "skipped" says why.
+
   --runs N              timed frames per variant (default 30)
   --warmup N            untimed frames first (default 5)
   --ids                 also write triangle ids (the id pass)
@@ -35,13 +52,29 @@ namespace {
 
 struct Sample {
     std::string backend, renderer, order;
+    const char* variant = "frugal";  // or "minimal"
     std::vector<double> ms;
+    std::optional<bool> pixelsEqual;  // minimal: the same colour image as frugal's
 };
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The context kind of a GL backend, by its name() ("egl-surfaceless", ...).
+std::optional<ContextKind> contextKindNamed(const std::string& name) {
+    for (ContextKind kind : {ContextKind::EglDevice, ContextKind::EglSurfaceless, ContextKind::OsMesa})
+        if (name == contextKindName(kind)) return kind;
+    return std::nullopt;
+}
+
+const Sample* find(const std::vector<Sample>& samples, const std::string& backend, const std::string& order,
+                   const std::string& variant) {
+    for (const Sample& s : samples)
+        if (s.backend == backend && s.order == order && s.variant == variant) return &s;
+    return nullptr;
 }
 
 }  // namespace
@@ -117,17 +150,56 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             if (int prepared = prepareSession(*opened, options, *scene, err); prepared != kExitOk) return prepared;
             SceneRenderer& renderer = *opened->renderer;
             const TargetHandle target = opened->target;
-            Sample sample{backend.name(), backend.renderer(), order, {}};
+            Sample sample{backend.name(), backend.renderer(), order, "frugal", {}, std::nullopt};
+
+            // The minimal program on a context of the same kind, for GL backends.
+            std::unique_ptr<MinimalFrame> minimal;
+            const std::optional<ContextKind> kind = choice.software ? std::nullopt : contextKindNamed(backend.name());
+            const std::string minimalLabel = backend.name() + " minimal (" + order + "): ";
+            if (kind && ids) {
+                skipped.push_back(minimalLabel +
+                                  "--ids: the minimal frame writes no ids, so it would not draw the same frame");
+            } else if (kind) {
+                Result<std::unique_ptr<MinimalFrame>> made =
+                    createMinimalFrame(*kind, *scene, options.width, options.height);
+                if (made)
+                    minimal = std::move(*made);
+                else
+                    skipped.push_back(minimalLabel + made.error());
+            }
+            Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt};
+
+            // Each timed frame starts with its context current: backend.finish() makes it so
+            // (and waits for nothing), minimal->activate() likewise.
+            const auto millisecondsSince = [](Clock::time_point t0) {
+                return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+            };
             for (int i = 0; i < warmup + runs; ++i) {
-                const auto t0 = Clock::now();
-                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background);
                 backend.finish();
-                const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+                auto t0 = Clock::now();
+                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                     options.background);
+                backend.finish();
+                const double ms = millisecondsSince(t0);
                 if (i >= warmup) sample.ms.push_back(ms);
+                if (!minimal) continue;
+                minimal->activate();
+                t0 = Clock::now();
+                minimal->render(setup->params, setup->world, options.background);
+                minimal->finish();
+                const double minimalMs = millisecondsSince(t0);
+                if (i >= warmup) minimalSample.ms.push_back(minimalMs);
             }
             if (!options.quiet)
                 err << backend.name() << " " << order << ": median " << fmt(median(sample.ms)) << " ms\n";
             samples.push_back(std::move(sample));
+            if (minimal) {
+                minimalSample.pixelsEqual = backend.readBack(target).rgba == minimal->readBack().rgba;
+                if (!options.quiet)
+                    err << backend.name() << " " << order << " minimal: median " << fmt(median(minimalSample.ms))
+                        << " ms" << (*minimalSample.pixelsEqual ? "" : " (pixels differ from frugal's)") << "\n";
+                samples.push_back(std::move(minimalSample));
+            }
         }
     }
     if (samples.empty()) {
@@ -141,17 +213,32 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     nlohmann::json results = nlohmann::json::array();
     for (const Sample& s : samples) {
         const double m = median(s.ms);
-        results.push_back({{"backend", s.backend}, {"renderer", s.renderer}, {"order", s.order}, {"median_ms", m},
-                           {"min_ms", *std::min_element(s.ms.begin(), s.ms.end())},
-                           {"max_ms", *std::max_element(s.ms.begin(), s.ms.end())},
-                           {"triangles_per_second", m > 0 ? triangles / (m / 1000.0) : 0.0}});
+        nlohmann::json row = {{"backend", s.backend}, {"renderer", s.renderer}, {"order", s.order},
+                              {"variant", s.variant}, {"median_ms", m},
+                              {"min_ms", *std::min_element(s.ms.begin(), s.ms.end())},
+                              {"max_ms", *std::max_element(s.ms.begin(), s.ms.end())},
+                              {"triangles_per_second", m > 0 ? triangles / (m / 1000.0) : 0.0}};
+        if (s.pixelsEqual) row["minimal_pixels_equal"] = *s.pixelsEqual;
+        results.push_back(std::move(row));
     }
-    // Ratios: file order ÷ cache order per backend; every backend ÷ the first, cache order.
+    // Ratios, of medians: file order ÷ cache order per backend; every backend ÷ the first, cache
+    // order; frugal ÷ the minimal program per GL backend, in each order.
     nlohmann::json ratios = nlohmann::json::object();
-    for (std::size_t i = 0; i + 1 < samples.size(); i += 2)
-        ratios["file_over_optimized"][samples[i].backend] = median(samples[i + 1].ms) / median(samples[i].ms);
-    for (std::size_t i = 2; i < samples.size(); i += 2)
-        ratios["over_" + samples[0].backend][samples[i].backend] = median(samples[i].ms) / median(samples[0].ms);
+    std::vector<std::string> backends;
+    for (const Sample& s : samples)
+        if (std::find(backends.begin(), backends.end(), s.backend) == backends.end()) backends.push_back(s.backend);
+    const auto ratio = [](const Sample* a, const Sample* b) { return median(a->ms) / median(b->ms); };
+    const Sample* first = find(samples, backends.front(), "optimized", "frugal");
+    for (const std::string& b : backends) {
+        const Sample* optimizedRun = find(samples, b, "optimized", "frugal");
+        const Sample* fileRun = find(samples, b, "file", "frugal");
+        ratios["file_over_optimized"][b] = ratio(fileRun, optimizedRun);
+        if (b != backends.front()) ratios["over_" + backends.front()][b] = ratio(optimizedRun, first);
+        if (const Sample* minimalRun = find(samples, b, "optimized", "minimal"))
+            ratios["over_minimal"][b] = ratio(optimizedRun, minimalRun);
+        if (const Sample* minimalRun = find(samples, b, "file", "minimal"))
+            ratios["over_minimal_file_order"][b] = ratio(fileRun, minimalRun);
+    }
 
     const char* threads = std::getenv("LP_NUM_THREADS");
     nlohmann::json report = {

@@ -1,11 +1,13 @@
 // The GL entry points frugal uses, loaded by name through the current context's own
 // get-proc-address (eglGetProcAddress / OSMesaGetProcAddress). frugal never links libGL or
-// libOpenGL and never calls a gl* symbol directly: with libOpenGL linked before libOSMesa such calls
-// are silent no-ops (DESIGN.md, "Facts measured"), and a GPU vendor's EGL hands out its own entry
-// points. Internal to src/gl/: the only header that includes <GL/glcorearb.h>.
+// libOpenGL and never calls a gl* symbol directly: measured with Mesa 22 and libglvnd, with
+// libOpenGL linked before libOSMesa such calls are silent no-ops in an OSMesa context; and a GPU
+// vendor's EGL hands out its own entry points. Internal to src/gl/: the only header that includes
+// <GL/glcorearb.h>.
 //
-// Each backend owns one GlApi for its context. Pointers from one context are not used with another:
-// Mesa returns context-independent dispatch stubs, but EGL does not promise that across vendors.
+// Each backend (and the bench's minimal frame, MinimalFrame.cpp) owns one GlApi for its context.
+// Pointers from one context are not used with another: Mesa returns context-independent dispatch
+// stubs, but EGL does not promise that across vendors.
 #pragma once
 
 #include <GL/glcorearb.h>
@@ -17,7 +19,7 @@ namespace frugal {
 class GlContext;
 
 // X(type, name): the pointer of type `type` is loaded from "gl" #name and called as gl.name(...).
-// Keep the list to what the backend calls; every entry must exist in GL 3.3 core.
+// Keep the list to what the backend and MinimalFrame call; every entry must exist in GL 3.3 core.
 #define FRUGAL_GL_FUNCTIONS(X)                                   \
     X(PFNGLGETERRORPROC, GetError)                               \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
@@ -31,6 +33,10 @@ class GlContext;
     X(PFNGLVIEWPORTPROC, Viewport)                               \
     X(PFNGLSCISSORPROC, Scissor)                                 \
     X(PFNGLFINISHPROC, Finish)                                   \
+    X(PFNGLCLEARPROC, Clear)                                     \
+    X(PFNGLCLEARCOLORPROC, ClearColor)                           \
+    X(PFNGLCLEARDEPTHPROC, ClearDepth)                           \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                       \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
     X(PFNGLREADPIXELSPROC, ReadPixels)                           \
     X(PFNGLREADBUFFERPROC, ReadBuffer)                           \
@@ -105,6 +111,13 @@ struct GlApi {
 
 // "GL_INVALID_OPERATION" etc., or "0x…" for a code this list does not know.
 std::string glErrorName(GLenum error);
+
+// Compiles and links the embedded shaders/<vertex> + shaders/<fragment> (gl/Shaders.h) in the
+// current context, with `defines` (whole lines, "#define FRUGAL_IDS\n") put right after each
+// source's #version line. Returns "" and sets *program, or the reason on one line
+// ("mesh.frag: compile failed: <log>") and sets *program to 0.
+std::string compileProgram(const GlApi& gl, const char* vertex, const char* fragment, const std::string& defines,
+                           GLuint* program);
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

@@ -22,18 +22,38 @@
 // colours → white, uvs → (0,0), triangleSource → t for triangle t. id = firstId + source, added in
 // the vertex stage in 32-bit unsigned arithmetic.
 //
-// Triangle ids: gl_PrimitiveID costs ≈3.5 ms per bunny frame on llvmpipe (DESIGN.md), so a frame
-// that writes ids draws each mesh unindexed from an "expanded" vertex buffer: 3 vertices per
-// triangle, in the mesh's triangle order, each carrying the flat attribute triangleSource[t]. It is
-// built on the first draw of the mesh with ids, from the mesh's own GL buffers (read back once, so
-// no CPU copy of every mesh is kept for a pass that may never run). Ranges become
+// Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — a
+// texture, vertex colours, ids — compiled on first use (at most 8). A variant leaves out what the
+// draw does not use instead of feeding it white: measured on llvmpipe, bunny frame at 800×600
+// (vertex-cache order / file order), sampling a 1×1 white texture cost +0.64 / +1.56 ms, a white
+// colour varying +0.49 / +1.09 ms, an unused flat id varying +0.24 / +0.86 ms. The white texel is
+// 1.0 exactly, so leaving it out changes no bit. The interpolated white colour was not always 1.0:
+// llvmpipe interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about
+// 15 % of floats p; so "no vertex colours" is now exactly white, and a few pixels changed by one
+// step against the old program (1 of 2073600 on the bunny at 1920×1080, none at 800×600).
+// Uniform values are per-program state in GL, so each variant keeps its own uniform cache.
+//
+// Triangle ids: gl_PrimitiveID cost ≈3.5 ms more per bunny frame on llvmpipe (measured, Mesa 22.3),
+// so a frame that writes ids draws each mesh unindexed from an "expanded" vertex buffer: 3 vertices
+// per triangle, in the mesh's triangle order, each carrying the flat attribute triangleSource[t]. It
+// is built on the first draw of the mesh with ids, from the mesh's own GL buffers (read back once,
+// so no CPU copy of every mesh is kept for a pass that may never run). Ranges become
 // glMultiDrawArrays over [3·first, 3·count). Without ids the mesh is drawn indexed
-// (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps its cleared 0.
-// Both paths run the same program on the same vertex values, so colour and depth are identical.
+// (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps what it holds.
+// Both paths run the same arithmetic on the same vertex values, so colour and depth are identical.
+//
+// Clears and the id attachment: llvmpipe flushes its scene when the draw-buffer set changes, so a
+// clear with draw buffers {colour, ids} followed by draws with {colour} became a full pass of its
+// own (+0.38 / +0.64 ms on the bunny frame). Each target therefore records whether its ids may be
+// non-zero (a draw with ids or a copy of such ids into it; a clear of the whole target makes them
+// zero again). While they are known to be zero a clear leaves the id attachment alone and uses the
+// draw-buffer set already bound, which is the one the next draws of a repeated frame use. The
+// contract of Backend::clear (ids to 0) holds either way.
 //
 // GL state is cached (program, VAO, framebuffers, draw/read buffers per FBO, culling, scissor,
-// viewport, texture, uniforms) so a call that would not change anything is not made
-// (DESIGN.md, "Per-draw state changes on llvmpipe").
+// viewport, texture, uniforms per program) so a call that would not change anything is not made.
+// Measured per draw on llvmpipe: a program switch costs ≈1.8 µs, a texture bind ≈1.0 µs, a
+// fragment-stage uniform ≈0.7 µs, a vertex-stage uniform ≈0.2 µs.
 #include "gl/GlBackend.h"
 
 #include <algorithm>
@@ -74,6 +94,40 @@ struct GlTarget {
     GLuint fbo = 0, color = 0, ids = 0, depth = 0;
     DrawSet drawSet = DrawSet::Unknown;
     GLenum readBuffer = GL_NONE;  // GL_NONE = not known
+    // false: every id is known to be 0 (see the top of the file). True until the first clear, as
+    // new renderbuffers hold undefined values.
+    bool idsDirty = true;
+};
+
+// What a draw uses, as bits of a program variant's index (≤ 8 variants).
+enum Variant : unsigned { kTextureBit = 1u, kColorsBit = 2u, kIdsBit = 4u, kVariantCount = 8u };
+
+// A uniform's value as last set in one program; compared bit for bit.
+template <class T>
+struct CachedUniform {
+    T value{};
+    bool valid = false;
+    // True when `v` must be sent (differs from the value set, or none was); it is then recorded.
+    bool update(const T& v) {
+        if (valid && std::memcmp(&value, &v, sizeof(T)) == 0) return false;
+        value = v;
+        valid = true;
+        return true;
+    }
+};
+
+// One variant of the mesh program, with its uniform locations (-1 where the variant has none)
+// and the values last set in it (uniforms are per-program state).
+struct GlProgram {
+    GLuint name = 0;
+    bool failed = false;  // did not compile; not tried again
+    GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, toLight = -1, ambient = -1, diffuse = -1;
+    CachedUniform<glm::mat4> mvpValue;
+    CachedUniform<glm::mat3> normalMatrixValue;
+    CachedUniform<glm::vec4> baseColorFactorValue;
+    CachedUniform<glm::vec3> toLightValue;
+    CachedUniform<float> ambientValue, diffuseValue;
+    CachedUniform<std::uint32_t> firstIdValue;
 };
 
 // Byte offsets of the attribute sections in a mesh's vertex buffer (positions first, at 0);
@@ -91,19 +145,6 @@ struct GlMesh {
     std::vector<std::uint32_t> triangleSource;
     GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
 };
-
-// An info log on one line: newlines become "; ", trailing blanks and NULs go.
-std::string oneLine(std::string text) {
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\0')) text.pop_back();
-    std::string out;
-    for (char c : text) {
-        if (c == '\n')
-            out += "; ";
-        else if (c != '\r')
-            out += c;
-    }
-    return out;
-}
 
 GLint wrapMode(Wrap wrap) {
     switch (wrap) {
@@ -135,12 +176,13 @@ public:
             if (m.idVbo) gl_.DeleteBuffers(1, &m.idVbo);
         });
         textures_.forEach([this](GLuint& t) { gl_.DeleteTextures(1, &t); });
-        gl_.DeleteTextures(1, &white_);
-        gl_.DeleteProgram(program_);
+        for (const GlProgram& p : programs_)
+            if (p.name) gl_.DeleteProgram(p.name);
         // context_ goes last (member order), with every object it held already deleted.
     }
 
-    // Loads GL, checks the version, builds the program and sets the fixed state. "" or the reason.
+    // Loads GL, checks the version, builds the full program variant (so that a shader that does not
+    // compile is reported here) and sets the fixed state. "" or the reason.
     std::string initialise();
 
     std::string name() const override { return contextKindName(context_->kind()); }
@@ -265,14 +307,15 @@ private:
         if (cache_.texture != texture) gl_.BindTexture(GL_TEXTURE_2D, texture);
         cache_.texture = texture;
     }
-    // Uniform setters that skip a value equal (bit for bit) to the one already set.
-    template <class T>
-    static bool changed(T& cached, bool& valid, const T& value) {
-        if (valid && std::memcmp(&cached, &value, sizeof(T)) == 0) return false;
-        cached = value;
-        valid = true;
-        return true;
+    void useProgram(GLuint program) {
+        if (cache_.program != program) gl_.UseProgram(program);
+        cache_.program = program;
     }
+    // The variant for `variant` (bits of Variant), compiled on first use and bound; nullptr when it
+    // does not compile (a bug in the shaders: the full variant compiled in initialise()).
+    GlProgram* program(unsigned variant);
+    // Compiles programs_[variant] and looks up its uniforms. "" or the reason.
+    std::string compileVariant(unsigned variant);
 
     void setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout);
     bool buildIdPass(GlMesh& mesh);
@@ -283,23 +326,9 @@ private:
     std::string renderer_;
     int maxTargetSize_ = 0, maxTextureSize_ = 0;
 
-    GLuint program_ = 0, white_ = 0;
+    GlProgram programs_[kVariantCount];
     struct {
-        GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, baseColor = -1, toLight = -1,
-              ambient = -1, diffuse = -1;
-    } loc_;
-    struct {
-        glm::mat4 mvp{};
-        glm::mat3 normalMatrix{};
-        glm::vec4 baseColorFactor{};
-        glm::vec3 toLight{};
-        float ambient = 0, diffuse = 0;
-        std::uint32_t firstId = 0;
-        bool mvpValid = false, normalValid = false, factorValid = false, lightValid = false, ambientValid = false,
-             diffuseValid = false, firstIdValid = false;
-    } uniforms_;
-    struct {
-        GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0;
+        GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0, program = 0;
         int scissorOn = -1, cullOn = -1;
         Rect scissor{-1, -1, -1, -1};
         int viewportWidth = -1, viewportHeight = -1;
@@ -319,50 +348,6 @@ private:
     std::vector<GLint> firsts_;
     std::vector<const void*> offsets_;
 };
-
-std::string compileProgram(const GlApi& gl, GLuint* program) {
-    const char* names[] = {"mesh.vert", "mesh.frag"};
-    const GLenum stages[] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER};
-    GLuint shaders[2] = {0, 0};
-    std::string reason;
-    for (int i = 0; i < 2 && reason.empty(); ++i) {
-        const char* source = shaders::find(names[i]);
-        if (source == nullptr) {
-            reason = std::string("shader ") + names[i] + " is not embedded";
-            break;
-        }
-        shaders[i] = gl.CreateShader(stages[i]);
-        gl.ShaderSource(shaders[i], 1, &source, nullptr);
-        gl.CompileShader(shaders[i]);
-        GLint ok = GL_FALSE, length = 0;
-        gl.GetShaderiv(shaders[i], GL_COMPILE_STATUS, &ok);
-        if (ok != GL_TRUE) {
-            gl.GetShaderiv(shaders[i], GL_INFO_LOG_LENGTH, &length);
-            std::string log(std::size_t(std::max(length, 1)), '\0');
-            gl.GetShaderInfoLog(shaders[i], GLsizei(log.size()), nullptr, log.data());
-            reason = std::string(names[i]) + ": compile failed: " + oneLine(log);
-        }
-    }
-    if (reason.empty()) {
-        *program = gl.CreateProgram();
-        gl.AttachShader(*program, shaders[0]);
-        gl.AttachShader(*program, shaders[1]);
-        gl.LinkProgram(*program);
-        GLint ok = GL_FALSE, length = 0;
-        gl.GetProgramiv(*program, GL_LINK_STATUS, &ok);
-        if (ok != GL_TRUE) {
-            gl.GetProgramiv(*program, GL_INFO_LOG_LENGTH, &length);
-            std::string log(std::size_t(std::max(length, 1)), '\0');
-            gl.GetProgramInfoLog(*program, GLsizei(log.size()), nullptr, log.data());
-            reason = "mesh.vert + mesh.frag: link failed: " + oneLine(log);
-            gl.DeleteProgram(*program);
-            *program = 0;
-        }
-    }
-    for (GLuint shader : shaders)
-        if (shader) gl.DeleteShader(shader);  // flagged; freed with the program
-    return reason;
-}
 
 std::string GlBackend::initialise() {
     if (!context_->makeCurrent()) return "could not make the context current";
@@ -385,18 +370,8 @@ std::string GlBackend::initialise() {
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize_);
     maxTargetSize_ = std::min({maxRenderbuffer, maxViewport[0], maxViewport[1]});
 
-    if (std::string reason = compileProgram(gl_, &program_); !reason.empty()) return reason;
-    loc_.mvp = gl_.GetUniformLocation(program_, "u_mvp");
-    loc_.normalMatrix = gl_.GetUniformLocation(program_, "u_normalMatrix");
-    loc_.firstId = gl_.GetUniformLocation(program_, "u_firstId");
-    loc_.baseColorFactor = gl_.GetUniformLocation(program_, "u_baseColorFactor");
-    loc_.baseColor = gl_.GetUniformLocation(program_, "u_baseColor");
-    loc_.toLight = gl_.GetUniformLocation(program_, "u_toLight");
-    loc_.ambient = gl_.GetUniformLocation(program_, "u_ambient");
-    loc_.diffuse = gl_.GetUniformLocation(program_, "u_diffuse");
-    // One program for everything: bound once, never switched.
-    gl_.UseProgram(program_);
-    gl_.Uniform1i(loc_.baseColor, 0);
+    // The full variant has every line of both sources: if it compiles, the others do.
+    if (std::string reason = compileVariant(kTextureBit | kColorsBit | kIdsBit); !reason.empty()) return reason;
 
     // The fixed state (Backend.h): GL_LESS with depth writes, no blending (the default), no
     // dithering (Mesa may dither 8-bit targets otherwise), counter-clockwise front faces.
@@ -413,18 +388,47 @@ std::string GlBackend::initialise() {
     setCull(false);
     setScissor(false);
 
-    const std::uint8_t whitePixel[4] = {255, 255, 255, 255};
-    gl_.GenTextures(1, &white_);
-    bindTexture(white_);
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, whitePixel);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-
     const GLenum error = gl_.GetError();
     if (error != GL_NO_ERROR) return glErrorName(error) + " while setting up the GL backend";
     initialised_ = true;
     return {};
+}
+
+std::string GlBackend::compileVariant(unsigned variant) {
+    GlProgram& p = programs_[variant];
+    std::string defines;
+    if (variant & kTextureBit) defines += "#define FRUGAL_TEXTURE\n";
+    if (variant & kColorsBit) defines += "#define FRUGAL_COLORS\n";
+    if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
+    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
+        p.failed = true;
+        return reason;
+    }
+    p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
+    p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
+    p.firstId = gl_.GetUniformLocation(p.name, "u_firstId");
+    p.baseColorFactor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
+    p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
+    p.ambient = gl_.GetUniformLocation(p.name, "u_ambient");
+    p.diffuse = gl_.GetUniformLocation(p.name, "u_diffuse");
+    if (variant & kTextureBit) {
+        useProgram(p.name);
+        gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_baseColor"), 0);  // texture unit 0
+    }
+    return {};
+}
+
+GlProgram* GlBackend::program(unsigned variant) {
+    GlProgram& p = programs_[variant];
+    if (p.name == 0 && !p.failed) {
+        if (std::string reason = compileVariant(variant); !reason.empty()) {
+            std::fprintf(stderr, "frugal: %s: program variant %u: %s\n", name().c_str(), variant, reason.c_str());
+            assert(false && "a mesh program variant does not compile");
+        }
+    }
+    if (p.name == 0) return nullptr;
+    useProgram(p.name);
+    return &p;
 }
 
 TargetHandle GlBackend::createTarget(int width, int height) {
@@ -628,15 +632,10 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
 void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     assert(targets_.find(target) != nullptr && "beginFrame: no such target");
     if (targets_.find(target) == nullptr) return;
-    activate();
     frameTarget_ = target;
     frame_ = frame;
+    // The lighting goes to each program on its first draw of the frame (uniforms are per program).
     viewProjection_ = frame.projection * frame.view;
-    const Lighting& light = frame.lighting;
-    if (changed(uniforms_.toLight, uniforms_.lightValid, light.toLight))
-        gl_.Uniform3fv(loc_.toLight, 1, glm::value_ptr(light.toLight));
-    if (changed(uniforms_.ambient, uniforms_.ambientValid, light.ambient)) gl_.Uniform1f(loc_.ambient, light.ambient);
-    if (changed(uniforms_.diffuse, uniforms_.diffuseValid, light.diffuse)) gl_.Uniform1f(loc_.diffuse, light.diffuse);
 }
 
 void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
@@ -656,38 +655,49 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
 
     activate();
     const bool writeIds = frame_.writeIds;
+    // The variant: a texture, vertex colours and ids only when the draw uses them.
+    unsigned variant = writeIds ? kIdsBit : 0u;
+    GLuint texture = 0;
+    if (params.texture != kNoHandle) {
+        const GLuint* t = textures_.find(params.texture);
+        assert(t != nullptr && "draw: no such texture");
+        if (t) {
+            texture = *t;
+            variant |= kTextureBit;
+        }
+    }
+    if (mesh->layout.color >= 0) variant |= kColorsBit;
+    GlProgram* p = program(variant);
+    if (p == nullptr) return;
+
     drawInto(*target, writeIds ? DrawSet::ColorAndIds : DrawSet::Color);
     setViewport(target->width, target->height);
     setScissor(false);
     setCull(!params.doubleSided);
+    if (texture) bindTexture(texture);
 
-    GLuint texture = white_;
-    if (params.texture != kNoHandle) {
-        const GLuint* t = textures_.find(params.texture);
-        assert(t != nullptr && "draw: no such texture");
-        if (t) texture = *t;
-    }
-    bindTexture(texture);
-
+    const Lighting& light = frame_.lighting;
+    if (p->toLightValue.update(light.toLight)) gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
+    if (p->ambientValue.update(light.ambient)) gl_.Uniform1f(p->ambient, light.ambient);
+    if (p->diffuseValue.update(light.diffuse)) gl_.Uniform1f(p->diffuse, light.diffuse);
     const glm::mat4 mvp = viewProjection_ * params.model;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
-    if (changed(uniforms_.mvp, uniforms_.mvpValid, mvp))
-        gl_.UniformMatrix4fv(loc_.mvp, 1, GL_FALSE, glm::value_ptr(mvp));
-    if (changed(uniforms_.normalMatrix, uniforms_.normalValid, normalMatrix))
-        gl_.UniformMatrix3fv(loc_.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    if (changed(uniforms_.baseColorFactor, uniforms_.factorValid, params.baseColorFactor))
-        gl_.Uniform4fv(loc_.baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
-    if (writeIds && changed(uniforms_.firstId, uniforms_.firstIdValid, params.firstId))
-        gl_.Uniform1ui(loc_.firstId, params.firstId);
+    if (p->mvpValue.update(mvp)) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    if (p->normalMatrixValue.update(normalMatrix))
+        gl_.UniformMatrix3fv(p->normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    if (p->baseColorFactorValue.update(params.baseColorFactor))
+        gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
+    if (writeIds && p->firstIdValue.update(params.firstId)) gl_.Uniform1ui(p->firstId, params.firstId);
 
     // Attributes the mesh lacks read the current generic value. That value is context state, and
     // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
-    // set before every draw that needs it: normal +z, colour white, uv (0,0), id 0.
+    // set before every draw that needs it: normal +z, uv (0,0). (Colours and ids are only in the
+    // variants of meshes that have them.)
     if (mesh->layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
-    if (mesh->layout.color < 0) gl_.VertexAttrib4f(kColor, 1.0f, 1.0f, 1.0f, 1.0f);
-    if (mesh->layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
+    if ((variant & kTextureBit) && mesh->layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
 
     if (writeIds) {
+        target->idsDirty = true;
         if (mesh->idVao == 0 && !buildIdPass(*mesh)) {
             assert(false && "draw: could not build the id pass (out of memory?)");
             return;
@@ -699,7 +709,6 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
         bindVao(mesh->idVao);
         gl_.MultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
     } else {
-        gl_.VertexAttribI4ui(kId, 0, 0, 0, 0);
         offsets_.resize(counts_.size());
         for (std::size_t i = 0; i < counts_.size(); ++i) {
             offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 * sizeof(std::uint32_t));
@@ -718,13 +727,19 @@ void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& co
     const Rect r = clipRect(rect, t->width, t->height);
     if (r.empty()) return;
     activate();
-    drawInto(*t, DrawSet::ColorAndIds);
+    // Ids known to be 0 stay untouched, and the draw-buffer set stays the one bound if it has the
+    // colour at index 0 (llvmpipe flushes its scene on a switch; see the top of the file).
+    const bool clearIds = t->idsDirty;
+    drawInto(*t, clearIds || t->drawSet == DrawSet::ColorAndIds ? DrawSet::ColorAndIds : DrawSet::Color);
     setScissor(true, r);
-    const GLuint zero[4] = {0, 0, 0, 0};
     const GLfloat clampedDepth = std::clamp(depth, 0.0f, 1.0f);
     // Draw buffer indices, not attachments: 0 is colour, 1 is ids in the ColorAndIds set.
     gl_.ClearBufferfv(GL_COLOR, 0, glm::value_ptr(color));
-    gl_.ClearBufferuiv(GL_COLOR, 1, zero);
+    if (clearIds) {
+        const GLuint zero[4] = {0, 0, 0, 0};
+        gl_.ClearBufferuiv(GL_COLOR, 1, zero);
+        if (r.x == 0 && r.y == 0 && r.width == t->width && r.height == t->height) t->idsDirty = false;
+    }
     gl_.ClearBufferfv(GL_DEPTH, 0, &clampedDepth);
     check("clear");
 }
@@ -752,6 +767,7 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
         depthBit = 0;
     }
     if (ids) {
+        dest->idsDirty = dest->idsDirty || source->idsDirty;  // copying zeros keeps them zero
         readFrom(*source, GL_COLOR_ATTACHMENT1);
         drawInto(*dest, DrawSet::Ids);
         gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);

@@ -323,6 +323,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     };
     const Plane w = plane(v0.oow, v1.oow, v2.oow);
     const bool textured = shading.texture != nullptr;
+    const bool colored = shading.colors;
     const int attributes = textured ? kAttributes : kAttributes - 2;
     Plane a[kAttributes];
     {
@@ -381,7 +382,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 for (int c = 0; c < 4; ++c) texel[c] = simd::loadf(rgba[c]);
             }
             F8 base[4];
-            for (int c = 0; c < 4; ++c) base[c] = (factor[c] * value[3 + c]) * texel[c];
+            for (int c = 0; c < 4; ++c) base[c] = (colored ? factor[c] * value[3 + c] : factor[c]) * texel[c];
 
             // normalize: v · (1/sqrt(dot(v, v))), dot reduced from the last component (NIR).
             F8 nx = value[0], ny = value[1], nz = value[2];

@@ -10,7 +10,10 @@
 // (a division, then a product: lp_build_rcp is a true division on x86).
 //
 // Fragment arithmetic, in float, in the order NIR gives llvmpipe (no fused operations, as found for
-// the vertex stage): base = (factor · colour) · texel; n = v · (1 / sqrt(dot(v, v))) with
+// the vertex stage): base = (factor · colour) · texel, where a mesh without colours uses factor alone
+// and a draw without texture uses texel 1 (the GL backend's shader variants have no colour varying
+// and sample nothing then: an interpolated constant 1 is p · (1/p), which is 1 − 2⁻²⁴ for about 15 %
+// of floats, so interpolating white would darken rare pixels by a step); n = v · (1 / sqrt(dot(v, v))) with
 // dot = (x·x + y·y) + z·z; n = −n on back faces; lambert = max(0, (n.x·l.x + n.y·l.y) + n.z·l.z);
 // rgb = base.rgb · (ambient + diffuse · lambert); a = base.a.
 //
@@ -60,7 +63,8 @@ struct SoftwareTexture {
 // What the shading of one draw needs besides the pixels.
 struct DrawShading {
     glm::vec4 factor{1.0f};
-    const SoftwareTexture* texture = nullptr;  // nullptr: the 1×1 white texture (texel 1.0 exactly)
+    const SoftwareTexture* texture = nullptr;  // nullptr: no texture, texel 1.0 exactly
+    bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float ambient = 0.3f, diffuse = 0.7f;
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)

@@ -176,6 +176,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.ambient = frame_.lighting.ambient;
     input.shading.diffuse = frame_.lighting.diffuse;
     input.shading.writeIds = frame_.writeIds;
+    input.shading.colors = !mesh->colors.empty();
     input.firstId = params.firstId;
     input.doubleSided = params.doubleSided;
     pipeline_.draw(*mesh, target->width, target->height, input, ranges);

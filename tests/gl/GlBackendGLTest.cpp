@@ -580,6 +580,219 @@ TEST_P(GlBackendGLTest, MeshWithoutNormalsOrSourcesUsesDefaults) {
     backend_->destroyTarget(target);
 }
 
+// --- The id attachment's contract (Backend.h): clear sets ids to 0, and a frame without ids leaves
+// them as cleared. The backend skips clearing ids it knows to be 0 (GlBackend.cpp); these would fail
+// if it lost track.
+
+bool allIdsZero(const Buffers& b) {
+    return std::all_of(b.ids.begin(), b.ids.end(), [](std::uint32_t id) { return id == 0; });
+}
+
+void drawFrontAndBack(Backend& backend, TargetHandle target, MeshHandle mesh, bool writeIds) {
+    backend.beginFrame(target, simpleFrame(writeIds));
+    DrawParams params;
+    params.mesh = mesh;
+    params.baseColorFactor = kFactor;
+    params.doubleSided = true;
+    params.firstId = 100;
+    backend.draw(params, all(frontAndBack()));
+}
+
+TEST_P(GlBackendGLTest, ClearAfterAFrameWithIdsZeroesThemForAFrameWithout) {
+    const MeshHandle mesh = backend_->uploadMesh(frontAndBack());
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    const Rect whole{0, 0, kWidth, kHeight};
+    EXPECT_TRUE(allIdsZero(backend_->readBack(target))) << "a new target";
+
+    backend_->clear(target, whole, kBackground);
+    drawFrontAndBack(*backend_, target, mesh, true);
+    const Buffers withIds = backend_->readBack(target);
+    ASSERT_EQ(withIds.ids[at(withIds, kFrontX, kCentroidY)], 107u);
+
+    // Frames alternate with and without ids: ids are exactly the drawn ones, or all 0.
+    for (int frame = 0; frame < 6; ++frame) {
+        const bool writeIds = frame % 3 == 2;
+        backend_->clear(target, whole, kBackground);
+        drawFrontAndBack(*backend_, target, mesh, writeIds);
+        const Buffers b = backend_->readBack(target);
+        EXPECT_TRUE(identical(b, withIds, "alternating-ids-" + std::to_string(frame), /*compareIds=*/writeIds));
+        if (!writeIds) {
+            EXPECT_TRUE(allIdsZero(b)) << "frame " << frame;
+        }
+    }
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, PartialClearsOfIdsClearTheRectangleOnly) {
+    const MeshHandle mesh = backend_->uploadMesh(frontAndBack());
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    const Rect whole{0, 0, kWidth, kHeight};
+    backend_->clear(target, whole, kBackground);
+    drawFrontAndBack(*backend_, target, mesh, true);
+    const Buffers drawn = backend_->readBack(target);
+
+    // A rectangle over part of both triangles and background, cleared, then drawn again without
+    // ids: inside, the ids are 0 (the triangles come back in colour); outside, the first frame's.
+    const Rect rect{10, 12, 44, 6};
+    backend_->clear(target, rect, kBackground);
+    drawFrontAndBack(*backend_, target, mesh, false);
+    Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(identical(b, drawn, "partial-clear-colour", /*compareIds=*/false));
+    int kept = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const bool inside = x >= rect.x && x < rect.x + rect.width && y >= rect.y && y < rect.y + rect.height;
+            const std::uint32_t want = inside ? 0u : drawn.ids[at(drawn, x, y)];
+            ASSERT_EQ(b.ids[at(b, x, y)], want) << x << ", " << y;
+            kept += !inside && want != 0;
+        }
+    }
+    EXPECT_GT(kept, 100) << "ids outside the rectangle must survive";
+
+    // Two partial clears that together cover the target are not one whole clear: ids still cleared.
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight / 2}, kBackground);
+    backend_->clear(target, Rect{0, kHeight / 2, kWidth, kHeight - kHeight / 2}, kBackground);
+    EXPECT_TRUE(allIdsZero(backend_->readBack(target)));
+    drawFrontAndBack(*backend_, target, mesh, false);
+    EXPECT_TRUE(allIdsZero(backend_->readBack(target)));
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, IdsCopiedIntoATargetAreClearedLikeDrawnOnes) {
+    const MeshHandle mesh = backend_->uploadMesh(frontAndBack());
+    const Rect whole{0, 0, kWidth, kHeight};
+    const TargetHandle source = backend_->createTarget(kWidth, kHeight);
+    backend_->clear(source, whole, kBackground);
+    drawFrontAndBack(*backend_, source, mesh, true);
+    const Buffers src = backend_->readBack(source);
+
+    // Only ids arrive in `dest` (a new target), through a copy: no draw with ids ever went there.
+    const TargetHandle dest = backend_->createTarget(kWidth, kHeight);
+    backend_->copy(source, dest, whole, /*color=*/false, /*depth=*/false, /*ids=*/true);
+    ASSERT_EQ(backend_->readBack(dest).ids, src.ids);
+
+    const Rect rect{12, 10, 40, 12};
+    backend_->clear(dest, rect, kBackground);
+    Buffers b = backend_->readBack(dest);
+    for (int y = 0; y < kHeight; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            const bool inside = x >= rect.x && x < rect.x + rect.width && y >= rect.y && y < rect.y + rect.height;
+            ASSERT_EQ(b.ids[at(b, x, y)], inside ? 0u : src.ids[at(src, x, y)]) << x << ", " << y;
+        }
+    }
+    backend_->clear(dest, whole, kBackground);
+    drawFrontAndBack(*backend_, dest, mesh, false);
+    b = backend_->readBack(dest);
+    EXPECT_TRUE(allIdsZero(b));
+    EXPECT_TRUE(identical(b, src, "copied-ids-then-cleared", /*compareIds=*/false));
+
+    // Colour and depth copied from a target with ids bring no ids along.
+    backend_->clear(dest, whole, kBackground);
+    backend_->copy(source, dest, whole, /*color=*/true, /*depth=*/true, /*ids=*/false);
+    EXPECT_TRUE(allIdsZero(backend_->readBack(dest)));
+    backend_->destroyTarget(source);
+    backend_->destroyTarget(dest);
+}
+
+// --- Program variants (texture, vertex colours, ids): uniforms are per program, so each variant
+// must get the current values even when another variant was given them last.
+
+TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
+    Mesh plain = randomMesh(40);
+    plain.colors.clear();
+    const Mesh colored = randomMesh(40);
+    const Texture texture = checkerTexture();
+    FrameParams frameA;
+    frameA.view = glm::lookAt(glm::vec3(0.3f, 0.4f, 2.6f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    frameA.projection = glm::perspective(0.9f, float(kWidth) / kHeight, 0.5f, 10.0f);
+    FrameParams frameB = frameA;
+    frameB.lighting.toLight = glm::normalize(glm::vec3(-0.5f, 0.2f, 1.0f));
+    frameB.lighting.ambient = 0.2f;
+    frameB.view = glm::lookAt(glm::vec3(-0.5f, 0.1f, 2.4f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 modelA = glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0));
+    const glm::mat4 modelB = glm::rotate(glm::mat4(1.0f), -0.7f, glm::vec3(1, 0, 0));
+
+    // Every variant: textured or not, coloured or not, with and without ids.
+    struct Draw {
+        bool textured, coloured, ids;
+    };
+    std::vector<Draw> variants;
+    for (int v = 0; v < 8; ++v) variants.push_back({(v & 1) != 0, (v & 2) != 0, (v & 4) != 0});
+
+    // One frame with the given variant, model, factor and frame parameters.
+    struct Handles {
+        MeshHandle plain, colored;
+        TextureHandle texture;
+        TargetHandle target;
+    };
+    const auto upload = [&](Backend& backend) {
+        return Handles{backend.uploadMesh(plain), backend.uploadMesh(colored), backend.uploadTexture(texture),
+                       backend.createTarget(kWidth, kHeight)};
+    };
+    const auto render = [&](Backend& backend, const Handles& h, const Draw& d, const FrameParams& base,
+                            const glm::mat4& model, const glm::vec4& factor, std::uint32_t firstId) {
+        backend.clear(h.target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        FrameParams frame = base;
+        frame.writeIds = d.ids;
+        backend.beginFrame(h.target, frame);
+        DrawParams params;
+        params.mesh = d.coloured ? h.colored : h.plain;
+        params.texture = d.textured ? h.texture : kNoHandle;
+        params.model = model;
+        params.baseColorFactor = factor;
+        params.firstId = firstId;
+        backend.draw(params, all(plain));
+        return backend.readBack(h.target);
+    };
+
+    // The test's backend draws every variant with (A, factor A, id 1) first, then with (B, factor B,
+    // id 500), each after another variant had B; a fresh backend per variant draws its B frame alone.
+    const Handles h = upload(*backend_);
+    const glm::vec4 factorA{1.0f, 0.9f, 0.8f, 1.0f}, factorB{0.5f, 0.7f, 1.0f, 1.0f};
+    for (const Draw& d : variants) render(*backend_, h, d, frameA, modelA, factorA, 1);
+    std::vector<Buffers> afterOthers;
+    for (const Draw& d : variants) afterOthers.push_back(render(*backend_, h, d, frameB, modelB, factorB, 500));
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+        const Draw& d = variants[i];
+        const std::string name =
+            std::string("variant-") + (d.textured ? "t" : "") + (d.coloured ? "c" : "") + (d.ids ? "i" : "");
+        std::unique_ptr<Backend> fresh = makeBackend(GetParam());
+        ASSERT_NE(fresh, nullptr);
+        const Buffers alone = render(*fresh, upload(*fresh), d, frameB, modelB, factorB, 500);
+        EXPECT_GT(std::count_if(alone.depth.begin(), alone.depth.end(), [](std::uint32_t z) { return z != kDepthMax; }),
+                  kWidth * kHeight / 4)
+            << name;
+        EXPECT_TRUE(identical(afterOthers[i], alone, name));
+    }
+}
+
+TEST_P(GlBackendGLTest, TexturedMeshWithoutUvsSamplesTheFirstTexel) {
+    Texture tex;
+    tex.width = 2;
+    tex.height = 1;
+    tex.filter = Filter::Nearest;
+    tex.rgba = {255, 0, 0, 255, 0, 255, 0, 255};  // red at (0, 0), green beside it
+    Mesh quad;
+    quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    quad.normals.assign(4, glm::vec3(0, 0, 1));
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    const MeshHandle mesh = backend_->uploadMesh(quad);
+    const TextureHandle texture = backend_->uploadTexture(tex);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    FrameParams frame = simpleFrame(false);
+    frame.lighting.ambient = 1.0f;
+    frame.lighting.diffuse = 0.0f;
+    backend_->beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = mesh;
+    params.texture = texture;
+    backend_->draw(params, all(quad));
+    const Buffers b = backend_->readBack(target);
+    for (auto [x, y] : {std::pair{1, 1}, std::pair{62, 46}, std::pair{40, 10}})
+        EXPECT_TRUE(colorIs(b, x, y, {1, 0, 0, 1}, 0)) << x << ", " << y;
+    backend_->destroyTarget(target);
+}
+
 std::string kindName(const ::testing::TestParamInfo<ContextKind>& info) {
     std::string name = contextKindName(info.param);
     std::replace(name.begin(), name.end(), '-', '_');

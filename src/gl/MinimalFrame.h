@@ -1,0 +1,53 @@
+// The yardstick of `frugal bench render`: the same frame as the GL backend draws through
+// SceneRenderer, drawn by the fewest GL calls that give the same pixels, on a context of its own.
+// One program with position and normal only (shaders/minimal.vert, minimal.frag), the lighting and
+// the material factor as uniforms, one VAO per mesh, glClear of colour and depth with the FBO's
+// default draw buffer, glDrawElements per instance, culling per material. No ids, no textures, no
+// vertex colours, no state cache beyond culling: whatever the backend spends beyond this is its
+// overhead, and the bench reports frugal ÷ minimal.
+//
+// Vertex arithmetic is the backend's (GlBackend.cpp): mvp = (projection · view) · model and
+// normalMatrix = inverseTranspose(mat3(model)) in float with glm on the CPU; the fragment arithmetic
+// is mesh.frag's without colour, texture and id. So on the scenes it supports the colour and depth
+// images equal the backend's bit for bit (tests/gl/MinimalFrameGLTest.cpp).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/Result.h"
+#include "gl/GlContext.h"
+#include "render/Backend.h"
+#include "render/Image.h"
+#include "scene/Scene.h"
+
+namespace frugal {
+
+class MinimalFrame {
+public:
+    virtual ~MinimalFrame() = default;
+
+    // Draws the full frame: clear to `background` and far depth, then every instance of the scene,
+    // whole, in instance order (SceneRenderer::renderFrame's frame). `frame.writeIds` is ignored.
+    virtual void render(const FrameParams& frame, const std::vector<glm::mat4>& world, const glm::vec4& background) = 0;
+    // glFinish: waits until the frame is drawn (for timing).
+    virtual void finish() = 0;
+    // Makes the context current (before a timed frame, so the switch is not timed).
+    virtual void activate() = 0;
+    // Colour and depth (ids empty), rows bottom-up as Backend::readBack gives them.
+    virtual Buffers readBack() = 0;
+};
+
+// "" when MinimalFrame can draw `scene`, else why not: "mesh 0 'x' has vertex colours" or
+// "material 1 'y' has a texture" (only meshes some instance draws count).
+std::string minimalFrameUnsupported(const Scene& scene);
+
+// A context of `kind` (the EGL device platform with software devices allowed, as
+// `--backend egl-device` opens it), a width × height target, and the scene's meshes uploaded.
+// `scene` must outlive the result. Errors, "minimal frame: <why>": the context's error,
+// minimalFrameUnsupported's reason, a size the context cannot take, a shader that does not compile.
+Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const Scene& scene, int width, int height);
+
+}  // namespace frugal
