@@ -38,6 +38,18 @@ const char* contextKindName(ContextKind kind) {
     return "unknown";
 }
 
+Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
+    switch (kind) {
+        case ContextKind::EglDevice:
+            return createEglDeviceContext(/*allowSoftwareDevice=*/true);
+        case ContextKind::EglSurfaceless:
+            return createEglSurfacelessContext();
+        case ContextKind::OsMesa:
+            return createOsMesaContext();
+    }
+    return Error{"unknown context kind"};
+}
+
 std::vector<ContextKind> availableContextKinds() {
     std::vector<ContextKind> kinds;
 #if FRUGAL_HAVE_EGL

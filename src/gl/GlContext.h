@@ -38,6 +38,10 @@ Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevi
 Result<std::unique_ptr<GlContext>> createEglSurfacelessContext();
 Result<std::unique_ptr<GlContext>> createOsMesaContext();
 
+// A context of `kind`; the EGL device platform with software devices allowed (a caller that asks
+// for a kind by name wants that kind, whatever device it has).
+Result<std::unique_ptr<GlContext>> createContext(ContextKind kind);
+
 // Which kinds this build can create, in the order `auto` tries them.
 std::vector<ContextKind> availableContextKinds();
 

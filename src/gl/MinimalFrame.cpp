@@ -17,17 +17,6 @@ namespace {
 
 std::string quoted(const std::string& name) { return name.empty() ? std::string() : " '" + name + "'"; }
 
-Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
-    switch (kind) {
-        case ContextKind::EglDevice:
-            return createEglDeviceContext(/*allowSoftwareDevice=*/true);
-        case ContextKind::EglSurfaceless:
-            return createEglSurfacelessContext();
-        case ContextKind::OsMesa:
-            return createOsMesaContext();
-    }
-    return Error{"unknown context kind"};
-}
 
 class Minimal final : public MinimalFrame {
 public:

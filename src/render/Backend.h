@@ -33,7 +33,8 @@ struct IndexRange {
 
 // The shading model, written once here and twice in code (shaders/mesh.frag and the software
 // backend):  rgb = base.rgb × (ambient + diffuse · max(0, n · toLight)),  a = base.a,
-// base = material factor × vertex colour × texture(uv). n is the interpolated world-space normal,
+// base = material factor × vertex colour × texture(uv), where a mesh without colours and a draw
+// without texture leave their factor out (exactly 1, never interpolated). n is the interpolated world-space normal,
 // normalised, and negated on back faces of double-sided materials. Values are written unclamped to
 // the 8-bit target (the GL conversion clamps to [0,1] and rounds to nearest).
 struct Lighting {

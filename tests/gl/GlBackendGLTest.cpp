@@ -26,17 +26,6 @@ constexpr int kWidth = 64;
 constexpr int kHeight = 48;
 const glm::vec4 kBackground{0.2f, 0.4f, 0.6f, 1.0f};  // exact in 8 bits: 51, 102, 153
 
-Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
-    switch (kind) {
-        case ContextKind::EglDevice:
-            return createEglDeviceContext(/*allowSoftwareDevice=*/true);
-        case ContextKind::EglSurfaceless:
-            return createEglSurfacelessContext();
-        case ContextKind::OsMesa:
-            return createOsMesaContext();
-    }
-    return Error{"unknown kind"};
-}
 
 // A backend of `kind`, or nullptr with the reason added as a test failure: every kind this build
 // has must work on the machines the tests run on.

@@ -25,17 +25,6 @@ namespace {
 
 const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
 
-Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
-    switch (kind) {
-        case ContextKind::EglDevice:
-            return createEglDeviceContext(/*allowSoftwareDevice=*/true);
-        case ContextKind::EglSurfaceless:
-            return createEglSurfacelessContext();
-        case ContextKind::OsMesa:
-            return createOsMesaContext();
-    }
-    return Error{"unknown kind"};
-}
 
 class MinimalFrameGLTest : public ::testing::TestWithParam<ContextKind> {
 protected:

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "RenderSupport.h"
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "render/Frame.h"
@@ -21,23 +22,10 @@ namespace fs = std::filesystem;
 
 const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
 
-struct Frame {
-    Buffers buffers;
-    View view;
-};
+using Frame = test::RenderedFrame;
 
 Frame render(Backend& backend, const Scene& scene, int w, int h, double time = 0.0, bool ids = true) {
-    const TargetHandle target = backend.createTarget(w, h);
-    EXPECT_NE(target, kNoHandle);
-    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    Result<FrameSetup> setup = setUpFrame(scene, {}, time, w, h, ids);
-    EXPECT_TRUE(renderer) << renderer.error();
-    EXPECT_TRUE(setup) << setup.error();
-    if (!renderer || !setup) return {};
-    renderer->renderFrame(target, w, h, setup->params, setup->world, kBackground);
-    Frame frame{backend.readBack(target), setup->view};
-    backend.destroyTarget(target);
-    return frame;
+    return test::renderScene(backend, scene, w, h, time, ids, kBackground);
 }
 
 // Saves both images when they differ, so a failure can be looked at.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "GlReference.h"
+#include "RenderSupport.h"
 #include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "scene/Load.h"
@@ -25,20 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
-
-Buffers renderScene(Backend& backend, const Scene& scene, int width, int height, double time, bool ids) {
-    const TargetHandle target = backend.createTarget(width, height);
-    EXPECT_NE(target, kNoHandle);
-    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    Result<FrameSetup> setup = setUpFrame(scene, {}, time, width, height, ids);
-    EXPECT_TRUE(renderer) << renderer.error();
-    EXPECT_TRUE(setup) << setup.error();
-    if (!renderer || !setup) return {};
-    renderer->renderFrame(target, width, height, setup->params, setup->world, kBackground);
-    Buffers out = backend.readBack(target);
-    backend.destroyTarget(target);
-    return out;
-}
 
 // A file name out of a scene spec: "builtin:cubes" → "builtin-cubes".
 std::string safeName(std::string text) {
@@ -58,8 +45,8 @@ protected:
     // Renders `scene` on both and checks the thresholds; returns the comparison for the log.
     test::Comparison check(const Scene& scene, const std::string& name, int width, int height, double time = 0.0,
                            bool ids = true) {
-        const Buffers a = renderScene(*reference, scene, width, height, time, ids);
-        const Buffers b = renderScene(*software, scene, width, height, time, ids);
+        const Buffers a = test::renderScene(*reference, scene, width, height, time, ids, kBackground).buffers;
+        const Buffers b = test::renderScene(*software, scene, width, height, time, ids, kBackground).buffers;
         const std::string label = safeName(name) + "-" + std::to_string(width) + "x" + std::to_string(height) +
                                   (ids ? "" : "-noids") + (time != 0.0 ? "-t" + std::to_string(int(time * 10)) : "");
         test::expectMatches("Scene-" + label, a, b);

@@ -1,0 +1,34 @@
+// Rendering a whole scene frame for a test: the suites that render through SceneRenderer share it.
+// Header-only, because only the suites that link a backend include it.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include "render/Frame.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal::test {
+
+struct RenderedFrame {
+    Buffers buffers;
+    View view;
+};
+
+// The scene at `time` through its default camera on a fresh width × height target (destroyed
+// after), cleared to `background`. Set-up failures are test failures, and give an empty frame.
+inline RenderedFrame renderScene(Backend& backend, const Scene& scene, int width, int height, double time, bool ids,
+                                 const glm::vec4& background) {
+    const TargetHandle target = backend.createTarget(width, height);
+    EXPECT_NE(target, kNoHandle);
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    Result<FrameSetup> setup = setUpFrame(scene, {}, time, width, height, ids);
+    EXPECT_TRUE(renderer) << renderer.error();
+    EXPECT_TRUE(setup) << setup.error();
+    if (target == kNoHandle || !renderer || !setup) return {};
+    renderer->renderFrame(target, width, height, setup->params, setup->world, background);
+    RenderedFrame frame{backend.readBack(target), setup->view};
+    backend.destroyTarget(target);
+    return frame;
+}
+
+}  // namespace frugal::test
