@@ -133,8 +133,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     std::vector<Sample> samples;
     using Clock = std::chrono::steady_clock;
     for (const BackendSelection& choice : choices) {
-        int status = kExitOk;
-        Result<Session> opened = openSession(choice, options, status);
+        Result<Session> opened = openSession(choice, options);
         if (!opened) {
             skipped.push_back(opened.error());
             continue;

@@ -46,20 +46,22 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
     };
 }
 
-Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options, int& status) {
+Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options) {
     Session session;
     Result<std::unique_ptr<Backend>> backend = openBackend(selection, &session.log, options.threads);
-    if (!backend) {
-        status = kExitNoBackend;
-        return Error{backend.error()};
-    }
+    if (!backend) return Error{backend.error()};
     session.backend = std::move(*backend);
     return session;
 }
 
 int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
-    if (session.target == kNoHandle) session.target = createTargetOrReport(*session.backend, options, err);
-    if (session.target == kNoHandle) return kExitError;
+    Backend& backend = *session.backend;
+    if (session.target == kNoHandle) session.target = backend.createTarget(options.width, options.height);
+    if (session.target == kNoHandle) {
+        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
+            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
+        return kExitError;
+    }
     Result<SceneRenderer> renderer = SceneRenderer::create(*session.backend, scene);
     if (!renderer) {
         err << "error: " << options.scene << ": " << renderer.error() << "\n";

@@ -55,9 +55,9 @@ struct Session {
     std::optional<SceneRenderer> renderer;
 };
 
-// Opens `selection` with the options' thread count. On failure `status` is kExitNoBackend and the
-// message is the backend's reason (print it after "error: <label>: ").
-Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options, int& status);
+// Opens `selection` with the options' thread count. A failure means the backend is not available
+// here (exit status kExitNoBackend); the message is its reason (print it after "error: <label>: ").
+Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options);
 
 // Creates the target (unless the session has one) and uploads `scene` into an open session,
 // replacing the scene uploaded before. On failure prints the one error line

@@ -91,11 +91,10 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     const BackendSelection selections[2] = {options.backend, BackendSelection{true, BackendChoice::Auto}};
     const std::string labels[2] = {"--backend " + options.backendName, "software reference"};
     for (int k = 0; k < 2; ++k) {
-        int status = kExitOk;
-        Result<Session> opened = openSession(selections[k], options, status);
+        Result<Session> opened = openSession(selections[k], options);
         if (!opened) {
             err << "error: " << labels[k] << ": " << opened.error() << "\n";
-            return status;
+            return kExitNoBackend;
         }
         sessions[k] = std::move(*opened);
     }

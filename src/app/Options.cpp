@@ -242,13 +242,4 @@ Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, 
     return setup;
 }
 
-TargetHandle createTargetOrReport(Backend& backend, const RenderOptions& options, std::ostream& err) {
-    const TargetHandle target = backend.createTarget(options.width, options.height);
-    if (target == kNoHandle) {
-        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
-            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
-    }
-    return target;
-}
-
 }  // namespace frugal

@@ -79,8 +79,4 @@ Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err);
 // Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);
 
-// Creates the render target, or prints the one-line error (the size and the backend's limit) and
-// returns kNoHandle.
-TargetHandle createTargetOrReport(Backend& backend, const RenderOptions& options, std::ostream& err);
-
 }  // namespace frugal

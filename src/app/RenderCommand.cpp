@@ -112,11 +112,10 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     const FrameRange range = options.frames.value_or(FrameRange{});
 
-    int status = kExitOk;
-    Result<Session> opened = openSession(options.backend, options, status);
+    Result<Session> opened = openSession(options.backend, options);
     if (!opened) {
         err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
-        return status;
+        return kExitNoBackend;
     }
     Session& session = *opened;
     Backend& backend = *session.backend;

@@ -13,4 +13,7 @@ inline std::string fmt(double value) {
     return buf;
 }
 
+// An object's optional name as messages quote it after its index: " 'name'", or nothing.
+inline std::string quotedName(const std::string& name) { return name.empty() ? std::string() : " '" + name + "'"; }
+
 }  // namespace frugal

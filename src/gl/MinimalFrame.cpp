@@ -9,14 +9,12 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <utility>
 
+#include "base/Format.h"
 #include "gl/GlApi.h"
 
 namespace frugal {
 
 namespace {
-
-std::string quoted(const std::string& name) { return name.empty() ? std::string() : " '" + name + "'"; }
-
 
 class Minimal final : public MinimalFrame {
 public:
@@ -99,7 +97,9 @@ std::string Minimal::initialise(int width, int height) {
     if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "incomplete framebuffer";
     gl_.Viewport(0, 0, width, height);
 
-    if (std::string reason = compileProgram(gl_, "minimal.vert", "minimal.frag", "", &program_); !reason.empty())
+    // mesh.vert + mesh.frag without defines: the variant with no texture, colours or ids, which is
+    // the backend's own program for such a frame, so the arithmetic is the same by construction.
+    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", "", &program_); !reason.empty())
         return reason;
     gl_.UseProgram(program_);
     mvp_ = gl_.GetUniformLocation(program_, "u_mvp");
@@ -119,7 +119,7 @@ std::string Minimal::initialise(int width, int height) {
     meshes_.resize(scene_->meshes.size());
     for (std::size_t i = 0; i < scene_->meshes.size(); ++i) {
         const Mesh& mesh = scene_->meshes[i];
-        if (!isUploadable(mesh)) return "mesh " + std::to_string(i) + quoted(mesh.name) + " breaks the upload contract";
+        if (!isUploadable(mesh)) return "mesh " + std::to_string(i) + quotedName(mesh.name) + " breaks the upload contract";
         MeshObjects& m = meshes_[i];
         m.indices = GLsizei(mesh.indices.size());
         m.normals = !mesh.normals.empty();
@@ -203,11 +203,11 @@ std::string minimalFrameUnsupported(const Scene& scene) {
     for (const Instance& instance : scene.instances) {
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
         if (!mesh.colors.empty())
-            return "mesh " + std::to_string(instance.mesh) + quoted(mesh.name) +
+            return "mesh " + std::to_string(instance.mesh) + quotedName(mesh.name) +
                    " has vertex colours, which the minimal frame does not draw";
         if (mesh.material >= 0 && scene.materials[std::size_t(mesh.material)].baseColorTexture >= 0)
             return "material " + std::to_string(mesh.material) +
-                   quoted(scene.materials[std::size_t(mesh.material)].name) +
+                   quotedName(scene.materials[std::size_t(mesh.material)].name) +
                    " has a texture, which the minimal frame does not draw";
     }
     return {};

@@ -1,14 +1,14 @@
 // The yardstick of `frugal bench render`: the same frame as the GL backend draws through
 // SceneRenderer, drawn by the fewest GL calls that give the same pixels, on a context of its own.
-// One program with position and normal only (shaders/minimal.vert, minimal.frag), the lighting and
+// One program with position and normal only (mesh.vert + mesh.frag with no variant defines), the lighting and
 // the material factor as uniforms, one VAO per mesh, glClear of colour and depth with the FBO's
 // default draw buffer, glDrawElements per instance, culling per material. No ids, no textures, no
 // vertex colours, no state cache beyond culling: whatever the backend spends beyond this is its
 // overhead, and the bench reports frugal ÷ minimal.
 //
 // Vertex arithmetic is the backend's (GlBackend.cpp): mvp = (projection · view) · model and
-// normalMatrix = inverseTranspose(mat3(model)) in float with glm on the CPU; the fragment arithmetic
-// is mesh.frag's without colour, texture and id. So on the scenes it supports the colour and depth
+// normalMatrix = inverseTranspose(mat3(model)) in float with glm on the CPU; the shaders are the
+// backend's own variant without colour, texture and id. So on the scenes it supports the colour and depth
 // images equal the backend's bit for bit (tests/gl/MinimalFrameGLTest.cpp).
 #pragma once
 

@@ -144,9 +144,9 @@ Result<bool> writeTemporary(const std::string& path, const std::string& temp, co
 
 }  // namespace
 
-Result<bool> writeFileAtomic(const std::string& path, const Result<Bytes>& bytes) {
+Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes) {
     OutputSet set;
-    set.add(path, bytes);
+    set.add(path, std::move(bytes));
     return set.commit();
 }
 

@@ -33,7 +33,7 @@ Result<Bytes> encodeIdPng(const Buffers& buffers);
 
 // Writes `bytes` to `path` atomically. Error: "<path>: <why>" (also when `bytes` is an encoder's
 // error: then nothing is written).
-Result<bool> writeFileAtomic(const std::string& path, const Result<Bytes>& bytes);
+Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes);
 
 // Several files that appear together or not at all. commit() writes each to a temporary name in
 // its folder; only when every write succeeded are they renamed into place, and if a rename fails,

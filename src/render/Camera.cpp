@@ -44,7 +44,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
         v.znear = spec.znear.value_or(camera.znear);
         v.zfar = spec.zfar.value_or(camera.zfar);
         v.yfov = spec.yfovDegrees ? glm::radians(*spec.yfovDegrees) : camera.yfov;
-        v.source = "scene camera " + std::to_string(index) + (camera.name.empty() ? "" : " '" + camera.name + "'");
+        v.source = "scene camera " + std::to_string(index) + quotedName(camera.name);
         if (!camera.perspective) {
             if (v.zfar <= v.znear) return Error{"camera " + std::to_string(index) + ": orthographic zfar " + fmt(v.zfar) + " must exceed znear " + fmt(v.znear)};
             v.projection = glm::ortho(-camera.xmag, camera.xmag, -camera.ymag, camera.ymag, v.znear, v.zfar);

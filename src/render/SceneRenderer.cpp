@@ -2,13 +2,9 @@
 
 #include <string>
 
+#include "base/Format.h"
+
 namespace frugal {
-
-namespace {
-
-std::string quoted(const std::string& name) { return name.empty() ? std::string() : " '" + name + "'"; }
-
-}  // namespace
 
 SceneRenderer::SceneRenderer(Backend& backend, const Scene& scene)
     : backend_(&backend), scene_(&scene), full_(fullDrawList(scene)) {}
@@ -20,7 +16,7 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
         const Mesh& mesh = scene.meshes[i];
         const MeshHandle handle = backend.uploadMesh(mesh);
         if (handle == kNoHandle)
-            return Error{"mesh " + std::to_string(i) + quoted(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
+            return Error{"mesh " + std::to_string(i) + quotedName(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles): " + backend.name() +
                          (isUploadable(mesh) ? " could not store it (out of memory)"
                                              : " refused it: its arrays break the upload contract (render/Backend.h)")};
@@ -31,7 +27,7 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
         const Texture& texture = scene.textures[i];
         const TextureHandle handle = backend.uploadTexture(texture);
         if (handle == kNoHandle)
-            return Error{"texture " + std::to_string(i) + quoted(texture.name) + " (" + std::to_string(texture.width) +
+            return Error{"texture " + std::to_string(i) + quotedName(texture.name) + " (" + std::to_string(texture.width) +
                          "x" + std::to_string(texture.height) + "): " + backend.name() +
                          " refused it (its limit is " + std::to_string(backend.maxTextureSize()) +
                          " pixels a side; or out of memory)"};

@@ -26,7 +26,6 @@ constexpr int kWidth = 64;
 constexpr int kHeight = 48;
 const glm::vec4 kBackground{0.2f, 0.4f, 0.6f, 1.0f};  // exact in 8 bits: 51, 102, 153
 
-
 // A backend of `kind`, or nullptr with the reason added as a test failure: every kind this build
 // has must work on the machines the tests run on.
 std::unique_ptr<Backend> makeBackend(ContextKind kind) {
@@ -91,6 +90,26 @@ FrameParams simpleFrame(bool writeIds = true) {
 const glm::vec4 kFactor{1.0f, 0.5f, 0.25f, 1.0f};
 
 std::vector<IndexRange> all(const Mesh& m) { return {IndexRange{0, std::uint32_t(m.triangleCount())}}; }
+
+// `quad` with `texture`, lit by the ambient term alone (so a pixel is its texel), on a fresh target.
+Buffers drawUnlitTextured(Backend& backend, const Mesh& quad, const Texture& texture, bool writeIds) {
+    const MeshHandle mesh = backend.uploadMesh(quad);
+    const TextureHandle handle = backend.uploadTexture(texture);
+    EXPECT_NE(mesh, kNoHandle);
+    EXPECT_NE(handle, kNoHandle);
+    const TargetHandle target = backend.createTarget(kWidth, kHeight);
+    FrameParams frame = simpleFrame(writeIds);
+    frame.lighting.ambient = 1.0f;
+    frame.lighting.diffuse = 0.0f;
+    backend.beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = mesh;
+    params.texture = handle;
+    backend.draw(params, all(quad));
+    Buffers out = backend.readBack(target);
+    backend.destroyTarget(target);
+    return out;
+}
 
 Buffers drawTwoTriangles(Backend& backend, bool doubleSided, bool writeIds) {
     const Mesh mesh = frontAndBack();
@@ -354,24 +373,11 @@ TEST_P(GlBackendGLTest, TextureRowsAndNearestFilter) {
     quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     quad.indices = {0, 1, 2, 0, 2, 3};
     quad.triangleSource = {0, 1};
-    const MeshHandle mesh = backend_->uploadMesh(quad);
-    const TextureHandle texture = backend_->uploadTexture(tex);
-    ASSERT_NE(texture, kNoHandle);
-    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
-    FrameParams frame = simpleFrame();
-    frame.lighting.ambient = 1.0f;
-    frame.lighting.diffuse = 0.0f;
-    backend_->beginFrame(target, frame);
-    DrawParams params;
-    params.mesh = mesh;
-    params.texture = texture;
-    backend_->draw(params, all(quad));
-    const Buffers b = backend_->readBack(target);
+    const Buffers b = drawUnlitTextured(*backend_, quad, tex, true);
     EXPECT_TRUE(colorIs(b, 10, 10, {1, 0, 0, 1}, 0));  // bottom left: row 0, texel 0
     EXPECT_TRUE(colorIs(b, 50, 10, {0, 1, 0, 1}, 0));
     EXPECT_TRUE(colorIs(b, 10, 40, {0, 0, 1, 1}, 0));
     EXPECT_TRUE(colorIs(b, 50, 40, {1, 1, 1, 1}, 0));
-    backend_->destroyTarget(target);
 
     Texture bad = tex;
     bad.rgba.pop_back();
@@ -765,21 +771,9 @@ TEST_P(GlBackendGLTest, TexturedMeshWithoutUvsSamplesTheFirstTexel) {
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     quad.normals.assign(4, glm::vec3(0, 0, 1));
     quad.indices = {0, 1, 2, 0, 2, 3};
-    const MeshHandle mesh = backend_->uploadMesh(quad);
-    const TextureHandle texture = backend_->uploadTexture(tex);
-    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
-    FrameParams frame = simpleFrame(false);
-    frame.lighting.ambient = 1.0f;
-    frame.lighting.diffuse = 0.0f;
-    backend_->beginFrame(target, frame);
-    DrawParams params;
-    params.mesh = mesh;
-    params.texture = texture;
-    backend_->draw(params, all(quad));
-    const Buffers b = backend_->readBack(target);
+    const Buffers b = drawUnlitTextured(*backend_, quad, tex, false);
     for (auto [x, y] : {std::pair{1, 1}, std::pair{62, 46}, std::pair{40, 10}})
         EXPECT_TRUE(colorIs(b, x, y, {1, 0, 0, 1}, 0)) << x << ", " << y;
-    backend_->destroyTarget(target);
 }
 
 std::string kindName(const ::testing::TestParamInfo<ContextKind>& info) {
