@@ -1,13 +1,18 @@
 // Library pieces timed side by side: the software reference on whole frames (1 thread against every
-// core), PNG encoding of a full frame, and index-range normalisation as a culled draw list needs it.
+// core), PNG encoding of a full frame, index-range normalisation as a culled draw list needs it, and
+// culling: the bunny's pre-processing (map, clusters, sphere, hull) and each method's plan for the
+// report's views.
 // No GL here: GL frames are measured by `frugal bench render`, against the minimal GL program.
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <thread>
 
 #include <benchmark/benchmark.h>
 
+#include "cull/Culling.h"
+#include "cull/Views.h"
 #include "io/ImageIO.h"
 #include "render/Frame.h"
 #include "render/IndexRanges.h"
@@ -80,6 +85,57 @@ void BM_NormalizeRanges(benchmark::State& state) {
     state.SetItemsProcessed(std::int64_t(state.iterations()) * state.range(0));
 }
 BENCHMARK(BM_NormalizeRanges)->Arg(500)->Arg(50000);
+
+std::optional<Scene> loadBunny(benchmark::State& state) {
+    Result<Scene> scene = loadScene(FRUGAL_BUNNY_OBJ, LoadOptions{.objDoubleSided = false});
+    if (!scene) {
+        state.SkipWithError("the bunny is missing (Debian package glmark2-data)");
+        return std::nullopt;
+    }
+    return std::move(*scene);
+}
+
+// Everything culling computes once per mesh, before upload (the paper: hull ~5 s, maps 4.8 MB).
+void BM_CullPrepareBunny(benchmark::State& state) {
+    std::optional<Scene> bunny = loadBunny(state);
+    if (!bunny) return;
+    PrepStats stats;
+    for (auto _ : state) {
+        Scene scene = *bunny;
+        stats = SceneCuller::prepare(scene).totals();
+    }
+    state.counters["hull_ms"] = stats.hullMs;
+    state.counters["map_ms"] = stats.mapMs;
+    state.counters["cluster_ms"] = stats.clusterMs;
+    state.counters["sphere_ms"] = stats.sphereMs;
+    state.counters["map_MB"] = double(stats.mapBytes) / 1e6;
+    state.counters["access_MB"] = double(stats.accessBytes) / 1e6;
+}
+BENCHMARK(BM_CullPrepareBunny)->Unit(benchmark::kMillisecond);
+
+// One plan per iteration, cycling through the report's 32 default views of the bunny at 800×600.
+void BM_CullBunny(benchmark::State& state) {
+    std::optional<Scene> scene = loadBunny(state);
+    if (!scene) return;
+    const SceneCuller culler = SceneCuller::prepare(*scene);
+    const Bounds bounds = scene->bounds(0.0);
+    std::vector<FrameSetup> frames;
+    for (const ReportView& view : reportViews(bounds.center(), bounds.radius(), 32)) {
+        Result<FrameSetup> frame = setUpFrame(*scene, view.camera, 0.0, 800, 600, false);
+        if (frame) frames.push_back(std::move(*frame));
+    }
+    const CullMethod method = kCullMethods[state.range(0)];
+    state.SetLabel(cullMethodName(method));
+    std::size_t at = 0, submitted = 0;
+    for (auto _ : state) {
+        const FrameSetup& frame = frames[at++ % frames.size()];
+        const DrawList list = culler.cull(method, *scene, frame.world, frame.view);
+        submitted += submittedTriangles(*scene, list);
+        benchmark::DoNotOptimize(list.data());
+    }
+    state.counters["pvs"] = benchmark::Counter(double(submitted), benchmark::Counter::kAvgIterations);
+}
+BENCHMARK(BM_CullBunny)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace frugal

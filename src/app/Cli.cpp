@@ -17,6 +17,7 @@ usage:
   frugal bench render [SCENE] [options]           frame time per backend, as JSON
   frugal compare A.png B.png [options]            compare an image with a reference (B)
   frugal diff [SCENE] [options]                   a GL render against the software reference
+  frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -31,8 +32,8 @@ exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed ou
 void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
-    out << "with no SCENE, render, bench and diff use builtin:default.\n";
-    out << "\nrun 'frugal help render' (or info, bench, compare, diff) for a command's options.\n" << kExitCodes;
+    out << "with no SCENE, render, bench, diff and cull-report use builtin:default.\n";
+    out << "\nrun 'frugal help render' (or info, bench, compare, diff, cull-report) for a command's options.\n" << kExitCodes;
 }
 
 }  // namespace
@@ -49,7 +50,7 @@ struct CommandEntry {
 const CommandEntry kCommands[] = {
     {"render", runRender, renderHelp, true}, {"info", runInfo, infoHelp, false},
     {"bench", runBench, benchHelp, true},    {"compare", runCompare, compareHelp, false},
-    {"diff", runDiff, diffHelp, true},
+    {"diff", runDiff, diffHelp, true},       {"cull-report", runCullReport, cullReportHelp, true},
 };
 
 const CommandEntry* findCommand(const std::string& name) {

@@ -12,11 +12,13 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
 const char* benchHelp();
 const char* compareHelp();
 const char* diffHelp();
+const char* cullReportHelp();
 
 }  // namespace frugal

@@ -42,6 +42,14 @@
 // (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps what it holds.
 // Both paths run the same arithmetic on the same vertex values, so colour and depth are identical.
 //
+// Many short ranges (a culled plan: ~1000–2000 runs of ~15–30 triangles on the bunny) are gathered
+// into one index buffer streamed for the draw (glBufferData, GL_STREAM_DRAW) and drawn with one
+// glDrawElements: the same triangles in the same order, so the same pixels. llvmpipe runs each
+// range of a glMultiDrawElements as a draw of its own; measured on the bunny at 800×600, a
+// conservative plan of ~31k triangles in ~1200 ranges drew in 5.4 ms, the same triangles from one
+// index buffer in 5.1 ms (5–10 % less over 12 views). The mesh's indices are read back from its
+// buffer once, on the first gathered draw (no CPU copy is kept for meshes never culled).
+//
 // Clears and the id attachment: llvmpipe flushes its scene when the draw-buffer set changes, so a
 // clear with draw buffers {colour, ids} followed by draws with {colour} became a full pass of its
 // own (+0.38 / +0.64 ms on the bunny frame). Each target therefore records whether its ids may be
@@ -144,7 +152,13 @@ struct GlMesh {
     VertexLayout layout;
     std::vector<std::uint32_t> triangleSource;
     GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
+    std::vector<std::uint32_t> indices;  // read back on the first gathered draw
 };
+
+// A draw's ranges are gathered into one streamed index buffer when there are at least this many and
+// they are this short on average (triangles); otherwise glMultiDrawElements takes them as they are.
+constexpr std::size_t kGatherMinRuns = 64;
+constexpr std::size_t kGatherMaxAverageRun = 256;
 
 GLint wrapMode(Wrap wrap) {
     switch (wrap) {
@@ -168,17 +182,20 @@ public:
         if (!initialised_) return;
         activate();
         targets_.forEach([this](GlTarget& t) { deleteTarget(t); });
-        meshes_.forEach([this](GlMesh& m) {
-            gl_.DeleteVertexArrays(1, &m.vao);
-            gl_.DeleteBuffers(1, &m.vbo);
-            gl_.DeleteBuffers(1, &m.ibo);
-            if (m.idVao) gl_.DeleteVertexArrays(1, &m.idVao);
-            if (m.idVbo) gl_.DeleteBuffers(1, &m.idVbo);
-        });
+        meshes_.forEach([this](GlMesh& m) { deleteMesh(m); });
         textures_.forEach([this](GLuint& t) { gl_.DeleteTextures(1, &t); });
         for (const GlProgram& p : programs_)
             if (p.name) gl_.DeleteProgram(p.name);
+        if (streamIbo_) gl_.DeleteBuffers(1, &streamIbo_);
         // context_ goes last (member order), with every object it held already deleted.
+    }
+
+    void deleteMesh(GlMesh& m) {
+        gl_.DeleteVertexArrays(1, &m.vao);
+        gl_.DeleteBuffers(1, &m.vbo);
+        gl_.DeleteBuffers(1, &m.ibo);
+        if (m.idVao) gl_.DeleteVertexArrays(1, &m.idVao);
+        if (m.idVbo) gl_.DeleteBuffers(1, &m.idVbo);
     }
 
     // Loads GL, checks the version, builds the full program variant (so that a shader that does not
@@ -194,6 +211,8 @@ public:
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     TextureHandle uploadTexture(const Texture& texture) override;
+    void releaseMesh(MeshHandle mesh) override;
+    void releaseTexture(TextureHandle texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
     void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
@@ -319,6 +338,8 @@ private:
 
     void setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout);
     bool buildIdPass(GlMesh& mesh);
+    // Draws runs_ of `mesh` (`triangles` in all) from one streamed index buffer.
+    void drawGathered(GlMesh& mesh, std::uint64_t triangles);
 
     std::unique_ptr<GlContext> context_;
     GlApi gl_;
@@ -341,6 +362,10 @@ private:
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
     glm::mat4 viewProjection_{1.0f};
+
+    // The streamed index buffer of gathered draws, and its CPU side.
+    GLuint streamIbo_ = 0;
+    std::vector<std::uint32_t> gathered_;
 
     // Scratch for the multi-draw argument arrays (no allocation per draw once grown).
     std::vector<IndexRange> runs_;
@@ -468,6 +493,24 @@ TargetHandle GlBackend::createTarget(int width, int height) {
     return handle;
 }
 
+void GlBackend::releaseMesh(MeshHandle mesh) {
+    GlMesh* m = meshes_.find(mesh);
+    if (m == nullptr) return;
+    activate();
+    deleteMesh(*m);  // GL keeps the objects alive until draws already queued have used them
+    meshes_.remove(mesh);
+    check("releaseMesh");
+}
+
+void GlBackend::releaseTexture(TextureHandle texture) {
+    GLuint* t = textures_.find(texture);
+    if (t == nullptr) return;
+    activate();
+    gl_.DeleteTextures(1, t);
+    textures_.remove(texture);
+    check("releaseTexture");
+}
+
 void GlBackend::destroyTarget(TargetHandle target) {
     GlTarget* t = targets_.find(target);
     if (t == nullptr) return;
@@ -548,6 +591,32 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     setVertexLayout(m.vao, m.vbo, m.ibo, m.layout);
     check("uploadMesh");
     return meshes_.add(std::move(m));
+}
+
+void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
+    if (m.indices.empty()) {
+        // Through GL_COPY_READ_BUFFER: binding GL_ELEMENT_ARRAY_BUFFER would change a VAO.
+        m.indices.resize(std::size_t(m.triangles) * 3);
+        gl_.BindBuffer(GL_COPY_READ_BUFFER, m.ibo);
+        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)),
+                             m.indices.data());
+        gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+    }
+    gathered_.resize(std::size_t(triangles) * 3);
+    std::uint32_t* out = gathered_.data();
+    for (const IndexRange& run : runs_) {
+        const std::uint32_t* from = m.indices.data() + std::size_t(run.firstTriangle) * 3;
+        out = std::copy(from, from + std::size_t(run.triangleCount) * 3, out);
+    }
+    if (streamIbo_ == 0) gl_.GenBuffers(1, &streamIbo_);
+    // The element binding is VAO state: the stream buffer goes into the mesh's VAO for this draw and
+    // the mesh's own index buffer comes back after it.
+    bindVao(m.vao);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, streamIbo_);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(gathered_.size() * sizeof(std::uint32_t)), gathered_.data(),
+                   GL_STREAM_DRAW);
+    gl_.DrawElements(GL_TRIANGLES, GLsizei(gathered_.size()), GL_UNSIGNED_INT, nullptr);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
 }
 
 bool GlBackend::buildIdPass(GlMesh& m) {
@@ -645,7 +714,8 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
     assert(mesh != nullptr && "draw: no such mesh");
     if (target == nullptr || mesh == nullptr) return;
 
-    if (normalizeRanges(ranges, mesh->triangles, runs_) == 0) return;
+    const std::uint64_t triangles = normalizeRanges(ranges, mesh->triangles, runs_);
+    if (triangles == 0) return;
     counts_.clear();
     firsts_.clear();
     for (const IndexRange& run : runs_) {
@@ -708,6 +778,9 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
         }
         bindVao(mesh->idVao);
         gl_.MultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
+    } else if (runs_.size() >= kGatherMinRuns &&
+               triangles / runs_.size() < kGatherMaxAverageRun) {
+        drawGathered(*mesh, triangles);
     } else {
         offsets_.resize(counts_.size());
         for (std::size_t i = 0; i < counts_.size(); ++i) {

@@ -82,6 +82,10 @@ public:
 
     virtual MeshHandle uploadMesh(const Mesh& mesh) = 0;
     virtual TextureHandle uploadTexture(const Texture& texture) = 0;
+    // Frees what an upload made; draws already submitted with it are executed first. A handle that
+    // is not (or no longer) a mesh / texture is ignored.
+    virtual void releaseMesh(MeshHandle mesh) = 0;
+    virtual void releaseTexture(TextureHandle texture) = 0;
 
     // Starts drawing into `target` with the given camera and light; following draws use them.
     virtual void beginFrame(TargetHandle target, const FrameParams& frame) = 0;

@@ -1,6 +1,7 @@
 #include "render/SceneRenderer.h"
 
 #include <string>
+#include <utility>
 
 #include "base/Format.h"
 
@@ -8,6 +9,33 @@ namespace frugal {
 
 SceneRenderer::SceneRenderer(Backend& backend, const Scene& scene)
     : backend_(&backend), scene_(&scene), full_(fullDrawList(scene)) {}
+
+SceneRenderer::~SceneRenderer() { release(); }
+
+SceneRenderer::SceneRenderer(SceneRenderer&& other) noexcept
+    : backend_(other.backend_), scene_(other.scene_), full_(std::move(other.full_)),
+      meshes_(std::exchange(other.meshes_, {})), textures_(std::exchange(other.textures_, {})),
+      cullAllBackFaces_(other.cullAllBackFaces_) {}
+
+SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
+    if (this != &other) {
+        release();
+        backend_ = other.backend_;
+        scene_ = other.scene_;
+        full_ = std::move(other.full_);
+        meshes_ = std::exchange(other.meshes_, {});
+        textures_ = std::exchange(other.textures_, {});
+        cullAllBackFaces_ = other.cullAllBackFaces_;
+    }
+    return *this;
+}
+
+void SceneRenderer::release() {
+    for (MeshHandle mesh : meshes_) backend_->releaseMesh(mesh);
+    for (TextureHandle texture : textures_) backend_->releaseTexture(texture);
+    meshes_.clear();
+    textures_.clear();
+}
 
 Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene) {
     SceneRenderer renderer(backend, scene);
@@ -48,7 +76,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.model = world[instance.node];
         params.baseColorFactor = material.baseColorFactor;
         params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
-        params.doubleSided = material.doubleSided;
+        params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.firstId = instance.firstId;
         backend_->draw(params, command.ranges);
     }
@@ -59,6 +87,13 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
     backend_->clear(target, Rect{0, 0, width, height}, background, 1.0f);
     backend_->beginFrame(target, frame);
     draw(full_, world);
+}
+
+void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
+                                const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list) {
+    backend_->clear(target, Rect{0, 0, width, height}, background, 1.0f);
+    backend_->beginFrame(target, frame);
+    draw(list, world);
 }
 
 }  // namespace frugal

@@ -16,6 +16,13 @@ public:
     // "mesh 2 'name' (N vertices, M triangles): <backend> refused it ..." or the same for a texture.
     static Result<SceneRenderer> create(Backend& backend, const Scene& scene);
 
+    // Releases what it uploaded (the backend must still be alive).
+    ~SceneRenderer();
+    SceneRenderer(SceneRenderer&& other) noexcept;
+    SceneRenderer& operator=(SceneRenderer&& other) noexcept;
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
     // Draws `list` with the node transforms `world` into the current frame (Backend::beginFrame
     // must have been called). Materials follow the instance's mesh.
     void draw(const DrawList& list, const std::vector<glm::mat4>& world);
@@ -23,18 +30,27 @@ public:
     // The usual full frame: clear the whole target to `background`, begin, draw everything.
     void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                      const std::vector<glm::mat4>& world, const glm::vec4& background);
+    // The same with a plan of its own (culling): clear, begin, draw `list`.
+    void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
+                     const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list);
+
+    // true: every draw culls back faces, whatever its material says (the fair timing baseline of
+    // culling reports: the full draw with GL face culling on). false (default): as materials say.
+    void setCullAllBackFaces(bool on) { cullAllBackFaces_ = on; }
 
     Backend& backend() { return *backend_; }
     const Scene& scene() const { return *scene_; }
 
 private:
     SceneRenderer(Backend& backend, const Scene& scene);
+    void release();
 
     Backend* backend_;
     const Scene* scene_;
     DrawList full_;
     std::vector<MeshHandle> meshes_;
     std::vector<TextureHandle> textures_;
+    bool cullAllBackFaces_ = false;
 };
 
 }  // namespace frugal

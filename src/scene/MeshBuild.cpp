@@ -111,4 +111,23 @@ MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
     return stats;
 }
 
+void reorderTriangles(Mesh& mesh, const std::vector<std::uint32_t>& order) {
+    const std::size_t count = mesh.triangleCount();
+    assert(order.size() == count);
+    if (mesh.triangleSource.empty()) {
+        mesh.triangleSource.resize(count);
+        for (std::size_t t = 0; t < count; ++t) mesh.triangleSource[t] = std::uint32_t(t);
+    }
+    std::vector<std::uint32_t> indices(mesh.indices.size());
+    std::vector<std::uint32_t> source(count);
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::uint32_t from = order[t];
+        assert(from < count);
+        for (int k = 0; k < 3; ++k) indices[3 * t + k] = mesh.indices[3 * std::size_t(from) + k];
+        source[t] = mesh.triangleSource[from];
+    }
+    mesh.indices = std::move(indices);
+    mesh.triangleSource = std::move(source);
+}
+
 }  // namespace frugal

@@ -22,4 +22,10 @@ struct MeshBuildStats {
 //   carrying `triangleSource` along.
 MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrder);
 
+// The seam before upload: puts the mesh's triangles in a new order, `order[newT] = oldT` (a
+// permutation of 0..triangleCount-1), carrying `triangleSource` along so that ids stay stable.
+// Vertices are untouched. Culling pre-processing (cull/) calls it so that every bin of its map is one
+// contiguous index range; it must run before SceneRenderer uploads the mesh.
+void reorderTriangles(Mesh& mesh, const std::vector<std::uint32_t>& order);
+
 }  // namespace frugal

@@ -53,6 +53,8 @@ public:
     TargetHandle createTarget(int width, int height) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
+    void releaseMesh(MeshHandle mesh) override;
+    void releaseTexture(TextureHandle texture) override;
     TextureHandle uploadTexture(const Texture& texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
@@ -128,6 +130,19 @@ MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
         return kNoHandle;
     }
     return meshes_.add(std::move(m));
+}
+
+// Pending draws point into meshes and textures: rasterize them before anything they use goes.
+void SoftwareBackend::releaseMesh(MeshHandle mesh) {
+    if (meshes_.find(mesh) == nullptr) return;
+    flush();
+    meshes_.remove(mesh);
+}
+
+void SoftwareBackend::releaseTexture(TextureHandle texture) {
+    if (textures_.find(texture) == nullptr) return;
+    flush();
+    textures_.remove(texture);
 }
 
 TextureHandle SoftwareBackend::uploadTexture(const Texture& texture) {

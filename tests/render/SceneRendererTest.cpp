@@ -23,6 +23,8 @@ public:
     int maxTextureSize() const override { return 32; }
     TargetHandle createTarget(int, int) override { return 1; }
     void destroyTarget(TargetHandle) override {}
+    void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh)); }
+    void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture)); }
     MeshHandle uploadMesh(const Mesh& mesh) override {
         return mesh.name == "refuse" ? kNoHandle : MeshHandle(10 + meshes_++);
     }
@@ -117,6 +119,37 @@ TEST(SceneRendererTest, ARefusedUploadIsAnErrorThatNamesIt) {
     scene.textures[0].name = "refuse";
     EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
               "texture 0 'refuse' (1x1): recording refused it (its limit is 32 pixels a side; or out of memory)");
+}
+
+TEST(SceneRendererTest, ReleasesWhatItUploadedOnceWhenDestroyedOrWhenAnUploadFails) {
+    const Scene scene = twoMeshScene();
+    RecordingBackend backend;
+    {
+        Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+        ASSERT_TRUE(renderer) << renderer.error();
+        SceneRenderer moved = std::move(*renderer);  // the moved-from renderer releases nothing
+        EXPECT_TRUE(backend.calls.empty());
+    }
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"release mesh 10", "release mesh 11", "release texture 20"}));
+
+    backend.calls.clear();
+    Scene refused = twoMeshScene();
+    refused.textures[0].name = "refuse";
+    EXPECT_FALSE(SceneRenderer::create(backend, refused));
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"release mesh 12", "release mesh 13"}));
+}
+
+TEST(SceneRendererTest, CullAllBackFacesOverridesDoubleSidedMaterialsAndDrawsTheGivenList) {
+    const Scene scene = twoMeshScene();
+    RecordingBackend backend;
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    ASSERT_TRUE(renderer) << renderer.error();
+    renderer->setCullAllBackFaces(true);
+    const DrawList list{DrawCommand{0, {IndexRange{0, 1}}}};
+    renderer->renderFrame(1, 8, 8, FrameParams{}, scene.worldTransforms(0.0), glm::vec4(0.0f), list);
+    ASSERT_EQ(backend.draws.size(), 1u);
+    EXPECT_EQ(backend.draws[0].params.mesh, 11u);
+    EXPECT_FALSE(backend.draws[0].params.doubleSided);
 }
 
 }  // namespace

@@ -1,0 +1,485 @@
+// `frugal cull-report`: how exact each culling method's visible set is, and what it saves, view by
+// view. Every view is judged against the full render of that view on the same backend: its id image
+// gives the really visible set (RVS), its colour image the pixels a method changed. Times are medians
+// of interleaved repeats (every method once per round, so machine noise hits all alike), with three
+// baselines timed in the same rounds: the full draw, the full draw with GL back-face culling on
+// (the fair baseline), and the oracle (the RVS from index buffers of its own, built before timing).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Cli.h"
+#include "app/Command.h"
+#include "app/Commands.h"
+#include "app/CullSupport.h"
+#include "cull/Views.h"
+#include "io/ImageIO.h"
+#include "report/CullReport.h"
+
+namespace frugal {
+
+const char* cullReportHelp() {
+    return R"(usage: frugal cull-report [SCENE] [options]
+
+Measures every culling method on a set of views of SCENE (default builtin:default): per view and
+method the total triangles (tos), the submitted ones (pvs), the really visible ones (rvs: owning a
+pixel of the full render), misses (visible yet dropped), waste (submitted yet hidden), pixels that
+differ from the full render, the CPU time to cull and the time to draw, and ratios to the oracle's
+draw, to the full draw and to the full draw with GL back-face culling on. Each view is timed cold:
+no method learns from an earlier view. Prints a summary per method; --json/--csv/--plot write the
+whole report.
+
+views (default: --views 32):
+  --views N             N views around the scene's bounding sphere: the two poles of the map
+                        (view axis along +z and -z), then whole-in-view, partial (less than half of
+                        the sphere inside the frustum), grazing, and camera-inside views
+  --camera-path FILE    a JSON list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov":deg}
+                        (up and fov optional), timed in order
+  --camera/--eye/...    the render's camera options: one view
+
+methods and timing:
+  --methods A,B,...     among none, sphere, backface, cones, paper, conservative, oracle
+                        (default all)
+  --repeat K            timed frames per view and method, interleaved; medians (default 5)
+)"
+           "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
+           R"(
+outputs (each written whole or not at all):
+  --json FILE           the report: views, methods, summary (medians, worst view, total misses)
+  --csv FILE            one row per view and method
+  --plot FILE.svg       plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot);
+                        the gnuplot script is written beside it as FILE.gp, to restyle and rerun
+)";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Outputs {
+    std::string json, csv, plot, cameraPath;
+};
+
+std::size_t differingPixels(const Buffers& a, const Buffers& b) {
+    std::size_t count = 0;
+    const std::size_t n = std::min(a.rgba.size(), b.rgba.size()) / 4;
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::memcmp(&a.rgba[4 * i], &b.rgba[4 * i], 4) != 0) ++count;
+    return count + (std::max(a.rgba.size(), b.rgba.size()) - 4 * n) / 4;
+}
+
+// "--camera-path FILE: entry 3: eye: expected 3 numbers"
+Result<std::vector<ReportView>> readCameraPath(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return Error{"--camera-path " + path + ": cannot read the file"};
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        return Error{"--camera-path " + path + ": not JSON (" + std::string(e.what()) + ")"};
+    }
+    if (doc.is_object() && doc.contains("views")) doc = doc["views"];
+    if (!doc.is_array() || doc.empty())
+        return Error{"--camera-path " + path + ": expected a non-empty list of {\"eye\",\"target\",\"up\",\"fov\"}"};
+    std::vector<ReportView> views;
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const nlohmann::json& entry = doc[i];
+        const std::string where = "--camera-path " + path + ": entry " + std::to_string(i) + ": ";
+        auto vec = [&](const char* key, bool required) -> Result<std::optional<glm::vec3>> {
+            if (!entry.is_object() || !entry.contains(key)) {
+                if (required) return Error{where + key + ": missing"};
+                return std::optional<glm::vec3>{};
+            }
+            const nlohmann::json& v = entry[key];
+            if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+                return Error{where + key + ": expected 3 numbers"};
+            const glm::vec3 value(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+            if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z))
+                return Error{where + key + ": not a finite point"};
+            return std::optional<glm::vec3>{value};
+        };
+        ReportView view;
+        view.viewClass = "path";
+        Result<std::optional<glm::vec3>> eye = vec("eye", true), target = vec("target", true), up = vec("up", false);
+        if (!eye) return Error{eye.error()};
+        if (!target) return Error{target.error()};
+        if (!up) return Error{up.error()};
+        view.camera.eye = **eye;
+        view.camera.target = **target;
+        if (*up) view.camera.up = **up;
+        if (entry.contains("fov")) {
+            if (!entry["fov"].is_number() || !(entry["fov"].get<double>() > 0.0 && entry["fov"].get<double>() < 180.0))
+                return Error{where + "fov: expected degrees in (0, 180)"};
+            view.camera.yfovDegrees = entry["fov"].get<float>();
+        }
+        views.push_back(view);
+    }
+    return views;
+}
+
+// Runs gnuplot on the script; "" or why it failed.
+std::string runGnuplot(const std::string& script) {
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+        return "gnuplot not found (Debian: apt-get install gnuplot-nox)";
+    const std::string command = "gnuplot '" + script + "' 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) return "cannot run gnuplot";
+    std::string output;
+    char buffer[512];
+    while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+    const int status = pclose(pipe);
+    if (status != 0) {
+        std::string first = output.substr(0, output.find('\n'));
+        return "gnuplot failed on " + script + (first.empty() ? "" : ": " + first);
+    }
+    return {};
+}
+
+std::string shellSafe(const std::string& path) {
+    return path.find('\'') == std::string::npos ? std::string() : "a path with a single quote";
+}
+
+}  // namespace
+
+int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    RenderOptions options;
+    CullOptions cull;
+    Outputs outputs;
+    int viewCount = 32, repeat = 5;
+    bool viewsGiven = false;
+    std::vector<CullMethod> methods(std::begin(kCullMethods), std::end(kCullMethods));
+    CommandLine command{"cull-report", cullReportHelp(), &options};
+    command.option = [&](const std::string& flag, ArgCursor& cursor) {
+        if (parseCullOption(flag, cursor, cull, false)) return true;
+        if (flag == "--views") {
+            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) viewCount = *n;
+            viewsGiven = true;
+        } else if (flag == "--repeat") {
+            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) repeat = *n;
+        } else if (flag == "--methods") {
+            const std::optional<std::string> list = cursor.value(flag);
+            if (!list) return true;
+            methods.clear();
+            std::stringstream items(*list);
+            std::string item;
+            while (std::getline(items, item, ',')) {
+                const std::optional<CullMethod> method = parseCullMethod(item);
+                if (!method) {
+                    cursor.fail("--methods " + *list + ": unknown method '" + item + "' (methods: " + cullMethodNames() + ")");
+                    return true;
+                }
+                if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
+            }
+            if (methods.empty()) cursor.fail("--methods: empty list (methods: " + cullMethodNames() + ")");
+        } else if (flag == "--json" || flag == "--csv" || flag == "--plot" || flag == "--camera-path") {
+            const std::optional<std::string> path = cursor.value(flag);
+            if (!path) return true;
+            if (path->empty()) cursor.fail(flag + ": empty file name");
+            else if (flag == "--json") outputs.json = *path;
+            else if (flag == "--csv") outputs.csv = *path;
+            else if (flag == "--plot") outputs.plot = *path;
+            else outputs.cameraPath = *path;
+        } else {
+            return false;
+        }
+        return true;
+    };
+    command.positional = sceneArgument(options);
+    command.finish = [&](ArgCursor& cursor) {
+        const bool oneCamera = options.camera.sceneCamera || options.camera.eye || options.camera.target;
+        if (!outputs.cameraPath.empty() && (viewsGiven || oneCamera))
+            cursor.fail("--camera-path: give either a camera path, --views N, or one camera");
+        else if (viewsGiven && oneCamera)
+            cursor.fail("--views: give either --views N or one camera (--camera/--eye/--target)");
+        else if (options.frames)
+            cursor.fail("--frames: cull-report measures views at one time; use --time");
+        else if (!outputs.plot.empty() && std::filesystem::path(outputs.plot).extension() != ".svg")
+            cursor.fail("--plot " + outputs.plot + ": gnuplot writes SVG here; name it .svg");
+        else if (!outputs.plot.empty() && !shellSafe(outputs.plot).empty())
+            cursor.fail("--plot " + outputs.plot + ": a path with a single quote cannot be passed to gnuplot");
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
+
+    Result<Scene> loaded = loadForRender(options, err);
+    if (!loaded) {
+        err << "error: " << loaded.error() << "\n";
+        return kExitError;
+    }
+    Scene& scene = *loaded;
+    const double time = options.time.value_or(0.0);
+
+    // The views.
+    std::vector<ReportView> views;
+    std::string timing = "cold";
+    if (!outputs.cameraPath.empty()) {
+        Result<std::vector<ReportView>> path = readCameraPath(outputs.cameraPath);
+        if (!path) {
+            err << "error: " << path.error() << "\n";
+            return kExitError;
+        }
+        views = std::move(*path);
+        timing = "path";
+    } else if (options.camera.sceneCamera || options.camera.eye || options.camera.target) {
+        views.push_back(ReportView{"camera", options.camera});
+    } else {
+        const Bounds bounds = scene.bounds(time);
+        if (bounds.empty()) {
+            err << "error: " << options.scene << ": the scene has no geometry to view\n";
+            return kExitError;
+        }
+        views = reportViews(bounds.center(), bounds.radius(), viewCount, options.camera.yfovDegrees.value_or(40.0f),
+                            float(options.width) / float(options.height));
+    }
+    // The render's --near/--far apply to every view.
+    for (ReportView& view : views) {
+        if (options.camera.znear) view.camera.znear = options.camera.znear;
+        if (options.camera.zfar) view.camera.zfar = options.camera.zfar;
+    }
+
+    const SceneCuller culler = prepareCulling(scene, cull.bins, err, options.quiet);
+
+    Result<Session> opened = openSession(options.backend, options);
+    if (!opened) {
+        err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
+        return kExitNoBackend;
+    }
+    Session& session = *opened;
+    Backend& backend = *session.backend;
+    if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
+    if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
+    SceneRenderer& renderer = *session.renderer;
+    const TargetHandle target = session.target;
+    const int width = options.width, height = options.height;
+    const DrawList full = fullDrawList(scene);
+
+    CullReport report;
+    report.scene = options.scene;
+    report.width = width;
+    report.height = height;
+    report.backend = backend.name();
+    report.timing = timing;
+
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        Result<FrameSetup> setup = setUpFrame(scene, views[v].camera, time, width, height, false);
+        if (!setup) {
+            err << "error: view " << v << " (" << views[v].viewClass << "): " << setup.error() << "\n";
+            return kExitError;
+        }
+        const FrameParams& params = setup->params;
+        const std::vector<glm::mat4>& world = setup->world;
+
+        // The reference colour, then the oracle (its id pass gives the RVS).
+        renderer.renderFrame(target, width, height, params, world, options.background);
+        const Buffers reference = backend.readBack(target);
+        Result<Oracle> oracle = makeOracle(renderer, target, width, height, params, world, options.background);
+        if (!oracle) {
+            err << "error: view " << v << ": " << oracle.error() << "\n";
+            return kExitError;
+        }
+
+        // Timed rounds: the methods asked for, then the baselines (none is the full draw and oracle the
+        // oracle's: their rows take the baselines' times).
+        struct Timing {
+            std::vector<double> cull, draw;
+            DrawList list;
+        };
+        std::vector<Timing> timings(methods.size());
+        Timing fullTiming, cullfaceTiming, oracleTiming;
+        auto frame = [&](SceneRenderer& r, const DrawList* list, Timing& t, bool record) {
+            backend.finish();
+            const auto t0 = Clock::now();
+            if (list) r.renderFrame(target, width, height, params, world, options.background, *list);
+            else r.renderFrame(target, width, height, params, world, options.background);
+            backend.finish();
+            if (record) t.draw.push_back(msSince(t0));
+        };
+        for (int round = -1; round < repeat; ++round) {  // round -1: warm-up, untimed
+            const bool record = round >= 0;
+            for (std::size_t m = 0; m < methods.size(); ++m) {
+                Timing& t = timings[m];
+                if (methods[m] == CullMethod::None || methods[m] == CullMethod::Oracle) continue;
+                const auto t0 = Clock::now();
+                t.list = culler.cull(methods[m], scene, world, setup->view);
+                const double cullMs = msSince(t0);
+                if (record) t.cull.push_back(cullMs);
+                frame(renderer, &t.list, t, record);
+            }
+            frame(renderer, nullptr, fullTiming, record);
+            renderer.setCullAllBackFaces(true);
+            frame(renderer, nullptr, cullfaceTiming, record);
+            renderer.setCullAllBackFaces(false);
+            frame(*oracle->renderer, nullptr, oracleTiming, record);
+        }
+        const double fullMs = median(fullTiming.draw), cullfaceMs = median(cullfaceTiming.draw),
+                     oracleMs = median(oracleTiming.draw);
+
+        ViewResult view;
+        view.index = int(v);
+        view.viewClass = views[v].viewClass;
+        view.eye = setup->view.eye;
+        view.target = views[v].camera.target.value_or(setup->view.eye + setup->view.forward);
+        std::ostringstream progress;
+        progress << "view " << (v + 1) << "/" << views.size() << " (" << view.viewClass << "): rvs " << oracle->rvs.count
+                 << " of " << scene.triangleCount() << ", full " << fmt(fullMs) << " ms, oracle " << fmt(oracleMs) << " ms";
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            Timing& t = timings[m];
+            if (methods[m] == CullMethod::None) {
+                t = fullTiming;
+                t.list = full;
+            } else if (methods[m] == CullMethod::Oracle) {
+                t = oracleTiming;
+            }
+            MethodResult result;
+            result.method = cullMethodName(methods[m]);
+            const TriangleSet pvs = methods[m] == CullMethod::Oracle ? oracle->rvs : drawnSet(scene, t.list);
+            const SetCounts counts = compareSets(scene, pvs, oracle->rvs);
+            result.tos = counts.tos;
+            result.pvs = counts.pvs;
+            result.rvs = counts.rvs;
+            result.misses = counts.misses;
+            result.waste = counts.waste;
+            // The image this plan draws, against the full render's.
+            if (methods[m] == CullMethod::Oracle)
+                oracle->renderer->renderFrame(target, width, height, params, world, options.background);
+            else
+                renderer.renderFrame(target, width, height, params, world, options.background, t.list);
+            result.pixelsDiffering = differingPixels(backend.readBack(target), reference);
+            result.cullMs = t.cull.empty() ? 0.0 : median(t.cull);  // none, oracle: no plan to make
+            result.drawMs = median(t.draw);
+            const double total = result.cullMs + result.drawMs;
+            result.ratioToOracle = total / oracleMs;
+            result.ratioToFull = total / fullMs;
+            result.ratioToFullCullface = total / cullfaceMs;
+            if (methods[m] != CullMethod::None && methods[m] != CullMethod::Oracle)
+                progress << "; " << result.method << " x" << fmt(std::round(result.ratioToOracle * 100) / 100)
+                         << (result.misses ? " misses " + std::to_string(result.misses) : "");
+            view.methods.push_back(std::move(result));
+        }
+        if (!options.quiet) err << progress.str() << "\n";
+        report.views.push_back(std::move(view));
+    }
+
+    // The report, with the pre-processing figures beside the paper's.
+    nlohmann::json json = nlohmann::json::parse(cullReportJson(report));
+    nlohmann::json meshes = nlohmann::json::array();
+    for (std::size_t i = 0; i < culler.maps().size(); ++i) {
+        const MeshMap& map = culler.maps()[i];
+        const PrepStats& s = map.stats;
+        meshes.push_back({{"mesh", i}, {"name", scene.meshes[i].name}, {"triangles", scene.meshes[i].triangleCount()},
+                          {"sphere_ms", s.sphereMs}, {"map_ms", s.mapMs}, {"cluster_ms", s.clusterMs},
+                          {"hull_ms", s.hullMs}, {"total_ms", s.totalMs()}, {"map_bytes", s.mapBytes},
+                          {"access_bytes", s.accessBytes}, {"clusters", map.clusters.size()},
+                          {"hull_kind", hullKindName(map.hull.kind)}, {"hull_vertices", map.hull.vertices.size()},
+                          {"hull_faces", map.hull.faces}, {"sphere_radius", map.sphere.radius}});
+    }
+    json["preprocess"] = {{"bins", {cull.bins.thetaBins, cull.bins.phiBins}},
+                          {"meshes", meshes},
+                          {"paper_bunny", {{"hull_ms", 5000}, {"hull_vertices", 3023}, {"hull_faces", 6042},
+                                           {"map_bytes", 4.3e6}, {"access_bytes", 0.51e6}}}};
+    // Per view class (paper 002 reports partial and whole views apart): medians of pvs and of the
+    // speed-up over the full draw, and the misses.
+    nlohmann::json byClass = nlohmann::json::object();
+    std::map<std::string, std::map<std::string, std::vector<const MethodResult*>>> grouped;
+    for (const ViewResult& view : report.views)
+        for (const MethodResult& result : view.methods) grouped[view.viewClass][result.method].push_back(&result);
+    for (const auto& [viewClass, byMethod] : grouped)
+        for (const auto& [method, results] : byMethod) {
+            std::vector<double> pvs, speedUp, cullfaceSpeedUp;
+            std::size_t misses = 0, pixels = 0;
+            for (const MethodResult* r : results) {
+                pvs.push_back(double(r->pvs));
+                speedUp.push_back(1.0 / r->ratioToFull);
+                cullfaceSpeedUp.push_back(1.0 / r->ratioToFullCullface);
+                misses += r->misses;
+                pixels += r->pixelsDiffering;
+            }
+            byClass[viewClass][method] = {{"views", results.size()}, {"tos", results.front()->tos},
+                                          {"median_pvs", median(pvs)}, {"median_speed_up", median(speedUp)},
+                                          {"median_speed_up_over_cullface", median(cullfaceSpeedUp)},
+                                          {"total_misses", misses}, {"total_pixels_differing", pixels}};
+        }
+    json["by_class"] = byClass;
+    json["repeat"] = repeat;
+    json["renderer"] = backend.renderer();
+
+    OutputSet files;
+    if (!outputs.json.empty()) {
+        const std::string text = json.dump(2) + "\n";
+        files.add(outputs.json, Bytes(text.begin(), text.end()));
+    }
+    std::string csvPath = outputs.csv;
+    std::string scriptPath;
+    if (!outputs.plot.empty()) {
+        if (csvPath.empty()) csvPath = std::filesystem::path(outputs.plot).replace_extension(".csv").string();
+        scriptPath = std::filesystem::path(outputs.plot).replace_extension(".gp").string();
+        if (!shellSafe(csvPath).empty()) {
+            err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
+            return kExitError;
+        }
+        const std::string script = cullReportGnuplot(csvPath, outputs.plot);
+        files.add(scriptPath, Bytes(script.begin(), script.end()));
+    }
+    if (!csvPath.empty()) {
+        const std::string text = cullReportCsv(report);
+        files.add(csvPath, Bytes(text.begin(), text.end()));
+    }
+    if (Result<bool> written = files.commit(); !written) {
+        err << "error: " << written.error() << "\n";
+        return kExitError;
+    }
+    if (!outputs.plot.empty()) {
+        const std::string problem = runGnuplot(scriptPath);
+        if (!problem.empty()) {
+            err << "error: --plot " << outputs.plot << ": " << problem << "\n";
+            return kExitError;
+        }
+    }
+
+    // The summary, a line per method, then per view class.
+    out << "method        median pvs  misses  views missed  pixels  cull ms  draw ms  /oracle  /full  /cullface  worst view\n";
+    for (CullMethod method : methods) {
+        const nlohmann::json& s = json["summary"][cullMethodName(method)];
+        char line[256];
+        std::snprintf(line, sizeof line, "%-13s %10.0f %7zu %13zu %7zu %8.3f %8.3f %8.3f %6.3f %10.3f  %d (%s, x%.3f)\n",
+                      cullMethodName(method), s["median_pvs"].get<double>(), s["total_misses"].get<std::size_t>(),
+                      s["views_with_misses"].get<std::size_t>(), s["total_pixels_differing"].get<std::size_t>(),
+                      s["median_cull_ms"].get<double>(), s["median_draw_ms"].get<double>(),
+                      s["median_ratio_to_oracle"].get<double>(), s["median_ratio_to_full"].get<double>(),
+                      s["median_ratio_to_full_cullface"].get<double>(), s["worst_view"]["index"].get<int>(),
+                      s["worst_view"]["class"].get<std::string>().c_str(), s["worst_view"]["ratio_to_oracle"].get<double>());
+        out << line;
+    }
+    out << "\nclass     method        views  median pvs of tos   speed-up (full, cullface)  misses\n";
+    for (const auto& [viewClass, byMethod] : byClass.items())
+        for (CullMethod method : methods) {
+            if (!byMethod.contains(cullMethodName(method))) continue;
+            const nlohmann::json& c = byMethod[cullMethodName(method)];
+            char line[256];
+            std::snprintf(line, sizeof line, "%-9s %-13s %5zu  %10.0f of %-6zu  %8.3f %8.3f          %7zu\n",
+                          viewClass.c_str(), cullMethodName(method), c["views"].get<std::size_t>(),
+                          c["median_pvs"].get<double>(), c["tos"].get<std::size_t>(), c["median_speed_up"].get<double>(),
+                          c["median_speed_up_over_cullface"].get<double>(), c["total_misses"].get<std::size_t>());
+            out << line;
+        }
+    return kExitOk;
+}
+
+}  // namespace frugal

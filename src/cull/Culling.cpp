@@ -1,0 +1,416 @@
+#include "cull/Culling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "scene/MeshBuild.h"
+
+namespace frugal {
+
+namespace {
+
+constexpr int kSampleSide = 3;  // a bin's cell is sampled on a 3 × 3 grid of directions
+constexpr int kBinSamples = kSampleSide * kSampleSide;
+
+// Relative margins: a test drops something only when it is outside by more than float rounding.
+constexpr double kPlaneMargin = 1e-5;
+constexpr float kConeMargin = 1e-4f;
+
+struct Plane {
+    glm::dvec4 p{0.0};  // a·x + b·y + c·z + d ≥ 0 inside
+    double eval(const glm::dvec3& x) const { return p.x * x.x + p.y * x.y + p.z * x.z + p.w; }
+};
+
+// The six clip planes (-w ≤ x, y, z ≤ w) of `m` (clip = m · point) in the point's space
+// (Gribb & Hartmann). A plane with no normal (the far plane of an infinite projection) is dropped
+// when it holds everywhere.
+std::vector<Plane> clipPlanes(const glm::dmat4& m) {
+    auto row = [&m](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
+    const glm::dvec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+    std::vector<Plane> planes;
+    for (const glm::dvec4& p : {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2}) {
+        const double n = glm::length(glm::dvec3(p));
+        if (n == 0.0 && p.w >= 0.0) continue;
+        planes.push_back(Plane{p});
+    }
+    return planes;
+}
+
+// The part of a box outside one plane, all of it or some of it.
+enum class Side { Outside, Straddles, Inside };
+
+Side boxSide(const std::vector<Plane>& planes, const glm::vec3& lo, const glm::vec3& hi) {
+    const glm::dvec3 dlo(lo), dhi(hi);
+    if (!std::isfinite(dlo.x + dlo.y + dlo.z + dhi.x + dhi.y + dhi.z)) return Side::Straddles;
+    bool inside = true;
+    for (const Plane& plane : planes) {
+        const glm::dvec3 n(plane.p);
+        // The corner farthest along the normal, and the nearest.
+        const glm::dvec3 far(n.x >= 0 ? dhi.x : dlo.x, n.y >= 0 ? dhi.y : dlo.y, n.z >= 0 ? dhi.z : dlo.z);
+        const glm::dvec3 near(n.x >= 0 ? dlo.x : dhi.x, n.y >= 0 ? dlo.y : dhi.y, n.z >= 0 ? dlo.z : dhi.z);
+        const double scale = glm::length(n) * std::max(glm::length(far), glm::length(near)) + std::abs(plane.p.w);
+        if (plane.eval(far) < -kPlaneMargin * scale) return Side::Outside;
+        if (plane.eval(near) < kPlaneMargin * scale) inside = false;
+    }
+    return inside ? Side::Inside : Side::Straddles;
+}
+
+// What a frame looks like from one instance's object space.
+struct InstanceView {
+    glm::dmat4 mvp{1.0};
+    std::vector<Plane> planes;  // clip planes in object space
+    glm::dvec4 eye{0.0};        // homogeneous: (eye, 1) for perspective, (towards the viewer, 0) for ortho
+    bool mirrored = false;      // window-space winding is the opposite of object space
+    double eyeScale = 0.0;      // size of the numbers in facing tests (for their margin)
+
+    InstanceView(const glm::mat4& model, const View& view) {
+        const glm::dmat4 m(model), v(view.view), p(view.projection);
+        mvp = p * v * m;
+        planes = clipPlanes(mvp);
+        const glm::dmat4 toObject = glm::inverse(v * m);
+        eye = toObject * (view.perspective ? glm::dvec4(0, 0, 0, 1) : glm::dvec4(0, 0, 1, 0));
+        if (!view.perspective) eye = glm::dvec4(glm::normalize(glm::dvec3(eye)), 0.0);
+        const double det = glm::determinant(glm::dmat3(v * m));
+        mirrored = (det < 0.0) != (p[0][0] * p[1][1] < 0.0);
+        eyeScale = glm::length(glm::dvec3(eye));
+    }
+
+    // Signed facing of a plane (unit normal n, n·a = d) towards the eye: > 0 faces the eye
+    // (front, when not mirrored). The margin says how close to 0 is undecided.
+    double facing(const glm::vec4& plane) const {
+        return double(plane.x) * eye.x + double(plane.y) * eye.y + double(plane.z) * eye.z - double(plane.w) * eye.w;
+    }
+    double facingMargin(const glm::vec4& plane) const {
+        return kPlaneMargin * (eye.w != 0.0 ? eyeScale + std::abs(double(plane.w)) : 1.0);
+    }
+    // A single-sided triangle may be drawn (front in window space, or too close to call).
+    bool mayFace(const glm::vec4& plane) const {
+        if (plane.x == 0.0f && plane.y == 0.0f && plane.z == 0.0f) return true;  // degenerate: undecided
+        const double f = facing(plane);
+        return (mirrored ? -f : f) > -facingMargin(plane);
+    }
+
+    // Cone tests for a whole cluster: every triangle faces away (cullable), or every one faces the
+    // eye (no per-triangle test needed).
+    bool coneAway(const Cluster& c, bool towardEye) const {
+        // No cone, no bound, or no axis (meshoptimizer gives a zero axis when every normal underflows).
+        if (!(c.coneCutoff < 1.0f) || !std::isfinite(c.radius) || !(glm::dot(c.coneAxis, c.coneAxis) > 0.5f))
+            return false;
+        // Faces away (not mirrored): dot(center − e, axis) ≥ cutoff·|center − e| + radius; the
+        // opposite side uses −axis. Mirroring swaps which side GL draws.
+        const bool flip = towardEye != mirrored;
+        const glm::dvec3 axis = glm::dvec3(c.coneAxis) * (flip ? -1.0 : 1.0);
+        const double cutoff = std::min(double(c.coneCutoff) + kConeMargin, 1.0);
+        if (eye.w != 0.0) {
+            const glm::dvec3 toCenter = glm::dvec3(c.center) - glm::dvec3(eye);
+            const double distance = glm::length(toCenter);
+            return glm::dot(toCenter, axis) >= cutoff * distance + double(c.radius) * (1.0 + kConeMargin) +
+                                                    kPlaneMargin * (distance + eyeScale);
+        }
+        // Orthographic: the view direction is −eye.
+        return glm::dot(-glm::dvec3(eye), axis) >= cutoff;
+    }
+};
+
+// Builds one instance's ranges, merging runs that touch.
+struct RangeList {
+    std::vector<IndexRange> ranges;
+    void add(std::uint32_t first, std::uint32_t count) {
+        if (count == 0) return;
+        if (!ranges.empty() && ranges.back().firstTriangle + ranges.back().triangleCount == first)
+            ranges.back().triangleCount += count;
+        else
+            ranges.push_back({first, count});
+    }
+};
+
+// Per vertex of one instance, which clip planes it is outside of (bit k: plane k of -w ≤ x, y, z ≤ w),
+// by more than rounding; computed on first use. A triangle whose three vertices share a bit lies
+// wholly outside that plane and cannot own a pixel.
+class Outcodes {
+public:
+    Outcodes(const Mesh& mesh, const glm::dmat4& mvp) : mesh_(mesh), mvp_(mvp) { codes_.assign(mesh.positions.size(), kUnknown); }
+
+    std::uint8_t operator[](std::uint32_t v) {
+        std::uint8_t& code = codes_[v];
+        if (code == kUnknown) code = compute(mesh_.positions[v]);
+        return code;
+    }
+
+private:
+    static constexpr std::uint8_t kUnknown = 0x80;
+
+    std::uint8_t compute(const glm::vec3& p) const {
+        const glm::dvec4 c = mvp_ * glm::dvec4(glm::dvec3(p), 1.0);
+        if (!std::isfinite(c.x + c.y + c.z + c.w)) return 0;  // not a number: outside of nothing, kept
+        auto out = [](double x, double w) { return x + w < -kPlaneMargin * (std::abs(x) + std::abs(w)); };
+        std::uint8_t code = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (out(c[axis], c.w)) code |= std::uint8_t(1u << (2 * axis));
+            if (out(-c[axis], c.w)) code |= std::uint8_t(2u << (2 * axis));
+        }
+        return code;
+    }
+
+    const Mesh& mesh_;
+    glm::dmat4 mvp_;
+    std::vector<std::uint8_t> codes_;
+};
+
+bool isSingleSided(const Scene& scene, const Mesh& mesh) {
+    return mesh.material < 0 || !scene.materials[std::size_t(mesh.material)].doubleSided;
+}
+
+// The exact per-triangle tests over [first, first + count): frustum (unless `inside`) and facing
+// (when `singleSided`).
+void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv, Outcodes& vertices,
+                   std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, RangeList& out) {
+    std::uint32_t runStart = first, runLength = 0;
+    for (std::uint32_t t = first; t < first + count; ++t) {
+        bool keep = !singleSided || iv.mayFace(map.planes[t]);
+        if (keep && !inside) {
+            const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
+            keep = (vertices[tri[0]] & vertices[tri[1]] & vertices[tri[2]]) == 0;
+        }
+        if (keep) {
+            if (runLength == 0) runStart = t;
+            ++runLength;
+        } else if (runLength > 0) {
+            out.add(runStart, runLength);
+            runLength = 0;
+        }
+    }
+    out.add(runStart, runLength);
+}
+
+// World-space sphere of an instance against the frustum (paper equation 2).
+SphereClass classifySphere(const Sphere& sphere, const glm::mat4& model, const View& view) {
+    const glm::dmat4 m(model);
+    const glm::dvec3 center = glm::dvec3(m * glm::dvec4(sphere.center, 1.0));
+    const double scale = std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
+                                   glm::length(glm::dvec3(m[2]))});
+    const double radius = sphere.radius * scale;
+    const std::vector<Plane> planes = clipPlanes(glm::dmat4(view.projection) * glm::dmat4(view.view));
+    bool whole = true;
+    for (const Plane& plane : planes) {
+        const double n = glm::length(glm::dvec3(plane.p));
+        if (n == 0.0) return SphereClass::Outside;  // nothing is inside a plane with no normal and d < 0
+        const double distance = plane.eval(center) / n;
+        const double margin = kPlaneMargin * (glm::length(center) + radius + std::abs(plane.p.w) / n);
+        if (!(distance >= -radius - margin)) return SphereClass::Outside;  // NaN keeps nothing either
+        if (distance < radius + margin) whole = false;
+    }
+    return whole ? SphereClass::Whole : SphereClass::Partial;
+}
+
+}  // namespace
+
+const char* cullMethodName(CullMethod method) {
+    switch (method) {
+        case CullMethod::None: return "none";
+        case CullMethod::Sphere: return "sphere";
+        case CullMethod::Backface: return "backface";
+        case CullMethod::Cones: return "cones";
+        case CullMethod::Paper: return "paper";
+        case CullMethod::Conservative: return "conservative";
+        case CullMethod::Oracle: return "oracle";
+    }
+    return "?";
+}
+
+std::optional<CullMethod> parseCullMethod(std::string_view name) {
+    for (CullMethod method : kCullMethods)
+        if (name == cullMethodName(method)) return method;
+    return std::nullopt;
+}
+
+std::string cullMethodNames() {
+    std::string names;
+    for (CullMethod method : kCullMethods) names += (names.empty() ? "" : ", ") + std::string(cullMethodName(method));
+    return names;
+}
+
+SceneCuller SceneCuller::prepare(Scene& scene, const MapParams& params) {
+    SceneCuller culler;
+    culler.maps_.reserve(scene.meshes.size());
+    const double pi = std::numbers::pi;
+    for (Mesh& mesh : scene.meshes) {
+        std::vector<std::uint32_t> order;
+        culler.maps_.push_back(buildMeshMap(mesh, params, order));
+        reorderTriangles(mesh, order);
+        std::vector<glm::vec3> samples;
+        samples.reserve(std::size_t(params.thetaBins * params.phiBins * kBinSamples));
+        for (int i = 0; i < params.thetaBins; ++i)
+            for (int j = 0; j < params.phiBins; ++j)
+                for (int si = 0; si < kSampleSide; ++si)
+                    for (int sj = 0; sj < kSampleSide; ++sj) {
+                        // Corners and middles of the cell: edges included, so neighbouring cells agree.
+                        const double theta = pi * (i + si / double(kSampleSide - 1)) / params.thetaBins;
+                        const double phi = 2.0 * pi * (j + sj / double(kSampleSide - 1)) / params.phiBins;
+                        samples.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                             std::cos(theta));
+                    }
+        culler.binSamples_.push_back(std::move(samples));
+    }
+    return culler;
+}
+
+PrepStats SceneCuller::totals() const {
+    PrepStats total;
+    for (const MeshMap& map : maps_) {
+        total.sphereMs += map.stats.sphereMs;
+        total.mapMs += map.stats.mapMs;
+        total.clusterMs += map.stats.clusterMs;
+        total.hullMs += map.stats.hullMs;
+        total.mapBytes += map.stats.mapBytes;
+        total.accessBytes += map.stats.accessBytes;
+    }
+    return total;
+}
+
+SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::vector<glm::mat4>& world,
+                                  const View& view) const {
+    const Instance& in = scene.instances[std::size_t(instance)];
+    return classifySphere(maps_[std::size_t(in.mesh)].sphere, world[std::size_t(in.node)], view);
+}
+
+DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vector<glm::mat4>& world,
+                           const View& view) const {
+    DrawList list;
+    if (method == CullMethod::None || method == CullMethod::Oracle) return fullDrawList(scene);
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        const MeshMap& map = maps_[std::size_t(instance.mesh)];
+        const std::uint32_t triangles = std::uint32_t(mesh.triangleCount());
+        if (triangles == 0) continue;
+        const glm::mat4& model = world[std::size_t(instance.node)];
+        const bool singleSided = isSingleSided(scene, mesh);
+        RangeList out;
+
+        switch (method) {
+            case CullMethod::Sphere:
+                if (classifySphere(map.sphere, model, view) != SphereClass::Outside) out.add(0, triangles);
+                break;
+
+            case CullMethod::Backface: {
+                const InstanceView iv(model, view);
+                Outcodes vertices(mesh, iv.mvp);
+                testTriangles(mesh, map, iv, vertices, 0, triangles, false, singleSided, out);
+                break;
+            }
+
+            case CullMethod::Cones: {
+                const InstanceView iv(model, view);
+                for (const Cluster& c : map.clusters) {
+                    if (boxSide(iv.planes, c.boxMin, c.boxMax) == Side::Outside) continue;
+                    if (singleSided && iv.coneAway(c, false)) continue;
+                    out.add(c.first, c.count);
+                }
+                break;
+            }
+
+            case CullMethod::Conservative: {
+                const InstanceView iv(model, view);
+                Outcodes vertices(mesh, iv.mvp);
+                for (const Cluster& c : map.clusters) {
+                    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
+                    if (side == Side::Outside) continue;
+                    if (singleSided && !c.hasDegenerate && iv.coneAway(c, false)) continue;
+                    const bool allFacing = !singleSided || iv.coneAway(c, true);
+                    if (side == Side::Inside && allFacing)
+                        out.add(c.first, c.count);
+                    else
+                        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside,
+                                      singleSided && !allFacing, out);
+                }
+                break;
+            }
+
+            case CullMethod::Paper: {
+                const SphereClass sphereClass = classifySphere(map.sphere, model, view);
+                if (sphereClass == SphereClass::Outside) break;
+                const InstanceView iv(model, view);
+                const std::vector<glm::vec3>& samples = binSamples_[std::size_t(instance.mesh)];
+                const glm::dvec3 c = map.sphere.center;
+                const double r = map.sphere.radius;
+                // Towards the viewer from the centre, in object space.
+                const glm::dvec3 toward = iv.eye.w != 0.0 ? glm::dvec3(iv.eye) / iv.eye.w - c : glm::dvec3(iv.eye);
+                if (sphereClass == SphereClass::Partial) {
+                    // The bins whose patch of the bounding sphere is inside the frustum, on the camera's side.
+                    for (std::size_t b = 0; b < map.bins.size(); ++b) {
+                        const Bin& bin = map.bins[b];
+                        if (bin.count == 0) continue;
+                        bool take = false;
+                        for (int s = 0; s < kBinSamples && !take; ++s) {
+                            const glm::dvec3 dir(samples[b * kBinSamples + std::size_t(s)]);
+                            if (glm::dot(dir, toward) < 0.0) continue;
+                            const glm::dvec3 p = c + r * dir;
+                            take = std::all_of(iv.planes.begin(), iv.planes.end(),
+                                               [&p](const Plane& plane) { return plane.eval(p) >= 0.0; });
+                        }
+                        if (take) out.add(bin.first, bin.count);
+                    }
+                    break;
+                }
+                // Whole object in view: azimuths about the camera's up axis, 0 towards the viewer.
+                const glm::dmat3 toObject = glm::inverse(glm::dmat3(glm::dmat4(model)));
+                const glm::dvec3 upWorld = glm::dvec3(glm::inverse(glm::dmat4(view.view))[1]);
+                const glm::dvec3 up = glm::normalize(toObject * upWorld);
+                glm::dvec3 front = toward - glm::dot(toward, up) * up;
+                const double frontLength = glm::length(front);
+                if (map.hull.vertices.size() < 2 || !(frontLength > 0.0) || !std::isfinite(frontLength)) {
+                    out.add(0, triangles);  // no hull to speak of, or looking along the up axis: keep all
+                    break;
+                }
+                front /= frontLength;
+                const glm::dvec3 right = glm::cross(front, up);
+                // The hull's vertices of largest side factor (R·sin θ·sin φ in this frame) left and right.
+                double leftSide = INFINITY, rightSide = -INFINITY, leftAzimuth = 0.0, rightAzimuth = 0.0;
+                for (const glm::vec3& h : map.hull.vertices) {
+                    const glm::dvec3 d = glm::dvec3(h) - c;
+                    const double side = glm::dot(d, right);
+                    const double azimuth = std::atan2(side, glm::dot(d, front));
+                    if (side > rightSide) rightSide = side, rightAzimuth = azimuth;
+                    if (side < leftSide) leftSide = side, leftAzimuth = azimuth;
+                }
+                // What lies behind them by azimuth is taken as hidden.
+                for (std::size_t b = 0; b < map.bins.size(); ++b) {
+                    const Bin& bin = map.bins[b];
+                    if (bin.count == 0) continue;
+                    bool take = false;
+                    for (int s = 0; s < kBinSamples && !take; ++s) {
+                        const glm::dvec3 dir(samples[b * kBinSamples + std::size_t(s)]);
+                        const double azimuth = std::atan2(glm::dot(dir, right), glm::dot(dir, front));
+                        take = azimuth >= leftAzimuth && azimuth <= rightAzimuth;
+                    }
+                    if (take) out.add(bin.first, bin.count);
+                }
+                break;
+            }
+
+            case CullMethod::None:
+            case CullMethod::Oracle:
+                break;
+        }
+        if (!out.ranges.empty()) list.push_back(DrawCommand{int(i), std::move(out.ranges)});
+    }
+    return list;
+}
+
+std::size_t submittedTriangles(const Scene& scene, const DrawList& list) {
+    std::size_t total = 0;
+    for (const DrawCommand& command : list) {
+        if (command.instance < 0 || std::size_t(command.instance) >= scene.instances.size()) continue;
+        const std::uint64_t count =
+            scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)].triangleCount();
+        for (const IndexRange& range : command.ranges) {
+            const std::uint64_t first = std::min<std::uint64_t>(range.firstTriangle, count);
+            total += std::size_t(std::min<std::uint64_t>(first + range.triangleCount, count) - first);
+        }
+    }
+    return total;
+}
+
+}  // namespace frugal

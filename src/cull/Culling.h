@@ -1,0 +1,79 @@
+// Culling methods: for one view, which index ranges of which instances may be visible (a DrawList,
+// render/Plan.h). Plans only: nothing here calls GL or a backend, so both backends execute the same
+// plan and tests run on the CPU.
+//
+// Methods (`--cull`):
+//   none          every triangle (today's render).
+//   sphere        whole instances whose bounding sphere meets the frustum.
+//   backface      every triangle tested on the CPU: frustum, and facing for single-sided materials.
+//   cones         meshoptimizer meshlets (clusters) with their bounds and normal cones, kept whole.
+//   paper         paper 002 as written: sphere outside → nothing; partly inside → the bins whose patch
+//                 of the bounding sphere lies inside the frustum on the camera's side; wholly inside →
+//                 the bins between the convex hull's left and right maximum-side-factor vertices by
+//                 azimuth about the camera's up axis. It misses triangles by design (reported).
+//   conservative  never drops a triangle that can own a pixel: clusters are culled whole when their
+//                 box is outside the frustum or their cone faces away, kept whole when inside and
+//                 facing, and tested triangle by triangle otherwise (the same exact tests as backface).
+//   oracle        exactly the frame's really visible set; it needs the frame's id image, so it is not
+//                 a plan made here (report/VisibleSet.h: oracleScene). cull() gives the full list.
+// Facing follows GL: a triangle of a single-sided material is drawn when counter-clockwise in window
+// space; a mirroring transform (negative determinant) swaps the sides. Every "drop" decision has a
+// margin of float rounding on its side, so an undecided triangle (edge-on, zero area, not a number) is
+// kept. None of the methods uses history: each view is culled from scratch.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cull/SphereMap.h"
+#include "render/Camera.h"
+#include "render/Plan.h"
+#include "scene/Scene.h"
+
+namespace frugal {
+
+enum class CullMethod { None, Sphere, Backface, Cones, Paper, Conservative, Oracle };
+
+inline constexpr CullMethod kCullMethods[] = {CullMethod::None,  CullMethod::Sphere,       CullMethod::Backface,
+                                              CullMethod::Cones, CullMethod::Paper,        CullMethod::Conservative,
+                                              CullMethod::Oracle};
+
+const char* cullMethodName(CullMethod method);
+std::optional<CullMethod> parseCullMethod(std::string_view name);
+std::string cullMethodNames();  // "none, sphere, backface, cones, paper, conservative, oracle"
+
+// How the paper method classified an instance's bounding sphere against the frustum.
+enum class SphereClass { Outside, Partial, Whole };
+
+class SceneCuller {
+public:
+    // Builds each mesh's map and puts its triangles in the map's order (reorderTriangles): call it
+    // before the scene is uploaded. Meshes shared by several instances are prepared once.
+    static SceneCuller prepare(Scene& scene, const MapParams& params = {});
+
+    // The plan of `method` for one frame: node transforms `world`, camera `view` (render/Camera.h).
+    // Instances in scene order; instances with nothing to draw are left out.
+    DrawList cull(CullMethod method, const Scene& scene, const std::vector<glm::mat4>& world,
+                  const View& view) const;
+
+    // How the paper method sees instance `instance` in this frame.
+    SphereClass classify(const Scene& scene, int instance, const std::vector<glm::mat4>& world,
+                         const View& view) const;
+
+    const std::vector<MeshMap>& maps() const { return maps_; }
+    PrepStats totals() const;  // summed over meshes
+
+private:
+    std::vector<MeshMap> maps_;
+    // Per mesh, per bin: sample directions of the bin's cell (unit vectors, kBinSamples each).
+    std::vector<std::vector<glm::vec3>> binSamples_;
+};
+
+// Triangles a list submits (ranges clamped to their meshes).
+std::size_t submittedTriangles(const Scene& scene, const DrawList& list);
+
+}  // namespace frugal

@@ -1,0 +1,218 @@
+#include "report/CullReport.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <nlohmann/json.hpp>
+
+namespace frugal {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// JSON has no infinity or NaN: those are written as null.
+Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+// A float as the double of its shortest decimal form, so 0.1f is written 0.1 (not 0.10000000149...).
+Json number(float value) {
+    if (!std::isfinite(value)) return nullptr;
+    char buf[32];
+    const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf - 1, value);
+    *r.ptr = '\0';
+    return std::strtod(buf, nullptr);
+}
+
+Json vec3(const glm::vec3& v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
+
+// The median of the values that are not NaN (NaN when there are none); an even count gives the mean
+// of the two middle values.
+double median(std::vector<double> values) {
+    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
+    if (values.empty()) return std::nan("");
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2.0;
+}
+
+// One method's rows over all views, in view order.
+struct MethodRows {
+    std::string method;
+    std::vector<std::pair<const ViewResult*, const MethodResult*>> rows;
+};
+
+// Methods in the order they first appear.
+std::vector<MethodRows> byMethod(const CullReport& report) {
+    std::vector<MethodRows> methods;
+    for (const ViewResult& view : report.views)
+        for (const MethodResult& m : view.methods) {
+            auto it = std::find_if(methods.begin(), methods.end(),
+                                   [&m](const MethodRows& rows) { return rows.method == m.method; });
+            if (it == methods.end()) it = methods.insert(methods.end(), MethodRows{m.method, {}});
+            it->rows.emplace_back(&view, &m);
+        }
+    return methods;
+}
+
+Json summaryJson(const MethodRows& rows) {
+    std::vector<double> pvs, cull, draw, oracle, full, cullface;
+    std::size_t totalMisses = 0, totalPixels = 0, viewsWithMisses = 0;
+    // The worst view has the largest ratio to the oracle (NaN ranks below any number; ties: the first).
+    const ViewResult* worstView = nullptr;
+    const MethodResult* worst = nullptr;
+    for (const auto& [view, m] : rows.rows) {
+        pvs.push_back(double(m->pvs));
+        cull.push_back(m->cullMs);
+        draw.push_back(m->drawMs);
+        oracle.push_back(m->ratioToOracle);
+        full.push_back(m->ratioToFull);
+        cullface.push_back(m->ratioToFullCullface);
+        totalMisses += m->misses;
+        totalPixels += m->pixelsDiffering;
+        viewsWithMisses += m->misses > 0;
+        if (!worst || (!std::isnan(m->ratioToOracle) &&
+                       (std::isnan(worst->ratioToOracle) || m->ratioToOracle > worst->ratioToOracle))) {
+            worst = m;
+            worstView = view;
+        }
+    }
+    Json worstJson = nullptr;
+    if (worst)
+        worstJson = Json{{"index", worstView->index},
+                         {"class", worstView->viewClass},
+                         {"ratio_to_oracle", number(worst->ratioToOracle)}};
+    return Json{{"views", rows.rows.size()},
+                {"median_pvs", number(median(pvs))},
+                {"median_cull_ms", number(median(cull))},
+                {"median_draw_ms", number(median(draw))},
+                {"median_ratio_to_oracle", number(median(oracle))},
+                {"median_ratio_to_full", number(median(full))},
+                {"median_ratio_to_full_cullface", number(median(cullface))},
+                {"worst_view", worstJson},
+                {"total_misses", totalMisses},
+                {"total_pixels_differing", totalPixels},
+                {"views_with_misses", viewsWithMisses}};
+}
+
+// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+// Six significant digits; NaN and infinities as an empty field (missing data for gnuplot, NaN for
+// most CSV readers).
+std::string csvNumber(double value) {
+    if (!std::isfinite(value)) return {};
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", value);
+    return buf;
+}
+
+// A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
+std::string gnuplotQuoted(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
+    return quoted + "'";
+}
+
+}  // namespace
+
+std::string cullReportJson(const CullReport& report) {
+    Json views = Json::array();
+    for (const ViewResult& view : report.views) {
+        Json methods = Json::array();
+        for (const MethodResult& m : view.methods)
+            methods.push_back(Json{{"method", m.method},
+                                   {"tos", m.tos},
+                                   {"pvs", m.pvs},
+                                   {"rvs", m.rvs},
+                                   {"misses", m.misses},
+                                   {"waste", m.waste},
+                                   {"pixels_differing", m.pixelsDiffering},
+                                   {"cull_ms", number(m.cullMs)},
+                                   {"draw_ms", number(m.drawMs)},
+                                   {"ratio_to_oracle", number(m.ratioToOracle)},
+                                   {"ratio_to_full", number(m.ratioToFull)},
+                                   {"ratio_to_full_cullface", number(m.ratioToFullCullface)}});
+        views.push_back(Json{{"index", view.index},
+                             {"class", view.viewClass},
+                             {"eye", vec3(view.eye)},
+                             {"target", vec3(view.target)},
+                             {"methods", std::move(methods)}});
+    }
+    Json summary = Json::object();
+    for (const MethodRows& rows : byMethod(report)) summary[rows.method] = summaryJson(rows);
+    const Json j = {{"scene", report.scene},
+                    {"size", Json::array({report.width, report.height})},
+                    {"backend", report.backend},
+                    {"timing", report.timing},
+                    {"views", std::move(views)},
+                    {"summary", std::move(summary)}};
+    // Invalid UTF-8 in a name (a file path) is replaced rather than thrown on.
+    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+}
+
+std::string cullReportCsv(const CullReport& report) {
+    std::string csv =
+        "view,class,method,tos,pvs,rvs,misses,waste,pixels_differing,cull_ms,draw_ms,ratio_to_oracle,"
+        "ratio_to_full,ratio_to_full_cullface\n";
+    for (const ViewResult& view : report.views)
+        for (const MethodResult& m : view.methods) {
+            csv += std::to_string(view.index) + ',' + csvField(view.viewClass) + ',' + csvField(m.method) + ',' +
+                   std::to_string(m.tos) + ',' + std::to_string(m.pvs) + ',' + std::to_string(m.rvs) + ',' +
+                   std::to_string(m.misses) + ',' + std::to_string(m.waste) + ',' +
+                   std::to_string(m.pixelsDiffering) + ',' + csvNumber(m.cullMs) + ',' + csvNumber(m.drawMs) + ',' +
+                   csvNumber(m.ratioToOracle) + ',' + csvNumber(m.ratioToFull) + ',' +
+                   csvNumber(m.ratioToFullCullface) + '\n';
+        }
+    return csv;
+}
+
+std::string cullReportGnuplot(const std::string& csvPath, const std::string& svgPath) {
+    const std::string csv = gnuplotQuoted(csvPath);
+    // Each method is a series filtered on column 3; a method absent from the CSV plots nothing. The
+    // invisible point at (0, 0) keeps the ranges valid when the CSV has no rows at all.
+    const std::string anchor = ", '+' using (0):(0) with points lc rgb '#FF000000' notitle\n";
+    std::string s;
+    s += "# frugal cull-report: the CSV's two plots (gnuplot 5, svg terminal)\n";
+    s += "set terminal svg size 1000,700 dynamic enhanced font 'sans,10'\n";
+    s += "set output " + gnuplotQuoted(svgPath) + "\n";
+    s += "set datafile separator ','\n";
+    s += "methods = \"none sphere backface cones paper conservative oracle\"\n";
+    s += "n = words(methods)\n";
+    s += "is(k) = strcol(3) eq word(methods, k)\n";
+    s += "set key outside right top noenhanced\n";
+    s += "set multiplot layout 2,1\n";
+    // 1: time against misses.
+    s += "set title 'cull + draw time against misses (one point per view)' noenhanced\n";
+    s += "set xlabel 'misses (visible triangles not drawn)' noenhanced\n";
+    s += "set ylabel 'cull + draw (ms)' noenhanced\n";
+    s += "set offsets graph 0.03, graph 0.03, graph 0.05, 0\n";
+    s += "plot for [k=1:n] " + csv +
+         " skip 1 using (is(k) ? $7 : NaN):(is(k) ? $10 + $11 : NaN) with points lt k pt 7 title word(methods, k)" +
+         anchor;
+    // 2: per view, one bar per method (a fixed slot each), ratio to the oracle.
+    s += "set title '(cull + draw) / oracle draw, per view' noenhanced\n";
+    s += "set xlabel 'view' noenhanced\n";
+    s += "set ylabel 'ratio to oracle' noenhanced\n";
+    s += "set autoscale xfix\n";
+    s += "set offsets 0.5, 0.5, graph 0.05, 0\n";
+    s += "set xtics 1\n";
+    s += "set style fill solid 0.8 border -1\n";
+    s += "w = 0.8 / n\n";
+    s += "set boxwidth w absolute\n";
+    s += "plot for [k=1:n] " + csv +
+         " skip 1 using (is(k) ? $1 + (k - (n + 1) / 2.0) * w : NaN):(is(k) ? $12 : NaN) with boxes lt k"
+         " title word(methods, k), 1 with lines dt 2 lc 'black' title 'ratio 1'" +
+         anchor;
+    s += "unset multiplot\n";
+    return s;
+}
+
+}  // namespace frugal

@@ -1,0 +1,58 @@
+// The culling-accuracy report (`frugal cull-report`): per view and method the set sizes, misses,
+// waste, pixel error and times, written as JSON, CSV and a gnuplot script that plots the CSV.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace frugal {
+
+struct MethodResult {
+    std::string method;              // none, sphere, backface, cones, paper, conservative, oracle
+    std::size_t tos = 0, pvs = 0, rvs = 0, misses = 0, waste = 0;
+    std::size_t pixelsDiffering = 0;  // colour, against the full render of the view, tolerance 0
+    double cullMs = 0.0;              // CPU time to make the plan (median of the repeats)
+    double drawMs = 0.0;              // clear + draw + finish (median of the repeats)
+    double ratioToOracle = 0.0;       // (cull + draw) / oracle draw
+    double ratioToFull = 0.0;         // (cull + draw) / full draw
+    double ratioToFullCullface = 0.0; // (cull + draw) / full draw with GL back-face culling on
+};
+
+struct ViewResult {
+    int index = 0;
+    std::string viewClass;  // "whole", "partial", "grazing", "inside", "pole", "camera", "path"
+    glm::vec3 eye{0.0f}, target{0.0f};
+    std::vector<MethodResult> methods;
+};
+
+struct CullReport {
+    std::string scene;
+    int width = 0, height = 0;
+    std::string backend;
+    std::string timing;  // "cold" (independent views) or "path" (each view with its predecessors' history)
+    std::vector<ViewResult> views;
+};
+
+// {"scene","size":[w,h],"backend","timing","views":[{"index","class","eye","target","methods":[{
+//   "method","tos","pvs","rvs","misses","waste","pixels_differing","cull_ms","draw_ms",
+//   "ratio_to_oracle","ratio_to_full","ratio_to_full_cullface"}]}],
+//  "summary":{METHOD:{"views","median_pvs","median_cull_ms","median_draw_ms","median_ratio_to_oracle",
+//   "median_ratio_to_full","median_ratio_to_full_cullface","worst_view":{"index","class",
+//   "ratio_to_oracle"},"total_misses","total_pixels_differing","views_with_misses"}}}
+// Medians of an even count are the mean of the two middle values.
+std::string cullReportJson(const CullReport& report);
+
+// One header line, then one row per view and method:
+// view,class,method,tos,pvs,rvs,misses,waste,pixels_differing,cull_ms,draw_ms,ratio_to_oracle,
+// ratio_to_full,ratio_to_full_cullface
+std::string cullReportCsv(const CullReport& report);
+
+// A gnuplot script (gnuplot-nox: the svg terminal) that reads `csvPath` and draws into `svgPath`
+// two plots: time (cull + draw, ms) against misses per method, and per-view bars of ratio_to_oracle
+// per method. Paths are written as given (quoted for gnuplot).
+std::string cullReportGnuplot(const std::string& csvPath, const std::string& svgPath);
+
+}  // namespace frugal

@@ -1,0 +1,253 @@
+// The cull report's JSON, CSV and gnuplot script on a small hand-made report.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "TestSupport.h"
+#include "report/CullReport.h"
+
+namespace frugal {
+namespace {
+
+namespace fs = std::filesystem;
+
+MethodResult row(const std::string& method, std::size_t pvs, std::size_t misses, std::size_t pixels, double cullMs,
+                 double drawMs, double ratioToOracle) {
+    MethodResult m;
+    m.method = method;
+    m.tos = 100;
+    m.pvs = pvs;
+    m.rvs = 20;  // visible: `misses` of them dropped; the rest of the PVS is waste
+    m.misses = misses;
+    m.waste = pvs - (m.rvs - misses);
+    m.pixelsDiffering = pixels;
+    m.cullMs = cullMs;
+    m.drawMs = drawMs;
+    m.ratioToOracle = ratioToOracle;
+    m.ratioToFull = ratioToOracle / 3.0;
+    m.ratioToFullCullface = ratioToOracle / 2.0;
+    return m;
+}
+
+// Three views; "none" and "sphere" in each (odd counts), "oracle" in views 0 and 2 only (even
+// count); the other methods absent.
+CullReport fakeReport() {
+    CullReport r;
+    r.scene = "builtin:cubes";
+    r.width = 320;
+    r.height = 240;
+    r.backend = "software";
+    r.timing = "cold";
+    r.views.push_back({0, "whole", glm::vec3(0.1f, 2.0f, -3.5f), glm::vec3(0.0f), {
+        row("none", 100, 0, 0, 0.0, 3.0, 3.0),
+        row("sphere", 60, 0, 0, 0.25, 2.0, 2.0),
+        row("oracle", 40, 0, 0, 0.0, 1.0, 1.0),
+    }});
+    r.views.push_back({1, "partial", glm::vec3(1.0f), glm::vec3(0.0f, 0.5f, 0.0f), {
+        row("none", 100, 0, 0, 0.0, 5.0, 5.0),
+        row("sphere", 30, 2, 7, 0.5, 1.5, 2.5),
+    }});
+    r.views.push_back({2, "grazing", glm::vec3(2.0f), glm::vec3(0.0f), {
+        row("none", 100, 0, 0, 0.0, 4.0, 4.0),
+        row("sphere", 41, 3, 1, 0.125, 1.75, 1.5),
+        row("oracle", 45, 0, 0, 0.0, 2.0, 1.0),
+    }});
+    return r;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    return fields;
+}
+
+TEST(CullReportTest, JsonHasTheDocumentedKeys) {
+    const nlohmann::json j = nlohmann::json::parse(cullReportJson(fakeReport()));
+    EXPECT_EQ(j["scene"], "builtin:cubes");
+    EXPECT_EQ(j["size"], nlohmann::json::array({320, 240}));
+    EXPECT_EQ(j["backend"], "software");
+    EXPECT_EQ(j["timing"], "cold");
+    ASSERT_EQ(j["views"].size(), 3u);
+    const nlohmann::json& view = j["views"][0];
+    EXPECT_EQ(view["index"], 0);
+    EXPECT_EQ(view["class"], "whole");
+    ASSERT_EQ(view["eye"].size(), 3u);
+    EXPECT_EQ(view["eye"][0].get<double>(), 0.1) << "floats written in their shortest form";
+    EXPECT_EQ(view["eye"][2].get<double>(), -3.5);
+    EXPECT_EQ(view["target"], nlohmann::json::array({0.0, 0.0, 0.0}));
+    EXPECT_EQ(j["views"][1]["target"][1].get<double>(), 0.5);
+    ASSERT_EQ(view["methods"].size(), 3u);
+    const nlohmann::json& m = j["views"][1]["methods"][1];
+    for (const char* key : {"method", "tos", "pvs", "rvs", "misses", "waste", "pixels_differing", "cull_ms", "draw_ms",
+                            "ratio_to_oracle", "ratio_to_full", "ratio_to_full_cullface"})
+        EXPECT_TRUE(m.contains(key)) << key;
+    EXPECT_EQ(m.size(), 12u);
+    EXPECT_EQ(m["method"], "sphere");
+    EXPECT_EQ(m["tos"], 100);
+    EXPECT_EQ(m["pvs"], 30);
+    EXPECT_EQ(m["rvs"], 20);
+    EXPECT_EQ(m["misses"], 2);
+    EXPECT_EQ(m["waste"], 12);
+    EXPECT_EQ(m["pixels_differing"], 7);
+    EXPECT_EQ(m["cull_ms"].get<double>(), 0.5);
+    EXPECT_EQ(m["draw_ms"].get<double>(), 1.5);
+    EXPECT_EQ(m["ratio_to_oracle"].get<double>(), 2.5);
+    EXPECT_NEAR(m["ratio_to_full"].get<double>(), 2.5 / 3.0, 1e-15);
+    EXPECT_EQ(m["ratio_to_full_cullface"].get<double>(), 1.25);
+}
+
+TEST(CullReportTest, JsonSummaryHasMediansWorstViewAndTotals) {
+    const nlohmann::json j = nlohmann::json::parse(cullReportJson(fakeReport()));
+    const nlohmann::json& summary = j["summary"];
+    ASSERT_EQ(summary.size(), 3u) << "only the methods present";
+    EXPECT_FALSE(summary.contains("cones"));
+
+    const nlohmann::json& none = summary["none"];  // three views: the middle value
+    EXPECT_EQ(none["views"], 3);
+    EXPECT_EQ(none["median_pvs"].get<double>(), 100.0);
+    EXPECT_EQ(none["median_draw_ms"].get<double>(), 4.0);
+    EXPECT_EQ(none["median_ratio_to_oracle"].get<double>(), 4.0);
+    EXPECT_EQ(none["worst_view"]["index"], 1);
+    EXPECT_EQ(none["worst_view"]["class"], "partial");
+    EXPECT_EQ(none["worst_view"]["ratio_to_oracle"].get<double>(), 5.0);
+    EXPECT_EQ(none["total_misses"], 0);
+    EXPECT_EQ(none["views_with_misses"], 0);
+
+    const nlohmann::json& sphere = summary["sphere"];
+    EXPECT_EQ(sphere["views"], 3);
+    EXPECT_EQ(sphere["median_pvs"].get<double>(), 41.0);
+    EXPECT_EQ(sphere["median_cull_ms"].get<double>(), 0.25);
+    EXPECT_EQ(sphere["median_draw_ms"].get<double>(), 1.75);
+    EXPECT_EQ(sphere["median_ratio_to_oracle"].get<double>(), 2.0);
+    EXPECT_NEAR(sphere["median_ratio_to_full"].get<double>(), 2.0 / 3.0, 1e-15);
+    EXPECT_EQ(sphere["median_ratio_to_full_cullface"].get<double>(), 1.0);
+    EXPECT_EQ(sphere["worst_view"]["index"], 1);
+    EXPECT_EQ(sphere["total_misses"], 5);
+    EXPECT_EQ(sphere["total_pixels_differing"], 8);
+    EXPECT_EQ(sphere["views_with_misses"], 2);
+
+    const nlohmann::json& oracle = summary["oracle"];  // two views: the mean of both
+    EXPECT_EQ(oracle["views"], 2);
+    EXPECT_EQ(oracle["median_pvs"].get<double>(), 42.5);
+    EXPECT_EQ(oracle["median_draw_ms"].get<double>(), 1.5);
+    EXPECT_EQ(oracle["median_ratio_to_oracle"].get<double>(), 1.0);
+    EXPECT_EQ(oracle["worst_view"]["index"], 0) << "ties go to the first view";
+    EXPECT_EQ(oracle["worst_view"]["class"], "whole");
+
+    for (const auto& [method, s] : summary.items())
+        for (const char* key : {"views", "median_pvs", "median_cull_ms", "median_draw_ms", "median_ratio_to_oracle",
+                                "median_ratio_to_full", "median_ratio_to_full_cullface", "worst_view", "total_misses",
+                                "total_pixels_differing", "views_with_misses"})
+            EXPECT_TRUE(s.contains(key)) << method << ": " << key;
+}
+
+TEST(CullReportTest, NonFiniteNumbersAreNullInJsonAndEmptyInCsv) {
+    CullReport r = fakeReport();
+    r.views[1].methods[0].ratioToOracle = std::numeric_limits<double>::infinity();
+    r.views[1].methods[0].ratioToFull = std::numeric_limits<double>::quiet_NaN();
+    r.views[1].eye.y = std::numeric_limits<float>::quiet_NaN();
+    const nlohmann::json j = nlohmann::json::parse(cullReportJson(r));
+    const nlohmann::json& m = j["views"][1]["methods"][0];
+    EXPECT_TRUE(m["ratio_to_oracle"].is_null());
+    EXPECT_TRUE(m["ratio_to_full"].is_null());
+    EXPECT_TRUE(j["views"][1]["eye"][1].is_null());
+    // The infinite ratio is the worst; NaN is left out of the median (3 and 4 remain).
+    EXPECT_EQ(j["summary"]["none"]["worst_view"]["index"], 1);
+    EXPECT_TRUE(j["summary"]["none"]["worst_view"]["ratio_to_oracle"].is_null());
+    EXPECT_EQ(j["summary"]["none"]["median_ratio_to_full"].get<double>(), (1.0 + 4.0 / 3.0) / 2.0);
+
+    const std::vector<std::string> rows = lines(cullReportCsv(r));
+    ASSERT_EQ(rows.size(), 9u);
+    const std::vector<std::string> fields = split(rows[4]);  // view 1, none
+    ASSERT_EQ(fields.size(), 14u) << rows[4];
+    EXPECT_EQ(fields[2], "none");
+    EXPECT_EQ(fields[11], "");
+    EXPECT_EQ(fields[12], "");
+    EXPECT_EQ(fields[13], "2.5") << "the row's own ratio_to_full_cullface";
+}
+
+TEST(CullReportTest, CsvHasTheHeaderAndOneRowPerViewAndMethod) {
+    const std::vector<std::string> rows = lines(cullReportCsv(fakeReport()));
+    ASSERT_EQ(rows.size(), 9u);
+    EXPECT_EQ(rows[0],
+              "view,class,method,tos,pvs,rvs,misses,waste,pixels_differing,cull_ms,draw_ms,ratio_to_oracle,"
+              "ratio_to_full,ratio_to_full_cullface");
+    const std::vector<std::string> fields = split(rows[5]);  // view 1, sphere
+    ASSERT_EQ(fields.size(), 14u) << rows[5];
+    EXPECT_EQ(fields, (std::vector<std::string>{"1", "partial", "sphere", "100", "30", "20", "2", "12", "7", "0.5",
+                                                "1.5", "2.5", "0.833333", "1.25"}));
+    for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(split(rows[i]).size(), 14u) << rows[i];
+}
+
+TEST(CullReportTest, CsvQuotesFieldsWithCommasAndQuotes) {
+    CullReport r = fakeReport();
+    r.views[0].methods[1].method = "paper, \"tight\"";
+    const std::vector<std::string> rows = lines(cullReportCsv(r));
+    ASSERT_EQ(rows.size(), 9u);
+    const std::string start = "0,whole,\"paper, \"\"tight\"\"\",100,60,20,0,";
+    EXPECT_EQ(rows[2].substr(0, start.size()), start);
+}
+
+// The shell's single quotes around `text`.
+std::string shellQuoted(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+// Runs gnuplot on `script`; returns its exit status, with its messages in `messages`.
+int runGnuplot(const fs::path& script, std::string& messages) {
+    const fs::path log = script.parent_path() / "gnuplot.log";
+    const int status = std::system(("gnuplot " + shellQuoted(script.string()) + " > " + shellQuoted(log.string()) +
+                                    " 2>&1").c_str());
+    messages = test::readAll(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+TEST(CullReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
+    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    const fs::path dir = test::freshDir("CullReportTest.Gnuplot");
+    // A quote in the paths: gnuplot's single-quoted strings must double it.
+    const fs::path csv = dir / "view's report.csv", svg = dir / "it's plot.svg", script = dir / "plot.gp";
+    test::writeFile(csv, cullReportCsv(fakeReport()));
+    test::writeFile(script, cullReportGnuplot(csv.string(), svg.string()));
+    std::string messages;
+    EXPECT_EQ(runGnuplot(script, messages), 0) << messages;
+    ASSERT_TRUE(fs::exists(svg)) << messages;
+    const std::string text = test::readAll(svg);
+    EXPECT_NE(text.find("<svg"), std::string::npos);
+    EXPECT_NE(text.find("sphere"), std::string::npos) << "a method's key entry";
+}
+
+TEST(CullReportTest, GnuplotDrawsAnEmptyReport) {
+    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    const fs::path dir = test::freshDir("CullReportTest.GnuplotEmpty");
+    CullReport empty = fakeReport();
+    empty.views.clear();
+    test::writeFile(dir / "report.csv", cullReportCsv(empty));
+    test::writeFile(dir / "plot.gp", cullReportGnuplot((dir / "report.csv").string(), (dir / "report.svg").string()));
+    std::string messages;
+    EXPECT_EQ(runGnuplot(dir / "plot.gp", messages), 0) << messages;
+    EXPECT_NE(test::readAll(dir / "report.svg").find("<svg"), std::string::npos) << messages;
+}
+
+}  // namespace
+}  // namespace frugal
