@@ -54,6 +54,18 @@ Result<Session> openSession(const BackendSelection& selection, const RenderOptio
     return session;
 }
 
+std::variant<Session, int> startSession(const RenderOptions& options, const Scene& scene, std::ostream& err) {
+    Result<Session> opened = openSession(options.backend, options);
+    if (!opened) {
+        err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
+        return int(kExitNoBackend);
+    }
+    Backend& backend = *opened->backend;
+    if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
+    if (int prepared = prepareSession(*opened, options, scene, err); prepared != kExitOk) return prepared;
+    return std::move(*opened);
+}
+
 int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
     Backend& backend = *session.backend;
     if (session.target == kNoHandle) session.target = backend.createTarget(options.width, options.height);

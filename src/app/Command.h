@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "app/Options.h"
@@ -54,6 +55,11 @@ struct Session {
     TargetHandle target = kNoHandle;
     std::optional<SceneRenderer> renderer;
 };
+
+// The one-backend start of render and cull-report: opens --backend, says which unless quiet, creates
+// the target and uploads `scene`. On failure prints the one error line and gives the exit status
+// (kExitNoBackend or kExitError) instead of a session.
+std::variant<Session, int> startSession(const RenderOptions& options, const Scene& scene, std::ostream& err);
 
 // Opens `selection` with the options' thread count. A failure means the backend is not available
 // here (exit status kExitNoBackend); the message is its reason (print it after "error: <label>: ").

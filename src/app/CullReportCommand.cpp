@@ -256,15 +256,10 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
 
     const SceneCuller culler = prepareCulling(scene, cull.bins, err, options.quiet);
 
-    Result<Session> opened = openSession(options.backend, options);
-    if (!opened) {
-        err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
-        return kExitNoBackend;
-    }
-    Session& session = *opened;
+    std::variant<Session, int> started = startSession(options, scene, err);
+    if (const int* status = std::get_if<int>(&started)) return *status;
+    Session& session = std::get<Session>(started);
     Backend& backend = *session.backend;
-    if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
-    if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
     SceneRenderer& renderer = *session.renderer;
     const TargetHandle target = session.target;
     const int width = options.width, height = options.height;

@@ -44,12 +44,15 @@ Side boxSide(const std::vector<Plane>& planes, const glm::vec3& lo, const glm::v
     const glm::dvec3 dlo(lo), dhi(hi);
     if (!std::isfinite(dlo.x + dlo.y + dlo.z + dhi.x + dhi.y + dhi.z)) return Side::Straddles;
     bool inside = true;
+    // Size of the numbers a plane test adds up, for its margin: |n|₁·|corner|∞ + |d| bounds every term.
+    const double extent = std::max({std::abs(dlo.x), std::abs(dlo.y), std::abs(dlo.z), std::abs(dhi.x), std::abs(dhi.y),
+                                    std::abs(dhi.z)});
     for (const Plane& plane : planes) {
         const glm::dvec3 n(plane.p);
         // The corner farthest along the normal, and the nearest.
         const glm::dvec3 far(n.x >= 0 ? dhi.x : dlo.x, n.y >= 0 ? dhi.y : dlo.y, n.z >= 0 ? dhi.z : dlo.z);
         const glm::dvec3 near(n.x >= 0 ? dlo.x : dhi.x, n.y >= 0 ? dlo.y : dhi.y, n.z >= 0 ? dlo.z : dhi.z);
-        const double scale = glm::length(n) * std::max(glm::length(far), glm::length(near)) + std::abs(plane.p.w);
+        const double scale = (std::abs(n.x) + std::abs(n.y) + std::abs(n.z)) * extent + std::abs(plane.p.w);
         if (plane.eval(far) < -kPlaneMargin * scale) return Side::Outside;
         if (plane.eval(near) < kPlaneMargin * scale) inside = false;
     }
@@ -182,6 +185,21 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
         }
     }
     out.add(runStart, runLength);
+}
+
+// Adds every non-empty bin of `map` one of whose sample directions (`samples`, kBinSamples a bin)
+// satisfies `take`.
+template <class Take>
+void addBinsWhere(const MeshMap& map, const std::vector<glm::vec3>& samples, RangeList& out, Take take) {
+    for (std::size_t b = 0; b < map.bins.size(); ++b) {
+        const Bin& bin = map.bins[b];
+        if (bin.count == 0) continue;
+        for (int s = 0; s < kBinSamples; ++s)
+            if (take(glm::dvec3(samples[b * kBinSamples + std::size_t(s)]))) {
+                out.add(bin.first, bin.count);
+                break;
+            }
+    }
 }
 
 // World-space sphere of an instance against the frustum (paper equation 2).
@@ -339,19 +357,12 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                 const glm::dvec3 toward = iv.eye.w != 0.0 ? glm::dvec3(iv.eye) / iv.eye.w - c : glm::dvec3(iv.eye);
                 if (sphereClass == SphereClass::Partial) {
                     // The bins whose patch of the bounding sphere is inside the frustum, on the camera's side.
-                    for (std::size_t b = 0; b < map.bins.size(); ++b) {
-                        const Bin& bin = map.bins[b];
-                        if (bin.count == 0) continue;
-                        bool take = false;
-                        for (int s = 0; s < kBinSamples && !take; ++s) {
-                            const glm::dvec3 dir(samples[b * kBinSamples + std::size_t(s)]);
-                            if (glm::dot(dir, toward) < 0.0) continue;
-                            const glm::dvec3 p = c + r * dir;
-                            take = std::all_of(iv.planes.begin(), iv.planes.end(),
-                                               [&p](const Plane& plane) { return plane.eval(p) >= 0.0; });
-                        }
-                        if (take) out.add(bin.first, bin.count);
-                    }
+                    addBinsWhere(map, samples, out, [&](const glm::dvec3& dir) {
+                        const glm::dvec3 p = c + r * dir;
+                        return glm::dot(dir, toward) >= 0.0 &&
+                               std::all_of(iv.planes.begin(), iv.planes.end(),
+                                           [&p](const Plane& plane) { return plane.eval(p) >= 0.0; });
+                    });
                     break;
                 }
                 // Whole object in view: azimuths about the camera's up axis, 0 towards the viewer.
@@ -376,17 +387,10 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                     if (side < leftSide) leftSide = side, leftAzimuth = azimuth;
                 }
                 // What lies behind them by azimuth is taken as hidden.
-                for (std::size_t b = 0; b < map.bins.size(); ++b) {
-                    const Bin& bin = map.bins[b];
-                    if (bin.count == 0) continue;
-                    bool take = false;
-                    for (int s = 0; s < kBinSamples && !take; ++s) {
-                        const glm::dvec3 dir(samples[b * kBinSamples + std::size_t(s)]);
-                        const double azimuth = std::atan2(glm::dot(dir, right), glm::dot(dir, front));
-                        take = azimuth >= leftAzimuth && azimuth <= rightAzimuth;
-                    }
-                    if (take) out.add(bin.first, bin.count);
-                }
+                addBinsWhere(map, samples, out, [&](const glm::dvec3& dir) {
+                    const double azimuth = std::atan2(glm::dot(dir, right), glm::dot(dir, front));
+                    return azimuth >= leftAzimuth && azimuth <= rightAzimuth;
+                });
                 break;
             }
 

@@ -14,6 +14,7 @@
 #include <tuple>
 #include <vector>
 
+#include "TestSupport.h"
 #include "cull/SphereMap.h"
 #include "cull/Views.h"
 #include "render/Camera.h"
@@ -736,15 +737,8 @@ std::vector<glm::dvec4> frustumPlanes(const View& view) {
 
 // A scene of one small triangle at `center` (resolveCamera only needs something to frame).
 Scene tinyScene(const glm::vec3& center) {
-    Scene scene;
-    Mesh mesh = fromTriangles({center, center + glm::vec3(1e-3f, 0, 0), center + glm::vec3(0, 1e-3f, 0)}, {0, 1, 2});
-    scene.meshes.push_back(mesh);
-    Node node;
-    node.meshes = {0};
-    scene.nodes.push_back(node);
-    scene.roots = {0};
-    scene.buildInstances();
-    return scene;
+    return test::oneMeshScene(
+        fromTriangles({center, center + glm::vec3(1e-3f, 0, 0), center + glm::vec3(0, 1e-3f, 0)}, {0, 1, 2}));
 }
 
 // Across several counts, fields of view and aspects (portrait included), with the frustum of
