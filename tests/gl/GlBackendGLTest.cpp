@@ -329,6 +329,48 @@ TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
     backend_->destroyTarget(target);
 }
 
+// Many short ranges are drawn from one streamed index buffer (GlBackend.cpp): the same triangles in
+// the same order as drawing them range by range, so the same colour and depth, ties included; and the
+// mesh's own index buffer is back in its VAO afterwards.
+TEST_P(GlBackendGLTest, ManyShortRangesDrawTheSameAsOneRangeAtATime) {
+    const Mesh mesh = randomMesh(400);
+    const MeshHandle handle = backend_->uploadMesh(mesh);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    FrameParams frame;
+    frame.view = glm::lookAt(glm::vec3(0.3f, 0.4f, 2.6f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    frame.projection = glm::perspective(0.9f, float(kWidth) / kHeight, 0.5f, 10.0f);
+    frame.writeIds = false;
+    DrawParams params;
+    params.mesh = handle;
+    params.doubleSided = true;
+    // Every other run of 1–3 triangles: 100+ ranges, far more than the gathering threshold.
+    std::vector<IndexRange> ranges;
+    for (std::uint32_t t = 0, k = 0; t < 400; t += 2 + k % 3, ++k) ranges.push_back({t, 1 + k % 3});
+    ASSERT_GE(ranges.size(), 100u);
+
+    const auto render = [&](bool gathered) {
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->beginFrame(target, frame);
+        if (gathered) {
+            backend_->draw(params, ranges);
+        } else {
+            for (const IndexRange& range : ranges) backend_->draw(params, std::span<const IndexRange>(&range, 1));
+        }
+        return backend_->readBack(target);
+    };
+    const Buffers gathered = render(true);
+    const Buffers separate = render(false);
+    EXPECT_TRUE(identical(gathered, separate, "gathered-vs-separate", /*compareIds=*/false));
+    // After the gathered draw the mesh draws whole from its own index buffer again.
+    const auto thenWhole = [&](bool gather) {
+        render(gather);
+        backend_->draw(params, all(mesh));
+        return backend_->readBack(target);
+    };
+    EXPECT_TRUE(identical(thenWhole(true), thenWhole(false), "whole-after-gathered", /*compareIds=*/false));
+    backend_->destroyTarget(target);
+}
+
 TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
     // Two full-screen-ish triangles: source 0 at NDC z 0.5, source 1 at z -0.5 (nearer), then a
     // third at exactly the nearer one's depth, drawn last: GL_LESS keeps the earlier one.
