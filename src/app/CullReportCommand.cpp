@@ -254,6 +254,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
         if (options.camera.zfar) view.camera.zfar = options.camera.zfar;
     }
 
+    cull.bins.hull = std::find(methods.begin(), methods.end(), CullMethod::Paper) != methods.end();
     const SceneCuller culler = prepareCulling(scene, cull.bins, err, options.quiet);
 
     std::variant<Session, int> started = startSession(options, scene, err);

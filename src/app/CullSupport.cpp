@@ -50,7 +50,9 @@ SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& er
         for (const Mesh& mesh : scene.meshes) triangles += mesh.triangleCount();
         err << "cull: " << scene.meshes.size() << (scene.meshes.size() == 1 ? " mesh, " : " meshes, ") << triangles
             << " triangles prepared in " << fmt(stats.totalMs()) << " ms (sphere " << fmt(stats.sphereMs) << ", map "
-            << fmt(stats.mapMs) << ", clusters " << fmt(stats.clusterMs) << ", hull " << fmt(stats.hullMs) << ")\n";
+            << fmt(stats.mapMs) << ", clusters " << fmt(stats.clusterMs);
+        if (bins.hull) err << ", hull " << fmt(stats.hullMs);
+        err << ")\n";
     }
     return culler;
 }

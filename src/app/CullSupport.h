@@ -26,7 +26,8 @@ bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& op
 const char* cullBinsHelp();
 
 // Builds the maps and reorders the scene's meshes (before upload); prints one line unless quiet:
-// "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)".
+// "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"
+// (the hull only when bins.hull asks for it).
 SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet);
 
 // One frame's oracle: the id pass of the full render, its visible set, and a scene holding exactly

@@ -122,6 +122,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const CullMethod method = cull.method.value_or(CullMethod::None);
     // The map's triangle order must be in place before the upload.
     std::optional<SceneCuller> culler;
+    cull.bins.hull = method == CullMethod::Paper;
     if (method != CullMethod::None) culler.emplace(prepareCulling(scene, cull.bins, err, options.quiet));
 
     const FrameRange range = options.frames.value_or(FrameRange{});

@@ -77,7 +77,16 @@ struct InstanceView {
         const double det = glm::determinant(glm::dmat3(v * m));
         mirrored = (det < 0.0) != (p[0][0] * p[1][1] < 0.0);
         eyeScale = glm::length(glm::dvec3(eye));
+        eyeFloat = glm::vec4(eye);
+        // facingMargin in float: base + per |d|, and never 0, so that a degenerate plane stays undecided.
+        marginBase = float(kPlaneMargin * (eye.w != 0.0 ? eyeScale : 1.0)) + 1e-30f;
+        marginPerD = eye.w != 0.0 ? float(kPlaneMargin) : 0.0f;
     }
+
+    // The facing test of mayFace in float, for batches: float rounding of these four products is
+    // about 1e-7 of their size, far inside the 1e-5 margin.
+    glm::vec4 eyeFloat{0.0f};
+    float marginBase = 0.0f, marginPerD = 0.0f;
 
     // Signed facing of a plane (unit normal n, n·a = d) towards the eye: > 0 faces the eye
     // (front, when not mirrored). The margin says how close to 0 is undecided.
@@ -169,9 +178,23 @@ bool isSingleSided(const Scene& scene, const Mesh& mesh) {
 // (when `singleSided`).
 void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv, Outcodes& vertices,
                    std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, RangeList& out) {
+    // Facing first, for the whole run at once in float (the same test as mayFace, which it must
+    // agree with; see InstanceView::facingFloat), so that the loop vectorizes.
+    std::uint8_t facing[kClusterTriangles];
+    const bool batched = singleSided && count <= kClusterTriangles;
+    if (batched) {
+        const glm::vec4 e = iv.eyeFloat;
+        const float sign = iv.mirrored ? -1.0f : 1.0f, m0 = iv.marginBase, m1 = iv.marginPerD;
+        const glm::vec4* planes = map.planes.data() + first;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const glm::vec4& p = planes[i];
+            const float f = p.x * e.x + p.y * e.y + p.z * e.z - p.w * e.w;
+            facing[i] = sign * f > -(m0 + m1 * std::abs(p.w));
+        }
+    }
     std::uint32_t runStart = first, runLength = 0;
     for (std::uint32_t t = first; t < first + count; ++t) {
-        bool keep = !singleSided || iv.mayFace(map.planes[t]);
+        bool keep = !singleSided || (batched ? facing[t - first] != 0 : iv.mayFace(map.planes[t]));
         if (keep && !inside) {
             const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
             keep = (vertices[tri[0]] & vertices[tri[1]] & vertices[tri[2]]) == 0;

@@ -127,9 +127,13 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
     map.sphere = minimalSphere(points);
     map.stats.sphereMs = msSince(start);
 
-    start = Clock::now();
-    map.hull = convexHull(points);
-    map.stats.hullMs = msSince(start);
+    if (params.hull) {
+        start = Clock::now();
+        map.hull = convexHull(points);
+        map.stats.hullMs = msSince(start);
+    } else {
+        map.hull.note = "not built (no method that reads it was asked for)";
+    }
 
     // Barycenters, their bins, and the order: bin by bin, the mesh's order (vertex cache) inside.
     start = Clock::now();

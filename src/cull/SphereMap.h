@@ -31,6 +31,8 @@ namespace frugal {
 struct MapParams {
     int thetaBins = 16;  // 1..1024
     int phiBins = 32;    // 1..1024
+    bool hull = true;    // build the convex hull; only the paper method reads it (without: it keeps
+                         // every bin of an instance wholly in view)
 };
 
 inline constexpr std::uint32_t kClusterTriangles = 124;  // meshoptimizer's meshlet limit

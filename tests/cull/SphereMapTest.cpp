@@ -470,6 +470,22 @@ TEST(SphereMapTest, MapOfRandomSoupsKeepsEveryInvariant) {
     }
 }
 
+TEST(SphereMapTest, TheHullIsBuiltOnlyWhenAsked) {
+    const Mesh sphere = uvSphere(12, 24);
+    MapParams params;
+    params.hull = false;
+    const MeshMap without = buildAndCheck(sphere, params, nullptr, "no hull");
+    EXPECT_EQ(without.hull.kind, HullKind::Empty);
+    EXPECT_TRUE(without.hull.vertices.empty());
+    EXPECT_FALSE(without.hull.note.empty());
+    EXPECT_EQ(without.stats.hullMs, 0.0);
+    const MeshMap with = buildAndCheck(sphere, {}, nullptr, "hull");
+    EXPECT_EQ(with.hull.kind, HullKind::Solid);
+    // Everything else is the same map.
+    ASSERT_EQ(with.bins.size(), without.bins.size());
+    for (std::size_t b = 0; b < with.bins.size(); ++b) EXPECT_EQ(with.bins[b].count, without.bins[b].count);
+}
+
 TEST(SphereMapTest, ManyTrianglesInOneBinAreSplitIntoClusters) {
     // A dense patch around +x: all in very few bins, so clusters must split each bin.
     Mesh patch;
