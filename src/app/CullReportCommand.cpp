@@ -54,7 +54,8 @@ methods and timing:
            "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
            R"(
 outputs (each written whole or not at all):
-  --json FILE           the report: views, methods, summary (medians, worst view, total misses)
+  --json FILE           the report: views, methods, summary (medians, worst view, total misses,
+                        the share of the draw time culling takes), and medians per view class
   --csv FILE            one row per view and method
   --plot FILE.svg       plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot);
                         the gnuplot script is written beside it as FILE.gp, to restyle and rerun
@@ -413,6 +414,15 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                                           {"total_misses", misses}, {"total_pixels_differing", pixels}};
         }
     json["by_class"] = byClass;
+    // The share of the frame a method's culling takes: median over the views of cull ÷ draw.
+    for (CullMethod method : methods) {
+        std::vector<double> shares;
+        for (const ViewResult& view : report.views)
+            for (const MethodResult& result : view.methods)
+                if (result.method == cullMethodName(method) && result.drawMs > 0.0)
+                    shares.push_back(result.cullMs / result.drawMs);
+        json["summary"][cullMethodName(method)]["median_cull_over_draw"] = median(shares);
+    }
     json["repeat"] = repeat;
     json["renderer"] = backend.renderer();
 
