@@ -21,6 +21,7 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
+#include "base/Stats.h"
 #include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
 
@@ -56,12 +57,6 @@ struct Sample {
     std::vector<double> ms;
     std::optional<bool> pixelsEqual;  // minimal: the same colour image as frugal's
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The context kind of a GL backend, by its name() ("egl-surfaceless", ...).
 std::optional<ContextKind> contextKindNamed(const std::string& name) {

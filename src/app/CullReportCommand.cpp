@@ -8,10 +8,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <ostream>
 #include <sstream>
 
@@ -21,9 +19,11 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
+#include "base/Stats.h"
 #include "cull/Views.h"
 #include "io/ImageIO.h"
 #include "report/CullReport.h"
+#include "report/ImageCompare.h"
 
 namespace frugal {
 
@@ -68,24 +68,9 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 struct Outputs {
     std::string json, csv, plot, cameraPath;
 };
-
-std::size_t differingPixels(const Buffers& a, const Buffers& b) {
-    std::size_t count = 0;
-    const std::size_t n = std::min(a.rgba.size(), b.rgba.size()) / 4;
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::memcmp(&a.rgba[4 * i], &b.rgba[4 * i], 4) != 0) ++count;
-    return count + (std::max(a.rgba.size(), b.rgba.size()) - 4 * n) / 4;
-}
 
 // "--camera-path FILE: entry 3: eye: expected 3 numbers"
 Result<std::vector<ReportView>> readCameraPath(const std::string& path) {
@@ -154,9 +139,8 @@ std::string runGnuplot(const std::string& script) {
     return {};
 }
 
-std::string shellSafe(const std::string& path) {
-    return path.find('\'') == std::string::npos ? std::string() : "a path with a single quote";
-}
+// gnuplot gets its script's path inside single quotes on a shell line.
+bool hasSingleQuote(const std::string& path) { return path.find('\'') != std::string::npos; }
 
 }  // namespace
 
@@ -214,7 +198,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             cursor.fail("--frames: cull-report measures views at one time; use --time");
         else if (!outputs.plot.empty() && std::filesystem::path(outputs.plot).extension() != ".svg")
             cursor.fail("--plot " + outputs.plot + ": gnuplot writes SVG here; name it .svg");
-        else if (!outputs.plot.empty() && !shellSafe(outputs.plot).empty())
+        else if (!outputs.plot.empty() && hasSingleQuote(outputs.plot))
             cursor.fail("--plot " + outputs.plot + ": a path with a single quote cannot be passed to gnuplot");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
@@ -358,7 +342,8 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                 oracle->renderer->renderFrame(target, width, height, params, world, options.background);
             else
                 renderer.renderFrame(target, width, height, params, world, options.background, t.list);
-            result.pixelsDiffering = differingPixels(backend.readBack(target), reference);
+            Result<ImageComparison> compared = compareBuffers(backend.readBack(target), reference);
+            result.pixelsDiffering = compared ? compared->failingPixels : reference.pixelCount();
             result.cullMs = t.cull.empty() ? 0.0 : median(t.cull);  // none, oracle: no plan to make
             result.drawMs = median(t.draw);
             const double total = result.cullMs + result.drawMs;
@@ -391,38 +376,6 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                           {"meshes", meshes},
                           {"paper_bunny", {{"hull_ms", 5000}, {"hull_vertices", 3023}, {"hull_faces", 6042},
                                            {"map_bytes", 4.3e6}, {"access_bytes", 0.51e6}}}};
-    // Per view class (paper 002 reports partial and whole views apart): medians of pvs and of the
-    // speed-up over the full draw, and the misses.
-    nlohmann::json byClass = nlohmann::json::object();
-    std::map<std::string, std::map<std::string, std::vector<const MethodResult*>>> grouped;
-    for (const ViewResult& view : report.views)
-        for (const MethodResult& result : view.methods) grouped[view.viewClass][result.method].push_back(&result);
-    for (const auto& [viewClass, byMethod] : grouped)
-        for (const auto& [method, results] : byMethod) {
-            std::vector<double> pvs, speedUp, cullfaceSpeedUp;
-            std::size_t misses = 0, pixels = 0;
-            for (const MethodResult* r : results) {
-                pvs.push_back(double(r->pvs));
-                speedUp.push_back(1.0 / r->ratioToFull);
-                cullfaceSpeedUp.push_back(1.0 / r->ratioToFullCullface);
-                misses += r->misses;
-                pixels += r->pixelsDiffering;
-            }
-            byClass[viewClass][method] = {{"views", results.size()}, {"tos", results.front()->tos},
-                                          {"median_pvs", median(pvs)}, {"median_speed_up", median(speedUp)},
-                                          {"median_speed_up_over_cullface", median(cullfaceSpeedUp)},
-                                          {"total_misses", misses}, {"total_pixels_differing", pixels}};
-        }
-    json["by_class"] = byClass;
-    // The share of the frame a method's culling takes: median over the views of cull ÷ draw.
-    for (CullMethod method : methods) {
-        std::vector<double> shares;
-        for (const ViewResult& view : report.views)
-            for (const MethodResult& result : view.methods)
-                if (result.method == cullMethodName(method) && result.drawMs > 0.0)
-                    shares.push_back(result.cullMs / result.drawMs);
-        json["summary"][cullMethodName(method)]["median_cull_over_draw"] = median(shares);
-    }
     json["repeat"] = repeat;
     json["renderer"] = backend.renderer();
 
@@ -436,7 +389,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     if (!outputs.plot.empty()) {
         if (csvPath.empty()) csvPath = std::filesystem::path(outputs.plot).replace_extension(".csv").string();
         scriptPath = std::filesystem::path(outputs.plot).replace_extension(".gp").string();
-        if (!shellSafe(csvPath).empty()) {
+        if (hasSingleQuote(csvPath)) {
             err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
             return kExitError;
         }
@@ -474,7 +427,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
         out << line;
     }
     out << "\nclass     method        views  median pvs of tos   speed-up (full, cullface)  misses\n";
-    for (const auto& [viewClass, byMethod] : byClass.items())
+    for (const auto& [viewClass, byMethod] : json["by_class"].items())
         for (CullMethod method : methods) {
             if (!byMethod.contains(cullMethodName(method))) continue;
             const nlohmann::json& c = byMethod[cullMethodName(method)];

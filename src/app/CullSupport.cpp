@@ -17,29 +17,14 @@ bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& op
     if (flag == "--cull-bins") {
         const std::optional<std::string> value = cursor.value(flag);
         if (!value) return true;
-        const std::size_t x = value->find('x');
         int t = 0, p = 0;
-        std::size_t used1 = 0, used2 = 0;
-        try {
-            if (x != std::string::npos) {
-                t = std::stoi(value->substr(0, x), &used1);
-                p = std::stoi(value->substr(x + 1), &used2);
-            }
-        } catch (const std::exception&) {
-            used1 = 0;
-        }
-        if (x == std::string::npos || used1 != x || used1 == 0 || used2 != value->size() - x - 1 || t < 1 || t > 1024 ||
-            p < 1 || p > 1024)
+        if (!parseIntPair(*value, t, p) || t < 1 || t > 1024 || p < 1 || p > 1024)
             cursor.fail("--cull-bins " + *value + ": expected THETAxPHI, each 1 to 1024 (default 16x32)");
         else
             options.bins = MapParams{t, p};
         return true;
     }
     return false;
-}
-
-const char* cullBinsHelp() {
-    return "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n";
 }
 
 SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet) {

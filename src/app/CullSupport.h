@@ -22,8 +22,6 @@ struct CullOptions {
 
 // --cull METHOD (when `withMethod`) and --cull-bins TxP. False when `flag` is neither.
 bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& options, bool withMethod);
-// Help lines of --cull-bins.
-const char* cullBinsHelp();
 
 // Builds the maps and reorders the scene's meshes (before upload); prints one line unless quiet:
 // "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ostream>
 #include <sstream>
+#include <string_view>
 
 namespace frugal {
 
@@ -30,6 +31,16 @@ std::optional<std::string> ArgCursor::value(const std::string& flag) {
         return std::nullopt;
     }
     return args_[index_++];
+}
+
+bool parseIntPair(const std::string& text, int& first, int& second) {
+    const std::size_t x = text.find('x');
+    const auto parse = [](std::string_view part, int& out) {
+        auto [stop, ec] = std::from_chars(part.data(), part.data() + part.size(), out);
+        return !part.empty() && ec == std::errc() && stop == part.data() + part.size();
+    };
+    return x != std::string::npos && parse(std::string_view(text).substr(0, x), first) &&
+           parse(std::string_view(text).substr(x + 1), second);
 }
 
 namespace {
@@ -96,9 +107,8 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
     if (flag == "--size") {
         const std::optional<std::string> text = cursor.value(flag);
         if (!text) return true;
-        const std::size_t x = text->find('x');
         int w = 0, h = 0;
-        if (x == std::string::npos || !parseInt(text->substr(0, x), w) || !parseInt(text->substr(x + 1), h)) {
+        if (!parseIntPair(*text, w, h)) {
             cursor.fail("--size: expected WxH such as 800x600, got '" + *text + "'");
         } else if (w < 1 || h < 1 || w > 65536 || h > 65536) {
             cursor.fail("--size " + *text + ": width and height must be 1 to 65536 (the backend may allow less)");

@@ -66,6 +66,9 @@ void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
 
+// "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
+bool parseIntPair(const std::string& text, int& first, int& second);
+
 // The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
 std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/IndexRanges.h"
 #include "scene/MeshBuild.h"
 
 namespace frugal {
@@ -65,7 +66,14 @@ struct InstanceView {
     std::vector<Plane> planes;  // clip planes in object space
     glm::dvec4 eye{0.0};        // homogeneous: (eye, 1) for perspective, (towards the viewer, 0) for ortho
     bool mirrored = false;      // window-space winding is the opposite of object space
-    double eyeScale = 0.0;      // size of the numbers in facing tests (for their margin)
+    double eyeScale = 0.0;      // |eye.xyz|: the size of the numbers in the cone tests (their margin)
+    // The facing test of a triangle's plane (unit normal n, n·a = d), in float: f = n·eye.xyz − d·eye.w
+    // is > 0 when it faces the eye. It may be drawn when sign·f > −(marginBase + marginPerD·|d|): the
+    // margin (1e-5 of the numbers' size) is far above float rounding (≈1e-7), and never 0, so that a
+    // degenerate plane (n = 0, d = 0) stays undecided, hence kept.
+    glm::vec4 eyeFloat{0.0f};
+    float facingSign = 1.0f;    // −1 when mirrored
+    float marginBase = 0.0f, marginPerD = 0.0f;
 
     InstanceView(const glm::mat4& model, const View& view) {
         const glm::dmat4 m(model), v(view.view), p(view.projection);
@@ -78,29 +86,9 @@ struct InstanceView {
         mirrored = (det < 0.0) != (p[0][0] * p[1][1] < 0.0);
         eyeScale = glm::length(glm::dvec3(eye));
         eyeFloat = glm::vec4(eye);
-        // facingMargin in float: base + per |d|, and never 0, so that a degenerate plane stays undecided.
+        facingSign = mirrored ? -1.0f : 1.0f;
         marginBase = float(kPlaneMargin * (eye.w != 0.0 ? eyeScale : 1.0)) + 1e-30f;
         marginPerD = eye.w != 0.0 ? float(kPlaneMargin) : 0.0f;
-    }
-
-    // The facing test of mayFace in float, for batches: float rounding of these four products is
-    // about 1e-7 of their size, far inside the 1e-5 margin.
-    glm::vec4 eyeFloat{0.0f};
-    float marginBase = 0.0f, marginPerD = 0.0f;
-
-    // Signed facing of a plane (unit normal n, n·a = d) towards the eye: > 0 faces the eye
-    // (front, when not mirrored). The margin says how close to 0 is undecided.
-    double facing(const glm::vec4& plane) const {
-        return double(plane.x) * eye.x + double(plane.y) * eye.y + double(plane.z) * eye.z - double(plane.w) * eye.w;
-    }
-    double facingMargin(const glm::vec4& plane) const {
-        return kPlaneMargin * (eye.w != 0.0 ? eyeScale + std::abs(double(plane.w)) : 1.0);
-    }
-    // A single-sided triangle may be drawn (front in window space, or too close to call).
-    bool mayFace(const glm::vec4& plane) const {
-        if (plane.x == 0.0f && plane.y == 0.0f && plane.z == 0.0f) return true;  // degenerate: undecided
-        const double f = facing(plane);
-        return (mirrored ? -f : f) > -facingMargin(plane);
     }
 
     // Cone tests for a whole cluster: every triangle faces away (cullable), or every one faces the
@@ -178,33 +166,33 @@ bool isSingleSided(const Scene& scene, const Mesh& mesh) {
 // (when `singleSided`).
 void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv, Outcodes& vertices,
                    std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, RangeList& out) {
-    // Facing first, for the whole run at once in float (the same test as mayFace, which it must
-    // agree with; see InstanceView::facingFloat), so that the loop vectorizes.
-    std::uint8_t facing[kClusterTriangles];
-    const bool batched = singleSided && count <= kClusterTriangles;
-    if (batched) {
-        const glm::vec4 e = iv.eyeFloat;
-        const float sign = iv.mirrored ? -1.0f : 1.0f, m0 = iv.marginBase, m1 = iv.marginPerD;
-        const glm::vec4* planes = map.planes.data() + first;
-        for (std::uint32_t i = 0; i < count; ++i) {
+    // Facing first, a batch of triangles at a time in one loop that vectorizes (InstanceView's test).
+    constexpr std::uint32_t kBatch = 128;
+    std::uint8_t facing[kBatch];
+    const glm::vec4 e = iv.eyeFloat;
+    const float sign = iv.facingSign, m0 = iv.marginBase, m1 = iv.marginPerD;
+    std::uint32_t runStart = first, runLength = 0;
+    for (std::uint32_t batch = first; batch < first + count; batch += kBatch) {
+        const std::uint32_t n = std::min(kBatch, first + count - batch);
+        const glm::vec4* planes = map.planes.data() + batch;
+        for (std::uint32_t i = 0; i < n; ++i) {
             const glm::vec4& p = planes[i];
             const float f = p.x * e.x + p.y * e.y + p.z * e.z - p.w * e.w;
-            facing[i] = sign * f > -(m0 + m1 * std::abs(p.w));
+            facing[i] = !singleSided || sign * f > -(m0 + m1 * std::abs(p.w));
         }
-    }
-    std::uint32_t runStart = first, runLength = 0;
-    for (std::uint32_t t = first; t < first + count; ++t) {
-        bool keep = !singleSided || (batched ? facing[t - first] != 0 : iv.mayFace(map.planes[t]));
-        if (keep && !inside) {
-            const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
-            keep = (vertices[tri[0]] & vertices[tri[1]] & vertices[tri[2]]) == 0;
-        }
-        if (keep) {
-            if (runLength == 0) runStart = t;
-            ++runLength;
-        } else if (runLength > 0) {
-            out.add(runStart, runLength);
-            runLength = 0;
+        for (std::uint32_t t = batch; t < batch + n; ++t) {
+            bool keep = facing[t - batch] != 0;
+            if (keep && !inside) {
+                const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
+                keep = (vertices[tri[0]] & vertices[tri[1]] & vertices[tri[2]]) == 0;
+            }
+            if (keep) {
+                if (runLength == 0) runStart = t;
+                ++runLength;
+            } else if (runLength > 0) {
+                out.add(runStart, runLength);
+                runLength = 0;
+            }
         }
     }
     out.add(runStart, runLength);
@@ -275,25 +263,24 @@ std::string cullMethodNames() {
 SceneCuller SceneCuller::prepare(Scene& scene, const MapParams& params) {
     SceneCuller culler;
     culler.maps_.reserve(scene.meshes.size());
-    const double pi = std::numbers::pi;
     for (Mesh& mesh : scene.meshes) {
         std::vector<std::uint32_t> order;
         culler.maps_.push_back(buildMeshMap(mesh, params, order));
         reorderTriangles(mesh, order);
-        std::vector<glm::vec3> samples;
-        samples.reserve(std::size_t(params.thetaBins * params.phiBins * kBinSamples));
-        for (int i = 0; i < params.thetaBins; ++i)
-            for (int j = 0; j < params.phiBins; ++j)
-                for (int si = 0; si < kSampleSide; ++si)
-                    for (int sj = 0; sj < kSampleSide; ++sj) {
-                        // Corners and middles of the cell: edges included, so neighbouring cells agree.
-                        const double theta = pi * (i + si / double(kSampleSide - 1)) / params.thetaBins;
-                        const double phi = 2.0 * pi * (j + sj / double(kSampleSide - 1)) / params.phiBins;
-                        samples.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                                             std::cos(theta));
-                    }
-        culler.binSamples_.push_back(std::move(samples));
     }
+    // The bins' sample directions depend on the bin counts only: one set for every mesh.
+    const double pi = std::numbers::pi;
+    culler.binSamples_.reserve(std::size_t(params.thetaBins * params.phiBins * kBinSamples));
+    for (int i = 0; i < params.thetaBins; ++i)
+        for (int j = 0; j < params.phiBins; ++j)
+            for (int si = 0; si < kSampleSide; ++si)
+                for (int sj = 0; sj < kSampleSide; ++sj) {
+                    // Corners and middles of the cell: edges included, so neighbouring cells agree.
+                    const double theta = pi * (i + si / double(kSampleSide - 1)) / params.thetaBins;
+                    const double phi = 2.0 * pi * (j + sj / double(kSampleSide - 1)) / params.phiBins;
+                    culler.binSamples_.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                                    std::cos(theta));
+                }
     return culler;
 }
 
@@ -373,7 +360,7 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                 const SphereClass sphereClass = classifySphere(map.sphere, model, view);
                 if (sphereClass == SphereClass::Outside) break;
                 const InstanceView iv(model, view);
-                const std::vector<glm::vec3>& samples = binSamples_[std::size_t(instance.mesh)];
+                const std::vector<glm::vec3>& samples = binSamples_;
                 const glm::dvec3 c = map.sphere.center;
                 const double r = map.sphere.radius;
                 // Towards the viewer from the centre, in object space.
@@ -427,17 +414,14 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
 }
 
 std::size_t submittedTriangles(const Scene& scene, const DrawList& list) {
-    std::size_t total = 0;
+    std::uint64_t total = 0;
+    std::vector<IndexRange> runs;
     for (const DrawCommand& command : list) {
         if (command.instance < 0 || std::size_t(command.instance) >= scene.instances.size()) continue;
-        const std::uint64_t count =
-            scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)].triangleCount();
-        for (const IndexRange& range : command.ranges) {
-            const std::uint64_t first = std::min<std::uint64_t>(range.firstTriangle, count);
-            total += std::size_t(std::min<std::uint64_t>(first + range.triangleCount, count) - first);
-        }
+        const Mesh& mesh = scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)];
+        total += normalizeRanges(command.ranges, std::uint32_t(mesh.triangleCount()), runs);
     }
-    return total;
+    return std::size_t(total);
 }
 
 }  // namespace frugal

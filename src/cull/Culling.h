@@ -69,11 +69,12 @@ public:
 
 private:
     std::vector<MeshMap> maps_;
-    // Per mesh, per bin: sample directions of the bin's cell (unit vectors, kBinSamples each).
-    std::vector<std::vector<glm::vec3>> binSamples_;
+    // Per bin: sample directions of the bin's cell (unit vectors, kBinSamples each); the same for
+    // every mesh, since they depend on the bin counts only.
+    std::vector<glm::vec3> binSamples_;
 };
 
-// Triangles a list submits (ranges clamped to their meshes).
+// Triangles a list submits, counted as the backends execute ranges (render/IndexRanges.h).
 std::size_t submittedTriangles(const Scene& scene, const DrawList& list);
 
 }  // namespace frugal

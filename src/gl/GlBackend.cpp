@@ -338,6 +338,8 @@ private:
 
     void setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout);
     bool buildIdPass(GlMesh& mesh);
+    // Reads `size` bytes of a buffer object back into `data` (nothing for size 0).
+    void readBuffer(GLuint buffer, void* data, GLsizeiptr size);
     // Draws runs_ of `mesh` (`triangles` in all) from one streamed index buffer.
     void drawGathered(GlMesh& mesh, std::uint64_t triangles);
 
@@ -593,14 +595,18 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     return meshes_.add(std::move(m));
 }
 
+void GlBackend::readBuffer(GLuint buffer, void* data, GLsizeiptr size) {
+    if (size <= 0) return;
+    // Through GL_COPY_READ_BUFFER: binding GL_ELEMENT_ARRAY_BUFFER would change the bound VAO.
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, buffer);
+    gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, size, data);
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+}
+
 void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
     if (m.indices.empty()) {
-        // Through GL_COPY_READ_BUFFER: binding GL_ELEMENT_ARRAY_BUFFER would change a VAO.
         m.indices.resize(std::size_t(m.triangles) * 3);
-        gl_.BindBuffer(GL_COPY_READ_BUFFER, m.ibo);
-        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)),
-                             m.indices.data());
-        gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+        readBuffer(m.ibo, m.indices.data(), GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)));
     }
     gathered_.resize(std::size_t(triangles) * 3);
     std::uint32_t* out = gathered_.data();
@@ -620,17 +626,10 @@ void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
 }
 
 bool GlBackend::buildIdPass(GlMesh& m) {
-    // Read the mesh's buffers back through GL_COPY_READ_BUFFER (binding GL_ELEMENT_ARRAY_BUFFER
-    // would change the bound VAO's index buffer).
     std::vector<std::uint8_t> vertexData(static_cast<std::size_t>(m.layout.size));
     std::vector<std::uint32_t> indices(std::size_t(m.triangles) * 3);
-    gl_.BindBuffer(GL_COPY_READ_BUFFER, m.vbo);
-    if (!vertexData.empty()) gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, m.layout.size, vertexData.data());
-    gl_.BindBuffer(GL_COPY_READ_BUFFER, m.ibo);
-    if (!indices.empty())
-        gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(indices.size() * sizeof(std::uint32_t)),
-                             indices.data());
-    gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+    readBuffer(m.vbo, vertexData.data(), m.layout.size);
+    readBuffer(m.ibo, indices.data(), GLsizeiptr(indices.size() * sizeof(std::uint32_t)));
 
     // Same sections as the indexed buffer, 3 vertices per triangle, plus the id section.
     const std::size_t n = indices.size();

@@ -84,9 +84,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
 
 void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                                 const std::vector<glm::mat4>& world, const glm::vec4& background) {
-    backend_->clear(target, Rect{0, 0, width, height}, background, 1.0f);
-    backend_->beginFrame(target, frame);
-    draw(full_, world);
+    renderFrame(target, width, height, frame, world, background, full_);
 }
 
 void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,

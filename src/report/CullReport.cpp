@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 
 #include <nlohmann/json.hpp>
+
+#include "base/Stats.h"
 
 namespace frugal {
 
@@ -28,16 +31,6 @@ Json number(float value) {
 
 Json vec3(const glm::vec3& v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
 
-// The median of the values that are not NaN (NaN when there are none); an even count gives the mean
-// of the two middle values.
-double median(std::vector<double> values) {
-    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
-    if (values.empty()) return std::nan("");
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2.0;
-}
-
 // One method's rows over all views, in view order.
 struct MethodRows {
     std::string method;
@@ -58,7 +51,7 @@ std::vector<MethodRows> byMethod(const CullReport& report) {
 }
 
 Json summaryJson(const MethodRows& rows) {
-    std::vector<double> pvs, cull, draw, oracle, full, cullface;
+    std::vector<double> pvs, cull, draw, oracle, full, cullface, cullShare;
     std::size_t totalMisses = 0, totalPixels = 0, viewsWithMisses = 0;
     // The worst view has the largest ratio to the oracle (NaN ranks below any number; ties: the first).
     const ViewResult* worstView = nullptr;
@@ -70,6 +63,7 @@ Json summaryJson(const MethodRows& rows) {
         oracle.push_back(m->ratioToOracle);
         full.push_back(m->ratioToFull);
         cullface.push_back(m->ratioToFullCullface);
+        if (m->drawMs > 0.0) cullShare.push_back(m->cullMs / m->drawMs);
         totalMisses += m->misses;
         totalPixels += m->pixelsDiffering;
         viewsWithMisses += m->misses > 0;
@@ -91,10 +85,40 @@ Json summaryJson(const MethodRows& rows) {
                 {"median_ratio_to_oracle", number(median(oracle))},
                 {"median_ratio_to_full", number(median(full))},
                 {"median_ratio_to_full_cullface", number(median(cullface))},
+                {"median_cull_over_draw", number(cullShare.empty() ? 0.0 : median(cullShare))},
                 {"worst_view", worstJson},
                 {"total_misses", totalMisses},
                 {"total_pixels_differing", totalPixels},
                 {"views_with_misses", viewsWithMisses}};
+}
+
+// Per view class (paper 002 reports partial and whole views apart), classes and methods by name:
+// medians of pvs and of the speed-up over the full draw (plain and with GL face culling), and totals.
+Json byClassJson(const CullReport& report) {
+    std::map<std::string, std::map<std::string, std::vector<const MethodResult*>>> grouped;
+    for (const ViewResult& view : report.views)
+        for (const MethodResult& m : view.methods) grouped[view.viewClass][m.method].push_back(&m);
+    Json byClass = Json::object();
+    for (const auto& [viewClass, methods] : grouped)
+        for (const auto& [method, results] : methods) {
+            std::vector<double> pvs, speedUp, cullfaceSpeedUp;
+            std::size_t misses = 0, pixels = 0;
+            for (const MethodResult* m : results) {
+                pvs.push_back(double(m->pvs));
+                speedUp.push_back(1.0 / m->ratioToFull);
+                cullfaceSpeedUp.push_back(1.0 / m->ratioToFullCullface);
+                misses += m->misses;
+                pixels += m->pixelsDiffering;
+            }
+            byClass[viewClass][method] = Json{{"views", results.size()},
+                                              {"tos", results.front()->tos},
+                                              {"median_pvs", number(median(pvs))},
+                                              {"median_speed_up", number(median(speedUp))},
+                                              {"median_speed_up_over_cullface", number(median(cullfaceSpeedUp))},
+                                              {"total_misses", misses},
+                                              {"total_pixels_differing", pixels}};
+        }
+    return byClass;
 }
 
 // A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
@@ -153,7 +177,8 @@ std::string cullReportJson(const CullReport& report) {
                     {"backend", report.backend},
                     {"timing", report.timing},
                     {"views", std::move(views)},
-                    {"summary", std::move(summary)}};
+                    {"summary", std::move(summary)},
+                    {"by_class", byClassJson(report)}};
     // Invalid UTF-8 in a name (a file path) is replaced rather than thrown on.
     return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }

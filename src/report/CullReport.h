@@ -40,8 +40,11 @@ struct CullReport {
 //   "method","tos","pvs","rvs","misses","waste","pixels_differing","cull_ms","draw_ms",
 //   "ratio_to_oracle","ratio_to_full","ratio_to_full_cullface"}]}],
 //  "summary":{METHOD:{"views","median_pvs","median_cull_ms","median_draw_ms","median_ratio_to_oracle",
-//   "median_ratio_to_full","median_ratio_to_full_cullface","worst_view":{"index","class",
-//   "ratio_to_oracle"},"total_misses","total_pixels_differing","views_with_misses"}}}
+//   "median_ratio_to_full","median_ratio_to_full_cullface","median_cull_over_draw" (of cull ÷ draw per
+//   view: the share of the frame culling takes),"worst_view":{"index","class","ratio_to_oracle"},
+//   "total_misses","total_pixels_differing","views_with_misses"}},
+//  "by_class":{CLASS:{METHOD:{"views","tos","median_pvs","median_speed_up" (full draw ÷ (cull + draw)),
+//   "median_speed_up_over_cullface","total_misses","total_pixels_differing"}}}}
 // Medians of an even count are the mean of the two middle values.
 std::string cullReportJson(const CullReport& report);
 

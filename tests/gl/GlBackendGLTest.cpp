@@ -111,20 +111,24 @@ Buffers drawUnlitTextured(Backend& backend, const Mesh& quad, const Texture& tex
     return out;
 }
 
+// Begins a simple frame on `target` and draws the frontAndBack() mesh uploaded as `mesh`, ids from 100.
+void drawFrontAndBack(Backend& backend, TargetHandle target, MeshHandle mesh, bool writeIds, bool doubleSided = true) {
+    backend.beginFrame(target, simpleFrame(writeIds));
+    DrawParams params;
+    params.mesh = mesh;
+    params.baseColorFactor = kFactor;
+    params.doubleSided = doubleSided;
+    params.firstId = 100;
+    backend.draw(params, all(frontAndBack()));
+}
+
 Buffers drawTwoTriangles(Backend& backend, bool doubleSided, bool writeIds) {
-    const Mesh mesh = frontAndBack();
-    const MeshHandle handle = backend.uploadMesh(mesh);
+    const MeshHandle handle = backend.uploadMesh(frontAndBack());
     EXPECT_NE(handle, kNoHandle);
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
     EXPECT_NE(target, kNoHandle);
     backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
-    backend.beginFrame(target, simpleFrame(writeIds));
-    DrawParams params;
-    params.mesh = handle;
-    params.baseColorFactor = kFactor;
-    params.doubleSided = doubleSided;
-    params.firstId = 100;
-    backend.draw(params, all(mesh));
+    drawFrontAndBack(backend, target, handle, writeIds, doubleSided);
     Buffers out = backend.readBack(target);
     backend.destroyTarget(target);
     return out;
@@ -623,16 +627,6 @@ TEST_P(GlBackendGLTest, MeshWithoutNormalsOrSourcesUsesDefaults) {
 
 bool allIdsZero(const Buffers& b) {
     return std::all_of(b.ids.begin(), b.ids.end(), [](std::uint32_t id) { return id == 0; });
-}
-
-void drawFrontAndBack(Backend& backend, TargetHandle target, MeshHandle mesh, bool writeIds) {
-    backend.beginFrame(target, simpleFrame(writeIds));
-    DrawParams params;
-    params.mesh = mesh;
-    params.baseColorFactor = kFactor;
-    params.doubleSided = true;
-    params.firstId = 100;
-    backend.draw(params, all(frontAndBack()));
 }
 
 TEST_P(GlBackendGLTest, ClearAfterAFrameWithIdsZeroesThemForAFrameWithout) {

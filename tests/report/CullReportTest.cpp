@@ -157,6 +157,26 @@ TEST(CullReportTest, JsonSummaryHasMediansWorstViewAndTotals) {
             EXPECT_TRUE(s.contains(key)) << method << ": " << key;
 }
 
+TEST(CullReportTest, JsonGivesTheCullShareAndMediansPerViewClass) {
+    const nlohmann::json j = nlohmann::json::parse(cullReportJson(fakeReport()));
+    // sphere: cull ÷ draw of 0.125, 0.333…, 0.0714… → the middle one.
+    EXPECT_NEAR(j["summary"]["sphere"]["median_cull_over_draw"].get<double>(), 0.125, 1e-15);
+    EXPECT_EQ(j["summary"]["none"]["median_cull_over_draw"].get<double>(), 0.0);
+
+    const nlohmann::json& byClass = j["by_class"];
+    ASSERT_EQ(byClass.size(), 3u);  // whole, partial, grazing
+    const nlohmann::json& partialSphere = byClass["partial"]["sphere"];
+    EXPECT_EQ(partialSphere["views"], 1);
+    EXPECT_EQ(partialSphere["tos"], 100);
+    EXPECT_EQ(partialSphere["median_pvs"].get<double>(), 30.0);
+    EXPECT_NEAR(partialSphere["median_speed_up"].get<double>(), 3.0 / 2.5, 1e-15);
+    EXPECT_NEAR(partialSphere["median_speed_up_over_cullface"].get<double>(), 2.0 / 2.5, 1e-15);
+    EXPECT_EQ(partialSphere["total_misses"], 2);
+    EXPECT_EQ(partialSphere["total_pixels_differing"], 7);
+    EXPECT_FALSE(byClass["partial"].contains("oracle")) << "only the methods the class has";
+    EXPECT_TRUE(byClass["grazing"].contains("oracle"));
+}
+
 TEST(CullReportTest, NonFiniteNumbersAreNullInJsonAndEmptyInCsv) {
     CullReport r = fakeReport();
     r.views[1].methods[0].ratioToOracle = std::numeric_limits<double>::infinity();
