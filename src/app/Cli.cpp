@@ -18,6 +18,7 @@ usage:
   frugal compare A.png B.png [options]            compare an image with a reference (B)
   frugal diff [SCENE] [options]                   a GL render against the software reference
   frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
+  frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -32,8 +33,8 @@ exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed ou
 void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
-    out << "with no SCENE, render, bench, diff and cull-report use builtin:default.\n";
-    out << "\nrun 'frugal help render' (or info, bench, compare, diff, cull-report) for a command's options.\n" << kExitCodes;
+    out << "with no SCENE, render, bench, diff, cull-report and reuse-bench use builtin:default.\n";
+    out << "\nrun 'frugal help render' (or info, bench, compare, diff, reuse-bench, cull-report) for a command's options.\n" << kExitCodes;
 }
 
 }  // namespace
@@ -51,6 +52,7 @@ const CommandEntry kCommands[] = {
     {"render", runRender, renderHelp, true}, {"info", runInfo, infoHelp, false},
     {"bench", runBench, benchHelp, true},    {"compare", runCompare, compareHelp, false},
     {"diff", runDiff, diffHelp, true},       {"cull-report", runCullReport, cullReportHelp, true},
+    {"reuse-bench", runReuseBench, reuseBenchHelp, true},
 };
 
 const CommandEntry* findCommand(const std::string& name) {

@@ -13,6 +13,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
 int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
@@ -20,5 +21,6 @@ const char* benchHelp();
 const char* compareHelp();
 const char* diffHelp();
 const char* cullReportHelp();
+const char* reuseBenchHelp();
 
 }  // namespace frugal

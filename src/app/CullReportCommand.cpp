@@ -17,8 +17,10 @@
 
 #include "app/Cli.h"
 #include "app/Command.h"
+#include "app/CameraPath.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
+#include "app/Gnuplot.h"
 #include "base/Stats.h"
 #include "cull/Views.h"
 #include "io/ImageIO.h"
@@ -72,75 +74,6 @@ struct Outputs {
     std::string json, csv, plot, cameraPath;
 };
 
-// "--camera-path FILE: entry 3: eye: expected 3 numbers"
-Result<std::vector<ReportView>> readCameraPath(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return Error{"--camera-path " + path + ": cannot read the file"};
-    nlohmann::json doc;
-    try {
-        doc = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        return Error{"--camera-path " + path + ": not JSON (" + std::string(e.what()) + ")"};
-    }
-    if (doc.is_object() && doc.contains("views")) doc = doc["views"];
-    if (!doc.is_array() || doc.empty())
-        return Error{"--camera-path " + path + ": expected a non-empty list of {\"eye\",\"target\",\"up\",\"fov\"}"};
-    std::vector<ReportView> views;
-    for (std::size_t i = 0; i < doc.size(); ++i) {
-        const nlohmann::json& entry = doc[i];
-        const std::string where = "--camera-path " + path + ": entry " + std::to_string(i) + ": ";
-        auto vec = [&](const char* key, bool required) -> Result<std::optional<glm::vec3>> {
-            if (!entry.is_object() || !entry.contains(key)) {
-                if (required) return Error{where + key + ": missing"};
-                return std::optional<glm::vec3>{};
-            }
-            const nlohmann::json& v = entry[key];
-            if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
-                return Error{where + key + ": expected 3 numbers"};
-            const glm::vec3 value(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
-            if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z))
-                return Error{where + key + ": not a finite point"};
-            return std::optional<glm::vec3>{value};
-        };
-        ReportView view;
-        view.viewClass = "path";
-        Result<std::optional<glm::vec3>> eye = vec("eye", true), target = vec("target", true), up = vec("up", false);
-        if (!eye) return Error{eye.error()};
-        if (!target) return Error{target.error()};
-        if (!up) return Error{up.error()};
-        view.camera.eye = **eye;
-        view.camera.target = **target;
-        if (*up) view.camera.up = **up;
-        if (entry.contains("fov")) {
-            if (!entry["fov"].is_number() || !(entry["fov"].get<double>() > 0.0 && entry["fov"].get<double>() < 180.0))
-                return Error{where + "fov: expected degrees in (0, 180)"};
-            view.camera.yfovDegrees = entry["fov"].get<float>();
-        }
-        views.push_back(view);
-    }
-    return views;
-}
-
-// Runs gnuplot on the script; "" or why it failed.
-std::string runGnuplot(const std::string& script) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-        return "gnuplot not found (Debian: apt-get install gnuplot-nox)";
-    const std::string command = "gnuplot '" + script + "' 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return "cannot run gnuplot";
-    std::string output;
-    char buffer[512];
-    while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-    const int status = pclose(pipe);
-    if (status != 0) {
-        std::string first = output.substr(0, output.find('\n'));
-        return "gnuplot failed on " + script + (first.empty() ? "" : ": " + first);
-    }
-    return {};
-}
-
-// gnuplot gets its script's path inside single quotes on a shell line.
-bool hasSingleQuote(const std::string& path) { return path.find('\'') != std::string::npos; }
 
 }  // namespace
 
@@ -215,12 +148,12 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     std::vector<ReportView> views;
     std::string timing = "cold";
     if (!outputs.cameraPath.empty()) {
-        Result<std::vector<ReportView>> path = readCameraPath(outputs.cameraPath);
+        Result<std::vector<CameraSpec>> path = readCameraPath(outputs.cameraPath);
         if (!path) {
             err << "error: " << path.error() << "\n";
             return kExitError;
         }
-        views = std::move(*path);
+        for (const CameraSpec& camera : *path) views.push_back(ReportView{"path", camera});
         timing = "path";
     } else if (options.camera.sceneCamera || options.camera.eye || options.camera.target) {
         views.push_back(ReportView{"camera", options.camera});

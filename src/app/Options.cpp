@@ -246,8 +246,16 @@ Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
 }
 
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
+    CameraSpec camera = options.camera;
+    if (!options.cameraPath.empty()) {
+        const int first = options.frames ? options.frames->first : 0;
+        const int last = int(options.cameraPath.size()) - 1;
+        camera = options.cameraPath[std::size_t(std::clamp(frame - first, 0, last))];
+        camera.znear = options.camera.znear;
+        camera.zfar = options.camera.zfar;
+    }
     Result<FrameSetup> setup =
-        frugal::setUpFrame(scene, options.camera, frameTimeOf(options, scene, frame), options.width, options.height, writeIds);
+        frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), options.width, options.height, writeIds);
     if (!setup) return Error{options.scene + ": " + setup.error()};
     return setup;
 }

@@ -50,6 +50,9 @@ struct RenderOptions {
     std::string backendName = "auto";  // as given, for messages
     int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
     CameraSpec camera;
+    // --camera-path (render, reuse-bench; app/CameraPath.h): entry i is frame first + i, the last
+    // one holds; --near/--far still apply. Empty: `camera` for every frame.
+    std::vector<CameraSpec> cameraPath;
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;
     std::optional<double> fps;    // default: the scene's

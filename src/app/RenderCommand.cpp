@@ -10,13 +10,14 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
+#include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 
 namespace frugal {
 
 const char* renderHelp() {
-    return R"(usage: frugal render [SCENE] [-o FILE.png] [options]
+    static const std::string text = std::string(R"(usage: frugal render [SCENE] [-o FILE.png] [options]
 
 Renders SCENE (default builtin:default) offscreen and writes the colour image.
 
@@ -35,7 +36,13 @@ culling (only the triangles that may be visible are submitted; src/cull/Culling.
                         conservative never drops a triangle that owns a pixel; paper reproduces
                         paper 002 and misses some; oracle draws exactly the visible set found by an
                         id pass (a lower bound, not a shortcut). See 'frugal cull-report'.
-)" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n";
+)" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
+R"(
+  --reuse               temporal reuse: with the camera still, copy what static instances render
+                        from a static pair (one more target) and redraw only what changed; the
+                        images are the same, byte for byte. The JSON gets per-frame state counts.
+)") + reuseOptionsHelp();
+    return text.c_str();
 }
 
 namespace {
@@ -77,15 +84,27 @@ std::string checkPattern(const std::string& flag, const std::string& path) {
 
 nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
+// One frame with temporal reuse: the plan, executed; its statistics as JSON.
+nlohmann::json renderReused(TemporalReuse& reuse, SceneRenderer& renderer, TargetHandle target, TargetHandle staticTarget,
+                            const FrameSetup& setup, const DrawList* list, const glm::vec4& background) {
+    // Without a list: the whole scene.
+    const FramePlan plan = list ? reuse.plan(setup.params, setup.world, *list, background)
+                                : reuse.plan(setup.params, setup.world, background);
+    renderer.execute(plan, target, staticTarget, setup.params, setup.world, background);
+    return reuseStatsJson(reuse.stats());
+}
+
 }  // namespace
 
 int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     Outputs outputs;
     CullOptions cull;
+    ReuseCliOptions reuseOptions;
     CommandLine command{"render", renderHelp(), &options};
-    command.option = [&outputs, &cull](const std::string& flag, ArgCursor& cursor) {
+    command.option = [&outputs, &cull, &reuseOptions, &options](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, true)) return true;
+        if (parseReuseOption(flag, cursor, reuseOptions, options, true)) return true;
         if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
         const std::optional<std::string> path = cursor.value(flag);
         if (!path) return true;
@@ -97,8 +116,10 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         return true;
     };
     command.positional = sceneArgument(options);
-    command.finish = [&outputs, &options](ArgCursor& cursor) {
-        if (!hasExtension(outputs.color, ".png"))
+    command.finish = [&outputs, &options, &cull, &reuseOptions](ArgCursor& cursor) {
+        if (reuseOptions.enabled && cull.method == CullMethod::Oracle)
+            cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+        else if (!hasExtension(outputs.color, ".png"))
             cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
         else if (!outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
             cursor.fail("--depth " + outputs.depth + ": name it .png (16-bit) or .pfm (float32)");
@@ -135,6 +156,26 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const TargetHandle target = session.target;
     const std::vector<std::string>& log = session.log;
 
+    // Temporal reuse: the static pair is one more target of the same size.
+    TargetHandle staticTarget = kNoHandle;
+    std::optional<TemporalReuse> reuse;
+    if (reuseOptions.enabled) {
+        staticTarget = backend.createTarget(options.width, options.height);
+        if (staticTarget == kNoHandle) {
+            err << "error: --reuse: " << backend.name() << " could not create the static pair (" << options.width << "x"
+                << options.height << ", " << staticPairBytes(options.width, options.height) << " bytes)\n";
+            return kExitError;
+        }
+        reuse.emplace(scene, options.width, options.height, reuseOptions.settings);
+    }
+    struct StaticPair {
+        Backend& backend;
+        TargetHandle target;
+        ~StaticPair() {
+            if (target != kNoHandle) backend.destroyTarget(target);
+        }
+    } staticPair{backend, staticTarget};
+
     const int frameCount = range.last - range.first + 1;
     nlohmann::json frames = nlohmann::json::array();
     nlohmann::json cameraJson;
@@ -150,7 +191,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const double time = setup->time;
         const View& view = setup->view;
 
-        nlohmann::json cullJson;
+        nlohmann::json cullJson, reuseJson;
         auto t0 = Clock::now();
         if (method == CullMethod::Oracle) {
             // The id pass and the oracle's own index buffers come before the clock starts.
@@ -171,8 +212,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             for (const DrawCommand& draw : list) ranges += draw.ranges.size();
             cullJson = {{"tos", scene.triangleCount()}, {"pvs", submittedTriangles(scene, list)}, {"cull_ms", cullMs},
                         {"ranges", ranges}};
-            renderer.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background,
-                                 list);
+            if (reuse)
+                reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, &list, options.background);
+            else
+                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                     options.background, list);
+        } else if (reuse) {
+            reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, nullptr, options.background);
         } else {
             renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
                                  options.background);
@@ -204,12 +250,20 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         frames.push_back({{"frame", frame}, {"time", time}, {"render_ms", ms(t1 - t0)}, {"readback_ms", ms(t2 - t1)},
                           {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});
         if (!cullJson.is_null()) frames.back().update(cullJson);
+        if (!reuseJson.is_null()) frames.back()["reuse"] = reuseJson;
         if (!options.quiet) {
             err << "frame " << frame << " (" << (frame - range.first + 1) << "/" << frameCount << "): "
                 << fmt(ms(t1 - t0)) << " ms";
             if (!cullJson.is_null())
                 err << " (" << cullMethodName(method) << ": " << cullJson["pvs"].get<std::size_t>() << " of "
                     << scene.triangleCount() << " triangles)";
+            if (reuse) {
+                const ReuseFrameStats& stats = reuse->stats();
+                err << " (" << reuseModeName(stats.mode) << ": " << stats.redrawnTris << " of " << stats.drawnTris
+                    << " triangles drawn";
+                if (stats.mode == ReuseMode::Full) err << "; " << stats.reason;
+                err << ")";
+            }
             err << " -> " << framePath(outputs.color, frame, sequence) << "\n";
         }
     }
@@ -227,6 +281,10 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             {"backend_log", log},
             {"camera", cameraJson},
             {"cull", cullMethodName(method)},
+            {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
+                                             {"fallback", reuseOptions.settings.fallback},
+                                             {"static_pair_bytes", staticPairBytes(options.width, options.height)}}
+                            : nlohmann::json(nullptr)},
             {"frames", frames},
         };
         const std::string text = meta.dump(2) + "\n";

@@ -838,7 +838,7 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
         gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);
         depthBit = 0;
     }
-    if (ids) {
+    if (ids && (source->idsDirty || dest->idsDirty)) {  // zeros onto zeros: nothing to copy
         dest->idsDirty = dest->idsDirty || source->idsDirty;  // copying zeros keeps them zero
         readFrom(*source, GL_COLOR_ATTACHMENT1);
         drawInto(*dest, DrawSet::Ids);

@@ -20,4 +20,25 @@ using DrawList = std::vector<DrawCommand>;
 // Every instance of the scene, whole, in instance order.
 DrawList fullDrawList(const Scene& scene);
 
+// The two targets a frame plan names: the one the frame is rendered into, and the static pair of
+// temporal reuse (src/reuse/), which holds what the static instances alone render to.
+enum class PlanTarget : std::uint8_t { Render, Static };
+
+// One step of a frame plan, executed in order:
+//   Clear: `rects` of `to` to the background colour, far depth and id 0;
+//   Copy:  `rects` from `from` to `to`: colour, depth, and ids when the frame writes them;
+//   Draw:  `draws` into `to` (z-buffered, in list order, with the frame's camera and light).
+struct PlanStep {
+    enum class Op : std::uint8_t { Clear, Copy, Draw };
+    Op op = Op::Draw;
+    PlanTarget from = PlanTarget::Render;
+    PlanTarget to = PlanTarget::Render;
+    std::vector<Rect> rects;
+    DrawList draws;
+    // Draw: this list instead of `draws` when set (not owned: it must outlive the plan's execution).
+    const DrawList* list = nullptr;
+};
+
+using FramePlan = std::vector<PlanStep>;
+
 }  // namespace frugal

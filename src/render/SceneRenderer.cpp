@@ -94,4 +94,28 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
     draw(list, world);
 }
 
+void SceneRenderer::execute(const FramePlan& plan, TargetHandle target, TargetHandle staticTarget,
+                            const FrameParams& frame, const std::vector<glm::mat4>& world, const glm::vec4& background) {
+    const auto handle = [&](PlanTarget which) { return which == PlanTarget::Render ? target : staticTarget; };
+    TargetHandle drawing = kNoHandle;  // the target of the frame begun last
+    for (const PlanStep& step : plan) {
+        switch (step.op) {
+        case PlanStep::Op::Clear:
+            for (const Rect& rect : step.rects) backend_->clear(handle(step.to), rect, background, 1.0f);
+            break;
+        case PlanStep::Op::Copy:
+            // Ids only when the frame writes them: otherwise both targets hold the zeros of their last
+            // whole clear (a frame that changes writeIds is never a reuse frame).
+            for (const Rect& rect : step.rects)
+                backend_->copy(handle(step.from), handle(step.to), rect, true, true, frame.writeIds);
+            break;
+        case PlanStep::Op::Draw:
+            if (drawing != handle(step.to)) backend_->beginFrame(handle(step.to), frame);
+            drawing = handle(step.to);
+            draw(step.list ? *step.list : step.draws, world);
+            break;
+        }
+    }
+}
+
 }  // namespace frugal

@@ -34,9 +34,17 @@ public:
     void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                      const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list);
 
+    // Executes a frame plan (render/Plan.h): Render is `target`, Static is `staticTarget` (both
+    // width × height; kNoHandle for a plan that never names the static pair).
+    void execute(const FramePlan& plan, TargetHandle target, TargetHandle staticTarget, const FrameParams& frame,
+                 const std::vector<glm::mat4>& world, const glm::vec4& background);
+
     // true: every draw culls back faces, whatever its material says (the fair timing baseline of
     // culling reports: the full draw with GL face culling on). false (default): as materials say.
     void setCullAllBackFaces(bool on) { cullAllBackFaces_ = on; }
+
+    // The full draw list (fullDrawList of the scene), as renderFrame draws it.
+    const DrawList& fullList() const { return full_; }
 
     Backend& backend() { return *backend_; }
     const Scene& scene() const { return *scene_; }

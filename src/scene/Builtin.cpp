@@ -13,6 +13,11 @@
 //       COUNT copies of another scene side by side along x (paper 002's "Bunny ×3"); every copy is
 //       its own set of instances with its own ids, the meshes are shared. SCENE's cameras are
 //       dropped (the view is fitted to the row). `of` comes last and may be any file or built-in.
+//   builtin:orbit?count=8&seconds=4&duty=1&of=SCENE
+//       SCENE as it is, with COUNT small cubes circling in front of it (one turn in SECONDS, in 8
+//       hops; with DUTY < 1 a cube moves for that share of each hop and rests, the cubes staggered,
+//       so cubes start and stop on most frames), seen by a fixed camera: a large static model crossed by a few moving objects, the case where the
+//       granularity of temporal reuse's extents matters. SCENE's cameras are dropped; `of` comes last.
 //   builtin:default
 //       The dominoes with a checkered floor: what `frugal render` draws with no scene.
 #include <algorithm>
@@ -330,6 +335,65 @@ Result<Scene> makeCopies(ParamReader& in, const LoadOptions& options) {
     return scene;
 }
 
+Result<Scene> makeOrbit(ParamReader& in, const LoadOptions& options) {
+    const double count = in.number("count", 8, 1, 10000);
+    const double seconds = in.number("seconds", 4, 0.1, 3600);
+    const double duty = in.number("duty", 1, 0.05, 1);
+    const std::string of = in.text("of");
+    if (!in.error.empty()) return Error{in.error};
+    if (of.empty()) return Error{in.scene + ": parameter 'of' (the scene to circle) is missing"};
+    Result<Scene> loaded = loadScene(of, options);
+    if (!loaded) return loaded;
+    Scene scene = std::move(*loaded);
+    const Bounds bounds = scene.bounds(0.0);
+    const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const float radius = bounds.empty() || bounds.radius() <= 0.0f ? 1.0f : bounds.radius();
+    scene.cameras.clear();
+    for (Node& node : scene.nodes) node.camera = -1;
+
+    const float side = 0.08f * radius, ring = 0.6f * radius;
+    const int n = int(count);
+    Material material;
+    material.name = "orbiter";
+    material.baseColorFactor = {0.95f, 0.85f, 0.2f, 1.0f};
+    scene.materials.push_back(material);
+    scene.meshes.push_back(makeBox(glm::vec3(-side / 2), glm::vec3(side / 2), int(scene.materials.size()) - 1, "orbiter"));
+    const int mesh = int(scene.meshes.size()) - 1;
+    // A turn is 8 hops; a cube moves for `duty` of each hop's time and rests for the rest, the
+    // cubes staggered, so that with duty < 1 some start and some stop on most frames.
+    constexpr int kHops = 8, kKeysPerHop = 8;
+    const float hopTime = float(seconds) / kHops, hopAngle = glm::two_pi<float>() / kHops;
+    for (int i = 0; i < n; ++i) {
+        Node node;
+        node.name = "orbiter" + std::to_string(i);
+        node.meshes.push_back(mesh);
+        const int index = addNode(scene, node, -1);
+        AnimChannel channel;
+        channel.node = index;
+        channel.path = AnimPath::Translation;
+        const float phase = glm::two_pi<float>() * float(i) / float(n);
+        const float depth = centre.z + radius * (0.4f + 0.2f * float(i % 3));  // in front of the model
+        const float stagger = duty < 1.0 ? hopTime * float(i) / float(n) : 0.0f;
+        const auto key = [&](float time, float angle) {
+            channel.times.push_back(time);
+            channel.values.push_back({centre.x + ring * std::cos(angle), centre.y + ring * std::sin(angle), depth, 0.0f});
+        };
+        if (stagger > 0.0f) key(0.0f, phase);
+        for (int h = 0; h < kHops; ++h)
+            for (int k = 0; k <= kKeysPerHop; ++k) {
+                if (h > 0 && k == 0 && duty >= 1.0) continue;  // continuous: hops share their end keys
+                const float u = float(k) / kKeysPerHop;
+                key(stagger + hopTime * (float(h) + float(duty) * u), phase + hopAngle * (float(h) + u));
+            }
+        Animation animation;
+        animation.name = node.name;
+        animation.channels.push_back(std::move(channel));
+        scene.animations.push_back(std::move(animation));
+    }
+    addCamera(scene, centre + glm::vec3(0.0f, 0.3f * radius, 3.2f * radius), centre, 0.05f * radius, 8.0f * radius);
+    return scene;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> builtinScenes() {
@@ -338,6 +402,7 @@ std::vector<std::pair<std::string, std::string>> builtinScenes() {
         {"builtin:dominoes", "falling dominoes; ?polygons=804&static=0.5544&floor=0 (6 polygons a domino)"},
         {"builtin:cubes", "spinning cubes; ?count=28&seconds=10&seed=1"},
         {"builtin:copies", "copies of a scene side by side; ?count=3&of=SCENE (of last)"},
+        {"builtin:orbit", "a static scene circled by moving cubes; ?count=8&seconds=4&duty=1&of=SCENE (of last)"},
     };
 }
 
@@ -369,6 +434,7 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
     else if (name == "dominoes") made = makeDominoes(in, false);
     else if (name == "cubes") made = makeCubes(in);
     else if (name == "copies") made = makeCopies(in, options);
+    else if (name == "orbit") made = makeOrbit(in, options);
     else {
         std::string known;
         for (const auto& [n, _] : builtinScenes()) known += (known.empty() ? "" : ", ") + n;
@@ -379,8 +445,10 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
 
     Scene& scene = *made;
     scene.source = spec;
-    if (name != "copies")  // the copied scene's loader finalised its meshes already
+    if (name != "copies" && name != "orbit")  // the loaded scene's meshes are finalised already
         for (Mesh& mesh : scene.meshes) finalizeMesh(mesh, options.optimizeOrder);
+    else if (name == "orbit")
+        finalizeMesh(scene.meshes.back(), options.optimizeOrder);
     scene.buildInstances();
     return made;
 }

@@ -74,6 +74,9 @@ glm::vec4 sampleChannel(const AnimChannel& channel, double time) {
     case Interp::Step:
         return value(k0);
     case Interp::Linear:
+        // Between two equal keys the value is held exactly (mix would round it by an ulp or so):
+        // a held pose stays bit-identical, which is what temporal reuse takes for "static".
+        if (value(k0) == value(k1)) return value(k0);
         if (rotation) return fromQuat(glm::slerp(toQuat(value(k0)), toQuat(value(k1)), t));
         return glm::mix(value(k0), value(k1), t);
     case Interp::CubicSpline: {

@@ -1,5 +1,7 @@
 #include "software/Pipeline.h"
 
+#include <functional>
+
 #include <algorithm>
 #include <cassert>
 #include <iterator>
@@ -189,6 +191,10 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     }
 }
 
+namespace {
+constexpr std::size_t kInlineFlushTriangles = 256;
+}  // namespace
+
 void Pipeline::flush(const TargetView& target) {
     if (segmentCount_ == 0) {
         drawCount_ = 0;
@@ -198,8 +204,20 @@ void Pipeline::flush(const TargetView& target) {
     const int tilesX = (target.width + kTileSize - 1) / kTileSize;
     const int tilesY = (target.height + kTileSize - 1) / kTileSize;
     const int tileCount = tilesX * tilesY;
-    pool_.run(segmentCount_, [&](std::size_t s, int) { segments_[s]->close(tileCount); });
-    pool_.run(std::size_t(tileCount), [&](std::size_t tileIndex, int worker) {
+    // A small flush (a few hundred triangles: a reuse frame's redraws) runs on the calling thread:
+    // waking the workers twice costs more than the work. Tiles are independent, so the result is
+    // the same either way.
+    std::size_t pending = 0;
+    for (std::size_t s = 0; s < segmentCount_; ++s) pending += segments_[s]->triangles.size();
+    const auto run = [&](std::size_t count, const std::function<void(std::size_t, int)>& fn) {
+        if (pending < kInlineFlushTriangles) {
+            for (std::size_t i = 0; i < count; ++i) fn(i, 0);
+        } else {
+            pool_.run(count, fn);
+        }
+    };
+    run(segmentCount_, [&](std::size_t s, int) { segments_[s]->close(tileCount); });
+    run(std::size_t(tileCount), [&](std::size_t tileIndex, int worker) {
         bool any = false;
         for (std::size_t s = 0; s < segmentCount_ && !any; ++s)
             any = segments_[s]->tileStart[tileIndex + 1] > segments_[s]->tileStart[tileIndex];

@@ -115,7 +115,7 @@ TEST(BuiltinTest, CubesSpinAndAreReproducible) {
 
 TEST(BuiltinTest, BadSpecsGetOneLineErrors) {
     const std::pair<const char*, const char*> cases[] = {
-        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes, builtin:copies)"},
+        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes, builtin:copies, builtin:orbit)"},
         {"builtin:cubes?count=abc", "builtin:cubes?count=abc: count=abc is not a number"},
         {"builtin:cubes?count=0", "builtin:cubes?count=0: count=0 is out of range [1, 1e+06]"},
         {"builtin:dominoes?static=2", "builtin:dominoes?static=2: static=2 is out of range [0, 1]"},
@@ -159,6 +159,47 @@ TEST(BuiltinTest, CopiesLaySeveralScenesSideBySideWithTheirOwnIds) {
 
     EXPECT_EQ(loadScene("builtin:copies?count=2").error(), "builtin:copies?count=2: parameter 'of' (the scene to copy) is missing");
     EXPECT_EQ(loadScene("builtin:copies?of=/nonexistent.obj").error(), "/nonexistent.obj: no such file");
+}
+
+}  // namespace
+}  // namespace frugal
+
+namespace frugal {
+namespace {
+
+TEST(BuiltinTest, OrbitCirclesAStaticSceneWithCubesThatStartAndStop) {
+    Result<Scene> base = loadScene("builtin:cubes?count=3");
+    Result<Scene> orbit = loadScene("builtin:orbit?count=5&seconds=2&duty=0.5&of=builtin:cubes?count=3");
+    ASSERT_TRUE(base.ok() && orbit.ok()) << (orbit.ok() ? "" : orbit.error());
+    EXPECT_EQ(orbit->instances.size(), base->instances.size() + 5);
+    ASSERT_EQ(orbit->cameras.size(), 1u);  // one fixed camera of its own
+    // The camera node is not animated: the view is the same at every frame.
+    EXPECT_EQ(orbit->worldTransforms(0.0)[orbit->cameras[0].node], orbit->worldTransforms(1.3)[orbit->cameras[0].node]);
+
+    // With duty 0.5 every cube rests (bit-identical pose) on some frames and moves on others.
+    const std::size_t first = base->instances.size();
+    std::vector<int> rested(5, 0), moved(5, 0);
+    for (int frame = 1; frame < 60; ++frame) {
+        const std::vector<glm::mat4> before = orbit->worldTransforms((frame - 1) / orbit->fps);
+        const std::vector<glm::mat4> now = orbit->worldTransforms(frame / orbit->fps);
+        for (std::size_t k = 0; k < 5; ++k) {
+            const int node = orbit->instances[first + k].node;
+            (before[node] == now[node] ? rested : moved)[k] += 1;
+        }
+    }
+    for (std::size_t k = 0; k < 5; ++k) {
+        EXPECT_GT(rested[k], 10) << "cube " << k;
+        EXPECT_GT(moved[k], 10) << "cube " << k;
+    }
+
+    Result<Scene> continuous = loadScene("builtin:orbit?count=2&of=builtin:cubes?count=1");
+    ASSERT_TRUE(continuous.ok());
+    EXPECT_EQ(changedInstances(*continuous, 5), 3);  // the spinning cube and both orbiters
+
+    Result<Scene> missing = loadScene("builtin:orbit?count=2");
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().find("parameter 'of'"), std::string::npos) << missing.error();
+    EXPECT_FALSE(loadScene("builtin:orbit?duty=0&of=builtin:cubes").ok());
 }
 
 }  // namespace

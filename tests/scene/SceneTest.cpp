@@ -62,6 +62,22 @@ TEST(SceneTest, LinearStepAndClampedSampling) {
     EXPECT_FLOAT_EQ(sampleChannel(channel, 2.0).x, 10.0f);
 }
 
+TEST(SceneTest, EqualKeysHoldTheirValueBitForBit) {
+    // A pose held between two equal keys must not drift by an ulp (temporal reuse compares poses
+    // exactly): x·(1−t) + x·t is not always x in float.
+    AnimChannel channel;
+    channel.path = AnimPath::Translation;
+    const glm::vec4 held{0.1f, 1.0f / 3.0f, 2.7182817f, 0.0f};
+    channel.times = {0.0f, 1.0f, 2.0f};
+    channel.values = {{0, 0, 0, 0}, held, held};
+    for (int k = 1; k < 100; ++k) EXPECT_EQ(sampleChannel(channel, 1.0 + k / 100.0), held) << k;
+    AnimChannel rotation = channel;
+    rotation.path = AnimPath::Rotation;
+    const glm::quat q = glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3)));
+    rotation.values = {{0, 0, 0, 1}, {q.x, q.y, q.z, q.w}, {q.x, q.y, q.z, q.w}};
+    for (int k = 1; k < 100; ++k) EXPECT_EQ(sampleChannel(rotation, 1.0 + k / 100.0), rotation.values[1]) << k;
+}
+
 TEST(SceneTest, RotationsSlerpAtConstantAngularSpeed) {
     AnimChannel channel;
     channel.path = AnimPath::Rotation;

@@ -1,0 +1,58 @@
+#include "app/CameraPath.h"
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+namespace frugal {
+
+Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return Error{"--camera-path " + path + ": cannot read the file"};
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        return Error{"--camera-path " + path + ": not JSON (" + std::string(e.what()) + ")"};
+    }
+    if (doc.is_object() && doc.contains("views")) doc = doc["views"];
+    if (!doc.is_array() || doc.empty())
+        return Error{"--camera-path " + path + ": expected a non-empty list of {\"eye\",\"target\",\"up\",\"fov\"}"};
+    std::vector<CameraSpec> views;
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const nlohmann::json& entry = doc[i];
+        const std::string where = "--camera-path " + path + ": entry " + std::to_string(i) + ": ";
+        auto vec = [&](const char* key, bool required) -> Result<std::optional<glm::vec3>> {
+            if (!entry.is_object() || !entry.contains(key)) {
+                if (required) return Error{where + key + ": missing"};
+                return std::optional<glm::vec3>{};
+            }
+            const nlohmann::json& v = entry[key];
+            if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+                return Error{where + key + ": expected 3 numbers"};
+            const glm::vec3 value(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+            if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z))
+                return Error{where + key + ": not a finite point"};
+            return std::optional<glm::vec3>{value};
+        };
+        CameraSpec view;
+        Result<std::optional<glm::vec3>> eye = vec("eye", true), target = vec("target", true), up = vec("up", false);
+        if (!eye) return Error{eye.error()};
+        if (!target) return Error{target.error()};
+        if (!up) return Error{up.error()};
+        view.eye = **eye;
+        view.target = **target;
+        if (*up) view.up = **up;
+        if (entry.contains("fov")) {
+            if (!entry["fov"].is_number() || !(entry["fov"].get<double>() > 0.0 && entry["fov"].get<double>() < 180.0))
+                return Error{where + "fov: expected degrees in (0, 180)"};
+            view.yfovDegrees = entry["fov"].get<float>();
+        }
+        views.push_back(view);
+    }
+    return views;
+}
+
+}  // namespace frugal

@@ -1,0 +1,36 @@
+// The command-line side of temporal reuse, shared by `frugal render --reuse` and `frugal reuse-bench`:
+// the options, the static pair's target, and a frame's statistics as JSON.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "app/Options.h"
+#include "reuse/Reuse.h"
+
+namespace frugal {
+
+struct ReuseCliOptions {
+    bool enabled = false;    // render: --reuse
+    ReuseOptions settings;   // --reuse-grain N, --reuse-cell PX, --no-fallback, --exact-static
+};
+
+// --reuse (when `withSwitch`), --reuse-grain, --reuse-cell, --no-fallback and --exact-static; also --camera-path
+// FILE into `render.cameraPath`. False when `flag` is none of them.
+bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOptions& options, RenderOptions& render,
+                      bool withSwitch);
+// The help lines of those options.
+const char* reuseOptionsHelp();
+
+// The static pair's size in bytes for a width × height target (colour RGBA8, depth 24-bit in 32,
+// ids 32-bit: 12 bytes a pixel).
+std::uint64_t staticPairBytes(int width, int height);
+
+// {"mode","reason","p_dd","p_ds","p_sd","p_ss" (triangles),"instances":{…},"copied_px","cleared_px",
+//  "redrawn_tris","static_redrawn_tris","rects","overlap_ms","extent_ms"}
+nlohmann::json reuseStatsJson(const ReuseFrameStats& stats);
+
+}  // namespace frugal
