@@ -247,6 +247,20 @@ inline std::string describeOptions(const ReuseOptions& o) {
            (o.paperSteps ? ", the paper's steps" : "");
 }
 
+// runSequence on `backend`, for a sequence that must come out exact: every frame run, no pixel
+// differing in depth, and none at all unless `tiesAllowed` (the scenes made for depth ties).
+inline SequenceResult expectExactOn(Backend& backend, const Scene& scene, int width, int height, int frames,
+                                    const Frames& frame, const ReuseOptions& options = {}, bool tiesAllowed = false) {
+    SCOPED_TRACE(describeOptions(options) + " on " + backend.name());
+    SequenceResult r = runSequence(backend, scene, width, height, frames, frame, options);
+    EXPECT_EQ(r.stats.size(), std::size_t(frames));
+    EXPECT_EQ(r.errors, 0u) << r.describe();
+    if (!tiesAllowed) {
+        EXPECT_EQ(r.ties, 0u) << r.describe();
+    }
+    return r;
+}
+
 // A fixed camera and the scene's animation, with the frame's draw list edited by `edit`.
 inline Frames withCamera(const Scene& scene, const CameraSpec& camera, int width, int height,
                          std::function<void(int, SequenceFrame&)> edit = {}) {

@@ -42,28 +42,50 @@ std::vector<std::string> filesIn(const fs::path& dir) {
     return names;
 }
 
-std::vector<std::string> CliRun::errLines() const {
-    std::vector<std::string> lines;
-    std::stringstream in(err);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
 }
 
-namespace {
-
-std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
+std::vector<std::string> csvFields(const std::string& line) {
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    return fields;
 }
 
-}  // namespace
+std::string joined(const std::vector<std::string>& args) {
+    std::string line;
+    for (const std::string& a : args) line += (line.empty() ? "" : " ") + a;
+    return line;
+}
+
+std::string shellQuoted(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+int runGnuplot(const fs::path& script, std::string& messages) {
+    const fs::path log = script.parent_path() / "gnuplot.log";
+    const int status = std::system(("gnuplot " + shellQuoted(script.string()) + " > " + shellQuoted(log.string()) +
+                                    " 2>&1").c_str());
+    messages = readAll(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::vector<std::string> CliRun::errLines() const { return lines(err); }
 
 CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
     // (An ostringstream, not string +: GCC 12 -O3 reports a false -Wrestrict on the latter.)
     std::ostringstream line;
-    line << "cd " << quote(dir.string()) << " && " << env << " " << quote(FRUGAL_CLI);
-    for (const std::string& a : args) line << " " << quote(a);
+    line << "cd " << shellQuoted(dir.string()) << " && " << env << " " << shellQuoted(FRUGAL_CLI);
+    for (const std::string& a : args) line << " " << shellQuoted(a);
     line << " >stdout.txt 2>stderr.txt";
     const std::string command = line.str();
     CliRun run;

@@ -20,6 +20,20 @@ std::string readAll(const std::filesystem::path& path);
 // The names of the entries of `dir`, sorted.
 std::vector<std::string> filesIn(const std::filesystem::path& dir);
 
+// `text` split at line breaks (no empty last line for a final break).
+std::vector<std::string> lines(const std::string& text);
+// The fields of a CSV line with no quoted field; a final comma gives an empty last field.
+std::vector<std::string> csvFields(const std::string& line);
+// `args` joined by spaces, for a trace of a command line.
+std::string joined(const std::vector<std::string>& args);
+
+// `text` in the shell's single quotes.
+std::string shellQuoted(const std::string& text);
+// Whether gnuplot is on PATH.
+bool haveGnuplot();
+// Runs gnuplot on `script`; returns its exit status, with its messages in `messages`.
+int runGnuplot(const std::filesystem::path& script, std::string& messages);
+
 // The `frugal` binary run in a child process: exit status, stdout and stderr.
 struct CliRun {
     int status = -1;  // the exit status, or 128 + signal number

@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <sstream>
@@ -20,10 +19,9 @@
 #include "app/CameraPath.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
-#include "app/Gnuplot.h"
+#include "app/ReportOutputs.h"
 #include "base/Stats.h"
 #include "cull/Views.h"
-#include "io/ImageIO.h"
 #include "report/CullReport.h"
 #include "report/ImageCompare.h"
 
@@ -70,8 +68,8 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-struct Outputs {
-    std::string json, csv, plot, cameraPath;
+struct Outputs : ReportPaths {
+    std::string cameraPath;
 };
 
 
@@ -87,6 +85,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     CommandLine command{"cull-report", cullReportHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, false)) return true;
+        if (parseReportOption(flag, cursor, outputs)) return true;
         if (flag == "--views") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) viewCount = *n;
             viewsGiven = true;
@@ -107,13 +106,10 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                 if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
             }
             if (methods.empty()) cursor.fail("--methods: empty list (methods: " + cullMethodNames() + ")");
-        } else if (flag == "--json" || flag == "--csv" || flag == "--plot" || flag == "--camera-path") {
+        } else if (flag == "--camera-path") {
             const std::optional<std::string> path = cursor.value(flag);
             if (!path) return true;
             if (path->empty()) cursor.fail(flag + ": empty file name");
-            else if (flag == "--json") outputs.json = *path;
-            else if (flag == "--csv") outputs.csv = *path;
-            else if (flag == "--plot") outputs.plot = *path;
             else outputs.cameraPath = *path;
         } else {
             return false;
@@ -129,10 +125,8 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             cursor.fail("--views: give either --views N or one camera (--camera/--eye/--target)");
         else if (options.frames)
             cursor.fail("--frames: cull-report measures views at one time; use --time");
-        else if (!outputs.plot.empty() && std::filesystem::path(outputs.plot).extension() != ".svg")
-            cursor.fail("--plot " + outputs.plot + ": gnuplot writes SVG here; name it .svg");
-        else if (!outputs.plot.empty() && hasSingleQuote(outputs.plot))
-            cursor.fail("--plot " + outputs.plot + ": a path with a single quote cannot be passed to gnuplot");
+        else if (const std::string problem = plotProblem(outputs); !problem.empty())
+            cursor.fail(problem);
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
@@ -312,38 +306,9 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     json["repeat"] = repeat;
     json["renderer"] = backend.renderer();
 
-    OutputSet files;
-    if (!outputs.json.empty()) {
-        const std::string text = json.dump(2) + "\n";
-        files.add(outputs.json, Bytes(text.begin(), text.end()));
-    }
-    std::string csvPath = outputs.csv;
-    std::string scriptPath;
-    if (!outputs.plot.empty()) {
-        if (csvPath.empty()) csvPath = std::filesystem::path(outputs.plot).replace_extension(".csv").string();
-        scriptPath = std::filesystem::path(outputs.plot).replace_extension(".gp").string();
-        if (hasSingleQuote(csvPath)) {
-            err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
-            return kExitError;
-        }
-        const std::string script = cullReportGnuplot(csvPath, outputs.plot);
-        files.add(scriptPath, Bytes(script.begin(), script.end()));
-    }
-    if (!csvPath.empty()) {
-        const std::string text = cullReportCsv(report);
-        files.add(csvPath, Bytes(text.begin(), text.end()));
-    }
-    if (Result<bool> written = files.commit(); !written) {
-        err << "error: " << written.error() << "\n";
-        return kExitError;
-    }
-    if (!outputs.plot.empty()) {
-        const std::string problem = runGnuplot(scriptPath);
-        if (!problem.empty()) {
-            err << "error: --plot " << outputs.plot << ": " << problem << "\n";
-            return kExitError;
-        }
-    }
+    const ReportTexts texts{[&json] { return json.dump(2) + "\n"; }, [&report] { return cullReportCsv(report); },
+                            cullReportGnuplot};
+    if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;
 
     // The summary, a line per method, then per view class.
     out << "method        median pvs  misses  views missed  pixels  cull ms  draw ms  /oracle  /full  /cullface  worst view\n";

@@ -42,6 +42,14 @@ SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& er
     return culler;
 }
 
+std::optional<SceneCuller> prepareCullOption(Scene& scene, const CullOptions& options, std::ostream& err, bool quiet) {
+    const CullMethod method = options.method.value_or(CullMethod::None);
+    if (method == CullMethod::None) return std::nullopt;
+    MapParams bins = options.bins;
+    bins.hull = method == CullMethod::Paper;
+    return prepareCulling(scene, bins, err, quiet);
+}
+
 Result<Oracle> makeOracle(SceneRenderer& full, TargetHandle target, int width, int height, FrameParams frame,
                           const std::vector<glm::mat4>& world, const glm::vec4& background) {
     using Clock = std::chrono::steady_clock;

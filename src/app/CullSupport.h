@@ -28,6 +28,11 @@ bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& op
 // (the hull only when bins.hull asks for it).
 SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet);
 
+// What render and reuse-bench prepare for their --cull: nothing for none (or no --cull), else
+// prepareCulling with the hull built for paper alone (the only method that uses it). Call it
+// before the upload: the map's triangle order must be in place by then.
+std::optional<SceneCuller> prepareCullOption(Scene& scene, const CullOptions& options, std::ostream& err, bool quiet);
+
 // One frame's oracle: the id pass of the full render, its visible set, and a scene holding exactly
 // that set, uploaded to the same backend.
 struct Oracle {

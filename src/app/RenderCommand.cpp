@@ -141,10 +141,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     }
     Scene& scene = *loaded;
     const CullMethod method = cull.method.value_or(CullMethod::None);
-    // The map's triangle order must be in place before the upload.
-    std::optional<SceneCuller> culler;
-    cull.bins.hull = method == CullMethod::Paper;
-    if (method != CullMethod::None) culler.emplace(prepareCulling(scene, cull.bins, err, options.quiet));
+    std::optional<SceneCuller> culler = prepareCullOption(scene, cull, err, options.quiet);  // before the upload
 
     const FrameRange range = options.frames.value_or(FrameRange{});
 

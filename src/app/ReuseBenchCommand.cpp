@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <ostream>
@@ -28,9 +27,9 @@
 #include "app/Commands.h"
 #include "app/CullSupport.h"
 #include "app/Gnuplot.h"
+#include "app/ReportOutputs.h"
 #include "app/ReuseSupport.h"
 #include "base/Stats.h"
-#include "io/ImageIO.h"
 #include "report/ReuseCheck.h"
 #include "report/ReuseReport.h"
 #include "reuse/CellGrid.h"
@@ -86,10 +85,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-struct Outputs {
-    std::string json, csv, plot;
-};
 
 // The targets besides the session's (which the full render uses), released before the backend.
 struct Targets {
@@ -154,24 +149,18 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     RenderOptions options;
     CullOptions cull;
     ReuseCliOptions reuseOptions;
-    Outputs outputs;
+    ReportPaths outputs;
     int repeat = 5;
     bool ids = false;
     CommandLine command{"reuse-bench", reuseBenchHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, true)) return true;
         if (parseReuseOption(flag, cursor, reuseOptions, options, false)) return true;
+        if (parseReportOption(flag, cursor, outputs)) return true;
         if (flag == "--repeat") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) repeat = *n;
         } else if (flag == "--ids") {
             ids = true;
-        } else if (flag == "--json" || flag == "--csv" || flag == "--plot") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (!path) return true;
-            if (path->empty()) cursor.fail(flag + ": empty file name");
-            else if (flag == "--json") outputs.json = *path;
-            else if (flag == "--csv") outputs.csv = *path;
-            else outputs.plot = *path;
         } else {
             return false;
         }
@@ -183,10 +172,8 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
             cursor.fail("--frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)");
         else if (cull.method == CullMethod::Oracle)
             cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (!outputs.plot.empty() && std::filesystem::path(outputs.plot).extension() != ".svg")
-            cursor.fail("--plot " + outputs.plot + ": gnuplot writes SVG here; name it .svg");
-        else if (!outputs.plot.empty() && hasSingleQuote(outputs.plot))
-            cursor.fail("--plot " + outputs.plot + ": a path with a single quote cannot be passed to gnuplot");
+        else if (const std::string problem = plotProblem(outputs); !problem.empty())
+            cursor.fail(problem);
         else if (!outputs.plot.empty() && hasSingleQuote(outputs.csv))
             cursor.fail("--csv " + outputs.csv + ": a path with a single quote cannot be passed to gnuplot");
     };
@@ -199,10 +186,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     }
     Scene& scene = *loaded;
     const CullMethod method = cull.method.value_or(CullMethod::None);
-    // The map's triangle order must be in place before the upload.
-    std::optional<SceneCuller> culler;
-    cull.bins.hull = method == CullMethod::Paper;
-    if (method != CullMethod::None) culler.emplace(prepareCulling(scene, cull.bins, err, options.quiet));
+    std::optional<SceneCuller> culler = prepareCullOption(scene, cull, err, options.quiet);  // before the upload
 
     std::variant<Session, int> started = startSession(options, scene, err);
     if (const int* status = std::get_if<int>(&started)) return *status;
@@ -391,31 +375,11 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     const std::string jsonText = reuseReportJson(bench);
     const nlohmann::json json = nlohmann::json::parse(jsonText);
 
-    OutputSet files;
-    if (!outputs.json.empty()) files.add(outputs.json, Bytes(jsonText.begin(), jsonText.end()));
-    std::string csvPath = outputs.csv;
-    std::string scriptPath;
-    if (!outputs.plot.empty()) {
-        if (csvPath.empty()) csvPath = std::filesystem::path(outputs.plot).replace_extension(".csv").string();
-        scriptPath = std::filesystem::path(outputs.plot).replace_extension(".gp").string();
-        const std::string script = reuseReportGnuplot(csvPath, outputs.plot, range.first);
-        files.add(scriptPath, Bytes(script.begin(), script.end()));
-    }
-    if (!csvPath.empty()) {
-        const std::string text = reuseReportCsv(bench);
-        files.add(csvPath, Bytes(text.begin(), text.end()));
-    }
-    if (Result<bool> written = files.commit(); !written) {
-        err << "error: " << written.error() << "\n";
-        return kExitError;
-    }
-    if (!outputs.plot.empty()) {
-        const std::string problem = runGnuplot(scriptPath);
-        if (!problem.empty()) {
-            err << "error: --plot " << outputs.plot << ": " << problem << "\n";
-            return kExitError;
-        }
-    }
+    const ReportTexts texts{[&jsonText] { return jsonText; }, [&bench] { return reuseReportCsv(bench); },
+                            [&range](const std::string& csvPath, const std::string& svgPath) {
+                                return reuseReportGnuplot(csvPath, svgPath, range.first);
+                            }};
+    if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;
 
     // The summary.
     const nlohmann::json& summary = json["summary"];

@@ -1,33 +1,19 @@
 #include "report/CullReport.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "base/Stats.h"
+#include "report/ReportText.h"
 
 namespace frugal {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
-
-// JSON has no infinity or NaN: those are written as null.
-Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
-// A float as the double of its shortest decimal form, so 0.1f is written 0.1 (not 0.10000000149...).
-Json number(float value) {
-    if (!std::isfinite(value)) return nullptr;
-    char buf[32];
-    const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf - 1, value);
-    *r.ptr = '\0';
-    return std::strtod(buf, nullptr);
-}
+using namespace reporttext;
 
 Json vec3(const glm::vec3& v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
 
@@ -121,30 +107,6 @@ Json byClassJson(const CullReport& report) {
     return byClass;
 }
 
-// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
-std::string csvField(const std::string& text) {
-    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-}
-
-// Six significant digits; NaN and infinities as an empty field (missing data for gnuplot, NaN for
-// most CSV readers).
-std::string csvNumber(double value) {
-    if (!std::isfinite(value)) return {};
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", value);
-    return buf;
-}
-
-// A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
-std::string gnuplotQuoted(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-    return quoted + "'";
-}
-
 }  // namespace
 
 std::string cullReportJson(const CullReport& report) {
@@ -179,8 +141,7 @@ std::string cullReportJson(const CullReport& report) {
                     {"views", std::move(views)},
                     {"summary", std::move(summary)},
                     {"by_class", byClassJson(report)}};
-    // Invalid UTF-8 in a name (a file path) is replaced rather than thrown on.
-    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+    return jsonText(j);
 }
 
 std::string cullReportCsv(const CullReport& report) {

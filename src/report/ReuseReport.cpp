@@ -3,23 +3,20 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include <nlohmann/json.hpp>
 
 #include "base/Stats.h"
+#include "report/ReportText.h"
 
 namespace frugal {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+using namespace reporttext;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// JSON has no infinity or NaN: those are written as null.
-Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
 // Solves the k × k system g · x = b in place (Gaussian elimination, partial pivoting). False when
 // a pivot is below `tiny` (the columns are dependent).
@@ -72,29 +69,6 @@ Json mediansJson(const std::vector<const ReuseBenchFrame*>& frames) {
                 {"speedup", number(fullMs / reuseMs)},
                 {"ratio_to_oracle", number(reuseMs / oracleMs)},
                 {"ratio_to_oracle_whole", number(reuseMs / oracleWholeMs)}};
-}
-
-// A CSV field: quoted (quotes doubled) when it holds a comma, a quote or a line break.
-std::string csvField(const std::string& text) {
-    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-}
-
-// Six significant digits; NaN and infinities as an empty field (missing data for gnuplot).
-std::string csvNumber(double value) {
-    if (!std::isfinite(value)) return {};
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", value);
-    return buf;
-}
-
-// A gnuplot single-quoted string: nothing is special inside but the quote, written twice.
-std::string gnuplotQuoted(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("''") : std::string(1, c);
-    return quoted + "'";
 }
 
 }  // namespace
@@ -328,8 +302,7 @@ std::string reuseReportJson(const ReuseBench& bench) {
                     {"ids", bench.ids},
                     {"frames", std::move(frames)},
                     {"summary", std::move(summary)}};
-    // Invalid UTF-8 in a name (a file path) is replaced rather than thrown on.
-    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+    return jsonText(j);
 }
 
 std::string reuseReportCsv(const ReuseBench& bench) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "JsonSupport.h"
 #include "TestSupport.h"
 #include "io/ImageIO.h"
 
@@ -25,18 +26,6 @@ using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
 const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, oracle";
-
-nlohmann::json readJson(const fs::path& path) {
-    const std::string text = readAll(path);
-    EXPECT_FALSE(text.empty()) << path << " missing or empty";
-    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-}
-
-std::string joined(const std::vector<std::string>& args) {
-    std::string line;
-    for (const std::string& a : args) line += (line.empty() ? "" : " ") + a;
-    return line;
-}
 
 // The number of distinct triangle ids (background 0 excluded) in frugal's id PNG.
 std::size_t distinctIds(const fs::path& path) {
@@ -72,7 +61,7 @@ TEST(CullCliTest, RenderConservativeWritesThePngAndCullFiguresOfEveryFrame) {
         EXPECT_EQ(image->width, 64);
         EXPECT_EQ(image->height, 48);
     }
-    const nlohmann::json j = readJson(dir / "m.json");
+    const nlohmann::json j = test::readJson(dir / "m.json");
     ASSERT_TRUE(j.is_object());
     EXPECT_EQ(j["cull"], "conservative");
     EXPECT_EQ(j["backend"], "software");
@@ -103,7 +92,7 @@ TEST(CullCliTest, EveryMethodReportsItsFiguresAndNoneAddsNoKeys) {
         const CliRun run = runFrugal(dir, args);
         ASSERT_EQ(run.status, 0) << run.err;
         EXPECT_EQ(run.err, "") << "-q: nothing on stderr";
-        const nlohmann::json j = readJson(dir / "m.json");
+        const nlohmann::json j = test::readJson(dir / "m.json");
         ASSERT_TRUE(j.is_object());
         EXPECT_EQ(j["cull"], method.empty() ? "none" : method);
         ASSERT_EQ(j["frames"].size(), 2u);
@@ -139,7 +128,7 @@ TEST(CullCliTest, OraclePvsIsTheCountOfDistinctIdsOfTheFrame) {
         {{FRUGAL_BUNNY_OBJ, "--cull-backfaces"}, 1},
     };
     for (const Case& c : cases) {
-        SCOPED_TRACE(joined(c.scene));
+        SCOPED_TRACE(test::joined(c.scene));
         std::vector<std::string> common = {"render"};
         common.insert(common.end(), c.scene.begin(), c.scene.end());
         common.insert(common.end(), {"--size", "64x48", "--backend", "software", "-q"});
@@ -150,7 +139,7 @@ TEST(CullCliTest, OraclePvsIsTheCountOfDistinctIdsOfTheFrame) {
         ASSERT_EQ(run.status, 0) << run.err;
         run = runFrugal(dir, ids);
         ASSERT_EQ(run.status, 0) << run.err;
-        const nlohmann::json j = readJson(dir / "o.json");
+        const nlohmann::json j = test::readJson(dir / "o.json");
         ASSERT_TRUE(j.is_object());
         ASSERT_EQ(j["frames"].size(), std::size_t(c.frames));
         for (int f = 0; f < c.frames; ++f) {
@@ -193,7 +182,7 @@ TEST(CullCliTest, ConservativeMethodsLeaveTheImageUnchanged) {
         {"--cull", "conservative", "--cull-bins", "64x128"},
     };
     for (const std::vector<std::string>& scene : scenes) {
-        SCOPED_TRACE(joined(scene));
+        SCOPED_TRACE(test::joined(scene));
         const bool sequence = scene.size() > 1 && scene[1] == "--frames";
         std::vector<std::string> common = {"render"};
         common.insert(common.end(), scene.begin(), scene.end());
@@ -203,7 +192,7 @@ TEST(CullCliTest, ConservativeMethodsLeaveTheImageUnchanged) {
         CliRun run = runFrugal(dir, none);
         ASSERT_EQ(run.status, 0) << run.err;
         for (const std::vector<std::string>& method : methods) {
-            SCOPED_TRACE(joined(method));
+            SCOPED_TRACE(test::joined(method));
             if (scene[0] == FRUGAL_BUNNY_OBJ && method.size() > 2) continue;
             std::vector<std::string> args = common;
             args.insert(args.end(), method.begin(), method.end());
@@ -367,13 +356,13 @@ TEST(CullCliTest, BadCullOptionsGetOneLineAndNoFile) {
         } else {
             args.insert(args.end(), {"--csv", "r.csv", "--repeat", "1"});
             // Two views, unless the case chooses its views itself.
-            const std::string line = joined(c.args);
+            const std::string line = test::joined(c.args);
             if (line.find("--camera-path") == std::string::npos && line.find("--eye") == std::string::npos &&
                 line.find("--views") == std::string::npos)
                 args.insert(args.end(), {"--views", "2"});
         }
         args.insert(args.end(), c.args.begin() + 1, c.args.end());
-        SCOPED_TRACE(joined(args));
+        SCOPED_TRACE(test::joined(args));
         const CliRun run = runFrugal(dir, args);
         EXPECT_EQ(run.status, c.status);
         ASSERT_EQ(run.errLines().size(), 1u) << run.err;
@@ -412,7 +401,7 @@ TEST(CullCliTest, CullReportPrintsASummaryLinePerMethod) {
          {"\nnone ", "\nsphere ", "\nbackface ", "\ncones ", "\npaper ", "\nconservative ", "\noracle "})
         EXPECT_NE(run.out.find(method), std::string::npos) << method << "\n" << run.out;
     EXPECT_NE(run.err.find("view 3/3"), std::string::npos) << run.err;
-    nlohmann::json j = readJson(dir / "r.json");
+    nlohmann::json j = test::readJson(dir / "r.json");
     ASSERT_TRUE(j.is_object());
     EXPECT_EQ(j["views"].size(), 3u);
     EXPECT_EQ(j["repeat"], 1);
@@ -424,7 +413,7 @@ TEST(CullCliTest, CullReportPrintsASummaryLinePerMethod) {
               "oracle,conservative,oracle", "--repeat", "1", "--backend", "software", "-q", "--json", "r.json"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(run.err, "");
-    j = readJson(dir / "r.json");
+    j = test::readJson(dir / "r.json");
     ASSERT_TRUE(j.is_object());
     ASSERT_EQ(j["views"].size(), 1u);
     EXPECT_EQ(j["views"][0]["class"], "camera");
@@ -445,7 +434,7 @@ TEST(CullCliTest, HelpDescribesCullReportAndTheCullOptions) {
     for (const std::vector<std::string>& args :
          {std::vector<std::string>{"help", "cull-report"}, std::vector<std::string>{"cull-report", "--help"},
           std::vector<std::string>{"cull-report", "-h"}}) {
-        SCOPED_TRACE(joined(args));
+        SCOPED_TRACE(test::joined(args));
         const CliRun run = runFrugal(dir, args);
         EXPECT_EQ(run.status, 0);
         EXPECT_EQ(run.err, "");

@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -63,12 +62,6 @@ const std::vector<std::string> kSummaryKeys = {"views",
                                                "views_with_misses"};
 const std::set<std::string> kViewClasses = {"whole", "partial", "grazing", "inside", "pole", "camera", "path"};
 
-std::string joined(const std::vector<std::string>& args) {
-    std::string line;
-    for (const std::string& a : args) line += (line.empty() ? "" : " ") + a;
-    return line;
-}
-
 // Whether the default (GL) backend opens here; status 3 means it does not.
 bool glAvailable() {
     static const bool available = [] {
@@ -106,14 +99,14 @@ Report cullReport(const fs::path& dir, const std::vector<std::string>& sceneArgs
     args.insert(args.end(), extra.begin(), extra.end());
     Report report;
     report.run = runFrugal(dir, args);
-    EXPECT_EQ(report.run.status, 0) << "frugal " << joined(args) << "\n" << report.run.err;
+    EXPECT_EQ(report.run.status, 0) << "frugal " << test::joined(args) << "\n" << report.run.err;
     if (report.run.status == 0) {
         for (const std::string& line : report.run.errLines())
             EXPECT_EQ(line.rfind("warning: ", 0), 0u)
-                << "frugal " << joined(args) << ": -q prints warnings only: " << line;
+                << "frugal " << test::joined(args) << ": -q prints warnings only: " << line;
     }
     report.json = nlohmann::json::parse(readAll(dir / "report.json"), nullptr, false);
-    EXPECT_FALSE(report.json.is_discarded()) << "frugal " << joined(args) << ": no JSON report";
+    EXPECT_FALSE(report.json.is_discarded()) << "frugal " << test::joined(args) << ": no JSON report";
     fs::remove(dir / "report.json");
     return report;
 }
@@ -247,7 +240,7 @@ std::pair<std::size_t, std::size_t> judge(const std::string& name, const std::ve
                                           const std::string& timing = "cold") {
     std::pair<std::size_t, std::size_t> totals{0, 0};
     for (const std::string& backend : backends()) {
-        SCOPED_TRACE(joined(sceneArgs) + " on " + (backend.empty() ? "the default backend" : backend));
+        SCOPED_TRACE(test::joined(sceneArgs) + " on " + (backend.empty() ? "the default backend" : backend));
         const fs::path dir = test::freshDir("CullReportGL" + name + (backend.empty() ? "Default" : "Software"));
         const Report report = cullReport(dir, sceneArgs, backend, extra);
         if (report.run.status != 0 || report.json.is_discarded()) continue;
@@ -376,21 +369,12 @@ TEST(CullReportGLTest, CameraPathIsConservativeOnBothBackends) {
 
 // --- the other outputs --------------------------------------------------------------------------
 
-std::vector<std::string> splitLines(const std::string& text) {
-    std::vector<std::string> lines;
-    std::stringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-}
-
 std::vector<std::string> splitFields(const std::string& line) {
     std::vector<std::string> fields;
     std::stringstream in(line);
     for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
     return fields;
 }
-
-bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
 // --csv has a header and a row per view and method, agreeing with the JSON; --plot writes the SVG and
 // the gnuplot script beside it (and the CSV beside it unless --csv names one).
@@ -401,7 +385,7 @@ TEST(CullReportGLTest, CsvAndPlotFollowTheReport) {
     const nlohmann::json& j = report.json;
     ASSERT_FALSE(j.is_discarded());
     ASSERT_EQ(j["views"].size(), 6u);
-    const std::vector<std::string> lines = splitLines(readAll(dir / "r.csv"));
+    const std::vector<std::string> lines = test::lines(readAll(dir / "r.csv"));
     ASSERT_EQ(lines.size(), 1 + 6 * kMethods.size());
     EXPECT_EQ(lines[0],
               "view,class,method,tos,pvs,rvs,misses,waste,pixels_differing,cull_ms,draw_ms,ratio_to_oracle,"
@@ -423,7 +407,7 @@ TEST(CullReportGLTest, CsvAndPlotFollowTheReport) {
             EXPECT_EQ(fields[8], result["pixels_differing"].dump());
         }
 
-    if (!haveGnuplot())
+    if (!test::haveGnuplot())
         GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox): plots not checked";
     // --plot alone: the CSV goes beside the plot.
     const fs::path plotDir = test::freshDir("CullReportGLPlot");
@@ -432,7 +416,7 @@ TEST(CullReportGLTest, CsvAndPlotFollowTheReport) {
     EXPECT_EQ(filesIn(plotDir), (std::vector<std::string>{"p.csv", "p.gp", "p.svg"}));
     EXPECT_NE(readAll(plotDir / "p.svg").find("<svg"), std::string::npos);
     EXPECT_NE(readAll(plotDir / "p.gp").find("p.csv"), std::string::npos) << "the script reads the CSV beside it";
-    EXPECT_EQ(splitLines(readAll(plotDir / "p.csv")).size(), 1 + 2 * kMethods.size());
+    EXPECT_EQ(test::lines(readAll(plotDir / "p.csv")).size(), 1 + 2 * kMethods.size());
     // With --csv, the script reads that one and no CSV is written beside the plot.
     const fs::path bothDir = test::freshDir("CullReportGLPlotCsv");
     plotted = cullReport(bothDir, {"builtin:default"}, "", {"--views", "2", "--plot", "p.svg", "--csv", "r.csv"});

@@ -4,13 +4,12 @@
 // the check against the full render.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "JsonSupport.h"
 #include "TestSupport.h"
 
 namespace frugal {
@@ -26,19 +25,6 @@ using test::runFrugal;
 // 804 polygons (quads) = 134 dominoes of 12 triangles, 1,608 triangles; 55.44 % static: k = 60 move
 // once the fall is under way (frame f moves min(f + 1, 60)).
 const char* const kDominoes = "builtin:dominoes?polygons=804&static=0.5544";
-
-nlohmann::json readJson(const fs::path& path) {
-    const std::string text = readAll(path);
-    EXPECT_FALSE(text.empty()) << path << " missing or empty";
-    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
 
 std::vector<std::string> base(const std::string& frames) {
     return {"reuse-bench", kDominoes, "--frames", frames, "--backend", "software", "--size", "96x72", "--repeat", "2"};
@@ -62,7 +48,7 @@ TEST(ReuseBenchCliTest, JsonHasEveryFrameAndTheSummaryAndNoErrorPixel) {
     EXPECT_NE(run.out.find("cost model"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("errors 0 px"), std::string::npos) << run.out;
 
-    const nlohmann::json j = readJson(dir / "bench.json");
+    const nlohmann::json j = test::readJson(dir / "bench.json");
     ASSERT_TRUE(j.is_object());
     EXPECT_EQ(j["scene"], kDominoes);
     EXPECT_EQ(j["size"], nlohmann::json::array({96, 72}));
@@ -106,7 +92,7 @@ TEST(ReuseBenchCliTest, JsonHasEveryFrameAndTheSummaryAndNoErrorPixel) {
     EXPECT_EQ(s["model"]["excluded_frames"], 1);
     EXPECT_FALSE(s.contains("note"));
 
-    const std::vector<std::string> rows = lines(readAll(dir / "bench.csv"));
+    const std::vector<std::string> rows = test::lines(readAll(dir / "bench.csv"));
     ASSERT_EQ(rows.size(), 7u);
     EXPECT_EQ(rows[0].substr(0, 54), "frame,mode,full_ms,reuse_ms,plan_ms,oracle_ms,oracle_w");
     EXPECT_NE(rows[0].find(",oracle_whole_ms,"), std::string::npos) << rows[0];
@@ -122,7 +108,7 @@ TEST(ReuseBenchCliTest, OneFrameIsAllowedAndTheSummarySaysNothingWasReused) {
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(run.err, "") << "-q: nothing on stderr";
     EXPECT_NE(run.out.find("note: no frame in reuse mode"), std::string::npos) << run.out;
-    const nlohmann::json j = readJson(dir / "one.json");
+    const nlohmann::json j = test::readJson(dir / "one.json");
     ASSERT_EQ(j["frames"].size(), 1u);
     EXPECT_TRUE(j["summary"]["speedup"].is_null());
     EXPECT_TRUE(j["summary"]["ratio_to_oracle_whole"].is_null());
@@ -137,7 +123,7 @@ TEST(ReuseBenchCliTest, CulledListsAndReuseOptionsAreTakenAndChecked) {
                              "--json", "c.json", "-q"});
     const CliRun run = runFrugal(dir, args);
     ASSERT_EQ(run.status, 0) << run.err;
-    const nlohmann::json j = readJson(dir / "c.json");
+    const nlohmann::json j = test::readJson(dir / "c.json");
     EXPECT_EQ(j["cull"], "backface");
     EXPECT_EQ(j["reuse"], (nlohmann::json{{"grain", 1}, {"cell", 8}, {"fallback", false}}));
     EXPECT_EQ(j["summary"]["total_error_px"], 0);
@@ -145,7 +131,7 @@ TEST(ReuseBenchCliTest, CulledListsAndReuseOptionsAreTakenAndChecked) {
 }
 
 TEST(ReuseBenchCliTest, PlotWritesTheSvgTheScriptAndTheCsv) {
-    if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    if (!test::haveGnuplot())
         GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
     const fs::path dir = test::freshDir("ReuseBenchPlot");
     std::vector<std::string> args = base("0:4");

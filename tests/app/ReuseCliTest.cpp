@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "JsonSupport.h"
 #include "TestSupport.h"
 
 namespace frugal {
@@ -22,18 +23,6 @@ using test::readAll;
 using test::runFrugal;
 
 const char* const kSize = "96x72";
-
-nlohmann::json readJson(const fs::path& path) {
-    const std::string text = readAll(path);
-    EXPECT_FALSE(text.empty()) << path << " missing or empty";
-    return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-}
-
-std::string joined(const std::vector<std::string>& args) {
-    std::string line;
-    for (const std::string& a : args) line += (line.empty() ? "" : " ") + a;
-    return line;
-}
 
 // Renders frames 0..9 of `scene` into `dir` (colour, ids, depth as PFM, JSON) with `extra` flags.
 CliRun renderInto(const fs::path& dir, const std::string& scene, const std::vector<std::string>& extra,
@@ -73,10 +62,10 @@ void expectReuseChangesNoByte(const std::string& tag, const std::string& scene, 
         flags.insert(flags.end(), variant.begin(), variant.end());
         const fs::path dir = test::freshDir(tag + "Reused");
         const CliRun run = renderInto(dir, scene, flags);
-        ASSERT_EQ(run.status, 0) << label << " " << joined(flags) << ": " << run.err;
+        ASSERT_EQ(run.status, 0) << label << " " << test::joined(flags) << ": " << run.err;
         EXPECT_EQ(run.err, "") << "-q: nothing on stderr";
-        expectSameImages(full, dir, 30, label + " " + joined(flags));
-        const nlohmann::json j = readJson(dir / "m.json");
+        expectSameImages(full, dir, 30, label + " " + test::joined(flags));
+        const nlohmann::json j = test::readJson(dir / "m.json");
         ASSERT_TRUE(j.is_object());
         ASSERT_EQ(j["frames"].size(), 10u);
         // The frames of a still camera after the first are reuse frames or planned fallbacks.
@@ -84,7 +73,7 @@ void expectReuseChangesNoByte(const std::string& tag, const std::string& scene, 
         for (const nlohmann::json& frame : j["frames"]) reused += frame["reuse"]["mode"] == "reuse" ? 1 : 0;
         EXPECT_EQ(j["frames"][0]["reuse"]["mode"], "rebuild");
         if (scene.find("cubes") == std::string::npos) {
-            EXPECT_EQ(reused, 9u) << label << " " << joined(flags);
+            EXPECT_EQ(reused, 9u) << label << " " << test::joined(flags);
         }
     }
 }
@@ -115,7 +104,7 @@ TEST(ReuseCliTest, JsonHasTheReuseFiguresOfEveryFrame) {
     const fs::path dir = test::freshDir("ReuseCliJson");
     const CliRun run = renderInto(dir, "builtin:dominoes?polygons=804&static=0.5544", {"--backend", "software", "--reuse"});
     ASSERT_EQ(run.status, 0) << run.err;
-    const nlohmann::json j = readJson(dir / "m.json");
+    const nlohmann::json j = test::readJson(dir / "m.json");
     ASSERT_TRUE(j.is_object());
     ASSERT_TRUE(j["reuse"].is_object());
     EXPECT_EQ(j["reuse"]["grain"], 16);
@@ -155,7 +144,7 @@ TEST(ReuseCliTest, JsonHasTheReuseFiguresOfEveryFrame) {
     // Without --reuse, no reuse figures.
     const CliRun plain = renderInto(dir, "builtin:dominoes?polygons=804&static=0.5544", {"--backend", "software"}, "0:1");
     ASSERT_EQ(plain.status, 0) << plain.err;
-    const nlohmann::json p = readJson(dir / "m.json");
+    const nlohmann::json p = test::readJson(dir / "m.json");
     EXPECT_TRUE(p["reuse"].is_null());
     for (const nlohmann::json& frame : p["frames"]) EXPECT_FALSE(frame.contains("reuse"));
 }
@@ -187,7 +176,7 @@ TEST(ReuseCliTest, BadOptionsGiveOneErrorLine) {
         std::vector<std::string> args = {"render", "builtin:cubes", "--size", kSize, "--backend", "software", "-o", "x.png"};
         args.insert(args.end(), c.flags.begin(), c.flags.end());
         const CliRun run = runFrugal(dir, args);
-        SCOPED_TRACE(joined(c.flags));
+        SCOPED_TRACE(test::joined(c.flags));
         EXPECT_NE(run.status, 0);
         const std::vector<std::string> lines = run.errLines();
         ASSERT_EQ(lines.size(), 1u) << run.err;
@@ -206,7 +195,7 @@ TEST(ReuseCliTest, CameraPathMovingThenStillGivesFullRebuildReuse) {
     std::vector<std::string> reuseFlags = {"--backend", "software", "--reuse", "--camera-path", "path.json"};
     const CliRun run = renderInto(dir, "builtin:dominoes?polygons=1404&static=0.9866", reuseFlags, "0:7");
     ASSERT_EQ(run.status, 0) << run.err;
-    const nlohmann::json j = readJson(dir / "m.json");
+    const nlohmann::json j = test::readJson(dir / "m.json");
     ASSERT_EQ(j["frames"].size(), 8u);
     const std::vector<std::string> expected = {"rebuild", "full", "full", "rebuild", "reuse", "reuse", "reuse", "reuse"};
     for (std::size_t i = 0; i < expected.size(); ++i) {

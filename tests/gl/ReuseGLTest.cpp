@@ -22,17 +22,10 @@ protected:
         backend = std::move(*created);
     }
 
-    // No pixel may differ in depth (runSequence), and none at all but for `tiesAllowed`.
+    // The sequence on the GL backend, exact (expectExactOn).
     SequenceResult expectExact(const Scene& scene, int width, int height, int frames, const Frames& frame,
                                const ReuseOptions& options = {}, bool tiesAllowed = false) {
-        SCOPED_TRACE(describeOptions(options) + " on " + backend->name());
-        SequenceResult r = runSequence(*backend, scene, width, height, frames, frame, options);
-        EXPECT_EQ(r.stats.size(), std::size_t(frames));
-        EXPECT_EQ(r.errors, 0u) << r.describe();
-        if (!tiesAllowed) {
-            EXPECT_EQ(r.ties, 0u) << r.describe();
-        }
-        return r;
+        return expectExactOn(*backend, scene, width, height, frames, frame, options, tiesAllowed);
     }
 
     std::unique_ptr<Backend> backend;

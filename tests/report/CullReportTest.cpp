@@ -1,11 +1,7 @@
 // The cull report's JSON, CSV and gnuplot script on a small hand-made report.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <sstream>
-
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -60,21 +56,6 @@ CullReport fakeReport() {
         row("oracle", 45, 0, 0, 0.0, 2.0, 1.0),
     }});
     return r;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
-    return fields;
 }
 
 TEST(CullReportTest, JsonHasTheDocumentedKeys) {
@@ -192,9 +173,9 @@ TEST(CullReportTest, NonFiniteNumbersAreNullInJsonAndEmptyInCsv) {
     EXPECT_TRUE(j["summary"]["none"]["worst_view"]["ratio_to_oracle"].is_null());
     EXPECT_EQ(j["summary"]["none"]["median_ratio_to_full"].get<double>(), (1.0 + 4.0 / 3.0) / 2.0);
 
-    const std::vector<std::string> rows = lines(cullReportCsv(r));
+    const std::vector<std::string> rows = test::lines(cullReportCsv(r));
     ASSERT_EQ(rows.size(), 9u);
-    const std::vector<std::string> fields = split(rows[4]);  // view 1, none
+    const std::vector<std::string> fields = test::csvFields(rows[4]);  // view 1, none
     ASSERT_EQ(fields.size(), 14u) << rows[4];
     EXPECT_EQ(fields[2], "none");
     EXPECT_EQ(fields[11], "");
@@ -203,54 +184,36 @@ TEST(CullReportTest, NonFiniteNumbersAreNullInJsonAndEmptyInCsv) {
 }
 
 TEST(CullReportTest, CsvHasTheHeaderAndOneRowPerViewAndMethod) {
-    const std::vector<std::string> rows = lines(cullReportCsv(fakeReport()));
+    const std::vector<std::string> rows = test::lines(cullReportCsv(fakeReport()));
     ASSERT_EQ(rows.size(), 9u);
     EXPECT_EQ(rows[0],
               "view,class,method,tos,pvs,rvs,misses,waste,pixels_differing,cull_ms,draw_ms,ratio_to_oracle,"
               "ratio_to_full,ratio_to_full_cullface");
-    const std::vector<std::string> fields = split(rows[5]);  // view 1, sphere
+    const std::vector<std::string> fields = test::csvFields(rows[5]);  // view 1, sphere
     ASSERT_EQ(fields.size(), 14u) << rows[5];
     EXPECT_EQ(fields, (std::vector<std::string>{"1", "partial", "sphere", "100", "30", "20", "2", "12", "7", "0.5",
                                                 "1.5", "2.5", "0.833333", "1.25"}));
-    for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(split(rows[i]).size(), 14u) << rows[i];
+    for (std::size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(test::csvFields(rows[i]).size(), 14u) << rows[i];
 }
 
 TEST(CullReportTest, CsvQuotesFieldsWithCommasAndQuotes) {
     CullReport r = fakeReport();
     r.views[0].methods[1].method = "paper, \"tight\"";
-    const std::vector<std::string> rows = lines(cullReportCsv(r));
+    const std::vector<std::string> rows = test::lines(cullReportCsv(r));
     ASSERT_EQ(rows.size(), 9u);
     const std::string start = "0,whole,\"paper, \"\"tight\"\"\",100,60,20,0,";
     EXPECT_EQ(rows[2].substr(0, start.size()), start);
 }
 
-// The shell's single quotes around `text`.
-std::string shellQuoted(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
-}
-
-// Runs gnuplot on `script`; returns its exit status, with its messages in `messages`.
-int runGnuplot(const fs::path& script, std::string& messages) {
-    const fs::path log = script.parent_path() / "gnuplot.log";
-    const int status = std::system(("gnuplot " + shellQuoted(script.string()) + " > " + shellQuoted(log.string()) +
-                                    " 2>&1").c_str());
-    messages = test::readAll(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
-
-bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
-
 TEST(CullReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
-    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
     const fs::path dir = test::freshDir("CullReportTest.Gnuplot");
     // A quote in the paths: gnuplot's single-quoted strings must double it.
     const fs::path csv = dir / "view's report.csv", svg = dir / "it's plot.svg", script = dir / "plot.gp";
     test::writeFile(csv, cullReportCsv(fakeReport()));
     test::writeFile(script, cullReportGnuplot(csv.string(), svg.string()));
     std::string messages;
-    EXPECT_EQ(runGnuplot(script, messages), 0) << messages;
+    EXPECT_EQ(test::runGnuplot(script, messages), 0) << messages;
     ASSERT_TRUE(fs::exists(svg)) << messages;
     const std::string text = test::readAll(svg);
     EXPECT_NE(text.find("<svg"), std::string::npos);
@@ -258,14 +221,14 @@ TEST(CullReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
 }
 
 TEST(CullReportTest, GnuplotDrawsAnEmptyReport) {
-    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
     const fs::path dir = test::freshDir("CullReportTest.GnuplotEmpty");
     CullReport empty = fakeReport();
     empty.views.clear();
     test::writeFile(dir / "report.csv", cullReportCsv(empty));
     test::writeFile(dir / "plot.gp", cullReportGnuplot((dir / "report.csv").string(), (dir / "report.svg").string()));
     std::string messages;
-    EXPECT_EQ(runGnuplot(dir / "plot.gp", messages), 0) << messages;
+    EXPECT_EQ(test::runGnuplot(dir / "plot.gp", messages), 0) << messages;
     EXPECT_NE(test::readAll(dir / "report.svg").find("<svg"), std::string::npos) << messages;
 }
 

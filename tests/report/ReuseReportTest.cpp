@@ -2,15 +2,11 @@
 // hand-made benchmark, and its JSON, CSV and gnuplot script.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -263,31 +259,16 @@ TEST(ReuseReportTest, JsonCountsTiesAndErrorsAndSaysWhenNoFrameReused) {
     EXPECT_EQ(j["summary"]["static_share"].get<double>(), 1.0) << "no reuse frame: over all frames";
 }
 
-std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-}
-
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.emplace_back();
-    return fields;
-}
-
 TEST(ReuseReportTest, CsvHasTheHeaderAndOneRowPerFrame) {
     ReuseBench b = fakeBench();
     b.frames[6].reason = "camera, light or background changed";
-    const std::vector<std::string> rows = lines(reuseReportCsv(b));
+    const std::vector<std::string> rows = test::lines(reuseReportCsv(b));
     ASSERT_EQ(rows.size(), 8u);
     EXPECT_EQ(rows[0],
               "frame,mode,full_ms,reuse_ms,plan_ms,oracle_ms,oracle_whole_ms,model_ms,full_model_ms,speedup,static_share,"
               "p_dd,p_ds,p_sd,p_ss,copied_px,cleared_px,redrawn_tris,static_redrawn_tris,drawn_tris,rects,draws,"
               "full_draws,overlap_ms,tie_px,error_px,reason");
-    const std::vector<std::string> fields = split(rows[2]);  // frame 11
+    const std::vector<std::string> fields = test::csvFields(rows[2]);  // frame 11
     ASSERT_EQ(fields.size(), 27u) << rows[2];
     EXPECT_EQ(fields[0], "11");
     EXPECT_EQ(fields[1], "reuse");
@@ -302,31 +283,14 @@ TEST(ReuseReportTest, CsvHasTheHeaderAndOneRowPerFrame) {
     EXPECT_EQ(rows[7].substr(rows[7].size() - 38), ",\"camera, light or background changed\"") << "quoted";
 }
 
-// The shell's single quotes around `text`.
-std::string shellQuoted(const std::string& text) {
-    std::string quoted = "'";
-    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
-}
-
-int runGnuplot(const fs::path& script, std::string& messages) {
-    const fs::path log = script.parent_path() / "gnuplot.log";
-    const int status = std::system(("gnuplot " + shellQuoted(script.string()) + " > " + shellQuoted(log.string()) +
-                                    " 2>&1").c_str());
-    messages = test::readAll(log);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
-
-bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
-
 TEST(ReuseReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
-    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
     const fs::path dir = test::freshDir("ReuseReportTest.Gnuplot");
     const fs::path csv = dir / "bench's frames.csv", svg = dir / "it's plot.svg", script = dir / "plot.gp";
     test::writeFile(csv, reuseReportCsv(fakeBench()));
     test::writeFile(script, reuseReportGnuplot(csv.string(), svg.string()));
     std::string messages;
-    EXPECT_EQ(runGnuplot(script, messages), 0) << messages;
+    EXPECT_EQ(test::runGnuplot(script, messages), 0) << messages;
     ASSERT_TRUE(fs::exists(svg)) << messages;
     const std::string text = test::readAll(svg);
     EXPECT_NE(text.find("<svg"), std::string::npos);
@@ -337,7 +301,7 @@ TEST(ReuseReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
 
 // The script names the CSV's columns by number: each must be the column the header names.
 TEST(ReuseReportTest, GnuplotColumnsAreTheCsvColumns) {
-    const std::vector<std::string> header = split(lines(reuseReportCsv(fakeBench()))[0]);
+    const std::vector<std::string> header = test::csvFields(test::lines(reuseReportCsv(fakeBench()))[0]);
     const auto column = [&](const std::string& name) {
         const auto it = std::find(header.begin(), header.end(), name);
         EXPECT_NE(it, header.end()) << name;
@@ -362,14 +326,14 @@ TEST(ReuseReportTest, GnuplotColumnsAreTheCsvColumns) {
 }
 
 TEST(ReuseReportTest, GnuplotDrawsAnEmptyBench) {
-    if (!haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
     const fs::path dir = test::freshDir("ReuseReportTest.GnuplotEmpty");
     ReuseBench empty = fakeBench();
     empty.frames.clear();
     test::writeFile(dir / "bench.csv", reuseReportCsv(empty));
     test::writeFile(dir / "plot.gp", reuseReportGnuplot((dir / "bench.csv").string(), (dir / "bench.svg").string()));
     std::string messages;
-    EXPECT_EQ(runGnuplot(dir / "plot.gp", messages), 0) << messages;
+    EXPECT_EQ(test::runGnuplot(dir / "plot.gp", messages), 0) << messages;
     EXPECT_NE(test::readAll(dir / "bench.svg").find("<svg"), std::string::npos) << messages;
 }
 

@@ -353,15 +353,6 @@ void checkPlan(const FramePlan& plan, const Planned& reuse, const DrawList& list
     }
 }
 
-ReuseOptions options(int grain, int cell, bool fallback = true, bool paper = false) {
-    ReuseOptions o;
-    o.grain = grain;
-    o.cell = cell;
-    o.fallback = fallback;
-    o.paperSteps = paper;
-    return o;
-}
-
 class ReusePlanner : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -449,7 +440,7 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
     constexpr PlanTarget R = PlanTarget::Render, S = PlanTarget::Static;
     for (bool paper : {false, true}) {
         SCOPED_TRACE(paper ? "the paper's steps" : "steps a-d");
-        Planned reuse(scene, kW, kH, options(1, 8, true, paper));
+        Planned reuse(scene, kW, kH, reuseOptions(1, 8, true, paper));
         step(reuse, world0, "frame 0");
         const std::vector<glm::mat4> w1 = moved({j}, 0.3f), w2 = moved({j}, 0.6f);
         const Box old0 = instanceExtent(scene, j, params, world0[std::size_t(nodeOf(j))]);
@@ -633,7 +624,7 @@ TEST_F(ReusePlanner, WithoutFallbackEverythingDynamicStillReuses) {
 TEST_F(ReusePlanner, MaterialChangesMakeTheirInstancesDynamic) {
     // Dominoes: instance i draws mesh i % 6 with material i % 6.
     // (No fallback: the states are the point here, not the cost model's decision.)
-    Planned reuse(scene, kW, kH, options(16, 16, false));
+    Planned reuse(scene, kW, kH, reuseOptions(16, 16, false));
     step(reuse, world0, "frame 0");
     const auto users = [this](int material) {
         std::uint64_t k = 0;
@@ -673,7 +664,7 @@ TEST_F(ReusePlanner, LeavingAndJoiningTheDrawListAreChanges) {
     DrawList without;
     for (const DrawCommand& c : list)
         if (c.instance != j) without.push_back(c);
-    Planned reuse(scene, kW, kH, options(4, 8, false));
+    Planned reuse(scene, kW, kH, reuseOptions(4, 8, false));
     step(reuse, world0, "frame 0");
     const Box old = instanceExtent(scene, j, params, world0[std::size_t(nodeOf(j))]);
 
@@ -756,7 +747,7 @@ TEST_F(ReusePlanner, RedrawsFollowAnyListOrder) {
     for (std::size_t k = 0; k < odd.size(); k += 2) odd[k].ranges = {{0, 6}};
     for (int grain : {0, 1, 4, 16}) {
         SCOPED_TRACE("grain " + std::to_string(grain));
-        Planned reuse(scene, kW, kH, options(grain, 4, false));
+        Planned reuse(scene, kW, kH, reuseOptions(grain, 4, false));
         step(reuse, world0, "frame 0", &odd);
         std::size_t redrawSteps = 0;
         for (int i = 1; i < 6; ++i) {
@@ -781,7 +772,7 @@ TEST_F(ReusePlanner, RedrawsFollowAnyListOrder) {
 TEST_F(ReusePlanner, StatesFollowTheAnimation) {
     for (int grain : {0, 1, 16}) {
         SCOPED_TRACE("grain " + std::to_string(grain));
-        Planned reuse(scene, kW, kH, options(grain, 16));
+        Planned reuse(scene, kW, kH, reuseOptions(grain, 16));
         std::vector<glm::mat4> previous;
         std::vector<bool> wasDynamic(n(), false);
         for (int f = 0; f < 12; ++f) {

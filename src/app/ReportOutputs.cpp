@@ -1,0 +1,70 @@
+#include "app/ReportOutputs.h"
+
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "app/Cli.h"
+#include "app/Gnuplot.h"
+#include "io/ImageIO.h"
+
+namespace frugal {
+
+bool parseReportOption(const std::string& flag, ArgCursor& cursor, ReportPaths& paths) {
+    if (flag != "--json" && flag != "--csv" && flag != "--plot") return false;
+    const std::optional<std::string> path = cursor.value(flag);
+    if (!path) return true;
+    if (path->empty()) cursor.fail(flag + ": empty file name");
+    else if (flag == "--json") paths.json = *path;
+    else if (flag == "--csv") paths.csv = *path;
+    else paths.plot = *path;
+    return true;
+}
+
+std::string plotProblem(const ReportPaths& paths) {
+    if (paths.plot.empty()) return {};
+    if (std::filesystem::path(paths.plot).extension() != ".svg")
+        return "--plot " + paths.plot + ": gnuplot writes SVG here; name it .svg";
+    if (hasSingleQuote(paths.plot)) return "--plot " + paths.plot + ": a path with a single quote cannot be passed to gnuplot";
+    return {};
+}
+
+int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::ostream& err) {
+    OutputSet files;
+    if (!paths.json.empty()) {
+        const std::string text = texts.json();
+        files.add(paths.json, Bytes(text.begin(), text.end()));
+    }
+    std::string csvPath = paths.csv;
+    std::string scriptPath;
+    if (!paths.plot.empty()) {
+        if (csvPath.empty()) csvPath = std::filesystem::path(paths.plot).replace_extension(".csv").string();
+        scriptPath = std::filesystem::path(paths.plot).replace_extension(".gp").string();
+        // The script names the CSV inside single quotes. (A command may refuse such a --csv earlier,
+        // as a usage error; a derived one has none: --plot is refused with one.)
+        if (hasSingleQuote(csvPath)) {
+            err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
+            return kExitError;
+        }
+        const std::string script = texts.gnuplot(csvPath, paths.plot);
+        files.add(scriptPath, Bytes(script.begin(), script.end()));
+    }
+    if (!csvPath.empty()) {
+        const std::string text = texts.csv();
+        files.add(csvPath, Bytes(text.begin(), text.end()));
+    }
+    if (Result<bool> written = files.commit(); !written) {
+        err << "error: " << written.error() << "\n";
+        return kExitError;
+    }
+    if (!paths.plot.empty()) {
+        const std::string problem = runGnuplot(scriptPath);
+        if (!problem.empty()) {
+            err << "error: --plot " << paths.plot << ": " << problem << "\n";
+            return kExitError;
+        }
+    }
+    return kExitOk;
+}
+
+}  // namespace frugal
