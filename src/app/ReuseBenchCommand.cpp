@@ -143,6 +143,75 @@ double numberOr(const nlohmann::json& value, double fallback) {
     return value.is_number() ? value.get<double>() : fallback;
 }
 
+// What the planner did in a frame, as the report's row (the times are filled in later).
+ReuseBenchFrame describeFrame(int frame, const ReuseFrameStats& stats, std::size_t draws, std::size_t fullDraws) {
+    ReuseBenchFrame result;
+    result.frame = frame;
+    result.mode = reuseModeName(stats.mode);
+    result.reason = stats.reason;
+    result.pDD = stats.triangles[kDD];
+    result.pDS = stats.triangles[kDS];
+    result.pSD = stats.triangles[kSD];
+    result.pSS = stats.triangles[kSS];
+    result.copiedPx = stats.copiedPx;
+    result.clearedPx = stats.clearedPx;
+    result.redrawnTris = stats.redrawnTris;
+    result.staticRedrawnTris = stats.staticRedrawnTris;
+    result.drawnTris = stats.drawnTris;
+    result.rects = stats.rects;
+    result.draws = draws;
+    result.fullDraws = fullDraws;
+    return result;
+}
+
+// "error: frame N: the <which> differs from the full render at M pixels (depth)", or nothing.
+std::optional<std::string> checkOracle(int frame, const char* which, const Buffers& oracle, const Buffers& full) {
+    const FrameMatch match = matchFrames(oracle, full);
+    if (match.errors() == 0) return std::nullopt;
+    return "error: frame " + std::to_string(frame) + ": the " + which + " differs from the full render at " +
+           std::to_string(match.errors()) + " pixels (depth)";
+}
+
+// The printed summary: modes, the medians side by side, the fitted cost model, ties and errors.
+void printSummary(std::ostream& out, const ReuseBench& bench, const nlohmann::json& summary, CullMethod method,
+                  const FrameRange& range, int frameCount) {
+    const nlohmann::json& modes = summary["modes"];
+    out << "reuse-bench " << bench.scene << ", " << bench.width << "x" << bench.height << ", " << bench.backend << ", frames "
+        << range.first << ".." << range.last << ", " << bench.repeat << (bench.repeat == 1 ? " round" : " rounds")
+        << (method != CullMethod::None ? std::string(", cull ") + cullMethodName(method) : std::string()) << "\n";
+    out << "frames " << frameCount << ": reuse " << modes["reuse"].get<std::size_t>() << ", rebuild "
+        << modes["rebuild"].get<std::size_t>() << ", full " << modes["full"].get<std::size_t>() << "; static share "
+        << percent(numberOr(summary["static_share"], 0.0)) << " of the triangles (mean over reuse frames)\n";
+    // oracle ms: the cells oracle (copies what reuse copies); whole ms: the whole oracle (copies the whole image).
+    out << "                frames   full ms  reuse ms  oracle ms  whole ms  plan ms  speed-up  reuse/oracle  reuse/whole\n";
+    for (const char* set : {"reuse_frames", "all_frames"}) {
+        const nlohmann::json& s = summary[set];
+        char line[256];
+        std::snprintf(line, sizeof line, "%-14s %7zu %9.3f %9.3f %10.3f %9.3f %8.3f %9.3f %13.3f %12.3f\n",
+                      set == std::string("reuse_frames") ? "reuse frames" : "all frames", s["frames"].get<std::size_t>(),
+                      numberOr(s["median_full_ms"], kNaN), numberOr(s["median_reuse_ms"], kNaN),
+                      numberOr(s["median_oracle_ms"], kNaN), numberOr(s["median_oracle_whole_ms"], kNaN),
+                      numberOr(s["median_plan_ms"], kNaN), numberOr(s["speedup"], kNaN),
+                      numberOr(s["ratio_to_oracle"], kNaN), numberOr(s["ratio_to_oracle_whole"], kNaN));
+        out << line;
+    }
+    const nlohmann::json& m = summary["model"];
+    out << "cost model: full = t_w " << fmt(numberOr(m["t_w_ms"], kNaN)) << " ms + t_r "
+        << fmt(numberOr(m["t_r_ns_per_tri"], kNaN)) << " ns/triangle (median error "
+        << percent(numberOr(m["median_full_error"], kNaN)) << ")\n";
+    out << "            reuse = plan + t_0 " << fmt(numberOr(m["t_0_ms"], kNaN)) << " ms + t_c "
+        << fmt(numberOr(m["t_c_ns_per_px"], kNaN)) << " ns/px copied + t_i " << fmt(numberOr(m["t_i_ns_per_px"], kNaN))
+        << " ns/px cleared + t_r' " << fmt(numberOr(m["t_r_reuse_ns_per_tri"], kNaN)) << " ns/triangle (fitted on "
+        << m["fitted_frames"].get<std::size_t>() << " reuse frames, " << m["excluded_frames"].get<std::size_t>()
+        << " full/rebuild left out; R² " << fmt(numberOr(m["r2"], kNaN)) << ", median error "
+        << percent(numberOr(m["median_reuse_error"], kNaN)) << ")\n";
+    out << "static pair " << summary["static_pair_bytes"].get<std::uint64_t>() << " bytes, max overlap "
+        << fmt(numberOr(summary["max_overlap_ms"], 0.0)) << " ms, ties " << summary["total_tie_px"].get<std::uint64_t>()
+        << " px, errors " << summary["total_error_px"].get<std::uint64_t>() << " px\n";
+    if (summary.contains("note")) out << "note: " << summary["note"].get<std::string>() << "\n";
+
+}
+
 }  // namespace
 
 int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -300,35 +369,15 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
                 continue;
             }
             // The warm-up: what the planner did, and the reuse frame against the full render.
-            result.frame = frame;
-            result.mode = reuseModeName(stats.mode);
-            result.reason = stats.reason;
-            result.pDD = stats.triangles[kDD];
-            result.pDS = stats.triangles[kDS];
-            result.pSD = stats.triangles[kSD];
-            result.pSS = stats.triangles[kSS];
-            result.copiedPx = stats.copiedPx;
-            result.clearedPx = stats.clearedPx;
-            result.redrawnTris = stats.redrawnTris;
-            result.staticRedrawnTris = stats.staticRedrawnTris;
-            result.drawnTris = stats.drawnTris;
-            result.rects = stats.rects;
-            result.draws = draws;
-            result.fullDraws = list.size();
+            result = describeFrame(frame, stats, draws, list.size());
             const Buffers fullImage = backend.readBack(fullTarget);
             const FrameMatch match = matchFrames(backend.readBack(targets.render), fullImage);
             result.tiePx = match.ties;
             result.errorPx = match.errors();
             // Both oracles are exact too (a tie aside), or they are no floor of anything.
-            const FrameMatch oracleMatch = matchFrames(backend.readBack(targets.oracle), fullImage);
-            if (oracleMatch.errors() > 0 && !oracleError)
-                oracleError = "error: frame " + std::to_string(frame) + ": the oracle differs from the full render at " +
-                              std::to_string(oracleMatch.errors()) + " pixels (depth)";
-            const FrameMatch oracleWholeMatch = matchFrames(backend.readBack(targets.oracleWhole), fullImage);
-            if (oracleWholeMatch.errors() > 0 && !oracleError)
-                oracleError = "error: frame " + std::to_string(frame) +
-                              ": the whole oracle differs from the full render at " +
-                              std::to_string(oracleWholeMatch.errors()) + " pixels (depth)";
+            if (!oracleError) oracleError = checkOracle(frame, "oracle", backend.readBack(targets.oracle), fullImage);
+            if (!oracleError)
+                oracleError = checkOracle(frame, "whole oracle", backend.readBack(targets.oracleWhole), fullImage);
             if (!options.quiet) {
                 err << "frame " << frame << " (" << (i + 1) << "/" << frameCount << "): " << result.mode << ", "
                     << stats.redrawnTris << " of " << stats.drawnTris << " triangles drawn";
@@ -381,42 +430,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
                             }};
     if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;
 
-    // The summary.
-    const nlohmann::json& summary = json["summary"];
-    const nlohmann::json& modes = summary["modes"];
-    out << "reuse-bench " << options.scene << ", " << width << "x" << height << ", " << backend.name() << ", frames "
-        << range.first << ".." << range.last << ", " << repeat << (repeat == 1 ? " round" : " rounds")
-        << (method != CullMethod::None ? std::string(", cull ") + cullMethodName(method) : std::string()) << "\n";
-    out << "frames " << frameCount << ": reuse " << modes["reuse"].get<std::size_t>() << ", rebuild "
-        << modes["rebuild"].get<std::size_t>() << ", full " << modes["full"].get<std::size_t>() << "; static share "
-        << percent(numberOr(summary["static_share"], 0.0)) << " of the triangles (mean over reuse frames)\n";
-    // oracle ms: the cells oracle (copies what reuse copies); whole ms: the whole oracle (copies the whole image).
-    out << "                frames   full ms  reuse ms  oracle ms  whole ms  plan ms  speed-up  reuse/oracle  reuse/whole\n";
-    for (const char* set : {"reuse_frames", "all_frames"}) {
-        const nlohmann::json& s = summary[set];
-        char line[256];
-        std::snprintf(line, sizeof line, "%-14s %7zu %9.3f %9.3f %10.3f %9.3f %8.3f %9.3f %13.3f %12.3f\n",
-                      set == std::string("reuse_frames") ? "reuse frames" : "all frames", s["frames"].get<std::size_t>(),
-                      numberOr(s["median_full_ms"], kNaN), numberOr(s["median_reuse_ms"], kNaN),
-                      numberOr(s["median_oracle_ms"], kNaN), numberOr(s["median_oracle_whole_ms"], kNaN),
-                      numberOr(s["median_plan_ms"], kNaN), numberOr(s["speedup"], kNaN),
-                      numberOr(s["ratio_to_oracle"], kNaN), numberOr(s["ratio_to_oracle_whole"], kNaN));
-        out << line;
-    }
-    const nlohmann::json& m = summary["model"];
-    out << "cost model: full = t_w " << fmt(numberOr(m["t_w_ms"], kNaN)) << " ms + t_r "
-        << fmt(numberOr(m["t_r_ns_per_tri"], kNaN)) << " ns/triangle (median error "
-        << percent(numberOr(m["median_full_error"], kNaN)) << ")\n";
-    out << "            reuse = plan + t_0 " << fmt(numberOr(m["t_0_ms"], kNaN)) << " ms + t_c "
-        << fmt(numberOr(m["t_c_ns_per_px"], kNaN)) << " ns/px copied + t_i " << fmt(numberOr(m["t_i_ns_per_px"], kNaN))
-        << " ns/px cleared + t_r' " << fmt(numberOr(m["t_r_reuse_ns_per_tri"], kNaN)) << " ns/triangle (fitted on "
-        << m["fitted_frames"].get<std::size_t>() << " reuse frames, " << m["excluded_frames"].get<std::size_t>()
-        << " full/rebuild left out; R² " << fmt(numberOr(m["r2"], kNaN)) << ", median error "
-        << percent(numberOr(m["median_reuse_error"], kNaN)) << ")\n";
-    out << "static pair " << summary["static_pair_bytes"].get<std::uint64_t>() << " bytes, max overlap "
-        << fmt(numberOr(summary["max_overlap_ms"], 0.0)) << " ms, ties " << summary["total_tie_px"].get<std::uint64_t>()
-        << " px, errors " << summary["total_error_px"].get<std::uint64_t>() << " px\n";
-    if (summary.contains("note")) out << "note: " << summary["note"].get<std::string>() << "\n";
+    printSummary(out, bench, json["summary"], method, range, frameCount);
 
     // A reuse frame that differs from the full render other than by a tie is a bug, never a trade-off.
     if (oracleError) {

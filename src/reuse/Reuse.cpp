@@ -139,7 +139,6 @@ FramePlan TemporalReuse::plan(const FrameParams& frame, const std::vector<glm::m
 FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<glm::mat4>& world, const DrawList& list,
                                   const glm::vec4& background, bool wholeScene) {
     stats_ = ReuseFrameStats{};
-    const std::size_t n = records_.size();
     const bool still = history_ && sameFrame(frame, lastFrame_) && background == lastBackground_;
     const bool first = !history_;
     // The whole scene twice in a row: every instance draws its whole mesh, as before.
@@ -149,7 +148,37 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
     lastFrame_ = frame;
     lastBackground_ = background;
 
-    // Classify: which instances changed since the previous frame (none on the first frame).
+    Changes changes;
+    if (!classify(list, world, first, wholeAgain, changes)) {
+        // Not a list reuse can split into static and dynamic instances: draw it as it is, and
+        // start afresh (the next frame is a first frame).
+        history_ = false;
+        std::fill(wasDynamic_.begin(), wasDynamic_.end(), std::uint8_t(0));
+        return fullPlan(list, "the draw list names an instance twice or one the scene does not have");
+    }
+    const ReuseCosts& cost = options_.costs;
+    const double fullCost = double(stats_.drawnTris) + cost.draw * double(list.size()) +
+                            cost.pixelCleared * double(width_) * double(height_);
+    const glm::mat4 viewProjection = frame.projection * frame.view;
+    FramePlan plan;
+    if (!first && !still)
+        plan = fullPlan(list, "camera, light or background changed");
+    else if (!staticValid_ && options_.fallback && 2 * changes.triangles > stats_.drawnTris)
+        plan = fullPlan(list, "too dynamic to rebuild the static pair (over half the triangles changed)");
+    else if (!staticValid_)
+        plan = rebuildPlan(list, world, viewProjection, first, changes);
+    else if (options_.fallback && double(changes.triangles) + cost.draw * double(changes.draws) >= fullCost)
+        plan = fullPlan(list, "too dynamic: the changed triangles alone cost a full render");
+    else
+        plan = reusePlan(list, world, viewProjection, fullCost, changes);
+    // This frame's flags become the previous frame's.
+    wasDynamic_.swap(nowDynamic_);
+    return plan;
+}
+
+bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>& world, bool first, bool wholeAgain,
+                             Changes& changes) {
+    const std::size_t n = records_.size();
     std::vector<const DrawCommand*> byInstance(n, nullptr);
     bool wellFormed = true;
     for (const DrawCommand& command : list) {
@@ -159,17 +188,14 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
             byInstance[command.instance] = &command;
     }
     if (!wellFormed) {
-        // Not a list reuse can split into static and dynamic instances: draw it as it is, and
-        // start afresh (the next frame is a first frame).
-        history_ = false;
-        std::fill(wasDynamic_.begin(), wasDynamic_.end(), std::uint8_t(0));
         std::vector<IndexRange> ranges;
         for (const DrawCommand& command : list) {
             const bool known = command.instance >= 0 && std::size_t(command.instance) < n;
             if (known) stats_.drawnTris += normalizeRanges(command.ranges, info_[std::size_t(command.instance)].triangles, ranges);
         }
-        return fullPlan(list, "the draw list names an instance twice or one the scene does not have");
+        return false;
     }
+
     // Materials first (few): which changed since the previous frame. Index 0 is the default material.
     const std::vector<Material>& materials = scene_->materials;
     const bool resized = materialKeys_.size() != materials.size() + 1;
@@ -181,7 +207,6 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
         if (!(now == materialKeys_[m + 1])) materialChanged_[m + 1] = 1;
         materialKeys_[m + 1] = now;
     }
-    std::uint64_t dynamicTris = 0, dynamicDraws = 0;
     std::vector<IndexRange> ranges;
     for (std::size_t i = 0; i < n; ++i) {
         // The ranges live on the heap, one allocation per command: fetch them ahead of the loop.
@@ -214,55 +239,43 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
         stats_.instances[state] += 1;
         stats_.triangles[state] += info.triangles;
         stats_.drawnTris += record.drawnTris;
-        if (changed) dynamicTris += record.drawnTris;
-        if (changed && record.drawn) ++dynamicDraws;
+        if (changed) changes.triangles += record.drawnTris;
+        if (changed && record.drawn) ++changes.draws;
     }
-    const auto finish = [&] {
-        wasDynamic_.swap(nowDynamic_);
-    };
-    const ReuseCosts& cost = options_.costs;
-    const double fullCost = double(stats_.drawnTris) + cost.draw * double(list.size()) +
-                            cost.pixelCleared * double(width_) * double(height_);
-    const glm::mat4 viewProjection = frame.projection * frame.view;
+    return true;
+}
 
-    if (!first && !still) {
-        finish();
-        return fullPlan(list, "camera, light or background changed");
-    }
-    if (!staticValid_) {
-        if (options_.fallback && 2 * dynamicTris > stats_.drawnTris) {
-            finish();
-            return fullPlan(list, "too dynamic to rebuild the static pair (over half the triangles changed)");
-        }
-        // Rebuild: the static instances, the whole target into the static pair, the dynamic ones.
-        const auto t0 = Clock::now();
-        for (std::size_t i = 0; i < n; ++i) computeExtents(int(i), viewProjection, world);
-        stats_.extentMs = msSince(t0);
-        stats_.mode = ReuseMode::Rebuild;
-        stats_.reason = first ? "first frame" : "first still frame";
-        DrawList statics, dynamics;
-        for (const DrawCommand& command : list)
-            (nowDynamic_[command.instance] ? dynamics : statics).push_back(command);
-        const Rect whole{0, 0, width_, height_};
-        FramePlan plan;
-        plan.push_back({PlanStep::Op::Clear, PlanTarget::Render, PlanTarget::Render, {whole}, {}});
-        if (!statics.empty())
-            plan.push_back({PlanStep::Op::Draw, PlanTarget::Render, PlanTarget::Render, {}, std::move(statics)});
-        plan.push_back({PlanStep::Op::Copy, PlanTarget::Render, PlanTarget::Static, {whole}, {}});
-        if (!dynamics.empty())
-            plan.push_back({PlanStep::Op::Draw, PlanTarget::Render, PlanTarget::Render, {}, std::move(dynamics)});
-        stats_.clearedPx = stats_.copiedPx = std::uint64_t(width_) * std::uint64_t(height_);
-        stats_.redrawnTris = stats_.drawnTris;
-        stats_.staticRedrawnTris = stats_.drawnTris - dynamicTris;
-        stats_.rects = 2;
-        staticValid_ = true;
-        finish();
-        return plan;
-    }
-    if (options_.fallback && double(dynamicTris) + cost.draw * double(dynamicDraws) >= fullCost) {
-        finish();
-        return fullPlan(list, "too dynamic: the changed triangles alone cost a full render");
-    }
+FramePlan TemporalReuse::rebuildPlan(const DrawList& list, const std::vector<glm::mat4>& world,
+                                     const glm::mat4& viewProjection, bool first, const Changes& changes) {
+    // The static instances, the whole target into the static pair, the dynamic ones; and the
+    // extents of everything, as drawn now.
+    const auto t0 = Clock::now();
+    for (std::size_t i = 0; i < records_.size(); ++i) computeExtents(int(i), viewProjection, world);
+    stats_.extentMs = msSince(t0);
+    stats_.mode = ReuseMode::Rebuild;
+    stats_.reason = first ? "first frame" : "first still frame";
+    DrawList statics, dynamics;
+    for (const DrawCommand& command : list) (nowDynamic_[command.instance] ? dynamics : statics).push_back(command);
+    const Rect whole{0, 0, width_, height_};
+    FramePlan plan;
+    plan.push_back({PlanStep::Op::Clear, PlanTarget::Render, PlanTarget::Render, {whole}, {}});
+    if (!statics.empty())
+        plan.push_back({PlanStep::Op::Draw, PlanTarget::Render, PlanTarget::Render, {}, std::move(statics)});
+    plan.push_back({PlanStep::Op::Copy, PlanTarget::Render, PlanTarget::Static, {whole}, {}});
+    if (!dynamics.empty())
+        plan.push_back({PlanStep::Op::Draw, PlanTarget::Render, PlanTarget::Render, {}, std::move(dynamics)});
+    stats_.clearedPx = stats_.copiedPx = std::uint64_t(width_) * std::uint64_t(height_);
+    stats_.redrawnTris = stats_.drawnTris;
+    stats_.staticRedrawnTris = stats_.drawnTris - changes.triangles;
+    stats_.rects = 2;
+    staticValid_ = true;
+    return plan;
+}
+
+FramePlan TemporalReuse::reusePlan(const DrawList& list, const std::vector<glm::mat4>& world,
+                                   const glm::mat4& viewProjection, double fullCost, const Changes& changes) {
+    const std::size_t n = records_.size();
+    const ReuseCosts& cost = options_.costs;
 
     // The regions, and the static groups they make us redraw (the ⊗ tests).
     const bool paper = options_.paperSteps;
@@ -329,14 +342,13 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
     stats_.copiedPx = std::uint64_t(copyPx + backPx);
     stats_.clearedPx = std::uint64_t(clearPx);
     stats_.staticRedrawnTris = redrawn;
-    stats_.redrawnTris = redrawn + dynamicTris;
+    stats_.redrawnTris = redrawn + changes.triangles;
     stats_.rects = copyRects.size() + clearRects.size() + backRects.size();
 
-    const double reuseCost = double(redrawn + dynamicTris) + cost.draw * double(redraws.size() + dynamics.size()) +
+    const double reuseCost = double(redrawn + changes.triangles) + cost.draw * double(redraws.size() + dynamics.size()) +
                              cost.pixelCleared * double(clearPx) + cost.pixelCopied * double(copyPx + backPx) +
                              cost.rect * double(stats_.rects) + (redraws.empty() ? 0.0 : cost.pass);
     if (options_.fallback && reuseCost >= fullCost) {
-        finish();
         const double overlapMs = stats_.overlapMs;
         FramePlan plan = fullPlan(list, "reuse would cost more than a full render");
         stats_.overlapMs = overlapMs;
@@ -367,7 +379,6 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
     for (std::size_t i = 0; i < n; ++i)
         if (nowDynamic_[i]) computeExtents(int(i), viewProjection, world);
     stats_.extentMs = msSince(t1);
-    finish();
     return plan;
 }
 

@@ -153,8 +153,22 @@ private:
 
     void computeExtents(int instance, const glm::mat4& viewProjection, const std::vector<glm::mat4>& world);
     std::uint32_t groupSize(int instance) const;
+    // What changed this frame, drawn now.
+    struct Changes {
+        std::uint64_t triangles = 0;
+        std::uint64_t draws = 0;
+    };
+
     FramePlan makePlan(const FrameParams& frame, const std::vector<glm::mat4>& world, const DrawList& list,
                        const glm::vec4& background, bool wholeScene);
+    // Fills nowDynamic_, the records, and the frame's state counts; false (and only drawnTris
+    // counted) when `list` names an instance twice or one the scene does not have.
+    bool classify(const DrawList& list, const std::vector<glm::mat4>& world, bool first, bool wholeAgain,
+                  Changes& changes);
+    FramePlan rebuildPlan(const DrawList& list, const std::vector<glm::mat4>& world, const glm::mat4& viewProjection,
+                          bool first, const Changes& changes);
+    FramePlan reusePlan(const DrawList& list, const std::vector<glm::mat4>& world, const glm::mat4& viewProjection,
+                        double fullCost, const Changes& changes);
     FramePlan fullPlan(const DrawList& list, const char* reason);
 
     const Scene* scene_;
