@@ -98,6 +98,15 @@ CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, cons
     return run;
 }
 
+Mesh looseTriangles(const std::vector<glm::vec3>& positions) {
+    Mesh mesh;
+    mesh.name = "triangles";
+    mesh.positions = positions;
+    mesh.normals.assign(positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    for (std::uint32_t i = 0; i < std::uint32_t(positions.size()); ++i) mesh.indices.push_back(i);
+    return mesh;
+}
+
 Scene oneMeshScene(Mesh mesh, const Material& material) {
     Scene scene;
     mesh.material = 0;

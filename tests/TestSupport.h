@@ -45,6 +45,8 @@ struct CliRun {
 // such as "GALLIUM_DRIVER=x". Its stdout/stderr go through files in `dir` that are removed after.
 CliRun runFrugal(const std::filesystem::path& dir, const std::vector<std::string>& args, const std::string& env = "");
 
+// A mesh of separate triangles, three positions each (normals +z): tests that draw triangles alone.
+Mesh looseTriangles(const std::vector<glm::vec3>& positions);
 // A scene with one root node drawing `mesh` with `material` (the mesh gets material 0).
 Scene oneMeshScene(Mesh mesh, const Material& material = {});
 // Adds a root node at `position`, looking down -z, that carries `camera`; returns the camera's index.

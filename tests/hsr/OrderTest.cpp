@@ -43,11 +43,7 @@ std::vector<glm::vec3> randomTriangles(std::mt19937& rng, int count) {
 // Draws every triangle of a one-mesh scene alone on the software backend and checks its pixels and
 // depths against its listed extent; an unlisted triangle must draw nothing. Returns how many were listed.
 std::size_t checkExtents(const std::vector<glm::vec3>& positions, bool doubleSided, int width, int height) {
-    Mesh mesh;
-    mesh.name = "triangles";
-    mesh.positions = positions;
-    mesh.normals.assign(positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-    for (std::uint32_t i = 0; i < std::uint32_t(positions.size()); ++i) mesh.indices.push_back(i);
+    Mesh mesh = looseTriangles(positions);
     Material material;
     material.doubleSided = doubleSided;
     const Scene scene = oneMeshScene(std::move(mesh), material);

@@ -57,11 +57,7 @@ public:
     Probe(const std::vector<glm::vec3>& positions, int width, int height, const glm::mat4& projection,
           const glm::mat4& view = glm::mat4(1.0f))
         : width_(width), height_(height), builder_(width, height) {
-        Mesh mesh;
-        mesh.name = "triangles";
-        mesh.positions = positions;
-        mesh.normals.assign(positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-        for (std::uint32_t i = 0; i < std::uint32_t(positions.size()); ++i) mesh.indices.push_back(i);
+        Mesh mesh = looseTriangles(positions);
         Material material;
         material.doubleSided = true;
         scene_ = oneMeshScene(std::move(mesh), material);
