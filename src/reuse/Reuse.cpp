@@ -73,7 +73,7 @@ TemporalReuse::TemporalReuse(const Scene& scene, int width, int height, ReuseOpt
 }
 
 std::uint32_t TemporalReuse::groupSize(int instance) const {
-    const std::uint32_t triangles = std::uint32_t(scene_->meshes[scene_->instances[instance].mesh].triangleCount());
+    const std::uint32_t triangles = info_[std::size_t(instance)].triangles;
     return options_.grain <= 0 ? std::max<std::uint32_t>(1, triangles) : std::uint32_t(options_.grain);
 }
 
