@@ -4,12 +4,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gl/GlBackend.h"
 #include "render/Backend.h"
 #include "base/Result.h"
+#include "software/span/Interp.h"
 
 namespace frugal {
 
@@ -31,7 +33,17 @@ std::string backendSelectionName(const BackendSelection& selection);
 // Errors are GL context failures ("egl-surfaceless: ..."); the software backend always opens.
 // `threads` > 0 sets the rasterizer threads: the software backend's pool, and LP_NUM_THREADS for
 // llvmpipe (read when Mesa creates its screen, i.e. the first GL context of the process).
+// `interp` is the software backend's depth interpolation (SoftwareOptions::interp); a GL backend
+// has no such choice and is refused for anything but Exact: "--interp span: only the software
+// backend models the span interpolator (use --backend software)".
 Result<std::unique_ptr<Backend>> openBackend(const BackendSelection& selection,
-                                             std::vector<std::string>* log = nullptr, int threads = 0);
+                                             std::vector<std::string>* log = nullptr, int threads = 0,
+                                             span::Interp interp = span::Interp::Exact);
+
+// The names --interp accepts, and the parse: "--interp wat: not a mode (exact, span or dda)".
+inline constexpr const char* kInterpNames = "exact, span or dda";
+Result<span::Interp> parseInterp(const std::string& text);
+// The error above for a GL selection with an interp other than Exact; nothing when they go together.
+std::optional<std::string> interpConflict(const BackendSelection& selection, span::Interp interp);
 
 }  // namespace frugal

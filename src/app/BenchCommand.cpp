@@ -21,6 +21,7 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
+#include "app/HsrSupport.h"
 #include "base/Stats.h"
 #include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
@@ -46,6 +47,8 @@ minimal variant; "skipped" says why.
   --runs N              timed frames per variant (default 30)
   --warmup N            untimed frames first (default 5)
   --ids                 also write triangle ids (the id pass)
+  --hsr MODE            zbuffer (default), depthsort or adaptive (see 'frugal help render'); the
+                        plan is timed with the frame; the minimal program stays z-buffered
 )";
 }
 
@@ -82,6 +85,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     RenderOptions options;
     bool ids = false;
     int runs = 30, warmup = 5;
+    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
     CommandLine command{"bench", benchHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
@@ -91,7 +95,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             if (std::optional<int> n = wholeNumber(flag, cursor, 0, 100000)) warmup = *n;
         } else if (flag == "--ids") {
             ids = true;
-        } else {
+        } else if (!parseHsrOption(flag, cursor, hsrMode)) {
             return false;
         }
         return true;
@@ -145,6 +149,8 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             SceneRenderer& renderer = *opened->renderer;
             const TargetHandle target = opened->target;
             Sample sample{backend.name(), backend.renderer(), order, "frugal", {}, std::nullopt};
+            std::optional<hsr::Planner> planner;
+            if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(*scene);
 
             // The minimal program on a context of the same kind, for GL backends.
             std::unique_ptr<MinimalFrame> minimal;
@@ -171,8 +177,14 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             for (int i = 0; i < warmup + runs; ++i) {
                 backend.finish();
                 auto t0 = Clock::now();
-                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                     options.background);
+                if (planner)  // the plan is part of the frame's time
+                    renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                         options.background,
+                                         planner->plan(hsrMode, setup->params, setup->world, renderer.fullList(),
+                                                       options.width, options.height));
+                else
+                    renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                         options.background);
                 backend.finish();
                 const double ms = millisecondsSince(t0);
                 if (i >= warmup) sample.ms.push_back(ms);
@@ -241,6 +253,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         {"size", {options.width, options.height}},
         {"triangles", optimized->triangleCount()},
         {"ids", ids},
+        {"hsr", hsr::modeName(hsrMode)},
         {"runs", runs},
         {"warmup", warmup},
         {"threads", options.threads > 0 ? nlohmann::json(options.threads) : nlohmann::json("default")},

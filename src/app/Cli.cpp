@@ -19,6 +19,8 @@ usage:
   frugal diff [SCENE] [options]                   a GL render against the software reference
   frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
   frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
+  frugal hsr-bench [SCENE] [options]             depth sort and the adaptive z-buffer against the z-buffer
+  frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -53,6 +55,8 @@ const CommandEntry kCommands[] = {
     {"bench", runBench, benchHelp, true},    {"compare", runCompare, compareHelp, false},
     {"diff", runDiff, diffHelp, true},       {"cull-report", runCullReport, cullReportHelp, true},
     {"reuse-bench", runReuseBench, reuseBenchHelp, true},
+    {"hsr-bench", runHsrBench, hsrBenchHelp, true},
+    {"span-bench", runSpanBench, spanBenchHelp, false},
 };
 
 const CommandEntry* findCommand(const std::string& name) {

@@ -48,7 +48,7 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
 
 Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options) {
     Session session;
-    Result<std::unique_ptr<Backend>> backend = openBackend(selection, &session.log, options.threads);
+    Result<std::unique_ptr<Backend>> backend = openBackend(selection, &session.log, options.threads, options.interp);
     if (!backend) return Error{backend.error()};
     session.backend = std::move(*backend);
     return session;

@@ -61,8 +61,9 @@ struct Session {
 // (kExitNoBackend or kExitError) instead of a session.
 std::variant<Session, int> startSession(const RenderOptions& options, const Scene& scene, std::ostream& err);
 
-// Opens `selection` with the options' thread count. A failure means the backend is not available
-// here (exit status kExitNoBackend); the message is its reason (print it after "error: <label>: ").
+// Opens `selection` with the options' thread count and --interp. A failure means the backend is not
+// available here (exit status kExitNoBackend); the message is its reason (print it after
+// "error: <label>: ").
 Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options);
 
 // Creates the target (unless the session has one) and uploads `scene` into an open session,

@@ -14,6 +14,8 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
 int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
@@ -22,5 +24,7 @@ const char* compareHelp();
 const char* diffHelp();
 const char* cullReportHelp();
 const char* reuseBenchHelp();
+const char* hsrBenchHelp();
+const char* spanBenchHelp();
 
 }  // namespace frugal

@@ -19,6 +19,7 @@
 #include "app/CameraPath.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
+#include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
 #include "cull/Views.h"
@@ -50,6 +51,9 @@ methods and timing:
   --methods A,B,...     among none, sphere, backface, cones, paper, conservative, oracle
                         (default all)
   --repeat K            timed frames per view and method, interleaved; medians (default 5)
+  --hsr MODE            every row draws in this hidden-surface mode (zbuffer, depthsort or
+                        adaptive; 'frugal help render'), its plan timed with the draw; the
+                        reference stays the z-buffered full render
 )"
            "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
            R"(
@@ -81,11 +85,13 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     Outputs outputs;
     int viewCount = 32, repeat = 5;
     bool viewsGiven = false;
+    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     std::vector<CullMethod> methods(std::begin(kCullMethods), std::end(kCullMethods));
     CommandLine command{"cull-report", cullReportHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, false)) return true;
         if (parseReportOption(flag, cursor, outputs)) return true;
+        if (parseHsrOption(flag, cursor, hsrMode)) return true;
         if (flag == "--views") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) viewCount = *n;
             viewsGiven = true;
@@ -177,6 +183,10 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     const TargetHandle target = session.target;
     const int width = options.width, height = options.height;
     const DrawList full = fullDrawList(scene);
+    // --hsr: every row, methods and baselines, draws its list in that mode; the reference stays the
+    // z-buffered full render, so pixels_differing counts what culling and the mode together change.
+    std::optional<hsr::Planner> planner;
+    if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(scene);
 
     CullReport report;
     report.scene = options.scene;
@@ -211,11 +221,23 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
         };
         std::vector<Timing> timings(methods.size());
         Timing fullTiming, cullfaceTiming, oracleTiming;
+        std::optional<hsr::Planner> oraclePlanner;
+        if (planner) oraclePlanner.emplace(*oracle->scene);
+        // Draws `list` (the renderer's full list when null) in the --hsr mode; the plan is timed.
+        auto draw = [&](SceneRenderer& r, const DrawList* list) {
+            if (!planner) {
+                if (list) r.renderFrame(target, width, height, params, world, options.background, *list);
+                else r.renderFrame(target, width, height, params, world, options.background);
+                return;
+            }
+            const hsr::Planner& p = &r == &renderer ? *planner : *oraclePlanner;
+            r.renderFrame(target, width, height, params, world, options.background,
+                          p.plan(hsrMode, params, world, list ? *list : r.fullList(), width, height));
+        };
         auto frame = [&](SceneRenderer& r, const DrawList* list, Timing& t, bool record) {
             backend.finish();
             const auto t0 = Clock::now();
-            if (list) r.renderFrame(target, width, height, params, world, options.background, *list);
-            else r.renderFrame(target, width, height, params, world, options.background);
+            draw(r, list);
             backend.finish();
             if (record) t.draw.push_back(msSince(t0));
         };
@@ -266,9 +288,9 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             result.waste = counts.waste;
             // The image this plan draws, against the full render's.
             if (methods[m] == CullMethod::Oracle)
-                oracle->renderer->renderFrame(target, width, height, params, world, options.background);
+                draw(*oracle->renderer, nullptr);
             else
-                renderer.renderFrame(target, width, height, params, world, options.background, t.list);
+                draw(renderer, &t.list);
             Result<ImageComparison> compared = compareBuffers(backend.readBack(target), reference);
             result.pixelsDiffering = compared ? compared->failingPixels : reference.pixelCount();
             result.cullMs = t.cull.empty() ? 0.0 : median(t.cull);  // none, oracle: no plan to make
@@ -304,6 +326,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                           {"paper_bunny", {{"hull_ms", 5000}, {"hull_vertices", 3023}, {"hull_faces", 6042},
                                            {"map_bytes", 4.3e6}, {"access_bytes", 0.51e6}}}};
     json["repeat"] = repeat;
+    json["hsr"] = hsr::modeName(hsrMode);
     json["renderer"] = backend.renderer();
 
     const ReportTexts texts{[&json] { return json.dump(2) + "\n"; }, [&report] { return cullReportCsv(report); },

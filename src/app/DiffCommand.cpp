@@ -12,6 +12,7 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
+#include "app/HsrSupport.h"
 #include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 #include "report/ImageCompare.h"
@@ -47,6 +48,8 @@ one is not.
                         reference.png, mask.png; with --frames actual_0003.png, ...
                         The mask is red where a pixel fails, the reference in grey elsewhere
   --json FILE           per-frame metrics as JSON
+  --hsr MODE            both backends draw the frame in this hidden-surface mode: zbuffer
+                        (default), depthsort or adaptive (see 'frugal help render')
 )";
 }
 
@@ -55,6 +58,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     CompareOptions compare;
     compare.tolerance = kDefaultTolerance;
     std::string outDir, jsonPath;
+    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     CommandLine command{"diff", diffHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (flag == "--tolerance") {
@@ -64,7 +68,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             if (!path) return true;
             if (path->empty()) cursor.fail(flag + ": empty " + (flag == "--out" ? "folder" : "file") + " name");
             else (flag == "--out" ? outDir : jsonPath) = *path;
-        } else {
+        } else if (!parseHsrOption(flag, cursor, hsrMode)) {
             return false;
         }
         return true;
@@ -85,6 +89,8 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     const Scene& scene = *loaded;
     const FrameRange range = options.frames.value_or(FrameRange{});
+    std::optional<hsr::Planner> planner;  // --hsr: both backends draw the same plan
+    if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(scene);
 
     // The GL backend under test, then the software reference.
     Session sessions[2];
@@ -122,9 +128,12 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         }
         const double time = setup->time;
         Buffers images[2];
+        const DrawList list = planner ? planner->plan(hsrMode, setup->params, setup->world, renderers[0]->fullList(),
+                                                      options.width, options.height)
+                                      : renderers[0]->fullList();
         for (int k = 0; k < 2; ++k) {
             renderers[k]->renderFrame(targets[k], options.width, options.height, setup->params, setup->world,
-                                      options.background);
+                                      options.background, list);
             images[k] = backends[k]->readBack(targets[k]);
         }
         Result<ImageComparison> compared = compareBuffers(images[0], images[1], compare);
@@ -184,6 +193,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             {"scene", options.scene},
             {"size", {options.width, options.height}},
             {"tolerance", compare.tolerance},
+            {"hsr", hsr::modeName(hsrMode)},
             {"passed", failedFrames == 0},
             {"failed_frames", failedFrames},
             {"actual", {{"backend", actualName}, {"renderer", backends[0]->renderer()}, {"backend_log", log}}},

@@ -125,6 +125,12 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
             o.backend = *choice;
             o.backendName = *text;
         }
+    } else if (flag == "--interp") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        Result<span::Interp> mode = parseInterp(*text);
+        if (!mode) cursor.fail(mode.error());
+        else o.interp = *mode;
     } else if (flag == "--threads") {
         if (auto v = number(flag, cursor, 1, 256)) {
             if (*v != std::floor(*v)) cursor.fail("--threads: expected a whole number, got '" + fmt(*v) + "'");
@@ -194,6 +200,7 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
 }
 
 void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
+    if (std::optional<std::string> conflict = interpConflict(o.backend, o.interp)) cursor.fail(*conflict);
     const std::optional<float>& near = o.camera.znear;
     const std::optional<float>& far = o.camera.zfar;
     if (near && far && *far != 0.0f && !(*far > *near))
@@ -207,6 +214,11 @@ const char* sharedOptionsHelp() {
                         reference rasterizer, llvmpipe's rules, no GL)
   --threads N           rasterizer threads: the software backend's, and llvmpipe's (LP_NUM_THREADS);
                         default every core
+  --interp MODE         depth along each scan-line span, software backend only: exact (default,
+                        llvmpipe's bits), span (paper 001's midpoint-subdivision engine, within
+                        1 LSB of the line through the span's ends) or dda (add-and-shift, 8 fraction
+                        bits: the error grows along the span); a slow path. Colour is shaded per
+                        fragment in every mode (not Gouraud): it changes only where a depth test flips
   --camera N            use the scene's camera N (default: camera 0 if the scene has one,
                         else a view that fits the scene's bounds)
   --eye X,Y,Z           look from here (with --target, default the bounds' centre, and --up)

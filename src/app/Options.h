@@ -49,6 +49,7 @@ struct RenderOptions {
     BackendSelection backend;
     std::string backendName = "auto";  // as given, for messages
     int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
+    span::Interp interp = span::Interp::Exact;  // --interp: the software backend's depth along a span
     CameraSpec camera;
     // --camera-path (render, reuse-bench; app/CameraPath.h): entry i is frame first + i, the last
     // one holds; --near/--far still apply. Empty: `camera` for every frame.

@@ -10,9 +10,11 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
+#include "app/HsrSupport.h"
 #include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
+#include "software/SoftwareBackend.h"
 
 namespace frugal {
 
@@ -41,7 +43,7 @@ R"(
   --reuse               temporal reuse: with the camera still, copy what static instances render
                         from a static pair (one more target) and redraw only what changed; the
                         images are the same, byte for byte. The JSON gets per-frame state counts.
-)") + reuseOptionsHelp();
+)") + reuseOptionsHelp() + "\n" + hsrOptionHelp();
     return text.c_str();
 }
 
@@ -101,9 +103,11 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     Outputs outputs;
     CullOptions cull;
     ReuseCliOptions reuseOptions;
+    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     CommandLine command{"render", renderHelp(), &options};
-    command.option = [&outputs, &cull, &reuseOptions, &options](const std::string& flag, ArgCursor& cursor) {
+    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, true)) return true;
+        if (parseHsrOption(flag, cursor, hsrMode)) return true;
         if (parseReuseOption(flag, cursor, reuseOptions, options, true)) return true;
         if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
         const std::optional<std::string> path = cursor.value(flag);
@@ -116,9 +120,15 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         return true;
     };
     command.positional = sceneArgument(options);
-    command.finish = [&outputs, &options, &cull, &reuseOptions](ArgCursor& cursor) {
+    command.finish = [&outputs, &options, &cull, &reuseOptions, &hsrMode](ArgCursor& cursor) {
         if (reuseOptions.enabled && cull.method == CullMethod::Oracle)
             cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+        else if (hsrMode != hsr::Mode::ZBuffer && reuseOptions.enabled)
+            cursor.fail(std::string("--hsr ") + hsr::modeName(hsrMode) +
+                        " with --reuse: reuse redraws what moved with the z-buffer over the static image; use one");
+        else if (hsrMode != hsr::Mode::ZBuffer && cull.method == CullMethod::Oracle)
+            cursor.fail(std::string("--hsr ") + hsr::modeName(hsrMode) +
+                        " with --cull oracle: the oracle draws its own scene; use --cull with a method");
         else if (!hasExtension(outputs.color, ".png"))
             cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
         else if (!outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
@@ -144,6 +154,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     std::optional<SceneCuller> culler = prepareCullOption(scene, cull, err, options.quiet);  // before the upload
 
     const FrameRange range = options.frames.value_or(FrameRange{});
+    std::optional<hsr::Planner> planner;
+    if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(scene);
 
     std::variant<Session, int> started = startSession(options, scene, err);
     if (const int* status = std::get_if<int>(&started)) return *status;
@@ -175,6 +187,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     const int frameCount = range.last - range.first + 1;
     nlohmann::json frames = nlohmann::json::array();
+    InterpStats interpSeen;  // --interp: the software backend's counters after the previous frame
     nlohmann::json cameraJson;
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
@@ -188,7 +201,21 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const double time = setup->time;
         const View& view = setup->view;
 
-        nlohmann::json cullJson, reuseJson;
+        nlohmann::json cullJson, reuseJson, hsrFrameJson;
+        // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
+        const auto drawList = [&](const DrawList& list) {
+            if (!planner) {
+                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                     options.background, list);
+                return;
+            }
+            hsr::PlanStats stats;
+            const DrawList planned =
+                planner->plan(hsrMode, setup->params, setup->world, list, options.width, options.height, &stats);
+            hsrFrameJson = hsrJson(hsrMode, stats);
+            renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
+                                 options.background, planned);
+        };
         auto t0 = Clock::now();
         if (method == CullMethod::Oracle) {
             // The id pass and the oracle's own index buffers come before the clock starts.
@@ -212,13 +239,11 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             if (reuse)
                 reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, &list, options.background);
             else
-                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                     options.background, list);
+                drawList(list);
         } else if (reuse) {
             reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, nullptr, options.background);
         } else {
-            renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                 options.background);
+            drawList(renderer.fullList());
         }
         backend.finish();
         const auto t1 = Clock::now();
@@ -248,12 +273,24 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
                           {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});
         if (!cullJson.is_null()) frames.back().update(cullJson);
         if (!reuseJson.is_null()) frames.back()["reuse"] = reuseJson;
+        if (!hsrFrameJson.is_null()) frames.back()["hsr"] = hsrFrameJson;
+        if (options.interp != span::Interp::Exact)
+            if (const std::optional<InterpStats> interp = softwareInterpStats(backend)) {
+                // The backend's counters run from its start: per frame, the difference.
+                frames.back()["interp"] = {{"mode", span::interpName(options.interp)},
+                                           {"spans", interp->spans - interpSeen.spans},
+                                           {"overflow", interp->overflow - interpSeen.overflow}};
+                interpSeen = *interp;
+            }
         if (!options.quiet) {
             err << "frame " << frame << " (" << (frame - range.first + 1) << "/" << frameCount << "): "
                 << fmt(ms(t1 - t0)) << " ms";
             if (!cullJson.is_null())
                 err << " (" << cullMethodName(method) << ": " << cullJson["pvs"].get<std::size_t>() << " of "
                     << scene.triangleCount() << " triangles)";
+            if (!hsrFrameJson.is_null())
+                err << " (" << hsr::modeName(hsrMode) << ": " << hsrFrameJson["zbuffered_polygons"].get<std::size_t>()
+                    << " of " << hsrFrameJson["polygons"].get<std::size_t>() << " polygons depth-tested)";
             if (reuse) {
                 const ReuseFrameStats& stats = reuse->stats();
                 err << " (" << reuseModeName(stats.mode) << ": " << stats.redrawnTris << " of " << stats.drawnTris
@@ -265,6 +302,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         }
     }
 
+    if (interpSeen.overflow > 0)
+        err << "warning: --interp " << span::interpName(options.interp) << ": " << interpSeen.overflow
+            << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";
     if (!outputs.json.empty()) {
         nlohmann::json meta = {
             {"scene", options.scene},
@@ -278,6 +318,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             {"backend_log", log},
             {"camera", cameraJson},
             {"cull", cullMethodName(method)},
+            {"hsr", hsr::modeName(hsrMode)},
             {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
                                              {"fallback", reuseOptions.settings.fallback},
                                              {"static_pair_bytes", staticPairBytes(options.width, options.height)}}

@@ -318,6 +318,16 @@ private:
             gl_.Disable(GL_CULL_FACE);
         cache_.cullOn = int(on);
     }
+    // DepthMode::Off is GL_DEPTH_TEST disabled, which also stops depth writes (GL 4.5 §14.9.4); the
+    // depth mask stays GL_TRUE, so clears (glClearBuffer honours the mask) keep clearing depth.
+    void setDepthTest(bool on) {
+        if (cache_.depthTestOn == int(on)) return;
+        if (on)
+            gl_.Enable(GL_DEPTH_TEST);
+        else
+            gl_.Disable(GL_DEPTH_TEST);
+        cache_.depthTestOn = int(on);
+    }
     void bindVao(GLuint vao) {
         if (cache_.vao != vao) gl_.BindVertexArray(vao);
         cache_.vao = vao;
@@ -352,7 +362,7 @@ private:
     GlProgram programs_[kVariantCount];
     struct {
         GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0, program = 0;
-        int scissorOn = -1, cullOn = -1;
+        int scissorOn = -1, cullOn = -1, depthTestOn = -1;
         Rect scissor{-1, -1, -1, -1};
         int viewportWidth = -1, viewportHeight = -1;
     } cache_;
@@ -401,8 +411,9 @@ std::string GlBackend::initialise() {
     if (std::string reason = compileVariant(kTextureBit | kColorsBit | kIdsBit); !reason.empty()) return reason;
 
     // The fixed state (Backend.h): GL_LESS with depth writes, no blending (the default), no
-    // dithering (Mesa may dither 8-bit targets otherwise), counter-clockwise front faces.
-    gl_.Enable(GL_DEPTH_TEST);
+    // dithering (Mesa may dither 8-bit targets otherwise), counter-clockwise front faces. The depth
+    // test itself is per draw (DepthMode, setDepthTest).
+    setDepthTest(true);
     gl_.DepthFunc(GL_LESS);
     gl_.DepthMask(GL_TRUE);
     gl_.Disable(GL_DITHER);
@@ -743,6 +754,7 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
     setViewport(target->width, target->height);
     setScissor(false);
     setCull(!params.doubleSided);
+    setDepthTest(params.depth == DepthMode::Test);
     if (texture) bindTexture(texture);
 
     const Lighting& light = frame_.lighting;

@@ -48,17 +48,21 @@ Grid chooseGrid(std::span<const Extent> extents) {
     }
 }
 
+bool sameGroup(std::span<const std::int32_t> groups, std::size_t a, std::size_t b) {
+    return !groups.empty() && groups[a] >= 0 && groups[a] == groups[b];
+}
+
 }  // namespace
 
-std::vector<std::uint8_t> flagOverlapsAllPairs(std::span<const Extent> extents) {
+std::vector<std::uint8_t> flagOverlapsAllPairs(std::span<const Extent> extents, std::span<const std::int32_t> groups) {
     std::vector<std::uint8_t> flags(extents.size(), 0);
     for (std::size_t f = 0; f < extents.size(); ++f)
         for (std::size_t s = f + 1; s < extents.size(); ++s)
-            if (overlaps(extents[f], extents[s])) flags[f] = flags[s] = 1;
+            if (overlaps(extents[f], extents[s]) && !sameGroup(groups, f, s)) flags[f] = flags[s] = 1;
     return flags;
 }
 
-std::vector<std::uint8_t> flagOverlaps(std::span<const Extent> extents) {
+std::vector<std::uint8_t> flagOverlaps(std::span<const Extent> extents, std::span<const std::int32_t> groups) {
     std::vector<std::uint8_t> flags(extents.size(), 0);
     if (extents.size() < 2) return flags;
     const Grid grid = chooseGrid(extents);
@@ -96,7 +100,8 @@ std::vector<std::uint8_t> flagOverlaps(std::span<const Extent> extents) {
                 const Extent& b = entries[j].extent;
                 const std::uint32_t bi = entries[j].index;
                 if (flags[ai] && flags[bi]) continue;
-                if (a.y0 <= b.y1 && b.y0 <= a.y1 && a.z0 <= b.z1 && b.z0 <= a.z1) flags[ai] = flags[bi] = 1;
+                if (a.y0 <= b.y1 && b.y0 <= a.y1 && a.z0 <= b.z1 && b.z0 <= a.z1 && !sameGroup(groups, ai, bi))
+                    flags[ai] = flags[bi] = 1;
             }
         }
     }

@@ -37,8 +37,10 @@ inline bool overlaps(const Extent& a, const Extent& b) {
     return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1 && a.z0 <= b.z1 && b.z0 <= a.z1;
 }
 
-// Extents must be non-empty (x0 ≤ x1, y0 ≤ y1, z0 ≤ z1) with no NaN z.
-std::vector<std::uint8_t> flagOverlapsAllPairs(std::span<const Extent> extents);
-std::vector<std::uint8_t> flagOverlaps(std::span<const Extent> extents);
+// Extents must be non-empty (x0 ≤ x1, y0 ≤ y1, z0 ≤ z1) with no NaN z. `groups`, when not empty,
+// holds one number per extent: two extents of one group (a number ≥ 0) are never flagged against
+// each other (polygons that cannot share a pixel, hsr/Plan.h's adaptive-convex); −1 is no group.
+std::vector<std::uint8_t> flagOverlapsAllPairs(std::span<const Extent> extents, std::span<const std::int32_t> groups = {});
+std::vector<std::uint8_t> flagOverlaps(std::span<const Extent> extents, std::span<const std::int32_t> groups = {});
 
 }  // namespace frugal::hsr

@@ -36,11 +36,12 @@ WindowVertex toWindow(const glm::mat4& mvp, const glm::vec3& position, int width
     return v;
 }
 
-// Clearly back-facing in window space (counter-clockwise is front), see Order.h.
-bool clearlyBackFacing(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
+// Facing in window space (counter-clockwise is front), see Order.h: −1 clearly back-facing, +1
+// clearly front-facing, 0 nearly edge-on.
+int facing(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c) {
     const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
-    const double area2 = ux * vy - uy * vx;
-    return area2 < -1e-5 * std::hypot(ux, uy) * std::hypot(vx, vy);
+    const double area2 = ux * vy - uy * vx, margin = 1e-5 * std::hypot(ux, uy) * std::hypot(vx, vy);
+    return area2 < -margin ? -1 : area2 > margin ? 1 : 0;
 }
 
 }  // namespace
@@ -72,8 +73,10 @@ ScreenTriangles screenTriangles(const Scene& scene, const FrameParams& frame, co
                 if (a.outside & b.outside & c.outside) continue;
                 Extent e = whole;
                 float depth = 0.0f;
+                int side = 0;
                 if (!(a.unbounded || b.unbounded || c.unbounded)) {
-                    if (singleSided && clearlyBackFacing(a, b, c)) continue;
+                    side = facing(a, b, c);
+                    if (singleSided && side < 0) continue;
                     const double minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
                     const double minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
                     e.x0 = std::max(0, int(std::floor(minX - margin(minX))));
@@ -93,6 +96,7 @@ ScreenTriangles screenTriangles(const Scene& scene, const FrameParams& frame, co
                 out.refs.push_back(TriangleRef{command.instance, t});
                 out.extents.push_back(e);
                 out.depth.push_back(depth);
+                out.front.push_back(side > 0 ? 1 : 0);
             }
         }
     }

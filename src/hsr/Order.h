@@ -76,6 +76,9 @@ struct ScreenTriangles {
     std::vector<TriangleRef> refs;
     std::vector<Extent> extents;
     std::vector<float> depth;  // average window z, in [0, 1]
+    // 1 when clearly front-facing (signed window area above +1e-5 of the product of two edge
+    // lengths, the mirror of the back-face test above): every backend draws it as a front face.
+    std::vector<std::uint8_t> front;
     std::size_t size() const { return refs.size(); }
 };
 

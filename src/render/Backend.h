@@ -3,7 +3,7 @@
 // (src/software/). Plans made by cull/ and reuse/ are executed through this interface only.
 //
 // Render target: colour RGBA8 + depth 24-bit + triangle id R32UI, same formats in every backend.
-// Depth test GL_LESS, depth range [0,1], no blending. Draws are executed in call order, and within a
+// Depth test GL_LESS (or none: DepthMode), depth range [0,1], no blending. Draws are executed in call order, and within a
 // draw call the ranges in the order given, the triangles of a range in index-buffer order: that is
 // the documented order in which depth ties resolve (the first triangle drawn keeps the pixel).
 #pragma once
@@ -50,6 +50,12 @@ struct FrameParams {
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
 };
 
+// How a draw uses the depth buffer.
+//   Test: the z-buffer: a fragment passes when its depth is less than the stored one, and writes it.
+//   Off:  no depth read and no depth write: every covered pixel takes the fragment, in draw order
+//         (the painter's method; hidden-surface modes of paper 003, src/hsr/).
+enum class DepthMode : std::uint8_t { Test, Off };
+
 // Everything a draw needs besides the mesh's buffers.
 struct DrawParams {
     MeshHandle mesh = kNoHandle;
@@ -58,6 +64,7 @@ struct DrawParams {
     TextureHandle texture = kNoHandle;  // kNoHandle = white
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
+    DepthMode depth = DepthMode::Test;
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute

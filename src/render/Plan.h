@@ -8,10 +8,12 @@
 
 namespace frugal {
 
-// One instance's index ranges. A full draw is one range over the whole mesh.
+// One instance's index ranges. A full draw is one range over the whole mesh. `depth`: how the draw
+// uses the depth buffer (render/Backend.h); plans other than the hidden-surface modes' leave Test.
 struct DrawCommand {
     int instance = -1;
     std::vector<IndexRange> ranges;
+    DepthMode depth = DepthMode::Test;
 };
 
 // In draw order: the order is part of the result (depth ties resolve to the first drawn).
@@ -27,7 +29,7 @@ enum class PlanTarget : std::uint8_t { Render, Static };
 // One step of a frame plan, executed in order:
 //   Clear: `rects` of `to` to the background colour, far depth and id 0;
 //   Copy:  `rects` from `from` to `to`: colour, depth, and ids when the frame writes them;
-//   Draw:  `draws` into `to` (z-buffered, in list order, with the frame's camera and light).
+//   Draw:  `draws` into `to` (in list order, each with its depth mode, with the frame's camera and light).
 struct PlanStep {
     enum class Op : std::uint8_t { Clear, Copy, Draw };
     Op op = Op::Draw;

@@ -78,6 +78,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.firstId = instance.firstId;
+        params.depth = command.depth;
         backend_->draw(params, command.ranges);
     }
 }

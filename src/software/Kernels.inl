@@ -98,14 +98,16 @@ void raster(const Triangle& t, TileState& tile) {
                     mask = simd::andnot(simd::sra(f, 31), mask);  // f ≥ 0
                 }
                 if (simd::laneBits(mask) == 0) continue;
-                F8 z = simd::fma(dzdy, simd::splat(float(y)), simd::fma(dzdx, pxf, z0));
-                z = simd::min(simd::max(z, zero), one);
-                const I8 zi = simd::toIntRound(z * zscale);
-                std::uint32_t* depthRow = tile.target.depth + std::size_t(y) * stride + bx;
-                const I8 old = simd::loadi(depthRow);
-                const I8 pass = mask & simd::gt(old, zi);
-                if (simd::laneBits(pass) == 0) continue;
-                simd::storeMasked(depthRow, pass, zi);
+                I8 pass = mask;
+                if (t.depthTest) {  // DepthMode::Off skips the depth plane, the read and the write
+                    F8 z = simd::fma(dzdy, simd::splat(float(y)), simd::fma(dzdx, pxf, z0));
+                    z = simd::min(simd::max(z, zero), one);
+                    const I8 zi = simd::toIntRound(z * zscale);
+                    std::uint32_t* depthRow = tile.target.depth + std::size_t(y) * stride + bx;
+                    pass = mask & simd::gt(simd::loadi(depthRow), zi);
+                    if (simd::laneBits(pass) == 0) continue;
+                    simd::storeMasked(depthRow, pass, zi);
+                }
                 if (myIndex == kNoWinner) {
                     myIndex = std::uint32_t(tile.won.size());
                     tile.won.push_back(&t);

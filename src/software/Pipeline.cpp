@@ -28,9 +28,11 @@ constexpr std::uint64_t kSetupChunk = 2048;  // triangles per setup task, at lea
 
 }  // namespace
 
-Pipeline::Pipeline(int threads, bool simd) : kernels_(selectKernels(simd)), fused_(cpuHasFma()), pool_(threads) {
+Pipeline::Pipeline(int threads, bool simd, span::Interp interp)
+    : kernels_(selectKernels(simd)), fused_(cpuHasFma()), interp_(interp), pool_(threads) {
     tiles_.resize(std::size_t(pool_.size()));
     for (auto& tile : tiles_) tile = std::make_unique<TileState>();
+    if (interp_ != span::Interp::Exact) interpScratch_.resize(std::size_t(pool_.size()));
 }
 
 Segment& Pipeline::newSegment() {
@@ -85,6 +87,7 @@ void Pipeline::setup(const SetupJob& job, std::uint64_t skip, std::uint64_t coun
         t.draw = job.drawIndex;
         t.id = id;
         t.writesId = record.shading.writeIds;
+        t.depthTest = record.shading.depthTest;
         segment.triangles.push_back(t);
         segment.bin(std::uint32_t(segment.triangles.size() - 1), tilesX);
     };
@@ -217,6 +220,8 @@ void Pipeline::flush(const TargetView& target) {
         }
     };
     run(segmentCount_, [&](std::size_t s, int) { segments_[s]->close(tileCount); });
+    for (InterpScratch& scratch : interpScratch_)
+        if (scratch.values.size() < std::size_t(target.width)) scratch.values.resize(std::size_t(target.width));
     run(std::size_t(tileCount), [&](std::size_t tileIndex, int worker) {
         bool any = false;
         for (std::size_t s = 0; s < segmentCount_ && !any; ++s)
@@ -230,13 +235,33 @@ void Pipeline::flush(const TargetView& target) {
         tile.y1 = std::min(tile.y0 + kTileSize, target.height);
         tile.won.clear();
         std::fill(std::begin(tile.winner), std::end(tile.winner), kNoWinner);
-        for (std::size_t s = 0; s < segmentCount_; ++s) {
-            const Segment& segment = *segments_[s];
-            for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i)
-                kernels_.raster(segment.triangles[segment.sorted[i]], tile);
+        if (interp_ == span::Interp::Exact) {
+            for (std::size_t s = 0; s < segmentCount_; ++s) {
+                const Segment& segment = *segments_[s];
+                for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i)
+                    kernels_.raster(segment.triangles[segment.sorted[i]], tile);
+            }
+        } else {
+            // The slow path (InterpRaster.h): span-interpolated depth, one pixel at a time.
+            InterpScratch& scratch = interpScratch_[std::size_t(worker)];
+            for (std::size_t s = 0; s < segmentCount_; ++s) {
+                const Segment& segment = *segments_[s];
+                for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i) {
+                    const Triangle& t = segment.triangles[segment.sorted[i]];
+                    if (t.depthTest) rasterInterp(t, tile, interp_, fused_, scratch);
+                    else kernels_.raster(t, tile);
+                }
+            }
         }
         for (std::uint32_t w = 0; w < tile.won.size(); ++w) kernels_.shade(w, draws_[tile.won[w]->draw]->shading, tile);
     });
+    for (InterpScratch& scratch : interpScratch_) {
+        interpStats_.spans += scratch.stats.spans;
+        interpStats_.pixels += scratch.stats.pixels;
+        interpStats_.overflow += scratch.stats.overflow;
+        interpStats_.overflowBits |= scratch.stats.overflowBits;
+        scratch.stats = {};
+    }
     discard();
 }
 

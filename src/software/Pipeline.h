@@ -2,7 +2,8 @@
 // vertices the draw uses (each once), clips, sets up and bins the triangles (Rasterizer.h), in
 // parallel chunks for large draws; flush() rasterizes and shades everything pending, one 64×64 tile
 // per thread at a time (Kernels.h). The order of submission is kept: chunks become segments in
-// order, and every tile walks the segments in order.
+// order, and every tile walks the segments in order. An interp other than Exact rasterizes
+// depth-tested triangles through the slow path of software/InterpRaster.h instead of the kernels.
 #pragma once
 
 #include <cstdint>
@@ -14,8 +15,10 @@
 #include "render/Backend.h"
 #include "software/Kernels.h"
 #include "software/Rasterizer.h"
+#include "software/InterpRaster.h"
 #include "software/Shading.h"
 #include "software/ThreadPool.h"
+#include "software/span/Interp.h"
 
 namespace frugal::sw {
 
@@ -39,11 +42,14 @@ struct DrawInput {
 
 class Pipeline {
 public:
-    Pipeline(int threads, bool simd);
+    Pipeline(int threads, bool simd, span::Interp interp = span::Interp::Exact);
 
     int threads() const { return pool_.size(); }
     const char* kernelName() const { return kernels_.name; }
     bool fusedViewport() const { return fused_; }
+    span::Interp interp() const { return interp_; }
+    // The slow path's counters, summed over every flush so far (zero in Exact mode).
+    const InterpStats& interpStats() const { return interpStats_; }
     ThreadPool& pool() { return pool_; }
 
     // Queues `ranges` of `mesh` for a target of `width` × `height`. Every draw queued until the next
@@ -84,8 +90,11 @@ private:
 
     const Kernels& kernels_;
     const bool fused_;
+    const span::Interp interp_;
     ThreadPool pool_;
     std::vector<std::unique_ptr<TileState>> tiles_;  // one per thread
+    std::vector<InterpScratch> interpScratch_;       // one per thread; used when interp_ != Exact
+    InterpStats interpStats_;
     std::uint64_t drawSerial_ = 0;
 
     // Queued work; records and segments are reused from flush to flush.

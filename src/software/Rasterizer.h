@@ -121,6 +121,7 @@ struct Triangle {
     std::uint32_t id;             // triangle id written to the id buffer
     std::uint32_t front;          // 1: front face (gl_FrontFacing)
     bool writesId;                // the draw writes ids (FrameParams::writeIds when it was made)
+    bool depthTest;               // DepthMode::Test; false: every covered pixel passes, no depth written
 };
 
 struct Viewport {

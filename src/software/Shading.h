@@ -68,6 +68,7 @@ struct DrawShading {
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float ambient = 0.3f, diffuse = 0.7f;
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
+    bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
 };
 
 // float → unorm8 as llvmpipe converts colour (see above).

@@ -40,13 +40,18 @@ class SoftwareBackend final : public Backend {
 public:
     explicit SoftwareBackend(const SoftwareOptions& options)
         : pipeline_(options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency())),
-                    options.simd) {}
+                    options.simd, options.interp) {}
 
     std::string name() const override { return "software"; }
     std::string renderer() const override {
+        // Not Exact: the depth is not llvmpipe's, and the description says so.
+        const std::string interp = pipeline_.interp() == span::Interp::Exact
+                                       ? ""
+                                       : std::string(", ") + span::interpName(pipeline_.interp()) + " depth interpolation";
         return std::string("frugal software rasterizer (llvmpipe rules, ") + pipeline_.kernelName() + " kernels, " +
-               std::to_string(pipeline_.threads()) + (pipeline_.threads() == 1 ? " thread)" : " threads)");
+               std::to_string(pipeline_.threads()) + (pipeline_.threads() == 1 ? " thread" : " threads") + interp + ")";
     }
+    const InterpStats& interpStats() const { return pipeline_.interpStats(); }
     int maxTargetSize() const override { return kMaxSize; }
     int maxTextureSize() const override { return kMaxSize; }
 
@@ -191,6 +196,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.ambient = frame_.lighting.ambient;
     input.shading.diffuse = frame_.lighting.diffuse;
     input.shading.writeIds = frame_.writeIds;
+    input.shading.depthTest = params.depth == DepthMode::Test;
     input.shading.colors = !mesh->colors.empty();
     input.firstId = params.firstId;
     input.doubleSided = params.doubleSided;
@@ -269,6 +275,12 @@ Buffers SoftwareBackend::readBack(TargetHandle target) {
 
 std::unique_ptr<Backend> makeSoftwareBackend(const SoftwareOptions& options) {
     return std::make_unique<SoftwareBackend>(options);
+}
+
+std::optional<InterpStats> softwareInterpStats(const Backend& backend) {
+    const auto* software = dynamic_cast<const SoftwareBackend*>(&backend);
+    if (software == nullptr) return std::nullopt;
+    return software->interpStats();
 }
 
 }  // namespace frugal

@@ -12,19 +12,45 @@
 // chunks) and triangle setup (in parallel chunks for large draws) and bins the triangles into 64×64
 // tiles; clear, copy, readBack, finish, destroyTarget and a beginFrame on another target rasterize
 // what is pending, one tile per thread at a time, with AVX2 kernels when the CPU has AVX2 and FMA.
+//
+// Depth interpolation (SoftwareOptions::interp). Exact, the default, is the above: every fragment's
+// depth from the plane equation, llvmpipe's bits. Span and Dda are a separate slow path
+// (software/InterpRaster.h) that models paper 001's scan-line hardware for depth only: each covered
+// run of a triangle's row gets its two ends from the plane, as Exact computes them, and its pixels
+// from span::fillSpan (the midpoint-subdivision engine, or add-and-shift), 24 bits wide; the depth
+// test and write use those values. Colour is not interpolated along the span: frugal shades per
+// fragment (Shading.h), not Gouraud, so a colour changes only where a depth test flips.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "render/Backend.h"
+#include "software/span/Interp.h"
 
 namespace frugal {
 
 struct SoftwareOptions {
     int threads = 0;   // threads in all, the caller included; 0 = as many as the machine has cores
     bool simd = true;  // false: the portable kernels even when the CPU has AVX2 (same results; tests)
+    span::Interp interp = span::Interp::Exact;  // depth along a span (above); not Exact: the slow path
+};
+
+// What the interpolation slow path did since the backend was made (all zero in Exact mode).
+struct InterpStats {
+    std::uint64_t spans = 0;     // span::fillSpan calls: one per covered run of a triangle's row per tile
+    std::uint64_t pixels = 0;    // of those, the tile's pixels (the depths that met the depth test)
+    std::uint64_t overflow = 0;  // calls that reported an overflow: their values were clamped (or the
+                                 // span zeroed), never wrapped. A call fills its run from the run's
+                                 // first column, so a run across several tiles may count once per tile.
+    std::uint8_t overflowBits = 0;  // span/Engine.h OverflowBits of all those calls, or'ed
 };
 
 std::unique_ptr<Backend> makeSoftwareBackend(const SoftwareOptions& options = {});
+
+// The slow path's counters of a backend made by makeSoftwareBackend; nothing for any other backend.
+// Read them after readBack or finish (pending draws are not rasterized yet).
+std::optional<InterpStats> softwareInterpStats(const Backend& backend);
 
 }  // namespace frugal

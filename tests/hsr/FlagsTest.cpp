@@ -123,6 +123,29 @@ TEST(HsrFlags, GridAgreesWithAllPairsOnRandomSets) {
     EXPECT_EQ(sets, 4000u);
 }
 
+TEST(HsrFlags, GroupsExemptPairsWithinAGroupOnly) {
+    // Two overlapping extents in one group are not flagged; a third overlapping both, in no group,
+    // flags all three. The grid agrees with all pairs on random sets with random groups.
+    const std::vector<Extent> pair{{0, 0, 9, 9, 0.1f, 0.5f}, {5, 5, 14, 14, 0.2f, 0.6f}};
+    const std::vector<std::int32_t> same{3, 3}, apart{3, 4}, none{-1, -1};
+    EXPECT_EQ(flagOverlaps(pair, same), (Flags{0, 0}));
+    EXPECT_EQ(flagOverlaps(pair, apart), (Flags{1, 1}));
+    EXPECT_EQ(flagOverlaps(pair, none), (Flags{1, 1}));
+    std::vector<Extent> three = pair;
+    three.push_back({7, 7, 8, 8, 0.0f, 1.0f});
+    EXPECT_EQ(flagOverlaps(three, std::vector<std::int32_t>{3, 3, -1}), (Flags{1, 1, 1}));
+    EXPECT_EQ(flagOverlapsAllPairs(three, std::vector<std::int32_t>{3, 3, -1}), (Flags{1, 1, 1}));
+    std::mt19937 rng(99);
+    for (int round = 0; round < 500; ++round) {
+        const std::vector<Extent> set = randomSet(rng, int(rng() % 150), 1 + int(rng() % 200), int(rng() % 40),
+                                                  1 + int(rng() % 50), 0.0);
+        std::vector<std::int32_t> groups(set.size());
+        for (std::int32_t& g : groups) g = std::int32_t(rng() % 8) - 2;  // −2, −1: no group (any negative)
+        for (std::int32_t& g : groups) g = std::max(g, -1);
+        ASSERT_EQ(flagOverlaps(set, groups), flagOverlapsAllPairs(set, groups)) << "round " << round;
+    }
+}
+
 TEST(HsrFlags, GridAgreesWithAllPairsOnLargeSets) {
     std::mt19937 rng(7);
     // Sparse small boxes on a full HD frame, then dense ones, then everything on top of each other.

@@ -1,0 +1,317 @@
+// `frugal span-bench`: the bit-level model of paper 001's shading engine (src/software/span/):
+// Fig. 11 reproduced, the schemes it rules out, the error tables of midpoint subdivision, of the
+// same tree truncating at each level, of a DDA and of double evaluation against the exact line, and
+// the model's spans per second beside the paper's 59,000.
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/Cli.h"
+#include "app/Command.h"
+#include "app/Commands.h"
+#include "app/ReportOutputs.h"
+#include "software/span/ErrorTable.h"
+#include "software/span/Fig11.h"
+
+namespace frugal {
+
+const char* spanBenchHelp() {
+    return R"(usage: frugal span-bench [options]
+
+The shading engine of paper 001 (Bang, Bae, Kyung 1990) modelled bit by bit: 64-pixel engines, the
+L/R multipliers f(XL), f(XR), the midpoint-subdivision tree, the Edge Painting Tree, the LSB-first
+z comparator. Prints Fig. 11 as the model computes it (and which rounding schemes contradict the
+figure), then the error of each interpolator against the exact line, rounded to nearest:
+  span        the paper's engine: ends rounded, exact subdivision, pixels rounded (<= 1 LSB)
+  span_trunc  the same tree truncating at every level (PIPE's add-and-shift-right)
+  dda         add-and-shift: the slope accumulated per pixel in a --dda-bits register
+  exact       double evaluation, rounded
+and the spans per second of the model on this machine beside the paper's one span per 17 us.
+
+options:
+  --lengths L,L,...     span lengths in pixels, each 2 to 61440 (default 8,64,512,8192)
+  --widths W,W,...      channel widths in bits, each 1 to 28 (default 16,24: colour and z)
+  --spans N             random spans per width, length and method, 1 to 1000000 (default 2000);
+                        a quarter of them the steepest ramp (0 to the top, or back)
+  --seed S              seed of the random spans, 0 to 2147483647 (default 1)
+  --dda-bits N          the DDA's register: N bits, N − width of them fraction bits, 2 to 62;
+                        wider than every width (default 32)
+  --speed-ms N          time each spans-per-second figure for N ms, 0 to 60000; 0 skips the
+                        measurement (default 100)
+  --json FILE           {"fig11":{...},"errors":[{width,length,method,worst_lsb,mean_lsb,spans,...}],
+                        "spans_per_second":{...}}
+  --csv FILE            the error table, one row per width, length and method
+  --plot FILE.svg       worst and mean error against span length, drawn by gnuplot from the CSV
+                        (--csv, or FILE.csv beside the plot); the script is written as FILE.gp
+)";
+}
+
+namespace {
+
+using namespace span;
+
+// "8,64,512" into numbers in [lo, hi]; a usage error naming the flag otherwise.
+std::optional<std::vector<int>> numberList(const std::string& flag, ArgCursor& cursor, int lo, int hi, const char* what) {
+    const std::optional<std::string> text = cursor.value(flag);
+    if (!text) return std::nullopt;
+    std::vector<int> values;
+    std::stringstream stream(*text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        int v = 0;
+        std::size_t used = 0;
+        bool parsed = !item.empty();
+        try {
+            v = std::stoi(item, &used);
+        } catch (...) {
+            parsed = false;
+        }
+        if (!parsed || used != item.size()) {
+            cursor.fail(flag + " " + *text + ": '" + item + "' is not a whole number");
+            return std::nullopt;
+        }
+        if (v < lo || v > hi) {
+            cursor.fail(flag + " " + *text + ": " + what + " " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                        std::to_string(v));
+            return std::nullopt;
+        }
+        values.push_back(v);
+    }
+    if (values.empty() || text->back() == ',') {
+        cursor.fail(flag + " " + *text + ": expected a comma-separated list of whole numbers");
+        return std::nullopt;
+    }
+    return values;
+}
+
+struct SpeedRow {
+    Method method;
+    int length;
+    double spansPerSecond;
+};
+
+struct Report {
+    ErrorTableSettings settings;
+    std::vector<Fig11Result> fig11;
+    std::vector<ErrorRow> errors;
+    std::optional<double> engineSpeed;
+    std::vector<SpeedRow> speeds;
+};
+
+nlohmann::json channelJson(const Fig11Channel& ch) {
+    nlohmann::json printed = nlohmann::json::array();
+    for (const Fig11Printed& p : ch.printed) printed.push_back({{"x", p.x}, {"value", p.value}, {"doubtful", p.doubtful}});
+    return {{"width", ch.width}, {"from", ch.from}, {"to", ch.to}, {"values", ch.values}, {"hex", fig11Hex(ch)},
+            {"printed", printed}, {"mismatches", ch.mismatches}, {"doubtful_mismatches", ch.doubtfulMismatches}};
+}
+
+std::string reportJson(const Report& r) {
+    nlohmann::json j;
+    const Fig11Result& model = r.fig11.front();
+    nlohmann::json channels;
+    for (const Fig11Channel& ch : model.channels) channels[ch.name] = channelJson(ch);
+    nlohmann::json schemes = nlohmann::json::array();
+    for (const Fig11Result& s : r.fig11)
+        schemes.push_back({{"scheme", s.scheme.name}, {"mismatches", s.mismatches}, {"z", fig11Hex(s.channels[0])},
+                           {"blue", fig11Hex(s.channels[3])}});
+    j["fig11"] = {{"engine", {0, 64}}, {"span", {kFig11Xl, kFig11Xr}}, {"scheme", model.scheme.name},
+                  {"channels", channels}, {"mask", model.mask}, {"write_enable", model.writeEnable},
+                  {"mismatches", model.mismatches}, {"schemes", schemes}};
+    nlohmann::json errors = nlohmann::json::array();
+    for (const ErrorRow& e : r.errors)
+        errors.push_back({{"width", e.width}, {"length", e.length}, {"method", methodName(e.method)},
+                          {"worst_lsb", e.worstLsb}, {"mean_lsb", e.meanLsb}, {"spans", e.spans}, {"pixels", e.pixels},
+                          {"overflow_spans", e.overflowSpans}});
+    j["errors"] = errors;
+    j["settings"] = {{"lengths", r.settings.lengths}, {"widths", r.settings.widths}, {"spans", r.settings.spans},
+                     {"seed", r.settings.seed}, {"dda_bits", r.settings.accumulatorBits}};
+    nlohmann::json speed;
+    speed["paper"] = kPaperSpansPerSecond;
+    speed["note"] = "spans of z (24 bits) and R, G, B (16 bits); measured on this machine, never asserted";
+    if (r.engineSpeed) {
+        speed["engine_model"] = *r.engineSpeed;
+        nlohmann::json fills = nlohmann::json::array();
+        for (const SpeedRow& s : r.speeds)
+            fills.push_back({{"method", methodName(s.method)}, {"length", s.length}, {"spans_per_second", s.spansPerSecond}});
+        speed["fill_span"] = fills;
+    } else {
+        speed["engine_model"] = nullptr;
+        speed["fill_span"] = nlohmann::json::array();
+    }
+    j["spans_per_second"] = speed;
+    return j.dump(2) + "\n";
+}
+
+std::string reportCsv(const Report& r) {
+    std::string text = "width,length,method,worst_lsb,mean_lsb,spans,pixels,overflow_spans\n";
+    for (const ErrorRow& e : r.errors) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%d,%d,%s,%lld,%.6f,%d,%lld,%d\n", e.width, e.length, methodName(e.method),
+                      static_cast<long long>(e.worstLsb), e.meanLsb, e.spans, static_cast<long long>(e.pixels), e.overflowSpans);
+        text += line;
+    }
+    return text;
+}
+
+std::string reportGnuplot(const Report& r, const std::string& csvPath, const std::string& svgPath) {
+    std::string s;
+    s += "# frugal span-bench: error of each interpolator against the exact line (LSB), by span length.\n";
+    s += "set terminal svg size 960,420 dynamic enhanced\nset output '" + svgPath + "'\n";
+    s += "set datafile separator ','\nset logscale x 2\nset xlabel 'span length (pixels)'\nset grid\n";
+    s += "set key top left\nset multiplot layout 1,2\n";
+    for (int panel = 0; panel < 2; ++panel) {
+        const int column = panel == 0 ? 4 : 5;
+        s += panel == 0 ? "set title 'worst error'\nset ylabel 'LSB'\nset logscale y 2\nset yrange [0.5:*]\n"
+                        : "set title 'mean error'\nset ylabel 'LSB'\nunset logscale y\nset yrange [0:*]\n";
+        s += "plot ";
+        bool first = true;
+        for (int width : r.settings.widths)
+            for (Method m : r.settings.methods) {
+                if (!first) s += ", \\\n     ";
+                first = false;
+                const std::string name = methodName(m);
+                // Worst errors of 0 are drawn at 0.5 on the log axis, below the 1-LSB line.
+                const std::string value = panel == 0 ? "($" + std::to_string(column) + " > 0 ? $" + std::to_string(column) + " : 0.5)"
+                                                     : "$" + std::to_string(column);
+                s += "'" + csvPath + "' every ::1 using 2:(($1 == " + std::to_string(width) + " && strcol(3) eq '" + name +
+                     "') ? " + value + " : NaN) with linespoints title '" + name + " " + std::to_string(width) + "-bit'";
+            }
+        s += "\n";
+    }
+    s += "unset multiplot\n";
+    return s;
+}
+
+void printFig11(std::ostream& out, const Report& r) {
+    const Fig11Result& m = r.fig11.front();
+    out << "Fig. 11 (section IV): engine (XL, XR) = (0, 64), span (Xl, Xr) = (2, 9), old z all ones\n";
+    out << "  scheme: " << m.scheme.name << "\n";
+    out << "  X       ";
+    for (int x = kFig11Xl; x <= kFig11Xr; ++x) out << "  " << (x < 10 ? " " : "") << x << " ";
+    out << "\n";
+    for (const Fig11Channel& ch : m.channels) {
+        char head[32];
+        std::snprintf(head, sizeof head, "  %-7s", ch.name);
+        out << head;
+        for (std::int64_t v : ch.values) {
+            char cell[16];
+            std::snprintf(cell, sizeof cell, ch.width == 24 ? "  %03llX" : "  %3llX", static_cast<unsigned long long>(v));
+            out << cell;
+        }
+        out << "   printed:";
+        for (const Fig11Printed& p : ch.printed) {
+            char cell[24];
+            std::snprintf(cell, sizeof cell, ch.width == 24 ? " %03X" : " %X", unsigned(p.value));
+            out << cell << (p.doubtful ? "?" : "");
+        }
+        out << "\n";
+    }
+    char masks[96];
+    std::snprintf(masks, sizeof masks, "  EPT mask 0x%llX, write enable 0x%llX\n", static_cast<unsigned long long>(m.mask),
+                  static_cast<unsigned long long>(m.writeEnable));
+    out << masks;
+    out << "  (? red at X = 3 reads 2 in the paper's text; a 0 -> 7 ramp over 7 pixels has 1 there)\n";
+    out << "schemes tried (printed values missed, of 15; z and blue at X = 2..9):\n";
+    for (const Fig11Result& s : r.fig11) {
+        char line[256];
+        std::snprintf(line, sizeof line, "  %2d  %-68s z %s  blue %s\n", s.mismatches, s.scheme.name.c_str(),
+                      fig11Hex(s.channels[0]).c_str(), fig11Hex(s.channels[3]).c_str());
+        out << line;
+    }
+}
+
+void printErrors(std::ostream& out, const Report& r) {
+    out << "\nerror against the exact line rounded to nearest (LSB): " << r.settings.spans << " spans per row, seed "
+        << r.settings.seed << ", DDA register " << r.settings.accumulatorBits << " bits\n";
+    out << "  width  length  method        worst     mean  overflow spans\n";
+    for (const ErrorRow& e : r.errors) {
+        char line[128];
+        std::snprintf(line, sizeof line, "  %5d  %6d  %-10s  %8lld  %7.4f  %d\n", e.width, e.length, methodName(e.method),
+                      static_cast<long long>(e.worstLsb), e.meanLsb, e.overflowSpans);
+        out << line;
+    }
+}
+
+void printSpeed(std::ostream& out, const Report& r) {
+    out << "\nspans per second (a span: z 24 bits + R, G, B 16 bits):\n";
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-46s %14.0f\n", "paper, hardware (one span per 17 us, 10 MHz)", kPaperSpansPerSecond);
+    out << line;
+    if (!r.engineSpeed) {
+        out << "  (not measured: --speed-ms 0)\n";
+        return;
+    }
+    std::snprintf(line, sizeof line, "  %-46s %14.0f\n", "engine model (one engine, all blocks, <= 9 px)", *r.engineSpeed);
+    out << line;
+    for (const SpeedRow& s : r.speeds) {
+        const std::string what = std::string("fillSpan ") + methodName(s.method) + ", " + std::to_string(s.length) + " px";
+        std::snprintf(line, sizeof line, "  %-46s %14.0f\n", what.c_str(), s.spansPerSecond);
+        out << line;
+    }
+}
+
+}  // namespace
+
+int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    Report report;
+    ErrorTableSettings& settings = report.settings;
+    ReportPaths outputs;
+    int speedMs = 100;
+    CommandLine command{"span-bench", spanBenchHelp()};
+    command.option = [&](const std::string& flag, ArgCursor& cursor) {
+        if (parseReportOption(flag, cursor, outputs)) return true;
+        if (flag == "--lengths") {
+            if (auto v = numberList(flag, cursor, 2, kMaxColumn + 1 - 4096, "span lengths are")) settings.lengths = *v;
+        } else if (flag == "--widths") {
+            if (auto v = numberList(flag, cursor, 1, kMaxWidth, "widths are")) settings.widths = *v;
+        } else if (flag == "--spans") {
+            if (auto n = wholeNumber(flag, cursor, 1, 1000000)) settings.spans = *n;
+        } else if (flag == "--seed") {
+            if (auto n = wholeNumber(flag, cursor, 0, 2147483647)) settings.seed = std::uint64_t(*n);
+        } else if (flag == "--dda-bits") {
+            if (auto n = wholeNumber(flag, cursor, 2, 62)) settings.accumulatorBits = *n;
+        } else if (flag == "--speed-ms") {
+            if (auto n = wholeNumber(flag, cursor, 0, 60000)) speedMs = *n;
+        } else {
+            return false;
+        }
+        return true;
+    };
+    command.finish = [&](ArgCursor& cursor) {
+        int widest = 0;
+        for (int w : settings.widths) widest = std::max(widest, w);
+        if (settings.accumulatorBits <= widest)
+            cursor.fail("--dda-bits " + std::to_string(settings.accumulatorBits) + ": the DDA register must be wider than every width (" +
+                        std::to_string(widest) + " bits) to hold a fraction");
+        else if (const std::string problem = plotProblem(outputs); !problem.empty())
+            cursor.fail(problem);
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
+
+    for (const Fig11Scheme& scheme : fig11Schemes()) report.fig11.push_back(runFig11(scheme));
+    report.errors = errorTable(settings);
+    if (speedMs > 0) {
+        const double seconds = speedMs / 1000.0;
+        report.engineSpeed = engineSpansPerSecond(seconds, settings.seed);
+        for (Method m : settings.methods)
+            for (int length : settings.lengths)
+                report.speeds.push_back({m, length, fillSpansPerSecond(m, length, settings.accumulatorBits, seconds, settings.seed)});
+    }
+
+    const ReportTexts texts{[&report] { return reportJson(report); }, [&report] { return reportCsv(report); },
+                            [&report](const std::string& csvPath, const std::string& svgPath) {
+                                return reportGnuplot(report, csvPath, svgPath);
+                            }};
+    if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;
+
+    printFig11(out, report);
+    printErrors(out, report);
+    printSpeed(out, report);
+    return kExitOk;
+}
+
+}  // namespace frugal

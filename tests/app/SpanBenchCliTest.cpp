@@ -1,0 +1,127 @@
+// `frugal span-bench` on the command line, end to end: the real binary in a child process. The
+// error figures are deterministic for a seed and asserted as bounds (the model's <= 1 LSB); the
+// speeds are printed, never asserted.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "JsonSupport.h"
+#include "TestSupport.h"
+
+namespace frugal {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliRun;
+using test::filesIn;
+using test::runFrugal;
+
+TEST(SpanBenchCliTest, PrintsFig11AndTheErrorTableAndWritesJsonAndCsv) {
+    const fs::path dir = test::freshDir("SpanBenchJson");
+    const CliRun run = runFrugal(dir, {"span-bench", "--lengths", "8,64,2048", "--widths", "16,24", "--spans", "200",
+                                       "--speed-ms", "5", "--json", "span.json", "--csv", "span.csv"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"span.csv", "span.json"}));
+    for (const char* text : {"Fig. 11", "010  0A0  12F  1BF  24F  2DF  36F  3FF", "printed: 010 0A0 12F 3FF", "EPT mask 0x3FC",
+                             "worst     mean", "paper, hardware (one span per 17 us, 10 MHz)", "engine model"})
+        EXPECT_NE(run.out.find(text), std::string::npos) << text << "\n" << run.out;
+
+    const nlohmann::json j = test::readJson(dir / "span.json");
+    ASSERT_TRUE(j.is_object());
+    const nlohmann::json& fig = j["fig11"];
+    EXPECT_EQ(fig["mismatches"], 0);
+    EXPECT_EQ(fig["channels"]["z"]["hex"], "010 0A0 12F 1BF 24F 2DF 36F 3FF");
+    EXPECT_EQ(fig["channels"]["green"]["hex"], "7 6 5 4 3 2 1 0");
+    EXPECT_EQ(fig["channels"]["red"]["hex"], "0 1 2 3 4 5 6 7");
+    EXPECT_EQ(fig["channels"]["blue"]["hex"], "3 3 2 2 1 1 1 0");
+    EXPECT_GE(fig["schemes"].size(), 10u);
+
+    const nlohmann::json& errors = j["errors"];
+    ASSERT_EQ(errors.size(), 2u * 3u * 4u);  // widths × lengths × methods
+    for (const nlohmann::json& e : errors) {
+        SCOPED_TRACE(e.dump());
+        EXPECT_EQ(e["spans"], 200);
+        EXPECT_EQ(e["pixels"], 200 * e["length"].get<int>());
+        if (e["method"] == "span") {
+            EXPECT_LE(e["worst_lsb"].get<int>(), 1);
+        }
+        if (e["method"] == "dda" && e["width"] == 24 && e["length"] == 2048) {
+            EXPECT_GT(e["worst_lsb"].get<int>(), 1);
+        }
+    }
+    const nlohmann::json& speed = j["spans_per_second"];
+    EXPECT_NEAR(speed["paper"].get<double>(), 58823.5, 1.0);
+    EXPECT_TRUE(speed["engine_model"].is_number());
+    EXPECT_EQ(speed["fill_span"].size(), 3u * 4u);
+
+    const std::vector<std::string> csv = test::lines(test::readAll(dir / "span.csv"));
+    ASSERT_EQ(csv.size(), 1u + 24u);
+    EXPECT_EQ(csv[0], "width,length,method,worst_lsb,mean_lsb,spans,pixels,overflow_spans");
+    EXPECT_EQ(test::csvFields(csv[1]).size(), 8u);
+}
+
+TEST(SpanBenchCliTest, TheSameSeedPrintsTheSameTable) {
+    const fs::path dir = test::freshDir("SpanBenchSeed");
+    const std::vector<std::string> args{"span-bench", "--lengths", "64", "--spans", "50", "--seed", "9", "--speed-ms", "0"};
+    const CliRun a = runFrugal(dir, args), b = runFrugal(dir, args);
+    ASSERT_EQ(a.status, 0) << a.err;
+    EXPECT_EQ(a.out, b.out) << "no speed measured: the output is deterministic";
+    EXPECT_NE(a.out.find("not measured: --speed-ms 0"), std::string::npos);
+}
+
+TEST(SpanBenchCliTest, PlotWritesTheScriptBesideTheSvg) {
+    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot not installed (Debian: gnuplot-nox)";
+    const fs::path dir = test::freshDir("SpanBenchPlot");
+    const CliRun run = runFrugal(dir, {"span-bench", "--lengths", "8,512", "--spans", "20", "--speed-ms", "0", "--plot", "e.svg"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"e.csv", "e.gp", "e.svg"}));
+    EXPECT_NE(test::readAll(dir / "e.svg").find("<svg"), std::string::npos);
+}
+
+struct BadCase {
+    std::vector<std::string> args;
+    std::string line;
+};
+
+TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
+    const fs::path dir = test::freshDir("SpanBenchBad");
+    const BadCase cases[] = {
+        {{"span-bench", "--lengths", "8,1", "--json", "x.json"}, "error: --lengths 8,1: span lengths are 2 to 61440, got 1"},
+        {{"span-bench", "--lengths", "8,x"}, "error: --lengths 8,x: 'x' is not a whole number"},
+        {{"span-bench", "--lengths", "8,"}, "error: --lengths 8,: expected a comma-separated list of whole numbers"},
+        {{"span-bench", "--widths", "16,30"}, "error: --widths 16,30: widths are 1 to 28, got 30"},
+        {{"span-bench", "--spans", "0"}, "error: --spans: expected a whole number 1 to 1000000, got '0'"},
+        {{"span-bench", "--dda-bits", "24"},
+         "error: --dda-bits 24: the DDA register must be wider than every width (24 bits) to hold a fraction"},
+        {{"span-bench", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
+        {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal help span-bench')"},
+        {{"span-bench", "extra"}, "error: unexpected argument 'extra'"},
+    };
+    for (const BadCase& c : cases) {
+        SCOPED_TRACE(test::joined(c.args));
+        const CliRun run = runFrugal(dir, c.args);
+        EXPECT_EQ(run.status, 2) << run.err;
+        EXPECT_EQ(run.errLines(), std::vector<std::string>{c.line});
+        EXPECT_EQ(run.out, "");
+        EXPECT_TRUE(filesIn(dir).empty());
+    }
+}
+
+TEST(SpanBenchCliTest, HelpExplainsEveryOption) {
+    const fs::path dir = test::freshDir("SpanBenchHelp");
+    const CliRun run = runFrugal(dir, {"help", "span-bench"});
+    ASSERT_EQ(run.status, 0);
+    for (const char* text : {"usage: frugal span-bench", "--lengths", "--widths", "--spans N", "--seed S", "--dda-bits N",
+                             "--speed-ms N", "--json FILE", "--csv FILE", "--plot FILE.svg", "span_trunc"})
+        EXPECT_NE(run.out.find(text), std::string::npos) << text;
+    const CliRun usage = runFrugal(dir, {"--help"});
+    EXPECT_NE(usage.out.find("frugal span-bench"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace frugal
