@@ -40,7 +40,8 @@ then each image is compared with the z-buffer's (colour, tolerance 0). Prints pe
 (1000 / mean ms), the median frame time, the plan's median time, the speed-up over zbuffer beside
 the paper's Table 1 (IPAQ 3660: z-buffer 14.20, depth sort 52.13, adaptive 27.83 fps), the pixels
 that differ from the z-buffer render (summed over frames, and the worst frame), and the share of
-polygons drawn with the depth test (flagged_share: 1 for zbuffer, 0 for depthsort).
+polygons drawn with the depth test (flagged_share: 1 for zbuffer, 0 for depthsort), and the draw
+calls a frame makes (draws: the sorted order splits instances into runs).
 
   --frames A:B          the frames (default 0:99, at the scene's fps)
   --repeat K            times each frame's modes are drawn and timed (default 1); the report
@@ -131,7 +132,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
     report.repeat = repeat;
     report.polygons = planner.polygonCount();
     report.triangles = scene.triangleCount();
-    for (const Variant& variant : kModes) report.modes.push_back(HsrModeResult{variant.name, {}, {}, {}, {}, {}});
+    for (const Variant& variant : kModes) report.modes.push_back(HsrModeResult{variant.name, {}, {}, {}, {}, {}, {}});
 
     using Clock = std::chrono::steady_clock;
     const auto drawMode = [&](const Variant& variant, const FrameSetup& setup, hsr::PlanStats& stats) {
@@ -141,6 +142,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
             renderer.renderFrame(session.target, options.width, options.height, setup.params, setup.world,
                                  options.background);
             stats = hsr::PlanStats{};
+            stats.draws = renderer.fullList().size();
         } else {
             DrawList list = planner.plan(variant.mode, setup.params, setup.world, renderer.fullList(), options.width,
                                          options.height, &stats);
@@ -191,6 +193,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
             result.differingPx.push_back(px);
             result.zbufferedShare.push_back(kModes[m].depthTested ? 1.0 : stats[m].zbufferedShare(kModes[m].mode));
             result.polygons.push_back(stats[m].polygons);
+            result.draws.push_back(stats[m].draws);
             if (worst[m].frame < 0 || px > worst[m].px) worst[m] = Worst{frame, px};
         }
         if (!options.quiet && (frame == options.frames->last || (frame - options.frames->first + 1) % 10 == 0))

@@ -1,9 +1,12 @@
 // `frugal span-bench`: the bit-level model of paper 001's shading engine (src/software/span/):
 // Fig. 11 reproduced, the schemes it rules out, the error tables of midpoint subdivision, of the
 // same tree truncating at each level, of a DDA and of double evaluation against the exact line, and
-// the model's spans per second beside the paper's 59,000.
+// the model's spans per second beside the paper's 59,000; with --scene, the software backend's
+// --interp modes on whole scenes (how span and dda depart from exact, and the slow path's speed).
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -13,7 +16,12 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
+#include "app/Options.h"
 #include "app/ReportOutputs.h"
+#include "render/Frame.h"
+#include "render/SceneRenderer.h"
+#include "scene/Load.h"
+#include "software/SoftwareBackend.h"
 #include "software/span/ErrorTable.h"
 #include "software/span/Fig11.h"
 
@@ -31,6 +39,9 @@ figure), then the error of each interpolator against the exact line, rounded to 
   dda         add-and-shift: the slope accumulated per pixel in a --dda-bits register
   exact       double evaluation, rounded
 and the spans per second of the model on this machine beside the paper's one span per 17 us.
+With --scene, also renders each scene's frame 0 on the software backend (one thread) with
+--interp exact, span and dda, and reports how span and dda depart from the exact render and how
+fast the slow path runs.
 
 options:
   --lengths L,L,...     span lengths in pixels, each 2 to 61440 (default 8,64,512,8192)
@@ -42,8 +53,20 @@ options:
                         wider than every width (default 32)
   --speed-ms N          time each spans-per-second figure for N ms, 0 to 60000; 0 skips the
                         measurement (default 100)
+  --scene SCENE         a scene as the other commands take it (builtin:cubes, a .obj, .gltf or
+                        .glb file); may be given several times. OBJ files are drawn single-sided
+                        (as with --cull-backfaces). For each, frame 0 at --render-size on the
+                        software backend with one thread, in exact, span and dda; per mode: pixels
+                        whose colour differs from exact, pixels another triangle won (ids differ),
+                        worst and mean depth error in 24-bit LSB over covered pixels, pixels whose
+                        depth changed, overflowing spans, spans per frame, the frame time (best of
+                        5, rasterization included) beside exact's, and spans per second (spans per
+                        frame / best frame time). Timings are printed, never asserted
+  --render-size WxH     image size of every --scene, 1 to 16384 each (default 800x600)
   --json FILE           {"fig11":{...},"errors":[{width,length,method,worst_lsb,mean_lsb,spans,...}],
-                        "spans_per_second":{...}}
+                        "spans_per_second":{...},"render":[{scene,size,mode,colour_px,id_px,
+                        worst_lsb,mean_lsb,depth_changed_px,overflow,spans,frame_ms,exact_frame_ms,
+                        spans_per_second}]}
   --csv FILE            the error table, one row per width, length and method
   --plot FILE.svg       worst and mean error against span length, drawn by gnuplot from the CSV
                         (--csv, or FILE.csv beside the plot); the script is written as FILE.gp
@@ -94,13 +117,135 @@ struct SpeedRow {
     double spansPerSecond;
 };
 
+// One scene rendered in one --interp mode, against the same scene in exact.
+struct RenderRow {
+    std::string scene;
+    int width = 0, height = 0;
+    span::Interp mode = span::Interp::Exact;
+    std::size_t colourPx = 0;        // pixels whose colour differs from exact
+    std::size_t idPx = 0;            // pixels another triangle won
+    std::uint32_t worstLsb = 0;      // depth, over covered pixels (exact's ids not 0)
+    double meanLsb = 0.0;            // depth, over covered pixels
+    std::size_t depthChangedPx = 0;  // pixels whose depth differs, anywhere
+    std::uint64_t overflow = 0;      // slow-path calls that overflowed, one frame
+    std::uint64_t spans = 0;         // slow-path calls (fillSpan), one frame
+    double frameMs = 0.0;            // best of kRenderRepeats
+    double exactFrameMs = 0.0;
+    double spansPerSecond = 0.0;     // spans / (frameMs / 1000)
+};
+
+constexpr int kRenderRepeats = 5;
+constexpr int kMaxRenderSize = 16384;  // the software backend's largest target
+
 struct Report {
     ErrorTableSettings settings;
     std::vector<Fig11Result> fig11;
     std::vector<ErrorRow> errors;
     std::optional<double> engineSpeed;
     std::vector<SpeedRow> speeds;
+    std::vector<RenderRow> render;
 };
+
+// A loaded scene and its frame 0, ready to draw.
+struct SceneCase {
+    std::string spec;
+    Scene scene;
+    FrameSetup setup;
+};
+
+// Loads a --scene (OBJ single-sided) and sets up its frame 0; the error is "<scene>: <why>".
+Result<SceneCase> loadSceneCase(const std::string& spec, int width, int height) {
+    LoadOptions load;
+    load.objDoubleSided = false;
+    Result<Scene> scene = loadScene(spec, load);
+    const auto named = [&spec](const std::string& why) {
+        return why.rfind(spec + ":", 0) == 0 ? why : spec + ": " + why;
+    };
+    if (!scene) return Error{named(scene.error())};
+    Result<FrameSetup> setup = setUpFrame(*scene, CameraSpec{}, 0.0, width, height, true);
+    if (!setup) return Error{named(setup.error())};
+    return SceneCase{spec, std::move(*scene), std::move(*setup)};
+}
+
+struct ModeRender {
+    Buffers image;
+    double bestSeconds = 0.0;
+    InterpStats frame;  // the slow path's counters of one frame
+};
+
+// kRenderRepeats frames of `c` in `mode` on a one-thread software backend: the last image, the best
+// time (draw and rasterization: renderFrame and finish, not the readBack) and one frame's counters.
+Result<ModeRender> renderMode(const SceneCase& c, span::Interp mode, int width, int height) {
+    SoftwareOptions options;
+    options.threads = 1;
+    options.interp = mode;
+    const std::unique_ptr<Backend> backend = makeSoftwareBackend(options);
+    const TargetHandle target = backend->createTarget(width, height);
+    if (target == kNoHandle)
+        return Error{c.spec + ": the software backend cannot make a " + std::to_string(width) + "x" + std::to_string(height) + " target"};
+    Result<SceneRenderer> renderer = SceneRenderer::create(*backend, c.scene);
+    if (!renderer) return Error{c.spec + ": " + renderer.error()};
+    const glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
+    ModeRender out;
+    out.bestSeconds = 1e30;
+    for (int r = 0; r < kRenderRepeats; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        renderer->renderFrame(target, width, height, c.setup.params, c.setup.world, background);
+        backend->finish();
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        out.bestSeconds = std::min(out.bestSeconds, seconds);
+        if (r == 0) {
+            out.image = backend->readBack(target);
+            out.frame = softwareInterpStats(*backend).value_or(InterpStats{});
+        }
+    }
+    backend->destroyTarget(target);
+    return out;
+}
+
+// How `other` departs from `exact` (the same scene and size).
+void departure(const Buffers& exact, const Buffers& other, RenderRow& row) {
+    std::uint64_t sum = 0;
+    std::size_t covered = 0;
+    for (std::size_t i = 0; i < exact.pixelCount(); ++i) {
+        const std::uint32_t e = exact.depth[i] > other.depth[i] ? exact.depth[i] - other.depth[i] : other.depth[i] - exact.depth[i];
+        row.depthChangedPx += e != 0;
+        if (exact.ids[i] != 0) {
+            row.worstLsb = std::max(row.worstLsb, e);
+            sum += e;
+            ++covered;
+        }
+        row.idPx += exact.ids[i] != other.ids[i];
+        row.colourPx += !std::equal(exact.rgba.begin() + std::ptrdiff_t(4 * i), exact.rgba.begin() + std::ptrdiff_t(4 * i + 4),
+                                    other.rgba.begin() + std::ptrdiff_t(4 * i));
+    }
+    row.meanLsb = covered > 0 ? double(sum) / double(covered) : 0.0;
+}
+
+// The three rows of one scene: exact, span, dda.
+Result<std::vector<RenderRow>> renderScene(const SceneCase& c, int width, int height) {
+    std::vector<RenderRow> rows;
+    std::optional<ModeRender> exact;
+    for (span::Interp mode : {span::Interp::Exact, span::Interp::Span, span::Interp::Dda}) {
+        Result<ModeRender> done = renderMode(c, mode, width, height);
+        if (!done) return Error{done.error()};
+        if (mode == span::Interp::Exact) exact = std::move(*done);
+        const ModeRender& m = mode == span::Interp::Exact ? *exact : *done;
+        RenderRow row;
+        row.scene = c.spec;
+        row.width = width;
+        row.height = height;
+        row.mode = mode;
+        departure(exact->image, m.image, row);
+        row.overflow = m.frame.overflow;
+        row.spans = m.frame.spans;
+        row.frameMs = m.bestSeconds * 1e3;
+        row.exactFrameMs = exact->bestSeconds * 1e3;
+        row.spansPerSecond = m.bestSeconds > 0.0 ? double(row.spans) / m.bestSeconds : 0.0;
+        rows.push_back(row);
+    }
+    return rows;
+}
 
 nlohmann::json channelJson(const Fig11Channel& ch) {
     nlohmann::json printed = nlohmann::json::array();
@@ -143,6 +288,14 @@ std::string reportJson(const Report& r) {
         speed["fill_span"] = nlohmann::json::array();
     }
     j["spans_per_second"] = speed;
+    nlohmann::json render = nlohmann::json::array();
+    for (const RenderRow& row : r.render)
+        render.push_back({{"scene", row.scene}, {"size", {row.width, row.height}}, {"mode", interpName(row.mode)},
+                          {"colour_px", row.colourPx}, {"id_px", row.idPx}, {"worst_lsb", row.worstLsb},
+                          {"mean_lsb", row.meanLsb}, {"depth_changed_px", row.depthChangedPx}, {"overflow", row.overflow},
+                          {"spans", row.spans}, {"frame_ms", row.frameMs}, {"exact_frame_ms", row.exactFrameMs},
+                          {"spans_per_second", row.spansPerSecond}});
+    j["render"] = render;
     return j.dump(2) + "\n";
 }
 
@@ -254,6 +407,25 @@ void printSpeed(std::ostream& out, const Report& r) {
     }
 }
 
+void printRender(std::ostream& out, const Report& r) {
+    if (r.render.empty()) return;
+    out << "\nsoftware backend, --interp: frame 0, one thread, best of " << kRenderRepeats
+        << " frames (draw and rasterization);\n"
+        << "departures from the exact render, depth error in 24-bit LSB over covered pixels:\n";
+    out << "  mode   colour px    id px  worst     mean  depth px  overflow  spans/frame  frame ms  exact ms       spans/s\n";
+    for (std::size_t i = 0; i < r.render.size(); ++i) {
+        const RenderRow& row = r.render[i];
+        if (i == 0 || row.scene != r.render[i - 1].scene)
+            out << "  " << row.scene << " " << row.width << "x" << row.height << "\n";
+        char line[200];
+        std::snprintf(line, sizeof line, "  %-5s  %9zu  %7zu  %5u  %7.4f  %8zu  %8llu  %11llu  %8.2f  %8.2f  %12.0f\n",
+                      interpName(row.mode), row.colourPx, row.idPx, row.worstLsb, row.meanLsb, row.depthChangedPx,
+                      static_cast<unsigned long long>(row.overflow), static_cast<unsigned long long>(row.spans), row.frameMs,
+                      row.exactFrameMs, row.spansPerSecond);
+        out << line;
+    }
+}
+
 }  // namespace
 
 int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -261,6 +433,8 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
     ErrorTableSettings& settings = report.settings;
     ReportPaths outputs;
     int speedMs = 100;
+    std::vector<std::string> scenes;
+    int renderWidth = 800, renderHeight = 600;
     CommandLine command{"span-bench", spanBenchHelp()};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (parseReportOption(flag, cursor, outputs)) return true;
@@ -276,6 +450,23 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
             if (auto n = wholeNumber(flag, cursor, 2, 62)) settings.accumulatorBits = *n;
         } else if (flag == "--speed-ms") {
             if (auto n = wholeNumber(flag, cursor, 0, 60000)) speedMs = *n;
+        } else if (flag == "--scene") {
+            if (const std::optional<std::string> text = cursor.value(flag)) {
+                if (text->empty()) cursor.fail("--scene: expected a scene (builtin:NAME or a file), got ''");
+                else scenes.push_back(*text);
+            }
+        } else if (flag == "--render-size") {
+            const std::optional<std::string> text = cursor.value(flag);
+            if (!text) return true;
+            int w = 0, h = 0;
+            if (!parseIntPair(*text, w, h))
+                cursor.fail("--render-size: expected WxH such as 800x600, got '" + *text + "'");
+            else if (w < 1 || h < 1 || w > kMaxRenderSize || h > kMaxRenderSize)
+                cursor.fail("--render-size " + *text + ": width and height must be 1 to " + std::to_string(kMaxRenderSize));
+            else {
+                renderWidth = w;
+                renderHeight = h;
+            }
         } else {
             return false;
         }
@@ -291,6 +482,25 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
             cursor.fail(problem);
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
+
+    // Every scene loads before anything is measured: a bad one is the only line, and no file is written.
+    std::vector<SceneCase> cases;
+    for (const std::string& spec : scenes) {
+        Result<SceneCase> c = loadSceneCase(spec, renderWidth, renderHeight);
+        if (!c) {
+            err << "error: " << c.error() << "\n";
+            return kExitError;
+        }
+        cases.push_back(std::move(*c));
+    }
+    for (const SceneCase& c : cases) {
+        Result<std::vector<RenderRow>> rows = renderScene(c, renderWidth, renderHeight);
+        if (!rows) {
+            err << "error: " << rows.error() << "\n";
+            return kExitError;
+        }
+        report.render.insert(report.render.end(), rows->begin(), rows->end());
+    }
 
     for (const Fig11Scheme& scheme : fig11Schemes()) report.fig11.push_back(runFig11(scheme));
     report.errors = errorTable(settings);
@@ -311,6 +521,7 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
     printFig11(out, report);
     printErrors(out, report);
     printSpeed(out, report);
+    printRender(out, report);
     return kExitOk;
 }
 

@@ -290,14 +290,17 @@ private:
         if (t.readBuffer != attachment) gl_.ReadBuffer(attachment);
         t.readBuffer = attachment;
     }
+    // glEnable/glDisable of `capability` unless `cached` (−1 unknown, 0 off, 1 on) says it is so.
+    void setEnabled(GLenum capability, int& cached, bool on) {
+        if (cached == int(on)) return;
+        if (on)
+            gl_.Enable(capability);
+        else
+            gl_.Disable(capability);
+        cached = int(on);
+    }
     void setScissor(bool on, const Rect& rect = {}) {
-        if (cache_.scissorOn != int(on)) {
-            if (on)
-                gl_.Enable(GL_SCISSOR_TEST);
-            else
-                gl_.Disable(GL_SCISSOR_TEST);
-            cache_.scissorOn = int(on);
-        }
+        setEnabled(GL_SCISSOR_TEST, cache_.scissorOn, on);
         if (on && (rect.x != cache_.scissor.x || rect.y != cache_.scissor.y || rect.width != cache_.scissor.width ||
                    rect.height != cache_.scissor.height)) {
             gl_.Scissor(rect.x, rect.y, rect.width, rect.height);
@@ -310,24 +313,10 @@ private:
         cache_.viewportWidth = width;
         cache_.viewportHeight = height;
     }
-    void setCull(bool on) {
-        if (cache_.cullOn == int(on)) return;
-        if (on)
-            gl_.Enable(GL_CULL_FACE);
-        else
-            gl_.Disable(GL_CULL_FACE);
-        cache_.cullOn = int(on);
-    }
+    void setCull(bool on) { setEnabled(GL_CULL_FACE, cache_.cullOn, on); }
     // DepthMode::Off is GL_DEPTH_TEST disabled, which also stops depth writes (GL 4.5 §14.9.4); the
     // depth mask stays GL_TRUE, so clears (glClearBuffer honours the mask) keep clearing depth.
-    void setDepthTest(bool on) {
-        if (cache_.depthTestOn == int(on)) return;
-        if (on)
-            gl_.Enable(GL_DEPTH_TEST);
-        else
-            gl_.Disable(GL_DEPTH_TEST);
-        cache_.depthTestOn = int(on);
-    }
+    void setDepthTest(bool on) { setEnabled(GL_DEPTH_TEST, cache_.depthTestOn, on); }
     void bindVao(GLuint vao) {
         if (cache_.vao != vao) gl_.BindVertexArray(vao);
         cache_.vao = vao;

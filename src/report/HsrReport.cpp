@@ -42,6 +42,7 @@ std::vector<HsrModeSummary> summarizeHsr(const HsrReport& report) {
             s.framesDiffering += px > 0 ? 1 : 0;
         }
         s.flaggedShare = mean(r.zbufferedShare);
+        s.draws = median(std::vector<double>(r.draws.begin(), r.draws.end()));
         out.push_back(s);
     }
     if (!out.empty())
@@ -76,11 +77,13 @@ std::string hsrReportJson(const HsrReport& report) {
                              {"worst_frame_px", s.worstFramePx},
                              {"frames_differing", s.framesDiffering},
                              {"flagged_share", number(s.flaggedShare)},
+                             {"draws", number(s.draws)},
                              {"per_frame", Json{{"ms", perFrameMs},
                                                 {"plan_ms", perFramePlan},
                                                 {"differing_px", r.differingPx},
                                                 {"flagged_share", perFrameShare},
-                                                {"polygons", r.polygons}}}});
+                                                {"polygons", r.polygons},
+                                                {"draws", r.draws}}}});
     }
     const Json json{{"command", "hsr-bench"},
                     {"scene", report.scene},
@@ -100,7 +103,7 @@ std::string hsrReportCsv(const HsrReport& report) {
     using reporttext::csvField;
     using reporttext::csvNumber;
     std::string csv = "scene,backend,width,height,mode,fps,median_ms,min_ms,max_ms,plan_ms,speedup,paper_fps,"
-                      "paper_speedup,differing_px,worst_frame_px,frames_differing,flagged_share\n";
+                      "paper_speedup,differing_px,worst_frame_px,frames_differing,flagged_share,draws\n";
     for (const HsrModeSummary& s : summarizeHsr(report)) {
         csv += csvField(report.scene) + "," + csvField(report.backend) + "," + std::to_string(report.width) + "," +
                std::to_string(report.height) + "," + s.mode + "," + csvNumber(s.fps) + "," + csvNumber(s.medianMs) +
@@ -108,7 +111,7 @@ std::string hsrReportCsv(const HsrReport& report) {
                csvNumber(s.speedup) + "," + (s.paperFps > 0 ? csvNumber(s.paperFps) : "") + "," +
                (s.paperSpeedup > 0 ? csvNumber(s.paperSpeedup) : "") + "," + std::to_string(s.differingPx) + "," +
                std::to_string(s.worstFramePx) + "," + std::to_string(s.framesDiffering) + "," +
-               csvNumber(s.flaggedShare) + "\n";
+               csvNumber(s.flaggedShare) + "," + csvNumber(s.draws) + "\n";
     }
     return csv;
 }
@@ -139,14 +142,15 @@ std::string hsrReportText(const HsrReport& report) {
                        std::to_string(report.firstFrame) + ":" + std::to_string(report.lastFrame) + " x" +
                        std::to_string(report.repeat) + ", " + std::to_string(report.polygons) + " polygons\n";
     char line[256];
-    std::snprintf(line, sizeof line, "  %-14s %9s %10s %8s %9s %12s %14s %12s %11s\n", "mode", "fps", "median ms", "plan ms",
-                  "speed-up", "paper (x)", "differing px", "worst frame", "z-buffered");
+    std::snprintf(line, sizeof line, "  %-15s %9s %10s %8s %9s %10s %13s %12s %11s %7s\n", "mode", "fps", "median ms", "plan ms",
+                  "speed-up", "paper (x)", "differing px", "worst frame", "z-buffered", "draws");
     text += line;
     for (const HsrModeSummary& s : summarizeHsr(report)) {
         char paper[32] = "-";
         if (s.paperSpeedup > 0) std::snprintf(paper, sizeof paper, "%.2f", s.paperSpeedup);
-        std::snprintf(line, sizeof line, "  %-14s %9.1f %10.3f %8.3f %9.2f %12s %14zu %12zu %10.1f%%\n", s.mode.c_str(), s.fps,
-                      s.medianMs, s.planMs, s.speedup, paper, s.differingPx, s.worstFramePx, 100.0 * s.flaggedShare);
+        std::snprintf(line, sizeof line, "  %-15s %9.1f %10.3f %8.3f %9.2f %10s %13zu %12zu %10.1f%% %7.0f\n", s.mode.c_str(),
+                      s.fps, s.medianMs, s.planMs, s.speedup, paper, s.differingPx, s.worstFramePx, 100.0 * s.flaggedShare,
+                      s.draws);
         text += line;
     }
     return text;

@@ -16,6 +16,7 @@ struct HsrModeResult {
     std::vector<std::size_t> differingPx;    // per frame: colour pixels that differ from zbuffer's
     std::vector<double> zbufferedShare;      // per frame: depth-tested polygons ÷ drawn polygons
     std::vector<std::size_t> polygons;       // per frame: polygons drawn (0 for zbuffer: not grouped)
+    std::vector<std::size_t> draws;          // per frame: draw commands (backend draw calls)
 };
 
 struct HsrReport {
@@ -37,13 +38,15 @@ struct HsrModeSummary {
     double paperFps = 0.0, paperSpeedup = 0.0;  // 0 when the paper has none
     std::size_t differingPx = 0, worstFramePx = 0, framesDiffering = 0;
     double flaggedShare = 0.0;                  // mean over frames
+    double draws = 0.0;                         // median over frames
 };
 std::vector<HsrModeSummary> summarizeHsr(const HsrReport& report);
 
 // {"scene","size","backend","renderer","frames","repeat","polygons","triangles",
 //  "modes":[{"mode","fps","median_ms","min_ms","max_ms","plan_ms","speedup","paper_fps",
-//            "paper_speedup","differing_px","worst_frame_px","frames_differing","flagged_share",
-//            "per_frame":{"ms":[...],"differing_px":[...],"flagged_share":[...]}}]}
+//            "paper_speedup","differing_px","worst_frame_px","frames_differing","flagged_share","draws",
+//            "per_frame":{"ms":[...],"plan_ms":[...],"differing_px":[...],"flagged_share":[...],
+//                         "polygons":[...],"draws":[...]}}]}
 std::string hsrReportJson(const HsrReport& report);
 // One row per mode, the summary's columns.
 std::string hsrReportCsv(const HsrReport& report);

@@ -83,6 +83,60 @@ TEST(SpanBenchCliTest, PlotWritesTheScriptBesideTheSvg) {
     EXPECT_NE(test::readAll(dir / "e.svg").find("<svg"), std::string::npos);
 }
 
+// --scene: the software backend's --interp modes on a whole scene. Exact departs from itself
+// nowhere; span is within 2 LSB of the exact render (1 from the line through each run's ends, 1 more
+// from the exact path's float plane) and changes no colour on cubes; both slow paths ran.
+TEST(SpanBenchCliTest, SceneReportsTheInterpModesAgainstExact) {
+    const fs::path dir = test::freshDir("SpanBenchScene");
+    const CliRun run = runFrugal(dir, {"span-bench", "--scene", "builtin:cubes", "--render-size", "240x320", "--lengths", "8",
+                                       "--spans", "10", "--speed-ms", "0", "--json", "s.json"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"s.json"});
+    for (const char* text : {"software backend, --interp", "builtin:cubes 240x320", "spans/frame"})
+        EXPECT_NE(run.out.find(text), std::string::npos) << text << "\n" << run.out;
+
+    const nlohmann::json j = test::readJson(dir / "s.json");
+    ASSERT_TRUE(j.is_object());
+    const nlohmann::json& render = j["render"];
+    ASSERT_EQ(render.size(), 3u);
+    std::vector<std::string> modes;
+    for (const nlohmann::json& row : render) {
+        SCOPED_TRACE(row.dump());
+        modes.push_back(row["mode"].get<std::string>());
+        EXPECT_EQ(row["scene"], "builtin:cubes");
+        EXPECT_EQ(row["size"], nlohmann::json::array({240, 320}));
+        EXPECT_EQ(row["overflow"], 0);
+        EXPECT_GT(row["frame_ms"].get<double>(), 0.0);
+        EXPECT_EQ(row["exact_frame_ms"], render[0]["frame_ms"]);
+        for (const char* key : {"colour_px", "id_px", "worst_lsb", "mean_lsb", "depth_changed_px", "spans", "spans_per_second"})
+            EXPECT_TRUE(row.contains(key)) << key;
+        if (row["mode"] == "exact") {
+            for (const char* key : {"colour_px", "id_px", "worst_lsb", "depth_changed_px", "spans"}) EXPECT_EQ(row[key], 0) << key;
+            EXPECT_EQ(row["mean_lsb"].get<double>(), 0.0);
+        } else {
+            EXPECT_GT(row["spans"].get<long long>(), 0);
+            EXPECT_GT(row["spans_per_second"].get<double>(), 0.0);
+        }
+        if (row["mode"] == "span") {
+            EXPECT_LE(row["worst_lsb"].get<int>(), 2);
+            EXPECT_EQ(row["colour_px"], 0);
+            EXPECT_GT(row["depth_changed_px"].get<long long>(), 0) << "the span path rounds some pixel differently";
+        }
+    }
+    EXPECT_EQ(modes, (std::vector<std::string>{"exact", "span", "dda"}));
+}
+
+TEST(SpanBenchCliTest, ABadSceneIsOneLineAndNoFile) {
+    const fs::path dir = test::freshDir("SpanBenchBadScene");
+    const CliRun run = runFrugal(dir, {"span-bench", "--speed-ms", "0", "--scene", "builtin:cubes", "--scene", "missing.obj",
+                                       "--json", "x.json", "--csv", "x.csv"});
+    EXPECT_EQ(run.status, 1) << run.err;
+    EXPECT_EQ(run.errLines(), std::vector<std::string>{"error: missing.obj: no such file"});
+    EXPECT_EQ(run.out, "");
+    EXPECT_TRUE(filesIn(dir).empty());
+}
+
 struct BadCase {
     std::vector<std::string> args;
     std::string line;
@@ -99,6 +153,9 @@ TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
         {{"span-bench", "--dda-bits", "24"},
          "error: --dda-bits 24: the DDA register must be wider than every width (24 bits) to hold a fraction"},
         {{"span-bench", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
+        {{"span-bench", "--render-size", "240", "--json", "x.json"},
+         "error: --render-size: expected WxH such as 800x600, got '240'"},
+        {{"span-bench", "--render-size", "0x320"}, "error: --render-size 0x320: width and height must be 1 to 16384"},
         {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal help span-bench')"},
         {{"span-bench", "extra"}, "error: unexpected argument 'extra'"},
     };
@@ -117,7 +174,7 @@ TEST(SpanBenchCliTest, HelpExplainsEveryOption) {
     const CliRun run = runFrugal(dir, {"help", "span-bench"});
     ASSERT_EQ(run.status, 0);
     for (const char* text : {"usage: frugal span-bench", "--lengths", "--widths", "--spans N", "--seed S", "--dda-bits N",
-                             "--speed-ms N", "--json FILE", "--csv FILE", "--plot FILE.svg", "span_trunc"})
+                             "--speed-ms N", "--scene SCENE", "--render-size WxH", "--json FILE", "--csv FILE", "--plot FILE.svg", "span_trunc"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
     const CliRun usage = runFrugal(dir, {"--help"});
     EXPECT_NE(usage.out.find("frugal span-bench"), std::string::npos);

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -320,58 +319,6 @@ TEST(InterpModeTest, DdaOverflowIsCountedAndClamped) {
     // The last pixels are clamped to the top, not wrapped to small depths; the tile's part increases.
     EXPECT_EQ(depth[std::size_t(n)], kTop);
     for (int x = tile->x0 + 1; x <= n; ++x) EXPECT_GE(depth[std::size_t(x)], depth[std::size_t(x - 1)]) << x;
-}
-
-// The figures of the report, not a check (run with --gtest_also_run_disabled_tests): for each scene,
-// how span and dda depart from exact, and the slow path's spans per second on one thread (frame time
-// of the whole render, best of five, the exact frame time beside it).
-TEST(InterpModeTest, DISABLED_Figures) {
-    struct Case {
-        const char* scene;
-        int width, height;
-        bool cullBackfaces;
-    };
-    for (const Case& c : {Case{"builtin:cubes", 240, 320, false}, Case{"builtin:dominoes", 800, 600, false},
-                          Case{FRUGAL_BUNNY_OBJ, 800, 600, true}}) {
-        LoadOptions load;
-        load.objDoubleSided = !c.cullBackfaces;
-        Result<Scene> scene = loadScene(c.scene, load);
-        ASSERT_TRUE(scene) << scene.error();
-        Buffers images[3];
-        double best[3];
-        InterpStats stats[3];
-        int k = 0;
-        for (span::Interp mode : {span::Interp::Exact, span::Interp::Span, span::Interp::Dda}) {
-            SoftwareOptions options;
-            options.threads = 1;
-            options.interp = mode;
-            const auto backend = makeSoftwareBackend(options);
-            const TargetHandle target = backend->createTarget(c.width, c.height);
-            Result<SceneRenderer> renderer = SceneRenderer::create(*backend, *scene);
-            Result<FrameSetup> setup = setUpFrame(*scene, {}, 0.0, c.width, c.height, true);
-            ASSERT_TRUE(renderer && setup);
-            best[k] = 1e30;
-            constexpr int kRepeats = 5;
-            for (int r = 0; r < kRepeats; ++r) {
-                const auto start = std::chrono::steady_clock::now();
-                renderer->renderFrame(target, c.width, c.height, setup->params, setup->world, kBackground);
-                images[k] = backend->readBack(target);
-                best[k] = std::min(best[k], std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            }
-            stats[k] = *softwareInterpStats(*backend);
-            ++k;
-        }
-        for (int m = 1; m < 3; ++m) {
-            const Departure d = departure(images[0], images[m]);
-            const double spans = double(stats[m].spans) / 5.0;  // per frame
-            std::printf("%s %dx%d %s: colour differs at %zu pixels (%zu pixels won by another triangle), depth "
-                        "worst %u LSB, mean %.4f LSB over covered pixels, %zu pixels changed; %.0f spans a frame, "
-                        "%.3g spans/s (frame %.2f ms, exact %.2f ms); overflowing spans %llu\n",
-                        c.scene, c.width, c.height, m == 1 ? "span" : "dda", d.colourChanged, d.flipped, d.worstDepth,
-                        d.meanDepth, d.depthChanged, spans, spans / best[m], best[m] * 1e3, best[0] * 1e3,
-                        static_cast<unsigned long long>(stats[m].overflow));
-        }
-    }
 }
 
 }  // namespace
