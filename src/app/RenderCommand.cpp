@@ -31,7 +31,9 @@ outputs (each written to a temporary file and renamed, never left half-written):
   --ids FILE            triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian
                         (R = low byte); 0 = background
   --json FILE           metadata: scene counts, camera, backend, GL renderer, per-frame timings
-                        (with --cull: per-frame tos, pvs and cull_ms too)
+                        (with --cull: per-frame tos, pvs and cull_ms too), and per frame the
+                        state changes the backend issued, by kind ("state_changes": draws,
+                        programs, meshes, textures, toggles, uniforms; software: draws only)
 
 culling (only the triangles that may be visible are submitted; src/cull/Culling.h):
   --cull METHOD         none (default), sphere, backface, cones, paper, conservative or oracle.
@@ -202,6 +204,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const View& view = setup->view;
 
         nlohmann::json cullJson, reuseJson, hsrFrameJson;
+        const StateChanges changesBefore = backend.stateChanges();
         // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
         const auto drawList = [&](const DrawList& list) {
             if (!planner) {
@@ -274,6 +277,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         if (!cullJson.is_null()) frames.back().update(cullJson);
         if (!reuseJson.is_null()) frames.back()["reuse"] = reuseJson;
         if (!hsrFrameJson.is_null()) frames.back()["hsr"] = hsrFrameJson;
+        const StateChanges changes = backend.stateChanges();
+        frames.back()["state_changes"] = {{"draws", changes.draws - changesBefore.draws},
+                                          {"programs", changes.programs - changesBefore.programs},
+                                          {"meshes", changes.meshes - changesBefore.meshes},
+                                          {"textures", changes.textures - changesBefore.textures},
+                                          {"toggles", changes.toggles - changesBefore.toggles},
+                                          {"uniforms", changes.uniforms - changesBefore.uniforms}};
         if (options.interp != span::Interp::Exact)
             if (const std::optional<InterpStats> interp = softwareInterpStats(backend)) {
                 // The backend's counters run from its start: per frame, the difference.

@@ -222,6 +222,7 @@ public:
         activate();
         gl_.Finish();
     }
+    StateChanges stateChanges() const override { return changes_; }
 
 private:
     // Makes our context current unless it is the frugal context this thread made current last
@@ -298,6 +299,7 @@ private:
         else
             gl_.Disable(capability);
         cached = int(on);
+        ++changes_.toggles;
     }
     void setScissor(bool on, const Rect& rect = {}) {
         setEnabled(GL_SCISSOR_TEST, cache_.scissorOn, on);
@@ -318,16 +320,22 @@ private:
     // depth mask stays GL_TRUE, so clears (glClearBuffer honours the mask) keep clearing depth.
     void setDepthTest(bool on) { setEnabled(GL_DEPTH_TEST, cache_.depthTestOn, on); }
     void bindVao(GLuint vao) {
-        if (cache_.vao != vao) gl_.BindVertexArray(vao);
+        if (cache_.vao == vao) return;
+        gl_.BindVertexArray(vao);
         cache_.vao = vao;
+        ++changes_.meshes;
     }
     void bindTexture(GLuint texture) {
-        if (cache_.texture != texture) gl_.BindTexture(GL_TEXTURE_2D, texture);
+        if (cache_.texture == texture) return;
+        gl_.BindTexture(GL_TEXTURE_2D, texture);
         cache_.texture = texture;
+        ++changes_.textures;
     }
     void useProgram(GLuint program) {
-        if (cache_.program != program) gl_.UseProgram(program);
+        if (cache_.program == program) return;
+        gl_.UseProgram(program);
         cache_.program = program;
+        ++changes_.programs;
     }
     // The variant for `variant` (bits of Variant), compiled on first use and bound; nullptr when it
     // does not compile (a bug in the shaders: the full variant compiled in initialise()).
@@ -355,6 +363,7 @@ private:
         Rect scissor{-1, -1, -1, -1};
         int viewportWidth = -1, viewportHeight = -1;
     } cache_;
+    StateChanges changes_;
 
     HandleTable<GlTarget> targets_;
     HandleTable<GlMesh> meshes_;
@@ -747,17 +756,19 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
     if (texture) bindTexture(texture);
 
     const Lighting& light = frame_.lighting;
-    if (p->toLightValue.update(light.toLight)) gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
-    if (p->ambientValue.update(light.ambient)) gl_.Uniform1f(p->ambient, light.ambient);
-    if (p->diffuseValue.update(light.diffuse)) gl_.Uniform1f(p->diffuse, light.diffuse);
+    const auto uploaded = [this](bool sent) { changes_.uniforms += sent ? 1 : 0; return sent; };
+    if (uploaded(p->toLightValue.update(light.toLight))) gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
+    if (uploaded(p->ambientValue.update(light.ambient))) gl_.Uniform1f(p->ambient, light.ambient);
+    if (uploaded(p->diffuseValue.update(light.diffuse))) gl_.Uniform1f(p->diffuse, light.diffuse);
     const glm::mat4 mvp = viewProjection_ * params.model;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
-    if (p->mvpValue.update(mvp)) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
-    if (p->normalMatrixValue.update(normalMatrix))
+    if (uploaded(p->mvpValue.update(mvp))) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    if (uploaded(p->normalMatrixValue.update(normalMatrix)))
         gl_.UniformMatrix3fv(p->normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    if (p->baseColorFactorValue.update(params.baseColorFactor))
+    if (uploaded(p->baseColorFactorValue.update(params.baseColorFactor)))
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
-    if (writeIds && p->firstIdValue.update(params.firstId)) gl_.Uniform1ui(p->firstId, params.firstId);
+    if (writeIds && uploaded(p->firstIdValue.update(params.firstId))) gl_.Uniform1ui(p->firstId, params.firstId);
+    ++changes_.draws;
 
     // Attributes the mesh lacks read the current generic value. That value is context state, and
     // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is

@@ -67,6 +67,19 @@ struct DrawParams {
     DepthMode depth = DepthMode::Test;
 };
 
+// The state changes a backend issued since it was made, by kind (a frame's are a difference): for
+// the GL backend the calls its state cache let through (a repeat of the current state is not a
+// change), for the software backend, which keeps no such state, the draws alone. What a draw order costs in state
+// changes (issue 10, paper 004) is read here, not predicted.
+struct StateChanges {
+    std::uint64_t draws = 0;     // draw calls (glDraw*, glMultiDraw*)
+    std::uint64_t programs = 0;  // program binds (a shader variant)
+    std::uint64_t meshes = 0;    // vertex array binds
+    std::uint64_t textures = 0;  // texture binds
+    std::uint64_t toggles = 0;   // glEnable / glDisable: face culling, depth test, scissor
+    std::uint64_t uniforms = 0;  // uniform uploads: transforms, material, lighting, first id
+};
+
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute
 // arrays match the positions or are empty, indices come in threes and stay below the vertex count,
 // triangleSource has one entry per triangle or is empty (then triangle t has source t).
@@ -108,6 +121,8 @@ public:
     virtual Buffers readBack(TargetHandle target) = 0;
     // Waits until all submitted work is done (for timing).
     virtual void finish() = 0;
+    // Counted since the backend was made (StateChanges above).
+    virtual StateChanges stateChanges() const = 0;
 };
 
 }  // namespace frugal

@@ -67,6 +67,7 @@ public:
     void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
     Buffers readBack(TargetHandle target) override;
     void finish() override { flush(); }
+    StateChanges stateChanges() const override { return changes_; }
 
 private:
     // Rasterizes the pending draws (all for frameTarget_).
@@ -86,6 +87,7 @@ private:
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
+    StateChanges changes_;  // draws only (no GL state here)
     glm::mat4 viewProjection_{1.0f};
 };
 
@@ -186,6 +188,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     assert(target != nullptr && "draw: no beginFrame, or its target was destroyed");
     assert(mesh != nullptr && "draw: no such mesh");
     if (target == nullptr || mesh == nullptr) return;
+    ++changes_.draws;
     sw::DrawInput input;
     input.mvp = viewProjection_ * params.model;  // as GlBackend::draw, in float with glm
     input.normalMatrix = glm::inverseTranspose(glm::mat3(params.model));

@@ -94,7 +94,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
         {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, span-bench, help)"},
-        {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME)"},
+        {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"render", "--near", "5", "--far", "1"}, 2, "error: --far 1: must exceed --near 5"},
         // Only --near given: the library names the values, and which one it fitted.
         {{"render", "in/tri.obj", "--near", "1000"}, 1,

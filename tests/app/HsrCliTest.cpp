@@ -84,6 +84,8 @@ TEST(HsrCliTest, RenderDiffAndBenchTakeTheMode) {
     EXPECT_EQ(meta["hsr"], "adaptive");
     EXPECT_EQ(meta["frames"][0]["hsr"]["mode"], "adaptive");
     EXPECT_TRUE(meta["frames"][0]["hsr"]["polygons"].is_number());
+    // At least one draw per cube: exactly that when every polygon is flagged (one run, in submission order).
+    EXPECT_GE(meta["frames"][0]["state_changes"]["draws"].get<int>(), 28);
 
     // The adaptive image is the z-buffer image (compare exits 0 on identical images).
     run = runFrugal(dir, {"render", "builtin:cubes", "--size", "64x48", "--backend", "software", "-o", "z.png", "-q"});

@@ -404,6 +404,71 @@ TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
     backend_->destroyTarget(target);
 }
 
+TEST_P(GlBackendGLTest, DepthOffDrawsInOrderAndWritesNoDepth) {
+    // The three triangles of the test above with DepthMode::Off: the last drawn (source 2) keeps
+    // the pixel whatever its depth, and the depth buffer keeps its clear value. A depth-tested draw
+    // after it tests again (the state is per draw): the nearer triangles pass the cleared depth.
+    Mesh m;
+    const float zs[] = {-0.5f, 0.5f, 0.9f};  // the last one drawn is the farthest
+    for (int t = 0; t < 3; ++t) {
+        m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, zs[t]}, {3.0f, -3.0f, zs[t]}, {0.0f, 3.0f, zs[t]}});
+        m.colors.insert(m.colors.end(), 3, glm::vec4(t == 0, t == 1, t == 2, 1.0f));
+        m.indices.insert(m.indices.end(), {std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+        m.triangleSource.push_back(std::uint32_t(t));
+    }
+    m.normals.assign(9, glm::vec3(0, 0, 1));
+    const MeshHandle handle = backend_->uploadMesh(m);
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    FrameParams frame = simpleFrame();
+    frame.lighting.ambient = 1.0f;
+    frame.lighting.diffuse = 0.0f;
+    backend_->beginFrame(target, frame);
+    DrawParams params;
+    params.mesh = handle;
+    params.depth = DepthMode::Off;
+    backend_->draw(params, all(m));
+    Buffers b = backend_->readBack(target);
+    EXPECT_TRUE(colorIs(b, 32, 24, {0, 0, 1, 1}, 0));
+    EXPECT_EQ(b.ids[at(b, 32, 24)], 3u);
+    EXPECT_EQ(b.depth[at(b, 32, 24)], 0xFFFFFFu);
+    params.depth = DepthMode::Test;
+    backend_->draw(params, {{IndexRange{1, 1}}});  // source 1, z 0.5: passes the cleared depth
+    b = backend_->readBack(target);
+    EXPECT_TRUE(colorIs(b, 32, 24, {0, 1, 0, 1}, 0));
+    EXPECT_NEAR(double(b.depth[at(b, 32, 24)]), double(depth24(0.75f)), 1.0);
+    backend_->destroyTarget(target);
+}
+
+TEST_P(GlBackendGLTest, StateChangesCountWhatTheCacheLetsThrough) {
+    const MeshHandle handle = backend_->uploadMesh(frontAndBack());
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    drawFrontAndBack(*backend_, target, handle, true);
+    const StateChanges first = backend_->stateChanges();
+    DrawParams params;
+    params.mesh = handle;
+    params.baseColorFactor = kFactor;
+    params.doubleSided = true;
+    params.firstId = 100;
+    backend_->draw(params, all(frontAndBack()));  // the same draw again: nothing to change
+    StateChanges now = backend_->stateChanges();
+    EXPECT_EQ(now.draws, first.draws + 1);
+    EXPECT_EQ(now.meshes, first.meshes);
+    EXPECT_EQ(now.programs, first.programs);
+    EXPECT_EQ(now.toggles, first.toggles);
+    EXPECT_EQ(now.uniforms, first.uniforms);
+    params.firstId = 200;  // one uniform
+    params.depth = DepthMode::Off;  // one toggle
+    backend_->draw(params, all(frontAndBack()));
+    const StateChanges last = backend_->stateChanges();
+    EXPECT_EQ(last.draws, now.draws + 1);
+    EXPECT_EQ(last.uniforms, now.uniforms + 1);
+    EXPECT_EQ(last.toggles, now.toggles + 1);
+    EXPECT_EQ(last.meshes, now.meshes);
+    backend_->finish();
+    backend_->destroyTarget(target);
+}
+
 TEST_P(GlBackendGLTest, TextureRowsAndNearestFilter) {
     // A 2×2 texture on a quad covering the target, nearest filter: the first stored row is v = 0,
     // which the quad maps to the bottom of the window.

@@ -40,6 +40,7 @@ public:
     void copy(TargetHandle, TargetHandle, const Rect&, bool, bool, bool) override { calls.push_back("copy"); }
     Buffers readBack(TargetHandle) override { return {}; }
     void finish() override {}
+    StateChanges stateChanges() const override { return {}; }
 
 private:
     int meshes_ = 0, textures_ = 0;
