@@ -10,7 +10,13 @@
 
 in vec3 v_normal;
 
+#ifdef FRUGAL_INSTANCED
+flat in vec4 v_baseColorFactor;  // per instance (mesh.vert)
+#define BASE_COLOR_FACTOR v_baseColorFactor
+#else
 uniform vec4 u_baseColorFactor;
+#define BASE_COLOR_FACTOR u_baseColorFactor
+#endif
 uniform vec3 u_toLight;  // world space, unit
 uniform float u_ambient;
 uniform float u_diffuse;
@@ -30,7 +36,7 @@ layout(location = 1) out uint o_id;
 #endif
 
 void main() {
-    vec4 base = u_baseColorFactor;
+    vec4 base = BASE_COLOR_FACTOR;
 #ifdef FRUGAL_COLORS
     base = base * v_color;
 #endif

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_inverse.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/Backends.h"
@@ -49,6 +50,13 @@ minimal variant; "skipped" says why.
   --ids                 also write triangle ids (the id pass)
   --hsr MODE            zbuffer (default), depthsort or adaptive (see 'frugal help render'); the
                         plan is timed with the frame; the minimal program stays z-buffered
+  --order ORDER         the draw order: submit (default) or key (texture, program, mesh: bgfx's
+                        sort); consecutive draws of one mesh are one instanced draw either way.
+                        In the cache order two more rows: "unbatched" (one draw per instance) and
+                        "premerged" (the floor: the instances pre-transformed into one mesh per
+                        material); "pixels_differing" says where each image differs from frugal's,
+                        and for frugal's own row, where --order changed it from submission order
+                        (exact depth ties); ratios "unbatched_over_batched" and "over_premerged"
 )";
 }
 
@@ -59,6 +67,8 @@ struct Sample {
     const char* variant = "frugal";  // or "minimal"
     std::vector<double> ms;
     std::optional<bool> pixelsEqual;  // minimal: the same colour image as frugal's
+    // unbatched, premerged: against frugal's image; frugal: its --order against submission order
+    std::optional<std::size_t> pixelsDiffering;
 };
 
 // The context kind of a GL backend, by its name() ("egl-surfaceless", ...).
@@ -66,6 +76,62 @@ std::optional<ContextKind> contextKindNamed(const std::string& name) {
     for (ContextKind kind : {ContextKind::EglDevice, ContextKind::EglSurfaceless, ContextKind::OsMesa})
         if (name == contextKindName(kind)) return kind;
     return std::nullopt;
+}
+
+// The floor of batching (issue 10): the frame's instances pre-transformed into one mesh per
+// material, drawn with one node and no per-instance state. Positions by the world matrix, normals by
+// its inverse transpose, in float as the backends would; so its pixels may differ from the frame's
+// in the last bit of a vertex (counted, as premerged_pixels_differing). Cameras are kept.
+Scene premergedScene(const Scene& scene, const std::vector<glm::mat4>& world) {
+    Scene merged;
+    merged.source = scene.source + " (pre-transformed)";
+    merged.materials = scene.materials;
+    merged.textures = scene.textures;
+    merged.cameras = scene.cameras;
+    merged.fps = scene.fps;
+    Node root;
+    std::vector<int> meshOfMaterial(scene.materials.size() + 1, -1);  // the last: the default material
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        const std::size_t slot = mesh.material >= 0 ? std::size_t(mesh.material) : scene.materials.size();
+        if (meshOfMaterial[slot] < 0) {
+            meshOfMaterial[slot] = int(merged.meshes.size());
+            Mesh fresh;
+            fresh.name = "premerged";
+            fresh.material = mesh.material;
+            merged.meshes.push_back(std::move(fresh));
+            root.meshes.push_back(meshOfMaterial[slot]);
+        }
+        Mesh& out = merged.meshes[std::size_t(meshOfMaterial[slot])];
+        const glm::mat4& m = world[std::size_t(instance.node)];
+        const glm::mat3 n = glm::inverseTranspose(glm::mat3(m));
+        const std::uint32_t base = std::uint32_t(out.positions.size());
+        // Attributes one mesh has and another lacks get what the backends read for a missing one.
+        const bool colours = !mesh.colors.empty() || !out.colors.empty(), uvs = !mesh.uvs.empty() || !out.uvs.empty();
+        if (colours && out.colors.size() < base) out.colors.resize(base, glm::vec4(1.0f));
+        if (uvs && out.uvs.size() < base) out.uvs.resize(base, glm::vec2(0.0f));
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            out.positions.push_back(glm::vec3(m * glm::vec4(mesh.positions[v], 1.0f)));
+            out.normals.push_back(n * mesh.normals[v]);
+            if (colours) out.colors.push_back(mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[v]);
+            if (uvs) out.uvs.push_back(mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v]);
+        }
+        for (std::uint32_t index : mesh.indices) out.indices.push_back(base + index);
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+            out.triangleSource.push_back(std::uint32_t(out.triangleSource.size()));
+    }
+    merged.nodes.push_back(root);
+    merged.roots = {0};
+    merged.buildInstances();
+    return merged;
+}
+
+std::size_t differingPixels(const Buffers& a, const Buffers& b) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i + 3 < a.rgba.size() && i + 3 < b.rgba.size(); i += 4)
+        count += std::equal(a.rgba.begin() + std::ptrdiff_t(i), a.rgba.begin() + std::ptrdiff_t(i + 4),
+                            b.rgba.begin() + std::ptrdiff_t(i)) ? 0 : 1;
+    return count;
 }
 
 const Sample* find(const std::vector<Sample>& samples, const std::string& backend, const std::string& order,
@@ -86,6 +152,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     bool ids = false;
     int runs = 30, warmup = 5;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
+    DrawOrder drawOrder = DrawOrder::Submit;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
     CommandLine command{"bench", benchHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
@@ -95,7 +162,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             if (std::optional<int> n = wholeNumber(flag, cursor, 0, 100000)) warmup = *n;
         } else if (flag == "--ids") {
             ids = true;
-        } else if (!parseHsrOption(flag, cursor, hsrMode)) {
+        } else if (!parseHsrOption(flag, cursor, hsrMode) && !parseDrawOrderOption(flag, cursor, drawOrder)) {
             return false;
         }
         return true;
@@ -148,7 +215,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             if (int prepared = prepareSession(*opened, options, *scene, err); prepared != kExitOk) return prepared;
             SceneRenderer& renderer = *opened->renderer;
             const TargetHandle target = opened->target;
-            Sample sample{backend.name(), backend.renderer(), order, "frugal", {}, std::nullopt};
+            Sample sample{backend.name(), backend.renderer(), order, "frugal", {}, std::nullopt, std::nullopt};
             std::optional<hsr::Planner> planner;
             if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(*scene);
 
@@ -167,7 +234,30 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                 else
                     skipped.push_back(minimalLabel + made.error());
             }
-            Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt};
+            Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt, std::nullopt};
+            // In the cache order also: the same list unbatched, and the batching floor (premerged).
+            const bool variants = std::string(order) == "optimized";
+            const DrawList list = orderDraws(*scene, renderer.fullList(), drawOrder);
+            Sample unbatched{backend.name(), backend.renderer(), order, "unbatched", {}, std::nullopt, std::nullopt};
+            Sample premerged{backend.name(), backend.renderer(), order, "premerged", {}, std::nullopt, std::nullopt};
+            const Scene merged = premergedScene(*scene, setup->world);
+            std::optional<SceneRenderer> mergedRenderer;
+            if (variants) {
+                Result<SceneRenderer> made = SceneRenderer::create(backend, merged);
+                if (!made) {
+                    err << "error: bench: the premerged scene: " << made.error() << "\n";
+                    return kExitError;
+                }
+                mergedRenderer.emplace(std::move(*made));
+            }
+            const auto drawFrame = [&](SceneRenderer& r, const DrawList& drawn) {
+                if (planner)  // the plan is part of the frame's time
+                    r.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background,
+                                  planner->plan(hsrMode, setup->params, setup->world, drawn, options.width, options.height));
+                else
+                    r.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background,
+                                  drawn);
+            };
 
             // Each timed frame starts with its context current: backend.finish() makes it so
             // (and waits for nothing), minimal->activate() likewise.
@@ -177,17 +267,24 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             for (int i = 0; i < warmup + runs; ++i) {
                 backend.finish();
                 auto t0 = Clock::now();
-                if (planner)  // the plan is part of the frame's time
-                    renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                         options.background,
-                                         planner->plan(hsrMode, setup->params, setup->world, renderer.fullList(),
-                                                       options.width, options.height));
-                else
-                    renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                         options.background);
+                drawFrame(renderer, list);
                 backend.finish();
                 const double ms = millisecondsSince(t0);
                 if (i >= warmup) sample.ms.push_back(ms);
+                if (variants) {
+                    renderer.setBatching(false);
+                    t0 = Clock::now();
+                    drawFrame(renderer, list);
+                    backend.finish();
+                    if (i >= warmup) unbatched.ms.push_back(millisecondsSince(t0));
+                    renderer.setBatching(true);
+                    const std::vector<glm::mat4> identity = merged.worldTransforms(0.0);
+                    t0 = Clock::now();
+                    mergedRenderer->renderFrame(target, options.width, options.height, setup->params, identity,
+                                                options.background);
+                    backend.finish();
+                    if (i >= warmup) premerged.ms.push_back(millisecondsSince(t0));
+                }
                 if (!minimal) continue;
                 minimal->activate();
                 t0 = Clock::now();
@@ -198,7 +295,29 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             }
             if (!options.quiet)
                 err << backend.name() << " " << order << ": median " << fmt(median(sample.ms)) << " ms\n";
+            if (variants) {
+                // Images, after timing: frugal's, then the unbatched and premerged ones against it.
+                drawFrame(renderer, list);
+                const Buffers batchedImage = backend.readBack(target);
+                renderer.setBatching(false);
+                drawFrame(renderer, list);
+                renderer.setBatching(true);
+                unbatched.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                mergedRenderer->renderFrame(target, options.width, options.height, setup->params,
+                                            merged.worldTransforms(0.0), options.background);
+                premerged.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                // Draw order decides exact depth ties only: the pixels where it changed the image.
+                drawFrame(renderer, renderer.fullList());
+                sample.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                if (!options.quiet)
+                    err << backend.name() << " " << order << " unbatched: median " << fmt(median(unbatched.ms))
+                        << " ms; premerged: median " << fmt(median(premerged.ms)) << " ms\n";
+            }
             samples.push_back(std::move(sample));
+            if (variants) {
+                samples.push_back(std::move(unbatched));
+                samples.push_back(std::move(premerged));
+            }
             if (minimal) {
                 minimalSample.pixelsEqual = backend.readBack(target).rgba == minimal->readBack().rgba;
                 if (!options.quiet)
@@ -225,6 +344,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                               {"max_ms", *std::max_element(s.ms.begin(), s.ms.end())},
                               {"triangles_per_second", m > 0 ? triangles / (m / 1000.0) : 0.0}};
         if (s.pixelsEqual) row["minimal_pixels_equal"] = *s.pixelsEqual;
+        if (s.pixelsDiffering) row["pixels_differing"] = *s.pixelsDiffering;
         results.push_back(std::move(row));
     }
     // Ratios, of medians: file order ÷ cache order per backend; every backend ÷ the first, cache
@@ -244,6 +364,10 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             ratios["over_minimal"][b] = ratio(optimizedRun, minimalRun);
         if (const Sample* minimalRun = find(samples, b, "file", "minimal"))
             ratios["over_minimal_file_order"][b] = ratio(fileRun, minimalRun);
+        if (const Sample* unbatchedRun = find(samples, b, "optimized", "unbatched"))
+            ratios["unbatched_over_batched"][b] = ratio(unbatchedRun, optimizedRun);
+        if (const Sample* premergedRun = find(samples, b, "optimized", "premerged"))
+            ratios["over_premerged"][b] = ratio(optimizedRun, premergedRun);
     }
 
     const char* threads = std::getenv("LP_NUM_THREADS");
@@ -254,6 +378,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         {"triangles", optimized->triangleCount()},
         {"ids", ids},
         {"hsr", hsr::modeName(hsrMode)},
+        {"draw_order", drawOrderName(drawOrder)},
         {"runs", runs},
         {"warmup", warmup},
         {"threads", options.threads > 0 ? nlohmann::json(options.threads) : nlohmann::json("default")},

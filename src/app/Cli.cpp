@@ -21,6 +21,7 @@ usage:
   frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
   frugal hsr-bench [SCENE] [options]             depth sort and the adaptive z-buffer against the z-buffer
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
+  frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -57,6 +58,7 @@ const CommandEntry kCommands[] = {
     {"reuse-bench", runReuseBench, reuseBenchHelp, true},
     {"hsr-bench", runHsrBench, hsrBenchHelp, true},
     {"span-bench", runSpanBench, spanBenchHelp, false},
+    {"state-sim", runStateSim, stateSimHelp, false},
 };
 
 const CommandEntry* findCommand(const std::string& name) {

@@ -16,6 +16,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
 int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
@@ -26,5 +27,6 @@ const char* cullReportHelp();
 const char* reuseBenchHelp();
 const char* hsrBenchHelp();
 const char* spanBenchHelp();
+const char* stateSimHelp();
 
 }  // namespace frugal

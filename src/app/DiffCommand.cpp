@@ -50,6 +50,8 @@ one is not.
   --json FILE           per-frame metrics as JSON
   --hsr MODE            both backends draw the frame in this hidden-surface mode: zbuffer
                         (default), depthsort or adaptive (see 'frugal help render')
+  --order ORDER         both backends draw in this order: submit (default) or key; consecutive
+                        draws of one mesh are one instanced draw on GL (see 'frugal help render')
 )";
 }
 
@@ -59,6 +61,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     compare.tolerance = kDefaultTolerance;
     std::string outDir, jsonPath;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
+    DrawOrder drawOrder = DrawOrder::Submit;
     CommandLine command{"diff", diffHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (flag == "--tolerance") {
@@ -68,7 +71,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             if (!path) return true;
             if (path->empty()) cursor.fail(flag + ": empty " + (flag == "--out" ? "folder" : "file") + " name");
             else (flag == "--out" ? outDir : jsonPath) = *path;
-        } else if (!parseHsrOption(flag, cursor, hsrMode)) {
+        } else if (!parseHsrOption(flag, cursor, hsrMode) && !parseDrawOrderOption(flag, cursor, drawOrder)) {
             return false;
         }
         return true;
@@ -128,9 +131,9 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         }
         const double time = setup->time;
         Buffers images[2];
-        const DrawList list = planner ? planner->plan(hsrMode, setup->params, setup->world, renderers[0]->fullList(),
-                                                      options.width, options.height)
-                                      : renderers[0]->fullList();
+        const DrawList ordered = orderDraws(scene, renderers[0]->fullList(), drawOrder);
+        const DrawList list =
+            planner ? planner->plan(hsrMode, setup->params, setup->world, ordered, options.width, options.height) : ordered;
         for (int k = 0; k < 2; ++k) {
             renderers[k]->renderFrame(targets[k], options.width, options.height, setup->params, setup->world,
                                       options.background, list);
@@ -194,6 +197,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             {"size", {options.width, options.height}},
             {"tolerance", compare.tolerance},
             {"hsr", hsr::modeName(hsrMode)},
+            {"draw_order", drawOrderName(drawOrder)},
             {"passed", failedFrames == 0},
             {"failed_frames", failedFrames},
             {"actual", {{"backend", actualName}, {"renderer", backends[0]->renderer()}, {"backend_log", log}}},

@@ -237,6 +237,16 @@ const char* sharedOptionsHelp() {
 )";
 }
 
+bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder& order) {
+    if (flag != "--order") return false;
+    const std::optional<std::string> value = cursor.value(flag);
+    if (!value) return true;
+    if (*value == "submit") order = DrawOrder::Submit;
+    else if (*value == "key") order = DrawOrder::Key;
+    else cursor.fail("--order " + *value + ": not an order (submit or key)");
+    return true;
+}
+
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame) {
     if (!options.frames && options.time) return *options.time;
     return frameTime(frame, options.fps.value_or(scene.fps));

@@ -16,6 +16,7 @@
 #include "render/Backend.h"
 #include "render/Camera.h"
 #include "render/Frame.h"
+#include "render/Plan.h"
 #include "scene/Load.h"
 
 namespace frugal {
@@ -69,6 +70,9 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
 void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
+
+// --order submit|key (render, bench; render/Plan.h's DrawOrder). False when `flag` is not --order.
+bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder& order);
 
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
 bool parseIntPair(const std::string& text, int& first, int& second);

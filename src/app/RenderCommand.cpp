@@ -42,6 +42,9 @@ culling (only the triangles that may be visible are submitted; src/cull/Culling.
                         id pass (a lower bound, not a shortcut). See 'frugal cull-report'.
 )" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
 R"(
+  --order ORDER         the draw order: submit (default) or key (texture, program, mesh, as bgfx
+                        sorts); consecutive draws of one mesh go out as one instanced draw. Only
+                        pixels where two surfaces tie exactly in depth can change (first drawn wins)
   --reuse               temporal reuse: with the camera still, copy what static instances render
                         from a static pair (one more target) and redraw only what changed; the
                         images are the same, byte for byte. The JSON gets per-frame state counts.
@@ -106,10 +109,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     CullOptions cull;
     ReuseCliOptions reuseOptions;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
+    DrawOrder drawOrder = DrawOrder::Submit;
     CommandLine command{"render", renderHelp(), &options};
-    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode](const std::string& flag, ArgCursor& cursor) {
+    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode, &drawOrder](const std::string& flag,
+                                                                                       ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, true)) return true;
         if (parseHsrOption(flag, cursor, hsrMode)) return true;
+        if (parseDrawOrderOption(flag, cursor, drawOrder)) return true;
         if (parseReuseOption(flag, cursor, reuseOptions, options, true)) return true;
         if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
         const std::optional<std::string> path = cursor.value(flag);
@@ -206,7 +212,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         nlohmann::json cullJson, reuseJson, hsrFrameJson;
         const StateChanges changesBefore = backend.stateChanges();
         // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
-        const auto drawList = [&](const DrawList& list) {
+        const auto drawList = [&](const DrawList& submitted) {
+            const DrawList list = orderDraws(scene, submitted, drawOrder);
             if (!planner) {
                 renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
                                      options.background, list);
@@ -329,6 +336,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             {"camera", cameraJson},
             {"cull", cullMethodName(method)},
             {"hsr", hsr::modeName(hsrMode)},
+            {"draw_order", drawOrderName(drawOrder)},
             {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
                                              {"fallback", reuseOptions.settings.fallback},
                                              {"static_pair_bytes", staticPairBytes(options.width, options.height)}}

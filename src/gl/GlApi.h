@@ -70,6 +70,9 @@ class GlContext;
     X(PFNGLVERTEXATTRIBI4UIPROC, VertexAttribI4ui)               \
     X(PFNGLMULTIDRAWELEMENTSPROC, MultiDrawElements)             \
     X(PFNGLMULTIDRAWARRAYSPROC, MultiDrawArrays)                 \
+    X(PFNGLDRAWELEMENTSINSTANCEDPROC, DrawElementsInstanced)     \
+    X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)         \
+    X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)         \
     X(PFNGLGENTEXTURESPROC, GenTextures)                         \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                   \
     X(PFNGLBINDTEXTUREPROC, BindTexture)                         \

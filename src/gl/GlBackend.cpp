@@ -107,8 +107,19 @@ struct GlTarget {
     bool idsDirty = true;
 };
 
-// What a draw uses, as bits of a program variant's index (≤ 8 variants).
-enum Variant : unsigned { kTextureBit = 1u, kColorsBit = 2u, kIdsBit = 4u, kVariantCount = 8u };
+// What a draw uses, as bits of a program variant's index (≤ 16 variants).
+enum Variant : unsigned { kTextureBit = 1u, kColorsBit = 2u, kIdsBit = 4u, kInstancedBit = 8u, kVariantCount = 16u };
+
+// One instance of a batched draw as the instanced variant reads it (attributes 5–13, mesh.vert):
+// the same values the uniforms of a single draw would get.
+struct InstanceRecord {
+    float mvp[16];
+    float normalMatrix[9];
+    float baseColorFactor[4];
+    std::uint32_t firstId;
+};
+static_assert(sizeof(InstanceRecord) == 30 * 4, "tightly packed: the attribute offsets below assume it");
+enum InstanceAttribute : GLuint { kInstanceMvp = 5, kInstanceNormalMatrix = 9, kInstanceColor = 12, kInstanceFirstId = 13 };
 
 // A uniform's value as last set in one program; compared bit for bit.
 template <class T>
@@ -152,6 +163,7 @@ struct GlMesh {
     VertexLayout layout;
     std::vector<std::uint32_t> triangleSource;
     GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
+    bool vaoInstanced = false, idVaoInstanced = false;  // the instance attributes are attached
     std::vector<std::uint32_t> indices;  // read back on the first gathered draw
 };
 
@@ -187,6 +199,7 @@ public:
         for (const GlProgram& p : programs_)
             if (p.name) gl_.DeleteProgram(p.name);
         if (streamIbo_) gl_.DeleteBuffers(1, &streamIbo_);
+        if (instanceVbo_) gl_.DeleteBuffers(1, &instanceVbo_);
         // context_ goes last (member order), with every object it held already deleted.
     }
 
@@ -215,6 +228,7 @@ public:
     void releaseTexture(TextureHandle texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
+    void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) override;
     void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
     void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
     Buffers readBack(TargetHandle target) override;
@@ -349,6 +363,11 @@ private:
     void readBuffer(GLuint buffer, void* data, GLsizeiptr size);
     // Draws runs_ of `mesh` (`triangles` in all) from one streamed index buffer.
     void drawGathered(GlMesh& mesh, std::uint64_t triangles);
+    // What draw and drawInstances share: the variant for `params` (| extraBits) compiled and bound,
+    // the target, viewport, faces, depth test, texture and lighting set. nullptr: nothing to draw.
+    GlProgram* prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits);
+    // Attaches the instance buffer's attributes (divisor 1) to `vao`, once per vertex array.
+    void attachInstances(GLuint vao, bool& attached);
 
     std::unique_ptr<GlContext> context_;
     GlApi gl_;
@@ -375,6 +394,8 @@ private:
 
     // The streamed index buffer of gathered draws, and its CPU side.
     GLuint streamIbo_ = 0;
+    GLuint instanceVbo_ = 0;                    // drawInstances' per-instance records, streamed
+    std::vector<InstanceRecord> instanceData_;
     std::vector<std::uint32_t> gathered_;
 
     // Scratch for the multi-draw argument arrays (no allocation per draw once grown).
@@ -436,6 +457,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kTextureBit) defines += "#define FRUGAL_TEXTURE\n";
     if (variant & kColorsBit) defines += "#define FRUGAL_COLORS\n";
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
+    if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -715,6 +737,121 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     viewProjection_ = frame.projection * frame.view;
 }
 
+GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
+    const bool writeIds = frame_.writeIds;
+    // The variant: a texture, vertex colours and ids only when the draw uses them.
+    unsigned variant = (writeIds ? kIdsBit : 0u) | extraBits;
+    GLuint texture = 0;
+    if (params.texture != kNoHandle) {
+        const GLuint* t = textures_.find(params.texture);
+        assert(t != nullptr && "draw: no such texture");
+        if (t) {
+            texture = *t;
+            variant |= kTextureBit;
+        }
+    }
+    if (mesh.layout.color >= 0) variant |= kColorsBit;
+    GlProgram* p = program(variant);
+    if (p == nullptr) return nullptr;
+
+    drawInto(target, writeIds ? DrawSet::ColorAndIds : DrawSet::Color);
+    setViewport(target.width, target.height);
+    setScissor(false);
+    setCull(!params.doubleSided);
+    setDepthTest(params.depth == DepthMode::Test);
+    if (texture) bindTexture(texture);
+
+    const Lighting& light = frame_.lighting;
+    const auto uploaded = [this](bool sent) { changes_.uniforms += sent ? 1 : 0; return sent; };
+    if (uploaded(p->toLightValue.update(light.toLight))) gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
+    if (uploaded(p->ambientValue.update(light.ambient))) gl_.Uniform1f(p->ambient, light.ambient);
+    if (uploaded(p->diffuseValue.update(light.diffuse))) gl_.Uniform1f(p->diffuse, light.diffuse);
+
+    // Attributes the mesh lacks read the current generic value. That value is context state, and
+    // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
+    // set before every draw that needs it: normal +z, uv (0,0). (Colours and ids are only in the
+    // variants of meshes that have them.)
+    if (mesh.layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
+    if ((variant & kTextureBit) && mesh.layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
+    return p;
+}
+
+void GlBackend::attachInstances(GLuint vao, bool& attached) {
+    bindVao(vao);
+    if (attached) return;
+    gl_.BindBuffer(GL_ARRAY_BUFFER, instanceVbo_);
+    constexpr GLsizei stride = sizeof(InstanceRecord);
+    const auto at = [](std::size_t bytes) { return reinterpret_cast<const void*>(bytes); };
+    for (GLuint column = 0; column < 4; ++column) {
+        gl_.EnableVertexAttribArray(kInstanceMvp + column);
+        gl_.VertexAttribPointer(kInstanceMvp + column, 4, GL_FLOAT, GL_FALSE, stride,
+                                at(offsetof(InstanceRecord, mvp) + 16 * column));
+        gl_.VertexAttribDivisor(kInstanceMvp + column, 1);
+    }
+    for (GLuint column = 0; column < 3; ++column) {
+        gl_.EnableVertexAttribArray(kInstanceNormalMatrix + column);
+        gl_.VertexAttribPointer(kInstanceNormalMatrix + column, 3, GL_FLOAT, GL_FALSE, stride,
+                                at(offsetof(InstanceRecord, normalMatrix) + 12 * column));
+        gl_.VertexAttribDivisor(kInstanceNormalMatrix + column, 1);
+    }
+    gl_.EnableVertexAttribArray(kInstanceColor);
+    gl_.VertexAttribPointer(kInstanceColor, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, baseColorFactor)));
+    gl_.VertexAttribDivisor(kInstanceColor, 1);
+    gl_.EnableVertexAttribArray(kInstanceFirstId);
+    gl_.VertexAttribIPointer(kInstanceFirstId, 1, GL_UNSIGNED_INT, stride, at(offsetof(InstanceRecord, firstId)));
+    gl_.VertexAttribDivisor(kInstanceFirstId, 1);
+    attached = true;
+}
+
+void GlBackend::drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) {
+    GlTarget* target = targets_.find(frameTarget_);
+    GlMesh* mesh = meshes_.find(params.mesh);
+    assert(target != nullptr && "drawInstances: no beginFrame, or its target was destroyed");
+    assert(mesh != nullptr && "drawInstances: no such mesh");
+    if (target == nullptr || mesh == nullptr || instances.empty()) return;
+    const std::uint64_t triangles = normalizeRanges({&range, 1}, mesh->triangles, runs_);
+    if (triangles == 0) return;
+    const IndexRange run = runs_[0];
+
+    activate();
+    const bool writeIds = frame_.writeIds;
+    GlProgram* p = prepareDraw(params, *target, *mesh, kInstancedBit);
+    if (p == nullptr) return;
+    // The records: what draw() would put in its uniforms, computed the same way (glm, float).
+    instanceData_.resize(instances.size());
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        const InstanceParams& in = instances[i];
+        InstanceRecord& out = instanceData_[i];
+        const glm::mat4 mvp = viewProjection_ * in.model;
+        const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(in.model));
+        std::memcpy(out.mvp, glm::value_ptr(mvp), sizeof out.mvp);
+        std::memcpy(out.normalMatrix, glm::value_ptr(normalMatrix), sizeof out.normalMatrix);
+        std::memcpy(out.baseColorFactor, glm::value_ptr(in.baseColorFactor), sizeof out.baseColorFactor);
+        out.firstId = in.firstId;
+    }
+    if (instanceVbo_ == 0) gl_.GenBuffers(1, &instanceVbo_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, instanceVbo_);
+    gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(instanceData_.size() * sizeof(InstanceRecord)), instanceData_.data(),
+                   GL_STREAM_DRAW);
+    const GLsizei count = GLsizei(instances.size());
+    if (writeIds) {
+        target->idsDirty = true;
+        if (mesh->idVao == 0 && !buildIdPass(*mesh)) {
+            assert(false && "drawInstances: could not build the id pass (out of memory?)");
+            return;
+        }
+        attachInstances(mesh->idVao, mesh->idVaoInstanced);
+        gl_.DrawArraysInstanced(GL_TRIANGLES, GLint(run.firstTriangle) * 3, GLsizei(run.triangleCount) * 3, count);
+    } else {
+        attachInstances(mesh->vao, mesh->vaoInstanced);
+        gl_.DrawElementsInstanced(GL_TRIANGLES, GLsizei(run.triangleCount) * 3, GL_UNSIGNED_INT,
+                                  reinterpret_cast<const void*>(std::uintptr_t(run.firstTriangle) * 3 * sizeof(std::uint32_t)),
+                                  count);
+    }
+    ++changes_.draws;
+    check("drawInstances");
+}
+
 void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
     GlTarget* target = targets_.find(frameTarget_);
     GlMesh* mesh = meshes_.find(params.mesh);
@@ -733,33 +870,9 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
 
     activate();
     const bool writeIds = frame_.writeIds;
-    // The variant: a texture, vertex colours and ids only when the draw uses them.
-    unsigned variant = writeIds ? kIdsBit : 0u;
-    GLuint texture = 0;
-    if (params.texture != kNoHandle) {
-        const GLuint* t = textures_.find(params.texture);
-        assert(t != nullptr && "draw: no such texture");
-        if (t) {
-            texture = *t;
-            variant |= kTextureBit;
-        }
-    }
-    if (mesh->layout.color >= 0) variant |= kColorsBit;
-    GlProgram* p = program(variant);
+    GlProgram* p = prepareDraw(params, *target, *mesh, 0u);
     if (p == nullptr) return;
-
-    drawInto(*target, writeIds ? DrawSet::ColorAndIds : DrawSet::Color);
-    setViewport(target->width, target->height);
-    setScissor(false);
-    setCull(!params.doubleSided);
-    setDepthTest(params.depth == DepthMode::Test);
-    if (texture) bindTexture(texture);
-
-    const Lighting& light = frame_.lighting;
     const auto uploaded = [this](bool sent) { changes_.uniforms += sent ? 1 : 0; return sent; };
-    if (uploaded(p->toLightValue.update(light.toLight))) gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
-    if (uploaded(p->ambientValue.update(light.ambient))) gl_.Uniform1f(p->ambient, light.ambient);
-    if (uploaded(p->diffuseValue.update(light.diffuse))) gl_.Uniform1f(p->diffuse, light.diffuse);
     const glm::mat4 mvp = viewProjection_ * params.model;
     const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
     if (uploaded(p->mvpValue.update(mvp))) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
@@ -769,13 +882,6 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
     if (writeIds && uploaded(p->firstIdValue.update(params.firstId))) gl_.Uniform1ui(p->firstId, params.firstId);
     ++changes_.draws;
-
-    // Attributes the mesh lacks read the current generic value. That value is context state, and
-    // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
-    // set before every draw that needs it: normal +z, uv (0,0). (Colours and ids are only in the
-    // variants of meshes that have them.)
-    if (mesh->layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
-    if ((variant & kTextureBit) && mesh->layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
 
     if (writeIds) {
         target->idsDirty = true;

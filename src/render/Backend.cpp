@@ -15,4 +15,14 @@ bool isUploadable(const Mesh& mesh) {
     return true;
 }
 
+void Backend::drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) {
+    DrawParams one = params;
+    for (const InstanceParams& instance : instances) {
+        one.model = instance.model;
+        one.baseColorFactor = instance.baseColorFactor;
+        one.firstId = instance.firstId;
+        draw(one, {&range, 1});
+    }
+}
+
 }  // namespace frugal

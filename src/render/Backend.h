@@ -29,6 +29,7 @@ inline constexpr std::uint32_t kNoHandle = 0;
 struct IndexRange {
     std::uint32_t firstTriangle = 0;
     std::uint32_t triangleCount = 0;
+    bool operator==(const IndexRange&) const = default;
 };
 
 // The shading model, written once here and twice in code (shaders/mesh.frag and the software
@@ -65,6 +66,13 @@ struct DrawParams {
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
+};
+
+// What differs between the instances of one batched draw (Backend::drawInstances).
+struct InstanceParams {
+    glm::mat4 model{1.0f};
+    glm::vec4 baseColorFactor{1.0f};
+    std::uint32_t firstId = 1;
 };
 
 // The state changes a backend issued since it was made, by kind (a frame's are a difference): for
@@ -110,6 +118,11 @@ public:
     // Starts drawing into `target` with the given camera and light; following draws use them.
     virtual void beginFrame(TargetHandle target, const FrameParams& frame) = 0;
     virtual void draw(const DrawParams& params, std::span<const IndexRange> ranges) = 0;
+    // The same mesh, texture, faces and depth mode (`params`) drawn once per instance, in instance
+    // order, each with its own model matrix, colour factor and first id (params' are not read):
+    // the same pixels as one draw(params with the instance's values, {range}) per instance. The GL
+    // backend issues one instanced draw; this default (the software backend's) calls draw().
+    virtual void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range);
 
     // Clears a rectangle of the target: colour to `color`, depth to `depth` (window z), ids to 0.
     virtual void clear(TargetHandle target, const Rect& rect, const glm::vec4& color,

@@ -1,6 +1,22 @@
 #include "render/Plan.h"
 
+#include <algorithm>
+#include <tuple>
+
 namespace frugal {
+
+const char* drawOrderName(DrawOrder order) { return order == DrawOrder::Key ? "key" : "submit"; }
+
+DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order) {
+    if (order == DrawOrder::Submit) return list;
+    const auto key = [&scene](const DrawCommand& command) {
+        const Mesh& mesh = scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)];
+        const int texture = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)].baseColorTexture : -1;
+        return std::tuple(texture, !mesh.colors.empty(), scene.instances[std::size_t(command.instance)].mesh);
+    };
+    std::stable_sort(list.begin(), list.end(), [&](const DrawCommand& a, const DrawCommand& b) { return key(a) < key(b); });
+    return list;
+}
 
 DrawList fullDrawList(const Scene& scene) {
     DrawList list;

@@ -22,6 +22,16 @@ using DrawList = std::vector<DrawCommand>;
 // Every instance of the scene, whole, in instance order.
 DrawList fullDrawList(const Scene& scene);
 
+// Draw orders (issue 10). submit: the list as it is. key: a stable sort by a state key as bgfx
+// sorts, costliest-first by convention rather than by measurement: the texture, then the program
+// variant (vertex colours or not), then the mesh. Consecutive draws of one mesh then become one
+// instanced draw (SceneRenderer). Opaque geometry renders the same in every order except where two
+// fragments tie exactly in depth: the first drawn keeps the pixel (Backend.h), so a reordered list
+// may give such a pixel to the other one; the commands report those pixels (tie_px).
+enum class DrawOrder : std::uint8_t { Submit, Key };
+const char* drawOrderName(DrawOrder order);  // "submit", "key"
+DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order);
+
 // The two targets a frame plan names: the one the frame is rendered into, and the static pair of
 // temporal reuse (src/reuse/), which holds what the static instances alone render to.
 enum class PlanTarget : std::uint8_t { Render, Static };

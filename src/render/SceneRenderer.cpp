@@ -66,8 +66,7 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
 
 void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& world) {
     static const Material kDefault{};
-    for (const DrawCommand& command : list) {
-        if (command.ranges.empty()) continue;
+    const auto paramsOf = [&](const DrawCommand& command) {
         const Instance& instance = scene_->instances[command.instance];
         const Mesh& mesh = scene_->meshes[instance.mesh];
         const Material& material = mesh.material >= 0 ? scene_->materials[mesh.material] : kDefault;
@@ -79,7 +78,35 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.firstId = instance.firstId;
         params.depth = command.depth;
-        backend_->draw(params, command.ranges);
+        return params;
+    };
+    // A batch: consecutive commands of one mesh (so one material), one depth mode and one range,
+    // the same in each. Drawing them as instances keeps the order, so the pixels are the same.
+    const auto batchable = [&](const DrawCommand& a, const DrawCommand& b) {
+        return a.ranges.size() == 1 && b.ranges.size() == 1 && a.ranges[0] == b.ranges[0] && a.depth == b.depth &&
+               scene_->instances[a.instance].mesh == scene_->instances[b.instance].mesh;
+    };
+    for (std::size_t i = 0; i < list.size();) {
+        const DrawCommand& command = list[i];
+        if (command.ranges.empty()) {
+            ++i;
+            continue;
+        }
+        std::size_t end = i + 1;
+        if (batching_)
+            while (end < list.size() && batchable(command, list[end])) ++end;
+        if (end - i < 2) {
+            backend_->draw(paramsOf(command), command.ranges);
+            i = end;
+            continue;
+        }
+        instances_.clear();
+        for (std::size_t k = i; k < end; ++k) {
+            const Instance& instance = scene_->instances[list[k].instance];
+            instances_.push_back(InstanceParams{world[instance.node], paramsOf(list[k]).baseColorFactor, instance.firstId});
+        }
+        backend_->drawInstances(paramsOf(command), instances_, command.ranges[0]);
+        i = end;
     }
 }
 

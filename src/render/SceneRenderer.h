@@ -43,6 +43,10 @@ public:
     // culling reports: the full draw with GL face culling on). false (default): as materials say.
     void setCullAllBackFaces(bool on) { cullAllBackFaces_ = on; }
 
+    // true (default): consecutive draws of one mesh with one range and depth mode go to the backend
+    // as one Backend::drawInstances (the same pixels, one GL draw call). false: one draw each.
+    void setBatching(bool on) { batching_ = on; }
+
     // The full draw list (fullDrawList of the scene), as renderFrame draws it.
     const DrawList& fullList() const { return full_; }
 
@@ -59,6 +63,8 @@ private:
     std::vector<MeshHandle> meshes_;
     std::vector<TextureHandle> textures_;
     bool cullAllBackFaces_ = false;
+    bool batching_ = true;
+    std::vector<InstanceParams> instances_;  // draw()'s scratch
 };
 
 }  // namespace frugal

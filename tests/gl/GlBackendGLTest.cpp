@@ -469,6 +469,47 @@ TEST_P(GlBackendGLTest, StateChangesCountWhatTheCacheLetsThrough) {
     backend_->destroyTarget(target);
 }
 
+TEST_P(GlBackendGLTest, InstancedDrawsEqualOneDrawPerInstance) {
+    // Three instances of the two-triangle mesh, each with its own transform, colour factor and first
+    // id, overlapping so that the order shows: one drawInstances against three draws, with and
+    // without ids, bit for bit, and one draw call against three.
+    const MeshHandle handle = backend_->uploadMesh(frontAndBack());
+    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
+    const InstanceParams instances[3] = {
+        {glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.1f)), glm::vec4(1, 0, 0, 1), 100},
+        {glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.1f, -0.2f)), glm::vec4(0, 1, 0, 1), 200},
+        {glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 0, 1)), glm::vec4(0, 0, 1, 0.5f), 300}};
+    DrawParams params;
+    params.mesh = handle;
+    params.doubleSided = true;
+    for (const bool ids : {true, false}) {
+        SCOPED_TRACE(ids ? "with ids" : "without ids");
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->beginFrame(target, simpleFrame(ids));
+        for (const InstanceParams& instance : instances) {
+            DrawParams one = params;
+            one.model = instance.model;
+            one.baseColorFactor = instance.baseColorFactor;
+            one.firstId = instance.firstId;
+            backend_->draw(one, all(frontAndBack()));
+        }
+        const Buffers separate = backend_->readBack(target);
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->beginFrame(target, simpleFrame(ids));
+        const StateChanges before = backend_->stateChanges();
+        backend_->drawInstances(params, instances, IndexRange{0, 2});
+        EXPECT_EQ(backend_->stateChanges().draws, before.draws + 1);
+        const Buffers batched = backend_->readBack(target);
+        EXPECT_EQ(batched.rgba, separate.rgba);
+        EXPECT_EQ(batched.depth, separate.depth);
+        EXPECT_EQ(batched.ids, separate.ids);
+        if (ids) {
+            EXPECT_NE(std::count(batched.ids.begin(), batched.ids.end(), 300u + 7u), 0);  // the last instance shows
+        }
+    }
+    backend_->destroyTarget(target);
+}
+
 TEST_P(GlBackendGLTest, TextureRowsAndNearestFilter) {
     // A 2×2 texture on a quad covering the target, nearest filter: the first stored row is v = 0,
     // which the quad maps to the bottom of the window.

@@ -36,6 +36,16 @@ public:
         calls.push_back("draw");
         draws.push_back({params, {ranges.begin(), ranges.end()}});
     }
+    void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) override {
+        calls.push_back("instances " + std::to_string(instances.size()));
+        for (const InstanceParams& instance : instances) {
+            DrawParams one = params;
+            one.model = instance.model;
+            one.baseColorFactor = instance.baseColorFactor;
+            one.firstId = instance.firstId;
+            draws.push_back({one, {range}});
+        }
+    }
     void clear(TargetHandle, const Rect&, const glm::vec4&, float) override { calls.push_back("clear"); }
     void copy(TargetHandle, TargetHandle, const Rect&, bool, bool, bool) override { calls.push_back("copy"); }
     Buffers readBack(TargetHandle) override { return {}; }
@@ -151,6 +161,63 @@ TEST(SceneRendererTest, CullAllBackFacesOverridesDoubleSidedMaterialsAndDrawsThe
     ASSERT_EQ(backend.draws.size(), 1u);
     EXPECT_EQ(backend.draws[0].params.mesh, 11u);
     EXPECT_FALSE(backend.draws[0].params.doubleSided);
+}
+
+TEST(SceneRendererTest, ConsecutiveDrawsOfOneMeshAndRangeAreOneBatchInOrder) {
+    // Four nodes: mesh 0, mesh 0, mesh 1, mesh 0. The first two go out as one batch with their own
+    // transforms and ids; then mesh 1 alone; then mesh 0 alone (not consecutive with the batch).
+    Scene scene;
+    scene.meshes = {oneTriangle("a", -1), oneTriangle("b", -1)};
+    for (int n = 0; n < 4; ++n) {
+        Node node;
+        node.translation = glm::vec3(float(n), 0, 0);
+        node.meshes = {n == 2 ? 1 : 0};
+        scene.nodes.push_back(node);
+        scene.roots.push_back(n);
+    }
+    scene.buildInstances();
+    RecordingBackend backend;
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    ASSERT_TRUE(renderer.ok());
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "instances 2", "draw", "draw"}));
+    ASSERT_EQ(backend.draws.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(backend.draws[i].params.model, world[i]) << i;
+        EXPECT_EQ(backend.draws[i].params.firstId, scene.instances[i].firstId) << i;
+    }
+    // Batching off, or different ranges: one draw each.
+    backend.calls.clear();
+    renderer->setBatching(false);
+    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw", "draw", "draw"}));
+    backend.calls.clear();
+    renderer->setBatching(true);
+    const DrawList split{{0, {{0, 1}}}, {1, {{0, 0}, {0, 1}}}};
+    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f), split);
+    EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw"}));
+}
+
+TEST(SceneRendererTest, KeyOrderGroupsDrawsByTextureProgramAndMesh) {
+    Scene scene;
+    scene.meshes = {oneTriangle("a", -1), oneTriangle("b", -1)};
+    for (int n = 0; n < 4; ++n) {
+        Node node;
+        node.meshes = {n % 2};
+        scene.nodes.push_back(node);
+        scene.roots.push_back(n);
+    }
+    scene.buildInstances();
+    const DrawList list = fullDrawList(scene);
+    const DrawList keyed = orderDraws(scene, list, DrawOrder::Key);
+    ASSERT_EQ(keyed.size(), 4u);
+    EXPECT_EQ(keyed[0].instance, 0);  // stable within a key
+    EXPECT_EQ(keyed[1].instance, 2);
+    EXPECT_EQ(keyed[2].instance, 1);
+    EXPECT_EQ(keyed[3].instance, 3);
+    const DrawList same = orderDraws(scene, list, DrawOrder::Submit);
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(same[i].instance, list[i].instance);
 }
 
 }  // namespace
