@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
 
@@ -68,14 +69,10 @@ TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
 
 TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
     const fs::path dir = test::freshDir("OrderErrors");
-    for (const std::vector<std::string>& args : {std::vector<std::string>{"render", "--order", "random"},
-                                                 std::vector<std::string>{"bench", "render", "--order", "random"},
-                                                 std::vector<std::string>{"diff", "--order", "random"}}) {
-        const CliRun run = runFrugal(dir, args);
-        EXPECT_EQ(run.status, 2);
-        EXPECT_EQ(run.errLines(), (std::vector<std::string>{"error: --order random: not an order (submit or key)"}));
-    }
-    EXPECT_TRUE(test::filesIn(dir).empty());
+    const std::string line = "error: --order random: not an order (submit or key)";
+    test::expectOneErrorLine(dir, {{{"render", "--order", "random"}, line},
+                                   {{"bench", "render", "--order", "random"}, line},
+                                   {{"diff", "--order", "random"}, line}});
 }
 
 }  // namespace

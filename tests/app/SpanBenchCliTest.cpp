@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
 
@@ -137,14 +138,9 @@ TEST(SpanBenchCliTest, ABadSceneIsOneLineAndNoFile) {
     EXPECT_TRUE(filesIn(dir).empty());
 }
 
-struct BadCase {
-    std::vector<std::string> args;
-    std::string line;
-};
-
 TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
     const fs::path dir = test::freshDir("SpanBenchBad");
-    const BadCase cases[] = {
+    const std::vector<test::FailingRun> cases = {
         {{"span-bench", "--lengths", "8,1", "--json", "x.json"}, "error: --lengths 8,1: span lengths are 2 to 61440, got 1"},
         {{"span-bench", "--lengths", "8,x"}, "error: --lengths 8,x: 'x' is not a whole number"},
         {{"span-bench", "--lengths", "8,"}, "error: --lengths 8,: expected a comma-separated list of whole numbers"},
@@ -159,14 +155,7 @@ TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
         {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal help span-bench')"},
         {{"span-bench", "extra"}, "error: unexpected argument 'extra'"},
     };
-    for (const BadCase& c : cases) {
-        SCOPED_TRACE(test::joined(c.args));
-        const CliRun run = runFrugal(dir, c.args);
-        EXPECT_EQ(run.status, 2) << run.err;
-        EXPECT_EQ(run.errLines(), std::vector<std::string>{c.line});
-        EXPECT_EQ(run.out, "");
-        EXPECT_TRUE(filesIn(dir).empty());
-    }
+    test::expectOneErrorLine(dir, cases);
 }
 
 TEST(SpanBenchCliTest, HelpExplainsEveryOption) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
 
@@ -17,7 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliRun;
-using test::filesIn;
 using test::runFrugal;
 
 TEST(StateCostsCliTest, EveryKindIsMeasuredOnEachBackend) {
@@ -44,25 +44,13 @@ TEST(StateCostsCliTest, EveryKindIsMeasuredOnEachBackend) {
 
 TEST(StateCostsCliTest, MisuseGetsOneLine) {
     const fs::path dir = test::freshDir("StateCostsErrors");
-    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+    test::expectOneErrorLine(dir, {
         {{"info", "--state-costs", "builtin:cubes"}, "error: --state-costs measures the backend, not a scene: give one or the other"},
         {{"info", "builtin:cubes", "--json", "x.json"}, "error: --backend, --threads and --json go with --state-costs"},
         {{"info"}, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"info", "--state-costs", "--backend", "wat"}, ""},
         {{"info", "--state-costs", "--json", ""}, "error: --json: empty file name"},
-    };
-    for (const auto& [args, line] : cases) {
-        const CliRun run = runFrugal(dir, args);
-        SCOPED_TRACE(test::joined(args));
-        EXPECT_EQ(run.status, 2);
-        const std::vector<std::string> errLines = run.errLines();
-        ASSERT_EQ(errLines.size(), 1u) << run.err;
-        if (!line.empty()) {
-            EXPECT_EQ(errLines[0], line);
-        }
-        EXPECT_EQ(errLines[0].rfind("error: ", 0), 0u);
-    }
-    EXPECT_TRUE(filesIn(dir).empty());
+    });
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
 
@@ -113,14 +114,9 @@ TEST(StateSimCliTest, PlotWritesTheScriptBesideTheSvg) {
     EXPECT_NE(test::readAll(dir / "s.svg").find("<svg"), std::string::npos);
 }
 
-struct BadCase {
-    std::vector<std::string> args;
-    std::string line;
-};
-
 TEST(StateSimCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
     const fs::path dir = test::freshDir("StateSimBad");
-    const BadCase cases[] = {
+    const std::vector<test::FailingRun> cases = {
         {{"state-sim", "--seeds", "0", "--json", "x.json"}, "error: --seeds: expected a whole number 1 to 100000, got '0'"},
         {{"state-sim", "--seeds", "x"}, "error: --seeds: expected a whole number 1 to 100000, got 'x'"},
         {{"state-sim", "--json", "", "--seeds", "1"}, "error: --json: empty file name"},
@@ -128,14 +124,7 @@ TEST(StateSimCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
         {{"state-sim", "--wat"}, "error: --wat: unknown option (see 'frugal help state-sim')"},
         {{"state-sim", "extra"}, "error: unexpected argument 'extra'"},
     };
-    for (const BadCase& c : cases) {
-        SCOPED_TRACE(test::joined(c.args));
-        const CliRun run = runFrugal(dir, c.args);
-        EXPECT_EQ(run.status, 2) << run.err;
-        EXPECT_EQ(run.errLines(), std::vector<std::string>{c.line});
-        EXPECT_EQ(run.out, "");
-        EXPECT_TRUE(filesIn(dir).empty());
-    }
+    test::expectOneErrorLine(dir, cases);
 }
 
 TEST(StateSimCliTest, AnUnwritableFileIsOneLineAndNoFile) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -375,25 +376,37 @@ TEST_P(GlBackendGLTest, ManyShortRangesDrawTheSameAsOneRangeAtATime) {
     backend_->destroyTarget(target);
 }
 
-TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
-    // Two full-screen-ish triangles: source 0 at NDC z 0.5, source 1 at z -0.5 (nearer), then a
-    // third at exactly the nearer one's depth, drawn last: GL_LESS keeps the earlier one.
+// Three full-screen-ish triangles at NDC depths `zs`, red, green and blue (sources 0, 1, 2).
+Mesh threeLayers(const std::array<float, 3>& zs) {
     Mesh m;
-    const float zs[] = {0.5f, -0.5f, -0.5f};
     for (int t = 0; t < 3; ++t) {
-        m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, zs[t]}, {3.0f, -3.0f, zs[t]}, {0.0f, 3.0f, zs[t]}});
+        const float z = zs[std::size_t(t)];
+        m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, z}, {3.0f, -3.0f, z}, {0.0f, 3.0f, z}});
         m.colors.insert(m.colors.end(), 3, glm::vec4(t == 0, t == 1, t == 2, 1.0f));
         m.indices.insert(m.indices.end(), {std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
         m.triangleSource.push_back(std::uint32_t(t));
     }
     m.normals.assign(9, glm::vec3(0, 0, 1));
-    const MeshHandle handle = backend_->uploadMesh(m);
-    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
-    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    return m;
+}
+
+// A cleared target with a frame begun, lit by the ambient term alone (a pixel is its colour).
+TargetHandle startUnlitFrame(Backend& backend) {
+    const TargetHandle target = backend.createTarget(kWidth, kHeight);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
     FrameParams frame = simpleFrame();
     frame.lighting.ambient = 1.0f;
     frame.lighting.diffuse = 0.0f;
-    backend_->beginFrame(target, frame);
+    backend.beginFrame(target, frame);
+    return target;
+}
+
+TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
+    // Two full-screen-ish triangles: source 0 at NDC z 0.5, source 1 at z -0.5 (nearer), then a
+    // third at exactly the nearer one's depth, drawn last: GL_LESS keeps the earlier one.
+    const Mesh m = threeLayers({0.5f, -0.5f, -0.5f});
+    const MeshHandle handle = backend_->uploadMesh(m);
+    const TargetHandle target = startUnlitFrame(*backend_);
     DrawParams params;
     params.mesh = handle;
     backend_->draw(params, all(m));
@@ -408,22 +421,9 @@ TEST_P(GlBackendGLTest, DepthOffDrawsInOrderAndWritesNoDepth) {
     // The three triangles of the test above with DepthMode::Off: the last drawn (source 2) keeps
     // the pixel whatever its depth, and the depth buffer keeps its clear value. A depth-tested draw
     // after it tests again (the state is per draw): the nearer triangles pass the cleared depth.
-    Mesh m;
-    const float zs[] = {-0.5f, 0.5f, 0.9f};  // the last one drawn is the farthest
-    for (int t = 0; t < 3; ++t) {
-        m.positions.insert(m.positions.end(), {{-3.0f, -3.0f, zs[t]}, {3.0f, -3.0f, zs[t]}, {0.0f, 3.0f, zs[t]}});
-        m.colors.insert(m.colors.end(), 3, glm::vec4(t == 0, t == 1, t == 2, 1.0f));
-        m.indices.insert(m.indices.end(), {std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
-        m.triangleSource.push_back(std::uint32_t(t));
-    }
-    m.normals.assign(9, glm::vec3(0, 0, 1));
+    const Mesh m = threeLayers({-0.5f, 0.5f, 0.9f});  // the last one drawn is the farthest
     const MeshHandle handle = backend_->uploadMesh(m);
-    const TargetHandle target = backend_->createTarget(kWidth, kHeight);
-    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
-    FrameParams frame = simpleFrame();
-    frame.lighting.ambient = 1.0f;
-    frame.lighting.diffuse = 0.0f;
-    backend_->beginFrame(target, frame);
+    const TargetHandle target = startUnlitFrame(*backend_);
     DrawParams params;
     params.mesh = handle;
     params.depth = DepthMode::Off;
