@@ -23,6 +23,7 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
+#include "app/OrderSupport.h"
 #include "base/Stats.h"
 #include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
@@ -50,8 +51,8 @@ minimal variant; "skipped" says why.
   --ids                 also write triangle ids (the id pass)
   --hsr MODE            zbuffer (default), depthsort or adaptive (see 'frugal help render'); the
                         plan is timed with the frame; the minimal program stays z-buffered
-  --order ORDER         the draw order: submit (default) or key (texture, program, mesh: bgfx's
-                        sort); consecutive draws of one mesh are one instanced draw either way.
+  --order ORDER         the draw order: submit (default), key, paper, greedy or best (see 'frugal
+                        help render'); consecutive draws of one mesh are one instanced draw.
                         In the cache order two more rows: "unbatched" (one draw per instance) and
                         "premerged" (the floor: the instances pre-transformed into one mesh per
                         material); "pixels_differing" says where each image differs from frugal's,
@@ -237,7 +238,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt, std::nullopt};
             // In the cache order also: the same list unbatched, and the batching floor (premerged).
             const bool variants = std::string(order) == "optimized";
-            const DrawList list = orderDraws(*scene, renderer.fullList(), drawOrder);
+            Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, backend, err, options.quiet);
+            if (!orderCosts) {
+                err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
+                return kExitError;
+            }
+            const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, *orderCosts);
             Sample unbatched{backend.name(), backend.renderer(), order, "unbatched", {}, std::nullopt, std::nullopt};
             Sample premerged{backend.name(), backend.renderer(), order, "premerged", {}, std::nullopt, std::nullopt};
             const Scene merged = premergedScene(*scene, setup->world);

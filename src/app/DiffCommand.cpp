@@ -13,6 +13,7 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
+#include "app/OrderSupport.h"
 #include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
 #include "report/ImageCompare.h"
@@ -50,7 +51,8 @@ one is not.
   --json FILE           per-frame metrics as JSON
   --hsr MODE            both backends draw the frame in this hidden-surface mode: zbuffer
                         (default), depthsort or adaptive (see 'frugal help render')
-  --order ORDER         both backends draw in this order: submit (default) or key; consecutive
+  --order ORDER         both backends draw in this order: submit (default), key, paper, greedy or
+                        best (see 'frugal help render'); consecutive
                         draws of one mesh are one instanced draw on GL (see 'frugal help render')
 )";
 }
@@ -115,6 +117,12 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     for (Session& session : sessions)
         if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
     const TargetHandle targets[2] = {sessions[0].target, sessions[1].target};
+    // paper, greedy and best order by the GL backend's measured costs; both backends draw that list.
+    Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, *sessions[0].backend, err, options.quiet);
+    if (!orderCosts) {
+        err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
+        return kExitError;
+    }
     SceneRenderer* renderers[2] = {&*sessions[0].renderer, &*sessions[1].renderer};
     const std::vector<std::string>& log = sessions[0].log;
 
@@ -131,7 +139,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         }
         const double time = setup->time;
         Buffers images[2];
-        const DrawList ordered = orderDraws(scene, renderers[0]->fullList(), drawOrder);
+        const DrawList ordered = orderFrameDraws(scene, renderers[0]->fullList(), drawOrder, *orderCosts);
         const DrawList list =
             planner ? planner->plan(hsrMode, setup->params, setup->world, ordered, options.width, options.height) : ordered;
         for (int k = 0; k < 2; ++k) {

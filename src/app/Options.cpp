@@ -241,9 +241,12 @@ bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder&
     if (flag != "--order") return false;
     const std::optional<std::string> value = cursor.value(flag);
     if (!value) return true;
-    if (*value == "submit") order = DrawOrder::Submit;
-    else if (*value == "key") order = DrawOrder::Key;
-    else cursor.fail("--order " + *value + ": not an order (submit or key)");
+    for (DrawOrder o : {DrawOrder::Submit, DrawOrder::Key, DrawOrder::Paper, DrawOrder::Greedy, DrawOrder::Best})
+        if (*value == drawOrderName(o)) {
+            order = o;
+            return true;
+        }
+    cursor.fail("--order " + *value + ": not an order (submit, key, paper, greedy or best)");
     return true;
 }
 

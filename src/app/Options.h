@@ -71,7 +71,8 @@ void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
 
-// --order submit|key (render, bench; render/Plan.h's DrawOrder). False when `flag` is not --order.
+// --order submit|key|paper|greedy|best (render, diff, bench; render/Plan.h's DrawOrder). False when
+// `flag` is not --order.
 bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder& order);
 
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.

@@ -11,6 +11,7 @@
 #include "app/Commands.h"
 #include "app/CullSupport.h"
 #include "app/HsrSupport.h"
+#include "app/OrderSupport.h"
 #include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
 #include "render/SceneRenderer.h"
@@ -42,9 +43,13 @@ culling (only the triangles that may be visible are submitted; src/cull/Culling.
                         id pass (a lower bound, not a shortcut). See 'frugal cull-report'.
 )" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
 R"(
-  --order ORDER         the draw order: submit (default) or key (texture, program, mesh, as bgfx
-                        sorts); consecutive draws of one mesh go out as one instanced draw. Only
-                        pixels where two surfaces tie exactly in depth can change (first drawn wins)
+  --order ORDER         the draw order: submit (default), key (texture, program, mesh, as bgfx
+                        sorts), or by state-change costs measured on the backend at start (about
+                        a second; see 'frugal info --state-costs'): paper (paper 004's id sort over
+                        the 3 costliest kinds), greedy (cheapest next change) or best (the optimum
+                        over the distinct state sets, Held-Karp up to 16, else local search).
+                        Consecutive draws of one mesh go out as one instanced draw. Only pixels
+                        where two surfaces tie exactly in depth can change (first drawn wins)
   --reuse               temporal reuse: with the camera still, copy what static instances render
                         from a static pair (one more target) and redraw only what changed; the
                         images are the same, byte for byte. The JSON gets per-frame state counts.
@@ -173,6 +178,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const TargetHandle target = session.target;
     const std::vector<std::string>& log = session.log;
 
+    // paper, greedy and best order by costs measured on this backend, once.
+    Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, backend, err, options.quiet);
+    if (!orderCosts) {
+        err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
+        return kExitError;
+    }
+
     // Temporal reuse: the static pair is one more target of the same size.
     TargetHandle staticTarget = kNoHandle;
     std::optional<TemporalReuse> reuse;
@@ -213,7 +225,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const StateChanges changesBefore = backend.stateChanges();
         // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
         const auto drawList = [&](const DrawList& submitted) {
-            const DrawList list = orderDraws(scene, submitted, drawOrder);
+            const DrawList list = orderFrameDraws(scene, submitted, drawOrder, *orderCosts);
             if (!planner) {
                 renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
                                      options.background, list);
@@ -337,6 +349,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             {"cull", cullMethodName(method)},
             {"hsr", hsr::modeName(hsrMode)},
             {"draw_order", drawOrderName(drawOrder)},
+            {"state_costs_us", *orderCosts},
             {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
                                              {"fallback", reuseOptions.settings.fallback},
                                              {"static_pair_bytes", staticPairBytes(options.width, options.height)}}

@@ -5,10 +5,19 @@
 
 namespace frugal {
 
-const char* drawOrderName(DrawOrder order) { return order == DrawOrder::Key ? "key" : "submit"; }
+const char* drawOrderName(DrawOrder order) {
+    switch (order) {
+    case DrawOrder::Submit: return "submit";
+    case DrawOrder::Key: return "key";
+    case DrawOrder::Paper: return "paper";
+    case DrawOrder::Greedy: return "greedy";
+    case DrawOrder::Best: return "best";
+    }
+    return "?";
+}
 
 DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order) {
-    if (order == DrawOrder::Submit) return list;
+    if (order != DrawOrder::Key) return list;
     const auto key = [&scene](const DrawCommand& command) {
         const Mesh& mesh = scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)];
         const int texture = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)].baseColorTexture : -1;

@@ -28,8 +28,10 @@ DrawList fullDrawList(const Scene& scene);
 // instanced draw (SceneRenderer). Opaque geometry renders the same in every order except where two
 // fragments tie exactly in depth: the first drawn keeps the pixel (Backend.h), so a reordered list
 // may give such a pixel to the other one; the commands report those pixels (tie_px).
-enum class DrawOrder : std::uint8_t { Submit, Key };
-const char* drawOrderName(DrawOrder order);  // "submit", "key"
+// paper, greedy and best order by measured state-change costs (src/order/, app/OrderSupport.h);
+// orderDraws leaves the list as it is for them.
+enum class DrawOrder : std::uint8_t { Submit, Key, Paper, Greedy, Best };
+const char* drawOrderName(DrawOrder order);  // "submit", "key", "paper", "greedy", "best"
 DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order);
 
 // The two targets a frame plan names: the one the frame is rendered into, and the static pair of

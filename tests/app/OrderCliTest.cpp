@@ -43,6 +43,29 @@ TEST(OrderCliTest, KeyOrderBatchesEachMeshIntoOneDrawAndMatchesTheReference) {
     }
 }
 
+TEST(OrderCliTest, CostOrdersMeasureTheBackendAndGroupEachStateSet) {
+    // paper, greedy and best order the distinct state sets by costs measured at start; the default
+    // scene's 135 draws (6 domino meshes and a textured floor) become 7 runs, the dominoes' runs
+    // batched. The image equals the software reference's drawing the same list.
+    const fs::path dir = test::freshDir("OrderCosts");
+    for (const char* order : {"paper", "greedy", "best"}) {
+        const std::string json = std::string(order) + ".json";
+        const CliRun run = runFrugal(dir, {"render", "--size", "160x120", "--backend", "egl", "--order", order, "-o",
+                                           std::string(order) + ".png", "--json", json});
+        if (run.status == 2) GTEST_SKIP() << "no GL here";
+        ASSERT_EQ(run.status, 0) << run.err;
+        EXPECT_NE(run.err.find(std::string("order ") + order + ": state costs on egl-surfaceless (us): program "),
+                  std::string::npos) << run.err;
+        const nlohmann::json meta = test::readJson(dir / json);
+        EXPECT_EQ(meta["draw_order"], order);
+        EXPECT_EQ(meta["state_costs_us"].size(), 6u);
+        EXPECT_EQ(meta["frames"][0]["state_changes"]["draws"], 7) << meta["frames"][0].dump();
+    }
+    const CliRun diff = runFrugal(dir, {"diff", "--size", "160x120", "--order", "best", "--tolerance", "0", "-q",
+                                        "--out", "d"});
+    EXPECT_EQ(diff.status, 0) << diff.out << diff.err;
+}
+
 TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
     const fs::path dir = test::freshDir("OrderBench");
     const CliRun run = runFrugal(dir, {"bench", "render", kDominoes, "--size", "64x48", "--backend", "software", "--runs",
@@ -69,7 +92,7 @@ TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
 
 TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
     const fs::path dir = test::freshDir("OrderErrors");
-    const std::string line = "error: --order random: not an order (submit or key)";
+    const std::string line = "error: --order random: not an order (submit, key, paper, greedy or best)";
     test::expectOneErrorLine(dir, {{{"render", "--order", "random"}, line},
                                    {{"bench", "render", "--order", "random"}, line},
                                    {{"diff", "--order", "random"}, line}});
