@@ -19,6 +19,7 @@ usage:
   frugal diff [SCENE] [options]                   a GL render against the software reference
   frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
   frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
+  frugal order-bench [SCENE] [options]           a frame in every draw order: time, state changes, ties
   frugal hsr-bench [SCENE] [options]             depth sort and the adaptive z-buffer against the z-buffer
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
   frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
@@ -57,6 +58,7 @@ const CommandEntry kCommands[] = {
     {"diff", runDiff, diffHelp, true},       {"cull-report", runCullReport, cullReportHelp, true},
     {"reuse-bench", runReuseBench, reuseBenchHelp, true},
     {"hsr-bench", runHsrBench, hsrBenchHelp, true},
+    {"order-bench", runOrderBench, orderBenchHelp, true},
     {"span-bench", runSpanBench, spanBenchHelp, false},
     {"state-sim", runStateSim, stateSimHelp, false},
 };

@@ -14,6 +14,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
 int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
@@ -25,6 +26,7 @@ const char* compareHelp();
 const char* diffHelp();
 const char* cullReportHelp();
 const char* reuseBenchHelp();
+const char* orderBenchHelp();
 const char* hsrBenchHelp();
 const char* spanBenchHelp();
 const char* stateSimHelp();

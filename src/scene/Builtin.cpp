@@ -18,6 +18,12 @@
 //       hops; with DUTY < 1 a cube moves for that share of each hop and rests, the cubes staggered,
 //       so cubes start and stop on most frames), seen by a fixed camera: a large static model crossed by a few moving objects, the case where the
 //       granularity of temporal reuse's extents matters. SCENE's cameras are dropped; `of` comes last.
+//   builtin:materials?draws=1000&meshes=40&shapes=6&materials=24&textures=8&seed=1
+//       DRAWS boxes on a grid, a state-ordering test scene (paper 004, issue 10): SHAPES box
+//       proportions, MATERIALS materials (colours; one in three double-sided; the first TEXTURES
+//       of them each with a checker texture of its own), and MESHES (shape, material) pairs, a
+//       glTF primitive each. Each box draws one of the meshes at random, and the boxes are
+//       submitted in a random order, so that consecutive draws rarely share any state.
 //   builtin:default
 //       The dominoes with a checkered floor: what `frugal render` draws with no scene.
 #include <algorithm>
@@ -394,6 +400,58 @@ Result<Scene> makeOrbit(ParamReader& in, const LoadOptions& options) {
     return scene;
 }
 
+Result<Scene> makeMaterials(ParamReader& in) {
+    const int draws = int(in.number("draws", 1000, 1, 1e6));
+    const int meshCount = int(in.number("meshes", 40, 1, 1e5));
+    const int shapes = int(in.number("shapes", 6, 1, 1e4));
+    const int materials = int(in.number("materials", 24, 1, 1e5));
+    const int textures = int(in.number("textures", 8, 0, 1e4));
+    const double seed = in.number("seed", 1, 0, 4294967295.0);
+    if (in.error.empty() && textures > materials)
+        in.fail("textures=" + std::to_string(textures) + " exceeds materials=" + std::to_string(materials) +
+                " (one texture a material at most)");
+    if (!in.error.empty()) return Error{in.error};
+
+    Scene scene;
+    std::mt19937 rng{static_cast<std::uint32_t>(seed)};
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int t = 0; t < textures; ++t) {
+        scene.textures.push_back(makeChecker(32, 2 + t % 6));
+        scene.textures.back().name = "checker" + std::to_string(t);
+    }
+    for (int m = 0; m < materials; ++m) {
+        Material material;
+        material.name = "material" + std::to_string(m);
+        material.baseColorFactor = hueColor(float(m) / float(materials));
+        material.baseColorTexture = m < textures ? m : -1;
+        material.doubleSided = m % 3 == 2;
+        scene.materials.push_back(material);
+    }
+    std::vector<glm::vec3> extents;
+    for (int s = 0; s < shapes; ++s) extents.push_back(glm::vec3(0.3f + 0.6f * unit(rng), 0.3f + 0.6f * unit(rng), 0.3f + 0.6f * unit(rng)));
+    for (int k = 0; k < meshCount; ++k) {
+        const int shape = k % shapes, material = int(unit(rng) * float(materials)) % materials;
+        scene.meshes.push_back(makeBox(-extents[std::size_t(shape)] / 2.0f, extents[std::size_t(shape)] / 2.0f, material,
+                                       "shape" + std::to_string(shape) + "-material" + std::to_string(material)));
+    }
+    // Grid cells in a random order: the submission order.
+    const int side = int(std::ceil(std::sqrt(double(draws))));
+    std::vector<int> cells;
+    for (int i = 0; i < draws; ++i) cells.push_back(i);
+    std::shuffle(cells.begin(), cells.end(), rng);
+    for (int cell : cells) {
+        Node node;
+        node.name = "box" + std::to_string(cell);
+        node.translation = {float(cell % side) - 0.5f * float(side - 1), 0.0f, float(cell / side) - 0.5f * float(side - 1)};
+        node.rotation = glm::angleAxis(unit(rng) * glm::two_pi<float>(), glm::vec3(0, 1, 0));
+        node.meshes.push_back(int(unit(rng) * float(meshCount)) % meshCount);
+        addNode(scene, node, -1);
+    }
+    const float extent = 0.5f * float(side) + 1.0f;
+    addCamera(scene, {0.0f, extent * 1.2f, extent * 1.4f}, {0.0f, 0.0f, 0.0f}, 0.1f, extent * 6.0f);
+    return scene;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> builtinScenes() {
@@ -403,6 +461,8 @@ std::vector<std::pair<std::string, std::string>> builtinScenes() {
         {"builtin:cubes", "spinning cubes; ?count=28&seconds=10&seed=1"},
         {"builtin:copies", "copies of a scene side by side; ?count=3&of=SCENE (of last)"},
         {"builtin:orbit", "a static scene circled by moving cubes; ?count=8&seconds=4&duty=1&of=SCENE (of last)"},
+        {"builtin:materials", "boxes over many meshes, materials and textures, in a random order (state ordering); "
+                              "?draws=1000&meshes=40&shapes=6&materials=24&textures=8&seed=1"},
     };
 }
 
@@ -435,6 +495,7 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
     else if (name == "cubes") made = makeCubes(in);
     else if (name == "copies") made = makeCopies(in, options);
     else if (name == "orbit") made = makeOrbit(in, options);
+    else if (name == "materials") made = makeMaterials(in);
     else {
         std::string known;
         for (const auto& [n, _] : builtinScenes()) known += (known.empty() ? "" : ", ") + n;

@@ -90,12 +90,43 @@ TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
     EXPECT_TRUE(j["ratios"]["unbatched_over_batched"]["software"].is_number());
 }
 
+TEST(OrderCliTest, OrderBenchTimesEveryOrderWithItsStateChanges) {
+    const fs::path dir = test::freshDir("OrderBenchCommand");
+    const CliRun run = runFrugal(dir, {"order-bench", "builtin:materials?draws=200", "--size", "64x48", "--backend",
+                                       "egl", "--runs", "2", "--warmup", "0", "-q", "--json", "o.json", "--csv", "o.csv"});
+    if (run.status == 2) GTEST_SKIP() << "no GL here";
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json j = test::readJson(dir / "o.json");
+    ASSERT_EQ(j["backends"].size(), 1u);
+    const nlohmann::json& orders = j["backends"][0]["orders"];
+    ASSERT_EQ(orders.size(), 5u);
+    EXPECT_EQ(orders[0]["order"], "submit");
+    EXPECT_EQ(j["backends"][0]["state_costs_us"].size(), 6u);
+    for (const nlohmann::json& o : orders) {
+        SCOPED_TRACE(o.dump());
+        EXPECT_EQ(o["tie_px"], 0);  // boxes apart: no exact depth ties to change
+        EXPECT_TRUE(o["median_ms"].is_number());
+        if (o["order"] != "submit") {
+            // Every other order keeps each mesh's draws together: one instanced draw a mesh (40).
+            EXPECT_EQ(o["state_changes"]["draws"], 40);
+            EXPECT_LT(o["state_changes"]["programs"].get<int>(), orders[0]["state_changes"]["programs"].get<int>());
+        }
+    }
+    EXPECT_EQ(test::lines(test::readAll(dir / "o.csv")).size(), 6u);
+}
+
 TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
     const fs::path dir = test::freshDir("OrderErrors");
     const std::string line = "error: --order random: not an order (submit, key, paper, greedy or best)";
     test::expectOneErrorLine(dir, {{{"render", "--order", "random"}, line},
                                    {{"bench", "render", "--order", "random"}, line},
-                                   {{"diff", "--order", "random"}, line}});
+                                   {{"diff", "--order", "random"}, line},
+                                   {{"info", "builtin:materials?textures=30&materials=4"},
+                                    "error: builtin:materials?textures=30&materials=4: textures=30 exceeds materials=4 "
+                                    "(one texture a material at most)",
+                                    1},
+                                   {{"order-bench", "--runs", "0"},
+                                    "error: --runs: expected a whole number 1 to 100000, got '0'"}});
 }
 
 }  // namespace

@@ -115,7 +115,7 @@ TEST(BuiltinTest, CubesSpinAndAreReproducible) {
 
 TEST(BuiltinTest, BadSpecsGetOneLineErrors) {
     const std::pair<const char*, const char*> cases[] = {
-        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes, builtin:copies, builtin:orbit)"},
+        {"builtin:nope", "builtin:nope: no such built-in scene (there are builtin:default, builtin:dominoes, builtin:cubes, builtin:copies, builtin:orbit, builtin:materials)"},
         {"builtin:cubes?count=abc", "builtin:cubes?count=abc: count=abc is not a number"},
         {"builtin:cubes?count=0", "builtin:cubes?count=0: count=0 is out of range [1, 1e+06]"},
         {"builtin:dominoes?static=2", "builtin:dominoes?static=2: static=2 is out of range [0, 1]"},
@@ -203,4 +203,20 @@ TEST(BuiltinTest, OrbitCirclesAStaticSceneWithCubesThatStartAndStop) {
 }
 
 }  // namespace
+TEST(BuiltinTest, MaterialsSpreadsDrawsOverMeshesMaterialsAndTextures) {
+    Result<Scene> scene = loadScene("builtin:materials?draws=50&meshes=10&shapes=3&materials=6&textures=2&seed=7");
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    EXPECT_EQ(scene->instances.size(), 50u);
+    EXPECT_EQ(scene->meshes.size(), 10u);
+    EXPECT_EQ(scene->materials.size(), 6u);
+    EXPECT_EQ(scene->textures.size(), 2u);
+    EXPECT_EQ(scene->materials[1].baseColorTexture, 1);
+    EXPECT_EQ(scene->materials[2].baseColorTexture, -1);
+    EXPECT_TRUE(scene->materials[2].doubleSided);
+    // Submitted in a random order: consecutive instances mostly draw different meshes.
+    std::size_t repeats = 0;
+    for (std::size_t i = 1; i < scene->instances.size(); ++i) repeats += scene->instances[i].mesh == scene->instances[i - 1].mesh;
+    EXPECT_LT(repeats, 15u);
+}
+
 }  // namespace frugal
