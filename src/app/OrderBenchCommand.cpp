@@ -143,7 +143,6 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         frame(0);
         const Buffers submitted = backend.readBack(opened->target);
         nlohmann::json orders = nlohmann::json::array();
-        if (!options.quiet) err << backend.name() << ":\n";
         for (int o = 0; o < kOrderCount; ++o) {
             frame(o);
             const Buffers image = backend.readBack(opened->target);
@@ -166,7 +165,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
                           drawOrderName(kOrders[o]), med, *lo, *hi, orderMs[o], (unsigned long long)c.draws,
                           (unsigned long long)c.programs, (unsigned long long)c.meshes, (unsigned long long)c.textures,
                           (unsigned long long)c.toggles, (unsigned long long)c.uniforms, tie);
-            out << backend.name() << " " << line + 1;
+            out << backend.name() << line;
         }
         nlohmann::json costJson = nlohmann::json::object();
         const char* kinds[] = {"program", "mesh", "texture", "material", "culling", "depth"};
