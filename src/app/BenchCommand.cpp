@@ -27,6 +27,7 @@
 #include "base/Stats.h"
 #include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
+#include "report/ImageCompare.h"
 
 namespace frugal {
 
@@ -125,14 +126,6 @@ Scene premergedScene(const Scene& scene, const std::vector<glm::mat4>& world) {
     merged.roots = {0};
     merged.buildInstances();
     return merged;
-}
-
-std::size_t differingPixels(const Buffers& a, const Buffers& b) {
-    std::size_t count = 0;
-    for (std::size_t i = 0; i + 3 < a.rgba.size() && i + 3 < b.rgba.size(); i += 4)
-        count += std::equal(a.rgba.begin() + std::ptrdiff_t(i), a.rgba.begin() + std::ptrdiff_t(i + 4),
-                            b.rgba.begin() + std::ptrdiff_t(i)) ? 0 : 1;
-    return count;
 }
 
 const Sample* find(const std::vector<Sample>& samples, const std::string& backend, const std::string& order,
@@ -246,7 +239,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, *orderCosts);
             Sample unbatched{backend.name(), backend.renderer(), order, "unbatched", {}, std::nullopt, std::nullopt};
             Sample premerged{backend.name(), backend.renderer(), order, "premerged", {}, std::nullopt, std::nullopt};
-            const Scene merged = premergedScene(*scene, setup->world);
+            const Scene merged = variants ? premergedScene(*scene, setup->world) : Scene{};
             std::optional<SceneRenderer> mergedRenderer;
             if (variants) {
                 Result<SceneRenderer> made = SceneRenderer::create(backend, merged);
@@ -308,13 +301,13 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                 renderer.setBatching(false);
                 drawFrame(renderer, list);
                 renderer.setBatching(true);
-                unbatched.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                unbatched.pixelsDiffering = differingColorPixels(backend.readBack(target), batchedImage);
                 mergedRenderer->renderFrame(target, options.width, options.height, setup->params,
                                             merged.worldTransforms(0.0), options.background);
-                premerged.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                premerged.pixelsDiffering = differingColorPixels(backend.readBack(target), batchedImage);
                 // Draw order decides exact depth ties only: the pixels where it changed the image.
                 drawFrame(renderer, renderer.fullList());
-                sample.pixelsDiffering = differingPixels(backend.readBack(target), batchedImage);
+                sample.pixelsDiffering = differingColorPixels(backend.readBack(target), batchedImage);
                 if (!options.quiet)
                     err << backend.name() << " " << order << " unbatched: median " << fmt(median(unbatched.ms))
                         << " ms; premerged: median " << fmt(median(premerged.ms)) << " ms\n";

@@ -184,12 +184,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
             drawMode(kModes[m], *setup, stats[m]);
             images[m] = backend.readBack(session.target);
             HsrModeResult& result = report.modes[std::size_t(m)];
-            std::size_t px = 0;
-            for (std::size_t i = 0; i < images[m].rgba.size(); i += 4)
-                px += std::equal(images[m].rgba.begin() + std::ptrdiff_t(i), images[m].rgba.begin() + std::ptrdiff_t(i + 4),
-                                 images[0].rgba.begin() + std::ptrdiff_t(i))
-                          ? 0
-                          : 1;
+            const std::size_t px = differingColorPixels(images[m], images[0]);
             result.differingPx.push_back(px);
             result.zbufferedShare.push_back(kModes[m].depthTested ? 1.0 : stats[m].zbufferedShare(kModes[m].mode));
             result.polygons.push_back(stats[m].polygons);

@@ -17,6 +17,7 @@
 #include "app/OrderSupport.h"
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
+#include "report/ImageCompare.h"
 
 namespace frugal {
 
@@ -44,16 +45,6 @@ namespace {
 
 constexpr DrawOrder kOrders[] = {DrawOrder::Submit, DrawOrder::Key, DrawOrder::Paper, DrawOrder::Greedy, DrawOrder::Best};
 constexpr int kOrderCount = 5;
-
-nlohmann::json changesJson(const StateChanges& c) {
-    return {{"draws", c.draws}, {"programs", c.programs}, {"meshes", c.meshes},
-            {"textures", c.textures}, {"toggles", c.toggles}, {"uniforms", c.uniforms}};
-}
-
-StateChanges minus(const StateChanges& a, const StateChanges& b) {
-    return {a.draws - b.draws, a.programs - b.programs, a.meshes - b.meshes,
-            a.textures - b.textures, a.toggles - b.toggles, a.uniforms - b.uniforms};
-}
 
 }  // namespace
 
@@ -129,7 +120,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
             renderer.renderFrame(opened->target, options.width, options.height, setup->params, setup->world,
                                  options.background, lists[o]);
             backend.finish();
-            changes[o] = minus(backend.stateChanges(), before);
+            changes[o] = backend.stateChanges() - before;
             return msSince(t0);
         };
         for (int w = 0; w < warmup; ++w)
@@ -146,15 +137,12 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         for (int o = 0; o < kOrderCount; ++o) {
             frame(o);
             const Buffers image = backend.readBack(opened->target);
-            std::size_t tie = 0;
-            for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-                tie += std::equal(image.rgba.begin() + std::ptrdiff_t(i), image.rgba.begin() + std::ptrdiff_t(i + 4),
-                                  submitted.rgba.begin() + std::ptrdiff_t(i)) ? 0 : 1;
+            const std::size_t tie = differingColorPixels(image, submitted);
             const double med = median(ms[o]);
             const auto [lo, hi] = std::minmax_element(ms[o].begin(), ms[o].end());
             const StateChanges& c = changes[o];
             orders.push_back({{"order", drawOrderName(kOrders[o])}, {"median_ms", med}, {"min_ms", *lo}, {"max_ms", *hi},
-                              {"order_ms", orderMs[o]}, {"state_changes", changesJson(c)}, {"tie_px", tie}});
+                              {"order_ms", orderMs[o]}, {"state_changes", stateChangesJson(c)}, {"tie_px", tie}});
             csv << backend.name() << "," << drawOrderName(kOrders[o]) << "," << med << "," << *lo << "," << *hi << ","
                 << orderMs[o] << "," << c.draws << "," << c.programs << "," << c.meshes << "," << c.textures << ","
                 << c.toggles << "," << c.uniforms << "," << tie << "\n";

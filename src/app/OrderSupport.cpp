@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <ostream>
 
+#include <nlohmann/json.hpp>
+
 #include "base/Format.h"
 
 namespace frugal {
@@ -48,6 +50,11 @@ DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder dra
     out.reserve(list.size());
     for (int index : order::expandOrder(distinct, classes)) out.push_back(list[std::size_t(index)]);
     return out;
+}
+
+nlohmann::json stateChangesJson(const StateChanges& c) {
+    return {{"draws", c.draws}, {"programs", c.programs}, {"meshes", c.meshes},
+            {"textures", c.textures}, {"toggles", c.toggles}, {"uniforms", c.uniforms}};
 }
 
 Result<std::vector<double>> costsForOrder(DrawOrder order, Backend& backend, std::ostream& err, bool quiet) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "gl/StateCosts.h"
 #include "order/Order.h"
 #include "render/Plan.h"
@@ -29,6 +31,9 @@ std::vector<double> stateCostsUs(const StateCostReport& report);
 // distinct RSSs (copies drawn together, in submission order, which keeps batches whole) with
 // `costs` under order::CostRule::SetNotHeld; paper's high-cost set has 3 kinds.
 DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder order, const std::vector<double>& costs);
+
+// {"draws","programs","meshes","textures","toggles","uniforms"}: the render and order-bench JSON.
+nlohmann::json stateChangesJson(const StateChanges& changes);
 
 // The costs `order` needs, measured on `backend` (paper, greedy, best; nothing for submit and key),
 // with one line on `err` unless quiet: "order best: state costs on egl-surfaceless (us): program

@@ -296,13 +296,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         if (!cullJson.is_null()) frames.back().update(cullJson);
         if (!reuseJson.is_null()) frames.back()["reuse"] = reuseJson;
         if (!hsrFrameJson.is_null()) frames.back()["hsr"] = hsrFrameJson;
-        const StateChanges changes = backend.stateChanges();
-        frames.back()["state_changes"] = {{"draws", changes.draws - changesBefore.draws},
-                                          {"programs", changes.programs - changesBefore.programs},
-                                          {"meshes", changes.meshes - changesBefore.meshes},
-                                          {"textures", changes.textures - changesBefore.textures},
-                                          {"toggles", changes.toggles - changesBefore.toggles},
-                                          {"uniforms", changes.uniforms - changesBefore.uniforms}};
+        frames.back()["state_changes"] = stateChangesJson(backend.stateChanges() - changesBefore);
         if (options.interp != span::Interp::Exact)
             if (const std::optional<InterpStats> interp = softwareInterpStats(backend)) {
                 // The backend's counters run from its start: per frame, the difference.

@@ -86,6 +86,12 @@ struct StateChanges {
     std::uint64_t textures = 0;  // texture binds
     std::uint64_t toggles = 0;   // glEnable / glDisable: face culling, depth test, scissor
     std::uint64_t uniforms = 0;  // uniform uploads: transforms, material, lighting, first id
+
+    // The changes between two readings (a frame's: after − before).
+    StateChanges operator-(const StateChanges& before) const {
+        return {draws - before.draws, programs - before.programs, meshes - before.meshes,
+                textures - before.textures, toggles - before.toggles, uniforms - before.uniforms};
+    }
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute

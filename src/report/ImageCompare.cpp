@@ -291,4 +291,12 @@ std::string comparisonSummary(const ImageComparison& c, const std::string& actua
     return s;
 }
 
+std::size_t differingColorPixels(const Buffers& a, const Buffers& b) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i + 3 < a.rgba.size() && i + 3 < b.rgba.size(); i += 4)
+        count += std::equal(a.rgba.begin() + std::ptrdiff_t(i), a.rgba.begin() + std::ptrdiff_t(i + 4),
+                            b.rgba.begin() + std::ptrdiff_t(i)) ? 0 : 1;
+    return count;
+}
+
 }  // namespace frugal

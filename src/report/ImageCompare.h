@@ -91,6 +91,10 @@ Result<bool> addIdsFromPng(Buffers& buffers, const DecodedImage& ids);
 // Reads a colour PNG and, when `idsPath` is not empty, its id PNG. Error "<file>: <why>".
 Result<Buffers> readRenderPngs(const std::string& colorPath, const std::string& idsPath = {});
 
+// Pixels whose RGBA bytes differ at all, over the pixels both images have (the quick count of the
+// benches; compareBuffers gives the full metrics).
+std::size_t differingColorPixels(const Buffers& a, const Buffers& b);
+
 // The error mask as a PNG (rows flipped to top first, like every frugal image file).
 Result<Bytes> encodeMaskPng(const ImageComparison& comparison);
 
