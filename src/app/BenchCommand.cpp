@@ -231,12 +231,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt, std::nullopt};
             // In the cache order also: the same list unbatched, and the batching floor (premerged).
             const bool variants = std::string(order) == "optimized";
-            Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, backend, err, options.quiet);
+            Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, backend, 0, err, options.quiet);
             if (!orderCosts) {
                 err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
                 return kExitError;
             }
-            const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, *orderCosts);
+            const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, orderCosts->costsUs());
             Sample unbatched{backend.name(), backend.renderer(), order, "unbatched", {}, std::nullopt, std::nullopt};
             Sample premerged{backend.name(), backend.renderer(), order, "premerged", {}, std::nullopt, std::nullopt};
             const Scene merged = variants ? premergedScene(*scene, setup->world) : Scene{};

@@ -6,7 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "base/Format.h"
+
 namespace frugal {
+namespace {
+
+std::string point(const glm::vec3& p) { return "(" + fmt(p.x) + ", " + fmt(p.y) + ", " + fmt(p.z) + ")"; }
+
+}  // namespace
 
 Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -45,6 +52,14 @@ Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
         view.eye = **eye;
         view.target = **target;
         if (*up) view.up = **up;
+        // What makes no view whatever the scene, refused here with the entry rather than at its frame.
+        const glm::vec3 forward = **target - **eye;
+        const float distance = glm::length(forward);
+        if (!(distance > 0.0f)) return Error{where + "eye and target coincide at " + point(**eye)};
+        if (!std::isfinite(distance))
+            return Error{where + "eye " + point(**eye) + " and target " + point(**target) + " are too far apart for float"};
+        if (!(glm::length(glm::cross(forward / distance, view.up)) >= 1e-6f))
+            return Error{where + "up " + point(view.up) + " is parallel to the view direction"};
         if (entry.contains("fov")) {
             if (!entry["fov"].is_number() || !(entry["fov"].get<double>() > 0.0 && entry["fov"].get<double>() < 180.0))
                 return Error{where + "fov: expected degrees in (0, 180)"};

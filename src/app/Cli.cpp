@@ -19,8 +19,8 @@ usage:
   frugal diff [SCENE] [options]                   a GL render against the software reference
   frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
   frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
-  frugal order-bench [SCENE] [options]           a frame in every draw order: time, state changes, ties
-  frugal hsr-bench [SCENE] [options]             depth sort and the adaptive z-buffer against the z-buffer
+  frugal order-bench [SCENE] [options]            a frame in every draw order: time, state changes, ties
+  frugal hsr-bench [SCENE] [options]              depth sort and the adaptive z-buffer against the z-buffer
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
   frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
   frugal help [COMMAND]                           this text, or a command's options
@@ -38,7 +38,7 @@ void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
     out << "with no SCENE, render, bench, diff, cull-report and reuse-bench use builtin:default.\n";
-    out << "\nrun 'frugal help render' (or info, bench, compare, diff, reuse-bench, cull-report) for a command's options.\n" << kExitCodes;
+    out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << kExitCodes;
 }
 
 }  // namespace

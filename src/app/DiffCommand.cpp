@@ -118,7 +118,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
     const TargetHandle targets[2] = {sessions[0].target, sessions[1].target};
     // paper, greedy and best order by the GL backend's measured costs; both backends draw that list.
-    Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, *sessions[0].backend, err, options.quiet);
+    Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, *sessions[0].backend, 0, err, options.quiet);
     if (!orderCosts) {
         err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
         return kExitError;
@@ -139,7 +139,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         }
         const double time = setup->time;
         Buffers images[2];
-        const DrawList ordered = orderFrameDraws(scene, renderers[0]->fullList(), drawOrder, *orderCosts);
+        const DrawList ordered = orderFrameDraws(scene, renderers[0]->fullList(), drawOrder, orderCosts->costsUs());
         const DrawList list =
             planner ? planner->plan(hsrMode, setup->params, setup->world, ordered, options.width, options.height) : ordered;
         for (int k = 0; k < 2; ++k) {

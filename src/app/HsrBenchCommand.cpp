@@ -14,7 +14,6 @@
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
-#include "app/Gnuplot.h"
 #include "io/ImageIO.h"
 #include "report/HsrReport.h"
 #include "report/ImageCompare.h"
@@ -88,8 +87,6 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
     command.finish = [&](ArgCursor& cursor) {
         if (const std::string problem = plotProblem(outputs); !problem.empty())
             cursor.fail(problem);
-        else if (!outputs.plot.empty() && hasSingleQuote(outputs.csv))
-            cursor.fail("--csv " + outputs.csv + ": a path with a single quote cannot be passed to gnuplot");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     if (!options.frames) options.frames = FrameRange{0, 99, true};

@@ -18,6 +18,7 @@
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
 #include "report/ImageCompare.h"
+#include "report/ReportText.h"
 
 namespace frugal {
 
@@ -38,6 +39,9 @@ the state-change costs measured on each backend at start (printed).
                         "orders":[{"order","median_ms","min_ms","max_ms","order_ms",
                         "state_changes":{...},"tie_px"}]}]}
   --csv FILE            one row per backend and order
+  --plot FILE.svg       median frame time per backend and order (bars from min to max) and the
+                        draws issued, drawn by gnuplot from the CSV (--csv, or FILE.csv beside the
+                        plot); the script is written as FILE.gp
 )";
 }
 
@@ -45,6 +49,30 @@ namespace {
 
 constexpr DrawOrder kOrders[] = {DrawOrder::Submit, DrawOrder::Key, DrawOrder::Paper, DrawOrder::Greedy, DrawOrder::Best};
 constexpr int kOrderCount = 5;
+
+std::string orderBenchGnuplot(const std::string& csvPath, const std::string& svgPath, const std::string& scene) {
+    using reporttext::gnuplotQuoted;
+    return "# frugal order-bench: frame time and draws per backend and draw order.\n"
+           "# Drawn from the CSV; run gnuplot on this file to draw it again.\n"
+           "set terminal svg size 760,440 dynamic background rgb 'white'\n"
+           "set output " + gnuplotQuoted(svgPath) + "\n"
+           "set datafile separator ','\n"
+           "set title " + gnuplotQuoted("draw orders: " + scene) + " noenhanced\n"
+           "set ylabel 'frame ms (median; bar: min to max)'\n"
+           "set y2label 'draws issued'\n"
+           "set ytics nomirror\n"
+           "set y2tics\n"
+           "set yrange [0:*]\n"
+           "set y2range [0:*]\n"
+           "set style fill solid 0.6 border -1\n"
+           "set boxwidth 0.7\n"
+           "set xtics rotate by -35 noenhanced\n"
+           "set grid ytics\n"
+           "set key top center\n"
+           "plot " + gnuplotQuoted(csvPath) + " skip 1 using 0:3:xtic(sprintf('%s %s', strcol(1), strcol(2))) "
+           "with boxes title 'frame ms', '' skip 1 using 0:3:4:5 with yerrorbars lc rgb 'black' pt 0 notitle, "
+           "'' skip 1 using 0:7 axes x1y2 with points pt 7 ps 1.2 title 'draws'\n";
+}
 
 }  // namespace
 
@@ -55,7 +83,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     int runs = 20, warmup = 3;
     CommandLine command{"order-bench", orderBenchHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--json" || flag == "--csv") return parseReportOption(flag, cursor, outputs);
+        if (flag == "--json" || flag == "--csv" || flag == "--plot") return parseReportOption(flag, cursor, outputs);
         if (flag == "--runs") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 1, 100000)) runs = *n;
         } else if (flag == "--warmup") {
@@ -66,6 +94,9 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         return true;
     };
     command.positional = sceneArgument(options);
+    command.finish = [&outputs](ArgCursor& cursor) {
+        if (const std::string problem = plotProblem(outputs); !problem.empty()) cursor.fail(problem);
+    };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
@@ -99,7 +130,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         if (int prepared = prepareSession(*opened, options, scene, err); prepared != kExitOk) return prepared;
         Backend& backend = *opened->backend;
         SceneRenderer& renderer = *opened->renderer;
-        Result<std::vector<double>> costs = costsForOrder(DrawOrder::Best, backend, err, options.quiet);
+        Result<OrderCosts> costs = OrderCosts::start(DrawOrder::Best, backend, 0, err, options.quiet);
         if (!costs) {
             err << "error: " << costs.error() << "\n";
             return kExitError;
@@ -108,7 +139,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         double orderMs[kOrderCount];
         for (int o = 0; o < kOrderCount; ++o) {
             const auto t0 = Clock::now();
-            lists[o] = orderFrameDraws(scene, renderer.fullList(), kOrders[o], *costs);
+            lists[o] = orderFrameDraws(scene, renderer.fullList(), kOrders[o], costs->costsUs());
             orderMs[o] = msSince(t0);
         }
         std::vector<double> ms[kOrderCount];
@@ -156,8 +187,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
             out << backend.name() << line;
         }
         nlohmann::json costJson = nlohmann::json::object();
-        const char* kinds[] = {"program", "mesh", "texture", "material", "culling", "depth"};
-        for (std::size_t k = 0; k < costs->size() && k < 6; ++k) costJson[kinds[k]] = (*costs)[k];
+        for (std::size_t k = 0; k < kStateKinds; ++k) costJson[kStateKindNames[k]] = costs->costsUs()[k];
         backends.push_back({{"backend", backend.name()}, {"renderer", backend.renderer()}, {"state_costs_us", costJson},
                             {"runs", runs}, {"orders", orders}});
     }
@@ -168,7 +198,10 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     const nlohmann::json report = {{"command", "order-bench"}, {"scene", options.scene},
                                    {"size", {options.width, options.height}}, {"backends", backends}};
     const std::string csvText = csv.str();
-    const ReportTexts texts{[&report] { return report.dump(2) + "\n"; }, [&csvText] { return csvText; }, nullptr};
+    const ReportTexts texts{[&report] { return report.dump(2) + "\n"; }, [&csvText] { return csvText; },
+                            [&options](const std::string& csvPath, const std::string& svgPath) {
+                                return orderBenchGnuplot(csvPath, svgPath, options.scene);
+                            }};
     return writeReportFiles(outputs, texts, err);
 }
 

@@ -28,12 +28,6 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
     return sets;
 }
 
-std::vector<double> stateCostsUs(const StateCostReport& report) {
-    std::vector<double> costs;
-    for (const StateCost& cost : report.costs) costs.push_back(std::max(cost.us, 0.01));
-    return costs;
-}
-
 DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder drawOrder, const std::vector<double>& costs) {
     if (drawOrder == DrawOrder::Submit || drawOrder == DrawOrder::Key || list.size() < 2)
         return orderDraws(scene, list, drawOrder);
@@ -57,18 +51,36 @@ nlohmann::json stateChangesJson(const StateChanges& c) {
             {"textures", c.textures}, {"toggles", c.toggles}, {"uniforms", c.uniforms}};
 }
 
-Result<std::vector<double>> costsForOrder(DrawOrder order, Backend& backend, std::ostream& err, bool quiet) {
-    if (order == DrawOrder::Submit || order == DrawOrder::Key) return std::vector<double>{};
-    Result<StateCostReport> measured = measureStateCosts(backend, 5, 200);
-    if (!measured) return Error{measured.error()};
-    const std::vector<double> costs = stateCostsUs(*measured);
+Result<OrderCosts> OrderCosts::start(DrawOrder order, Backend& backend, int refineEvery, std::ostream& err,
+                                     bool quiet) {
+    OrderCosts costs;
+    if (order == DrawOrder::Submit || order == DrawOrder::Key) return costs;
+    Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(backend);
+    if (!probe) return Error{probe.error()};
+    costs.probe_ = std::move(*probe);
+    for (int r = 0; r < 5; ++r) costs.running_.add(costs.probe_->round(200, r));
+    costs.start_ = costs.costs_ = costs.running_.costsUs();
+    costs.refineEvery_ = std::max(refineEvery, 0);
     if (!quiet) {
         err << "order " << drawOrderName(order) << ": state costs on " << backend.name() << " (us):";
-        for (std::size_t k = 0; k < costs.size(); ++k)
-            err << (k ? ", " : " ") << measured->costs[k].kind << " " << fmt(costs[k]);
+        for (std::size_t k = 0; k < costs.costs_.size(); ++k)
+            err << (k ? ", " : " ") << kStateKindNames[k] << " " << fmt(costs.costs_[k]);
         err << "\n";
     }
     return costs;
+}
+
+bool OrderCosts::refine(int framesDone) {
+    if (!probe_ || refineEvery_ <= 0 || framesDone <= 0 || framesDone % refineEvery_ != 0) return false;
+    running_.add(probe_->round(100, int(running_.rounds())));
+    costs_ = running_.costsUs();
+    return true;
+}
+
+nlohmann::json OrderCosts::json() const {
+    if (!probe_) return nullptr;
+    return {{"kinds", kStateKindNames}, {"start_us", start_}, {"us", costs_}, {"rounds", running_.rounds()},
+            {"refine_every", refineEvery_}};
 }
 
 }  // namespace frugal

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,10 +24,6 @@ namespace frugal {
 // not a kind here.
 std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, bool cullAllBackFaces = false);
 
-// The kinds' costs in microseconds from a measurement; a cost measured at or below 0 (noise around a
-// free change) counts as 0.01 us, so that every kind still has an order to prefer.
-std::vector<double> stateCostsUs(const StateCostReport& report);
-
 // `list` in `order`: submit and key as orderDraws; paper, greedy and best computed on the list's
 // distinct RSSs (copies drawn together, in submission order, which keeps batches whole) with
 // `costs` under order::CostRule::SetNotHeld; paper's high-cost set has 3 kinds.
@@ -35,9 +32,29 @@ DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder ord
 // {"draws","programs","meshes","textures","toggles","uniforms"}: the render and order-bench JSON.
 nlohmann::json stateChangesJson(const StateChanges& changes);
 
-// The costs `order` needs, measured on `backend` (paper, greedy, best; nothing for submit and key),
-// with one line on `err` unless quiet: "order best: state costs on egl-surfaceless (us): program
-// 8.3, mesh 0.1, ...". Error: the measurement's.
-Result<std::vector<double>> costsForOrder(DrawOrder order, Backend& backend, std::ostream& err, bool quiet);
+// The costs `order` needs on `backend` (paper, greedy, best; none for submit and key): measured at
+// start, 5 rounds of 200 draws a kind (gl/StateCosts.h), then refined while frames render: every
+// `refineEvery` frames (0: never) one more round of 100 draws between two frames, folded into the
+// running average of the last 32 rounds. start() prints one line on `err` unless quiet: "order best:
+// state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ...".
+class OrderCosts {
+public:
+    // Error: the measurement's (the backend refused the probe's target, mesh or texture).
+    static Result<OrderCosts> start(DrawOrder order, Backend& backend, int refineEvery, std::ostream& err, bool quiet);
+
+    const std::vector<double>& costsUs() const { return costs_; }
+    // Call between frames, with `framesDone` frames finished: one more round when one is due (never
+    // inside a frame: the probe draws into a target of its own). True when the costs were refined.
+    bool refine(int framesDone);
+    // {"kinds", "start_us", "us", "rounds", "refine_every"} (costs in the order of "kinds"); null for
+    // submit and key.
+    nlohmann::json json() const;
+
+private:
+    std::unique_ptr<StateCostProbe> probe_;
+    RunningStateCosts running_;
+    std::vector<double> start_, costs_;
+    int refineEvery_ = 0;
+};
 
 }  // namespace frugal

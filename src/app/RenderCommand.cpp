@@ -50,6 +50,9 @@ R"(
                         over the distinct state sets, Held-Karp up to 16, else local search).
                         Consecutive draws of one mesh go out as one instanced draw. Only pixels
                         where two surfaces tie exactly in depth can change (first drawn wins)
+  --refine-costs N      with paper, greedy or best: every N frames of a sequence, one more round
+                        of the cost measurement between two frames (a few ms), averaged with the
+                        last 32 rounds, so the order follows the backend (default 10; 0 = never)
   --reuse               temporal reuse: with the camera still, copy what static instances render
                         from a static pair (one more target) and redraw only what changed; the
                         images are the same, byte for byte. The JSON gets per-frame state counts.
@@ -115,12 +118,17 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     ReuseCliOptions reuseOptions;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     DrawOrder drawOrder = DrawOrder::Submit;
+    int refineCostsEvery = 10;
     CommandLine command{"render", renderHelp(), &options};
-    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode, &drawOrder](const std::string& flag,
-                                                                                       ArgCursor& cursor) {
+    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode, &drawOrder, &refineCostsEvery](
+                         const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, true)) return true;
         if (parseHsrOption(flag, cursor, hsrMode)) return true;
         if (parseDrawOrderOption(flag, cursor, drawOrder)) return true;
+        if (flag == "--refine-costs") {
+            if (const std::optional<int> every = wholeNumber(flag, cursor, 0, 1000000)) refineCostsEvery = *every;
+            return true;
+        }
         if (parseReuseOption(flag, cursor, reuseOptions, options, true)) return true;
         if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
         const std::optional<std::string> path = cursor.value(flag);
@@ -178,8 +186,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const TargetHandle target = session.target;
     const std::vector<std::string>& log = session.log;
 
-    // paper, greedy and best order by costs measured on this backend, once.
-    Result<std::vector<double>> orderCosts = costsForOrder(drawOrder, backend, err, options.quiet);
+    // paper, greedy and best order by costs measured on this backend, refined between frames.
+    Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, backend, refineCostsEvery, err, options.quiet);
     if (!orderCosts) {
         err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
         return kExitError;
@@ -225,7 +233,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const StateChanges changesBefore = backend.stateChanges();
         // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
         const auto drawList = [&](const DrawList& submitted) {
-            const DrawList list = orderFrameDraws(scene, submitted, drawOrder, *orderCosts);
+            const DrawList list = orderFrameDraws(scene, submitted, drawOrder, orderCosts->costsUs());
             if (!planner) {
                 renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
                                      options.background, list);
@@ -305,6 +313,13 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
                                            {"overflow", interp->overflow - interpSeen.overflow}};
                 interpSeen = *interp;
             }
+        // Between frames, outside every timing above: one more cost round when due; the frames after
+        // this one are ordered by the refined costs.
+        const auto refineStart = Clock::now();
+        if (frame < range.last && orderCosts->refine(frame - range.first + 1)) {
+            frames.back()["refined_state_costs_us"] = orderCosts->costsUs();
+            frames.back()["refine_ms"] = ms(Clock::now() - refineStart);
+        }
         if (!options.quiet) {
             err << "frame " << frame << " (" << (frame - range.first + 1) << "/" << frameCount << "): "
                 << fmt(ms(t1 - t0)) << " ms";
@@ -343,7 +358,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             {"cull", cullMethodName(method)},
             {"hsr", hsr::modeName(hsrMode)},
             {"draw_order", drawOrderName(drawOrder)},
-            {"state_costs_us", *orderCosts},
+            {"state_costs", orderCosts->json()},
             {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
                                              {"fallback", reuseOptions.settings.fallback},
                                              {"static_pair_bytes", staticPairBytes(options.width, options.height)}}

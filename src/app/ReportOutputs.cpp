@@ -26,6 +26,7 @@ std::string plotProblem(const ReportPaths& paths) {
     if (std::filesystem::path(paths.plot).extension() != ".svg")
         return "--plot " + paths.plot + ": gnuplot writes SVG here; name it .svg";
     if (hasSingleQuote(paths.plot)) return "--plot " + paths.plot + ": a path with a single quote cannot be passed to gnuplot";
+    if (hasSingleQuote(paths.csv)) return "--csv " + paths.csv + ": a path with a single quote cannot be passed to gnuplot";
     return {};
 }
 
@@ -40,8 +41,8 @@ int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::os
     if (!paths.plot.empty()) {
         if (csvPath.empty()) csvPath = std::filesystem::path(paths.plot).replace_extension(".csv").string();
         scriptPath = std::filesystem::path(paths.plot).replace_extension(".gp").string();
-        // The script names the CSV inside single quotes. (A command may refuse such a --csv earlier,
-        // as a usage error; a derived one has none: --plot is refused with one.)
+        // The script names the CSV inside single quotes (plotProblem refuses such a path first, as a
+        // usage error; this holds for a command that did not ask it).
         if (hasSingleQuote(csvPath)) {
             err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
             return kExitError;

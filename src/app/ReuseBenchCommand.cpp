@@ -26,7 +26,6 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
-#include "app/Gnuplot.h"
 #include "app/ReportOutputs.h"
 #include "app/ReuseSupport.h"
 #include "base/Stats.h"
@@ -243,8 +242,6 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
             cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
         else if (const std::string problem = plotProblem(outputs); !problem.empty())
             cursor.fail(problem);
-        else if (!outputs.plot.empty() && hasSingleQuote(outputs.csv))
-            cursor.fail("--csv " + outputs.csv + ": a path with a single quote cannot be passed to gnuplot");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 

@@ -254,6 +254,10 @@ TEST(CullCliTest, BadCullOptionsGetOneLineAndNoFile) {
     test::writeFile(dir / "in" / "infeye.json", "[{\"eye\": [1e999, 0, 0], \"target\": [0, 0, 0]}]\n");
     test::writeFile(dir / "in" / "hugeup.json",
                     "[{\"eye\": [0, 0, 5], \"target\": [0, 0, 0], \"up\": [0, -1e300, 0]}]\n");
+    test::writeFile(dir / "in" / "sameeye.json",
+                    "[{\"eye\": [0, 0, 5], \"target\": [0, 0, 1]}, {\"eye\": [0, 0, 5], \"target\": [0, 0, 5]}]\n");
+    test::writeFile(dir / "in" / "fareye.json", "[{\"eye\": [3e38, 0, 0], \"target\": [-3e38, 0, 0]}]\n");
+    test::writeFile(dir / "in" / "parallelup.json", "[{\"eye\": [0, 4, 0], \"target\": [0, 0, 0]}]\n");
     const std::string methods = std::string("(methods: ") + kMethodList + ")";
     const std::string bins = ": expected THETAxPHI, each 1 to 1024 (default 16x32)";
     const BadCase cases[] = {
@@ -343,6 +347,16 @@ TEST(CullCliTest, BadCullOptionsGetOneLineAndNoFile) {
         {{"cull-report", "--camera-path", "in/hugeup.json"},
          1,
          "error: --camera-path in/hugeup.json: entry 0: up: not a finite point"},
+        {{"cull-report", "--camera-path", "in/sameeye.json"},
+         1,
+         "error: --camera-path in/sameeye.json: entry 1: eye and target coincide at (0, 0, 5)"},
+        {{"cull-report", "--camera-path", "in/fareye.json"},
+         1,
+         "error: --camera-path in/fareye.json: entry 0: eye (3e+38, 0, 0) and target (-3e+38, 0, 0) are too far apart "
+         "for float"},
+        {{"cull-report", "--camera-path", "in/parallelup.json"},
+         1,
+         "error: --camera-path in/parallelup.json: entry 0: up (0, 1, 0) is parallel to the view direction"},
         // cull-report: the scene
         {{"cull-report", "missing.glb"}, 1, "error: missing.glb: no such file"},
     };
@@ -430,7 +444,7 @@ TEST(CullCliTest, HelpDescribesCullReportAndTheCullOptions) {
     const CliRun top = runFrugal(dir, {"--help"});
     EXPECT_EQ(top.status, 0);
     EXPECT_NE(top.out.find("frugal cull-report"), std::string::npos) << top.out;
-    EXPECT_NE(top.out.find("cull-report) for a command's options"), std::string::npos) << top.out;
+    EXPECT_NE(top.out.find("run 'frugal help COMMAND'"), std::string::npos) << top.out;
     for (const std::vector<std::string>& args :
          {std::vector<std::string>{"help", "cull-report"}, std::vector<std::string>{"cull-report", "--help"},
           std::vector<std::string>{"cull-report", "-h"}}) {

@@ -58,12 +58,53 @@ TEST(OrderCliTest, CostOrdersMeasureTheBackendAndGroupEachStateSet) {
                   std::string::npos) << run.err;
         const nlohmann::json meta = test::readJson(dir / json);
         EXPECT_EQ(meta["draw_order"], order);
-        EXPECT_EQ(meta["state_costs_us"].size(), 6u);
+        EXPECT_EQ(meta["state_costs"]["us"].size(), 6u);
         EXPECT_EQ(meta["frames"][0]["state_changes"]["draws"], 7) << meta["frames"][0].dump();
     }
     const CliRun diff = runFrugal(dir, {"diff", "--size", "160x120", "--order", "best", "--tolerance", "0", "-q",
                                         "--out", "d"});
     EXPECT_EQ(diff.status, 0) << diff.out << diff.err;
+}
+
+TEST(OrderCliTest, CostsAreRefinedBetweenFramesOfASequence) {
+    // 5 frames, a round after every 2nd: after frames 1 and 3 (never after the last), 5 start-up
+    // rounds + 2. The images equal the software reference's drawing the same lists.
+    const fs::path dir = test::freshDir("OrderRefine");
+    const CliRun run = runFrugal(dir, {"render", "builtin:materials?draws=200", "--size", "96x72", "--frames", "0:4",
+                                       "--backend", "software", "--order", "greedy", "--refine-costs", "2", "-q", "-o",
+                                       "f_%d.png", "--json", "r.json"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json meta = test::readJson(dir / "r.json");
+    const nlohmann::json& costs = meta["state_costs"];
+    EXPECT_EQ(costs["rounds"], 7);
+    EXPECT_EQ(costs["refine_every"], 2);
+    EXPECT_EQ(costs["kinds"].size(), 6u);
+    for (int f = 0; f < 5; ++f) {
+        EXPECT_EQ(meta["frames"][f].contains("refined_state_costs_us"), f == 1 || f == 3) << f;
+        EXPECT_EQ(meta["frames"][f].contains("refine_ms"), f == 1 || f == 3) << f;
+    }
+    EXPECT_EQ(meta["frames"][3]["refined_state_costs_us"], costs["us"]);
+
+    const CliRun never = runFrugal(dir, {"render", "--size", "32x24", "--frames", "0:2", "--backend", "software",
+                                         "--order", "best", "--refine-costs", "0", "-q", "-o", "n_%d.png", "--json",
+                                         "n.json"});
+    ASSERT_EQ(never.status, 0) << never.err;
+    const nlohmann::json neverMeta = test::readJson(dir / "n.json");
+    EXPECT_EQ(neverMeta["state_costs"]["rounds"], 5);
+    EXPECT_EQ(neverMeta["state_costs"]["us"], neverMeta["state_costs"]["start_us"]);
+
+    // Orders that measure nothing have no costs.
+    const CliRun key = runFrugal(dir, {"render", "--size", "32x24", "--backend", "software", "--order", "key", "-q",
+                                       "-o", "k.png", "--json", "k.json"});
+    ASSERT_EQ(key.status, 0) << key.err;
+    EXPECT_TRUE(test::readJson(dir / "k.json")["state_costs"].is_null());
+
+    test::expectOneErrorLine(
+        test::freshDir("OrderRefineErrors"),
+        {{{"render", "--order", "best", "--refine-costs", "-1", "-o", "x.png"},
+          "error: --refine-costs: expected a whole number 0 to 1000000, got '-1'"},
+         {{"render", "--order", "best", "--refine-costs", "often", "-o", "x.png"},
+          "error: --refine-costs: expected a whole number 0 to 1000000, got 'often'"}});
 }
 
 TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
@@ -93,7 +134,8 @@ TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
 TEST(OrderCliTest, OrderBenchTimesEveryOrderWithItsStateChanges) {
     const fs::path dir = test::freshDir("OrderBenchCommand");
     const CliRun run = runFrugal(dir, {"order-bench", "builtin:materials?draws=200", "--size", "64x48", "--backend",
-                                       "egl", "--runs", "2", "--warmup", "0", "-q", "--json", "o.json", "--csv", "o.csv"});
+                                       "egl", "--runs", "2", "--warmup", "0", "-q", "--json", "o.json", "--csv", "o.csv",
+                                       "--plot", "o.svg"});
     if (run.status == 2) GTEST_SKIP() << "no GL here";
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json j = test::readJson(dir / "o.json");
@@ -113,6 +155,8 @@ TEST(OrderCliTest, OrderBenchTimesEveryOrderWithItsStateChanges) {
         }
     }
     EXPECT_EQ(test::lines(test::readAll(dir / "o.csv")).size(), 6u);
+    EXPECT_NE(test::readAll(dir / "o.svg").find("<svg"), std::string::npos);  // gnuplot drew it from the CSV
+    EXPECT_NE(test::readAll(dir / "o.gp").find("'o.csv'"), std::string::npos);
 }
 
 TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
@@ -126,7 +170,9 @@ TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
                                     "(one texture a material at most)",
                                     1},
                                    {{"order-bench", "--runs", "0"},
-                                    "error: --runs: expected a whole number 1 to 100000, got '0'"}});
+                                    "error: --runs: expected a whole number 1 to 100000, got '0'"},
+                                   {{"order-bench", "--plot", "o.png"},
+                                    "error: --plot o.png: gnuplot writes SVG here; name it .svg"}});
 }
 
 }  // namespace
