@@ -23,6 +23,7 @@ usage:
   frugal hsr-bench [SCENE] [options]              depth sort and the adaptive z-buffer against the z-buffer
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
   frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
+  frugal soak [SCENE] [options]                   100,000 frames and 1,000 create/destroy cycles: memory, images
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -31,7 +32,9 @@ SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
 const char* kExitCodes = R"(
 exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed output, or
              (compare, diff) images outside tolerance, 2 bad command line,
-             3 the requested backend is not available (no EGL display, no OSMesa, ...)
+             3 the requested backend is not available (no EGL display, no OSMesa, ...);
+             stopped by SIGINT, SIGTERM or SIGHUP: ends by that signal (130, 143, 129 in a shell)
+             after one line, the files already written kept whole and no temporary file left
 )";
 
 void printUsage(std::ostream& out) {
@@ -61,6 +64,7 @@ const CommandEntry kCommands[] = {
     {"order-bench", runOrderBench, orderBenchHelp, true},
     {"span-bench", runSpanBench, spanBenchHelp, false},
     {"state-sim", runStateSim, stateSimHelp, false},
+    {"soak", runSoak, soakHelp, false},
 };
 
 const CommandEntry* findCommand(const std::string& name) {

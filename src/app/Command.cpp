@@ -1,5 +1,6 @@
 #include "app/Command.h"
 
+#include <algorithm>
 #include <ostream>
 
 #include "app/Cli.h"
@@ -68,7 +69,16 @@ std::variant<Session, int> startSession(const RenderOptions& options, const Scen
 
 int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
     Backend& backend = *session.backend;
-    if (session.target == kNoHandle) session.target = backend.createTarget(options.width, options.height);
+    if (session.target == kNoHandle) {
+        // A size the backend takes but this process's memory does not hold: refused before any of it is made.
+        if (std::max(options.width, options.height) <= backend.maxTargetSize()) {
+            if (const std::optional<std::string> problem = frameMemoryProblem(options.width, options.height)) {
+                err << "error: --size " << options.width << "x" << options.height << ": " << *problem << "\n";
+                return kExitError;
+            }
+        }
+        session.target = backend.createTarget(options.width, options.height);
+    }
     if (session.target == kNoHandle) {
         err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
             << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";

@@ -18,6 +18,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
 int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* infoHelp();
@@ -30,5 +31,6 @@ const char* orderBenchHelp();
 const char* hsrBenchHelp();
 const char* spanBenchHelp();
 const char* stateSimHelp();
+const char* soakHelp();
 
 }  // namespace frugal

@@ -15,6 +15,7 @@
 #include "app/HsrSupport.h"
 #include "app/OrderSupport.h"
 #include "io/ImageIO.h"
+#include "io/Interrupt.h"
 #include "render/SceneRenderer.h"
 #include "report/ImageCompare.h"
 
@@ -131,7 +132,13 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     const std::string imageDir = writeAll ? outDir : kDefaultFailureDir;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     int failedFrames = 0;
+    // SIGINT, SIGTERM and SIGHUP stop between frames: the images written stay (io/Interrupt.h).
+    InterruptPoints interrupts;
     for (int frame = range.first; frame <= range.last; ++frame) {
+        if (const int caught = interrupts.arrived()) {
+            err << "error: " << interruptedAfter(caught, frame - range.first, range.last - range.first + 1) << "\n";
+            return kExitError;
+        }
         Result<FrameSetup> setup = setUpFrame(options, scene, frame, true);
         if (!setup) {
             err << "error: " << setup.error() << "\n";

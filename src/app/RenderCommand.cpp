@@ -14,6 +14,7 @@
 #include "app/OrderSupport.h"
 #include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
+#include "io/Interrupt.h"
 #include "render/SceneRenderer.h"
 #include "software/SoftwareBackend.h"
 
@@ -220,7 +221,14 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
 
+    // SIGINT, SIGTERM and SIGHUP stop the sequence between frames: the frames written stay, the
+    // JSON is not written (io/Interrupt.h).
+    InterruptPoints interrupts;
     for (int frame = range.first; frame <= range.last; ++frame) {
+        if (const int caught = interrupts.arrived()) {
+            err << "error: " << interruptedAfter(caught, frame - range.first, frameCount) << "\n";
+            return kExitError;
+        }
         Result<FrameSetup> setup = setUpFrame(options, scene, frame, !outputs.ids.empty());
         if (!setup) {
             err << "error: " << setup.error() << "\n";

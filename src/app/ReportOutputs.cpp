@@ -7,6 +7,7 @@
 #include "app/Cli.h"
 #include "app/Gnuplot.h"
 #include "io/ImageIO.h"
+#include "io/Interrupt.h"
 
 namespace frugal {
 
@@ -21,10 +22,12 @@ bool parseReportOption(const std::string& flag, ArgCursor& cursor, ReportPaths& 
     return true;
 }
 
-std::string plotProblem(const ReportPaths& paths) {
+std::string plotProblem(const ReportPaths& paths, bool pngToo) {
     if (paths.plot.empty()) return {};
-    if (std::filesystem::path(paths.plot).extension() != ".svg")
-        return "--plot " + paths.plot + ": gnuplot writes SVG here; name it .svg";
+    const std::filesystem::path extension = std::filesystem::path(paths.plot).extension();
+    if (pngToo && extension != ".svg" && extension != ".png")
+        return "--plot " + paths.plot + ": gnuplot writes SVG or PNG here; name it .svg or .png";
+    if (!pngToo && extension != ".svg") return "--plot " + paths.plot + ": gnuplot writes SVG here; name it .svg";
     if (hasSingleQuote(paths.plot)) return "--plot " + paths.plot + ": a path with a single quote cannot be passed to gnuplot";
     if (hasSingleQuote(paths.csv)) return "--csv " + paths.csv + ": a path with a single quote cannot be passed to gnuplot";
     return {};
@@ -59,6 +62,8 @@ int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::os
         return kExitError;
     }
     if (!paths.plot.empty()) {
+        // gnuplot writes the plot itself: it inherits the block, so a signal waits for a whole file.
+        const SignalsHeld held;
         const std::string problem = runGnuplot(scriptPath);
         if (!problem.empty()) {
             err << "error: --plot " << paths.plot << ": " << problem << "\n";

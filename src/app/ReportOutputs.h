@@ -18,8 +18,10 @@ struct ReportPaths {
 // --json, --csv and --plot (an empty name is a usage error). False when `flag` is none of them.
 bool parseReportOption(const std::string& flag, ArgCursor& cursor, ReportPaths& paths);
 
-// The usage error of --plot, or "": gnuplot writes SVG here, and gets the path inside single quotes.
-std::string plotProblem(const ReportPaths& paths);
+// The usage error of --plot, or "": gnuplot writes SVG here, and gets its path and the CSV's (which
+// its script reads) inside single quotes.
+// `pngToo`: a .png is taken as well (a report whose script picks gnuplot's pngcairo terminal for it).
+std::string plotProblem(const ReportPaths& paths, bool pngToo = false);
 
 // A report's texts, each made only when its file is asked for.
 struct ReportTexts {

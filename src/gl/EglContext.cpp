@@ -14,6 +14,8 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -71,12 +73,47 @@ bool hasExtension(const char* list, const char* name) {
     return false;
 }
 
-// When GALLIUM_DRIVER names something Mesa does not have, EGL fails with a bare
-// EGL_NOT_INITIALIZED; saying the variable is set points at the cause.
-std::string galliumDriverHint() {
+// When the variables that choose Mesa's driver name something it does not have, EGL fails with a
+// bare EGL_NOT_INITIALIZED; naming the ones set points at the cause: " (GALLIUM_DRIVER=x is set)".
+std::string driverVariablesHint() {
+    std::string set;
+    int count = 0;
+    for (const char* name : {"GALLIUM_DRIVER", "MESA_LOADER_DRIVER_OVERRIDE", "LIBGL_DRIVERS_PATH",
+                             "__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS"}) {
+        const char* value = std::getenv(name);
+        if (value == nullptr || *value == '\0') continue;
+        set += std::string(count++ > 0 ? " and " : "") + name + "=" + value;
+    }
+    return count == 0 ? std::string() : " (" + set + (count > 1 ? " are set)" : " is set)");
+}
+
+// Mesa prints its own warnings on stderr ("libEGL warning: egl: failed to create dri2 screen",
+// "MESA-LOADER: failed to open swrast ...") before it returns the failure that frugal reports in
+// one line. A level the user set is kept: EGL_LOG_LEVEL=debug shows Mesa's reasons.
+void quietMesaEglLog() { setenv("EGL_LOG_LEVEL", "fatal", /*overwrite=*/0); }
+
+// A GALLIUM_DRIVER that Mesa's EGL cannot survive, checked before EGL loads it: "" or why.
+// virpipe sends GL to a virgl test server on Mesa 22's fixed socket /tmp/.virgl_test; with no
+// server there, eglInitialize aborts the process ("lost connection to rendering server"). The
+// socket is only looked at, never connected to: a single-client server would take the probe for
+// its one client. Every other unknown name fails cleanly (measured: swrast, zink, i915, iris,
+// radeonsi, d3d12, nonexistent, ...: EGL_NOT_INITIALIZED).
+std::string unsurvivableGalliumDriver() {
     const char* driver = std::getenv("GALLIUM_DRIVER");
-    if (driver == nullptr || *driver == '\0') return {};
-    return std::string(" (GALLIUM_DRIVER=") + driver + " is set)";
+    if (driver == nullptr || std::strcmp(driver, "virpipe") != 0) return {};
+    constexpr const char* kVtestSocket = "/tmp/.virgl_test";
+    struct stat status {};
+    if (::stat(kVtestSocket, &status) == 0 && S_ISSOCK(status.st_mode)) return {};
+    return std::string("GALLIUM_DRIVER=virpipe needs a virgl test server on ") + kVtestSocket +
+           " and there is none (Mesa would abort); unset it or pick llvmpipe or softpipe";
+}
+
+// Why there is no EGL at all, or "": libglvnd with no vendor library to load answers an empty
+// client extension list.
+std::string noVendorReason(const char* clientExtensionList) {
+    if (clientExtensionList != nullptr && *clientExtensionList != '\0') return {};
+    return "no EGL display: no EGL vendor library answered (libglvnd reads /usr/share/glvnd/egl_vendor.d; "
+           "Debian: libegl-mesa0)";
 }
 
 // frugal initialises an EGL display and never terminates it; the display lives until the process
@@ -213,7 +250,11 @@ const char* clientExtensions() {
 
 Result<std::unique_ptr<GlContext>> createEglSurfacelessContext() {
     const std::string who = "egl-surfaceless: ";
+    if (std::string driver = unsurvivableGalliumDriver(); !driver.empty()) return Error{who + driver};
+    quietMesaEglLog();
     const char* client = clientExtensions();
+    if (std::string reason = noVendorReason(client); !reason.empty())
+        return Error{who + reason + driverVariablesHint()};
     for (const char* needed : {"EGL_EXT_platform_base", "EGL_MESA_platform_surfaceless"})
         if (!hasExtension(client, needed)) return Error{who + "EGL client extension " + needed + " missing"};
     auto getPlatformDisplay = loadEgl<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
@@ -222,19 +263,22 @@ Result<std::unique_ptr<GlContext>> createEglSurfacelessContext() {
     EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY)
         return Error{who + "no EGL display (eglGetPlatformDisplayEXT failed: " + lastEglError() + ")" +
-                     galliumDriverHint()};
+                     driverVariablesHint()};
     auto context = std::make_unique<EglContext>(ContextKind::EglSurfaceless, display);
     std::string reason = context->create();
     if (!reason.empty()) {
         if (reason.rfind("eglInitialize", 0) == 0) reason = "no EGL display (" + reason + ")";
-        return Error{who + reason + galliumDriverHint()};
+        return Error{who + reason + driverVariablesHint()};
     }
     return std::unique_ptr<GlContext>(std::move(context));
 }
 
 Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevice) {
     const std::string who = "egl-device: ";
+    quietMesaEglLog();
     const char* client = clientExtensions();
+    if (std::string reason = noVendorReason(client); !reason.empty())
+        return Error{who + reason + driverVariablesHint()};
     const bool enumeration =
         hasExtension(client, "EGL_EXT_device_base") ||
         (hasExtension(client, "EGL_EXT_device_enumeration") && hasExtension(client, "EGL_EXT_device_query"));
@@ -274,16 +318,19 @@ Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevi
             if (file) name += std::string(" (") + file + ")";
         }
 
-        EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-        std::string reason;
-        if (display == EGL_NO_DISPLAY) {
-            reason = "eglGetPlatformDisplayEXT failed: " + lastEglError();
-        } else {
-            auto context = std::make_unique<EglContext>(ContextKind::EglDevice, display);
-            reason = context->create();
-            if (reason.empty()) {
-                context->appendDescription(", " + name + " of " + std::to_string(devices.size()));
-                return std::unique_ptr<GlContext>(std::move(context));
+        // Mesa's software device is where GALLIUM_DRIVER applies (a GPU's driver is chosen by its PCI id).
+        std::string reason = software ? unsurvivableGalliumDriver() : std::string();
+        if (reason.empty()) {
+            EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+            if (display == EGL_NO_DISPLAY) {
+                reason = "eglGetPlatformDisplayEXT failed: " + lastEglError();
+            } else {
+                auto context = std::make_unique<EglContext>(ContextKind::EglDevice, display);
+                reason = context->create();
+                if (reason.empty()) {
+                    context->appendDescription(", " + name + " of " + std::to_string(devices.size()));
+                    return std::unique_ptr<GlContext>(std::move(context));
+                }
             }
         }
         failures += (failures.empty() ? "" : "; ") + name + ": " + reason;
@@ -296,7 +343,7 @@ Result<std::unique_ptr<GlContext>> createEglDeviceContext(bool allowSoftwareDevi
         return Error{who + (allowSoftwareDevice ? "no EGL device" : "no hardware EGL device") + " (" +
                      std::to_string(devices.size()) + " found" + (skippedText.empty() ? "" : ", " + skippedText) + ")"};
     return Error{who + "no usable EGL device (" + failures + (skippedText.empty() ? "" : "; " + skippedText) + ")" +
-                 galliumDriverHint()};
+                 driverVariablesHint()};
 }
 
 }  // namespace frugal

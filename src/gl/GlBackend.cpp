@@ -203,7 +203,11 @@ public:
         // context_ goes last (member order), with every object it held already deleted.
     }
 
+    // Deleting a bound object binds 0 in its place; the cache must say so, or a new object that
+    // gets the freed name back (drivers reuse names; Mesa does for textures and buffers with
+    // force_gl_names_reuse) would be taken as bound and never bound.
     void deleteMesh(GlMesh& m) {
+        if (cache_.vao == m.vao || (m.idVao != 0 && cache_.vao == m.idVao)) cache_.vao = 0;
         gl_.DeleteVertexArrays(1, &m.vao);
         gl_.DeleteBuffers(1, &m.vbo);
         gl_.DeleteBuffers(1, &m.ibo);
@@ -539,6 +543,7 @@ void GlBackend::releaseTexture(TextureHandle texture) {
     GLuint* t = textures_.find(texture);
     if (t == nullptr) return;
     activate();
+    if (cache_.texture == *t) cache_.texture = 0;  // as in deleteMesh
     gl_.DeleteTextures(1, t);
     textures_.remove(texture);
     check("releaseTexture");

@@ -1,17 +1,25 @@
 #include "io/ImageIO.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
+#include <system_error>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
 #include <stb_image.h>
+
+#include "base/Format.h"
+#include "io/Interrupt.h"
+#include "scene/ImageCheck.h"
 
 namespace frugal {
 
@@ -124,22 +132,77 @@ Result<Bytes> encodeIdPng(const Buffers& b) {
 
 namespace {
 
-std::string temporaryName(const std::string& path) {
-    return path + ".tmp-" + std::to_string(::getpid());
+// Writes all of `bytes` to `fd` and closes it: "" or why not, with how far it got.
+std::string writeAndClose(int fd, const Bytes& bytes) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        // At most 1 GiB a call: Linux writes at most 0x7ffff000 bytes at once anyway.
+        const std::size_t chunk = std::min<std::size_t>(bytes.size() - done, std::size_t(1) << 30);
+        const ssize_t n = ::write(fd, bytes.data() + done, chunk);
+        if (n > 0) {
+            done += std::size_t(n);
+        } else if (n < 0 && errno == EINTR) {
+            continue;
+        } else {
+            const int error = n < 0 ? errno : EIO;
+            ::close(fd);
+            return "write failed after " + std::to_string(done) + " of " + std::to_string(bytes.size()) +
+                   " bytes: " + std::strerror(error);
+        }
+    }
+    if (::close(fd) != 0) {  // where a file system reports a full disk late (NFS)
+        const int error = errno;
+        return "write failed when closing after " + std::to_string(bytes.size()) + " bytes: " + std::strerror(error);
+    }
+    return {};
 }
 
-Result<bool> writeTemporary(const std::string& path, const std::string& temp, const Bytes& bytes) {
-    std::FILE* file = std::fopen(temp.c_str(), "wb");
-    if (!file) return Error{path + ": cannot write: " + std::strerror(errno)};
-    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-    const int savedErrno = errno;
-    const bool closed = std::fclose(file) == 0;
-    if (!written || !closed) {
-        std::remove(temp.c_str());
-        return Error{path + ": write failed after " + std::to_string(bytes.size()) + " bytes requested: " +
-                     std::strerror(written ? errno : savedErrno)};
+// Where `path` is replaced by a renamed file: `path` itself, or, when it is a link, the file the link
+// leads to, so that the link stays (/dev/stdout when stdout is a file: /proc/self/fd/1 there).
+// Nothing when `path` is, or leads to, a device or a pipe (/dev/null, /dev/full, a terminal, a
+// FIFO): that is written in place, since renaming a file over it would replace the device node.
+std::optional<std::string> replacedPath(const std::string& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) return std::nullopt;
+    // Link by link (a dangling link's file is made where it points), at most as many as the kernel follows.
+    std::filesystem::path target = path;
+    for (int hop = 0; hop < 40 && ::lstat(target.c_str(), &status) == 0 && S_ISLNK(status.st_mode); ++hop) {
+        std::error_code error;
+        const std::filesystem::path next = std::filesystem::read_symlink(target, error);
+        if (error) break;
+        target = next.is_absolute() ? next : target.parent_path() / next;
     }
+    return target.string();
+}
+
+Result<bool> writeInPlace(const std::string& path, const Bytes& bytes) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) return Error{path + ": cannot write: " + std::strerror(errno)};
+    if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why};
     return true;
+}
+
+// Writes `bytes` to a new file beside `target`, named in `temp` before it is created (the caller
+// removes it); errors name `path`. O_EXCL: no other writer, in this process or another (even one
+// with the same pid in another pid namespace), can share the file, and no link planted at that name
+// is followed.
+Result<bool> writeTemporary(const std::string& path, const std::string& target, const Bytes& bytes, std::string& temp) {
+    const std::string base = target + ".tmp-" + std::to_string(::getpid());
+    constexpr int kNames = 100;
+    for (int attempt = 0; attempt < kNames; ++attempt) {
+        temp = attempt == 0 ? base : base + "-" + std::to_string(attempt);
+        const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0) {
+            const int error = errno;
+            temp.clear();  // not ours to remove
+            if (error == EEXIST) continue;
+            return Error{path + ": cannot write: " + std::strerror(error)};
+        }
+        if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why};
+        return true;
+    }
+    return Error{path + ": cannot write: " + std::to_string(kNames) + " temporary names beside it are taken (" +
+                 base + ", ...)"};
 }
 
 }  // namespace
@@ -156,79 +219,115 @@ Result<bool> OutputSet::commit() {
     for (const auto& [path, bytes] : files_)
         if (!bytes) return Error{path + ": cannot encode: " + bytes.error()};
 
-    std::vector<std::string> temps;
-    const auto removeAll = [](const std::vector<std::string>& paths) {
-        for (const std::string& p : paths) std::remove(p.c_str());
+    // Devices and pipes first: what they took cannot be taken back.
+    struct Replaced {
+        std::size_t file;    // index into files_
+        std::string target;  // replacedPath
     };
-    for (const auto& [path, bytes] : files_) {
-        const std::string temp = temporaryName(path);
-        Result<bool> ok = writeTemporary(path, temp, *bytes);
-        if (!ok) {
-            removeAll(temps);
-            return ok;
+    std::vector<Replaced> replaced;
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+        if (std::optional<std::string> target = replacedPath(files_[i].first))
+            replaced.push_back({i, std::move(*target)});
+        else if (Result<bool> written = writeInPlace(files_[i].first, *files_[i].second); !written) return written;
+    }
+
+    // From the first temporary file to the last rename no signal is handled (io/Interrupt.h), and
+    // however this returns (an error, an exception), the temporary and backup files it still holds
+    // are removed.
+    const SignalsHeld held;
+    struct Scratch {
+        std::vector<std::string> temps, backups;  // by position in `replaced`; "" when there is none
+        ~Scratch() {
+            for (const std::vector<std::string>* names : {&temps, &backups})
+                for (const std::string& name : *names)
+                    if (!name.empty()) ::unlink(name.c_str());
         }
-        temps.push_back(temp);
+    } scratch;
+    scratch.temps.resize(replaced.size());
+    scratch.backups.resize(replaced.size());
+    for (std::size_t k = 0; k < replaced.size(); ++k) {
+        const auto& [path, bytes] = files_[replaced[k].file];
+        if (Result<bool> written = writeTemporary(path, replaced[k].target, *bytes, scratch.temps[k]); !written)
+            return written;
     }
 
     // Before a file is replaced its old contents get a second name (a hard link: the file itself
-    // never disappears), so a later failed rename can put them back.
-    std::vector<std::string> backups(files_.size());
-    const auto dropBackups = [&backups] {
-        for (const std::string& b : backups)
-            if (!b.empty()) std::remove(b.c_str());
-    };
-    for (std::size_t i = 0; i < files_.size(); ++i) {
-        const std::string& path = files_[i].first;
-        struct stat status {};
-        if (::lstat(path.c_str(), &status) != 0 || S_ISDIR(status.st_mode)) continue;  // nothing to keep
-        const std::string backup = path + ".old-" + std::to_string(::getpid());
-        std::remove(backup.c_str());
-        if (::link(path.c_str(), backup.c_str()) != 0) {
-            const std::string why = std::strerror(errno);
-            dropBackups();
-            removeAll(temps);
-            return Error{path + ": cannot keep the old file while replacing it: " + why};
+    // never disappears), so a later failed rename can put them back. link() fails with ENOENT when
+    // another process renames a file over the name meanwhile: then the newer file is the one kept.
+    for (std::size_t k = 0; k < replaced.size(); ++k) {
+        const std::string& target = replaced[k].target;
+        std::string backup = target + ".old-" + std::to_string(::getpid());
+        ::unlink(backup.c_str());
+        for (int attempt = 0;; ++attempt) {
+            struct stat status {};
+            if (::lstat(target.c_str(), &status) != 0 || S_ISDIR(status.st_mode)) break;  // nothing to keep
+            if (::link(target.c_str(), backup.c_str()) == 0) {
+                scratch.backups[k] = std::move(backup);
+                break;
+            }
+            const int error = errno;
+            if (error != ENOENT || attempt == 100)
+                return Error{files_[replaced[k].file].first + ": cannot keep the old file while replacing it: " +
+                             std::strerror(error)};
         }
-        backups[i] = backup;
     }
-    for (std::size_t i = 0; i < files_.size(); ++i) {
-        if (std::rename(temps[i].c_str(), files_[i].first.c_str()) == 0) continue;
-        const std::string why = std::strerror(errno);
-        for (std::size_t j = 0; j < i; ++j) {  // take back what was renamed
-            if (backups[j].empty()) std::remove(files_[j].first.c_str());
-            else if (std::rename(backups[j].c_str(), files_[j].first.c_str()) == 0) backups[j].clear();
+    for (std::size_t k = 0; k < replaced.size(); ++k) {
+        if (std::rename(scratch.temps[k].c_str(), replaced[k].target.c_str()) == 0) {
+            scratch.temps[k].clear();
+            continue;
         }
-        dropBackups();
-        removeAll(std::vector<std::string>(temps.begin() + std::ptrdiff_t(i), temps.end()));
-        return Error{files_[i].first + ": cannot rename the finished file into place: " + why};
+        const int error = errno;
+        for (std::size_t j = 0; j < k; ++j) {  // take back what was renamed
+            const std::string& earlier = replaced[j].target;
+            if (scratch.backups[j].empty()) ::unlink(earlier.c_str());
+            else if (std::rename(scratch.backups[j].c_str(), earlier.c_str()) == 0) scratch.backups[j].clear();
+        }
+        return Error{files_[replaced[k].file].first +
+                     ": cannot rename the finished file into place: " + std::strerror(error)};
     }
-    dropBackups();
     files_.clear();
     return true;
 }
+
+namespace {
+
+// stb_image's reason for a failure, for a one-line message. It can quote the file's bytes (an unknown
+// chunk's type), which can be control characters or a NUL that ends the text at once.
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    const std::string text = reason ? oneLine(reason) : std::string();
+    return text.empty() ? "corrupt data (stb_image gives no readable reason)" : text;
+}
+
+}  // namespace
 
 Result<DecodedImage> readPng(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return Error{path + ": cannot open"};
     const std::vector<std::uint8_t> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return decodePng(data, path);
+}
+
+Result<DecodedImage> decodePng(std::span<const std::uint8_t> data, const std::string& path) {
     DecodedImage image;
     if (data.size() > std::size_t(INT32_MAX)) return Error{path + ": file too large"};
     const int size = int(data.size());
     int w = 0, h = 0, n = 0;
+    if (const Result<ImageSize> checked = checkPng(data); !checked) return Error{path + ": " + checked.error()};
     if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
-        return Error{path + ": not a PNG: " + stbi_failure_reason()};
+        return Error{path + ": not a PNG: " + stbReason()};
     image.width = w;
     image.height = h;
     image.channels = n;
     if (stbi_is_16_bit_from_memory(data.data(), size)) {
         image.bitDepth = 16;
         stbi_us* pixels = stbi_load_16_from_memory(data.data(), size, &w, &h, &n, 0);
-        if (!pixels) return Error{path + ": cannot decode: " + stbi_failure_reason()};
+        if (!pixels) return Error{path + ": cannot decode: " + stbReason()};
         image.pixels16.assign(pixels, pixels + std::size_t(w) * h * n);
         stbi_image_free(pixels);
     } else {
         stbi_uc* pixels = stbi_load_from_memory(data.data(), size, &w, &h, &n, 0);
-        if (!pixels) return Error{path + ": cannot decode: " + stbi_failure_reason()};
+        if (!pixels) return Error{path + ": cannot decode: " + stbReason()};
         image.pixels8.assign(pixels, pixels + std::size_t(w) * h * n);
         stbi_image_free(pixels);
     }

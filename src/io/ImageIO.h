@@ -7,10 +7,11 @@
 // - triangle ids: 8-bit RGBA PNG whose bytes are the 32-bit id, little-endian (R = bits 0-7,
 //   G = 8-15, B = 16-23, A = 24-31); 0 is the background.
 // Files are written atomically: to a temporary file in the same folder, then renamed, so an
-// interrupted run never leaves a half-written image.
+// interrupted run never leaves a half-written image (io/Interrupt.h: no signal is handled meanwhile).
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,15 +33,21 @@ Bytes encodeDepthPfm(const Buffers& buffers);
 Result<Bytes> encodeIdPng(const Buffers& buffers);
 
 // Writes `bytes` to `path` atomically. Error: "<path>: <why>" (also when `bytes` is an encoder's
-// error: then nothing is written).
+// error: then nothing is written), e.g. "out.png: write failed after 4096 of 9120 bytes: File too
+// large", "/sys/x.png: cannot write: Permission denied".
 Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes);
 
 // Several files that appear together or not at all. commit() writes each to a temporary name in
-// its folder; only when every write succeeded are they renamed into place, and if a rename fails,
-// the files already renamed are taken back: a file that existed before gets its old contents back,
-// a new one is removed. A file given as an encoder's error fails the commit before anything is
-// written. (A crash between two renames can still leave the first; nothing short of a journal
-// prevents that.)
+// its folder ("<path>.tmp-<pid>", created exclusively, so two processes writing into one folder,
+// even the same file, never share one: the last rename wins, each file whole); only when every
+// write succeeded are they renamed into place, and if a rename fails, the files already renamed are
+// taken back: a file that existed before gets its old contents back, a new one is removed. A file
+// given as an encoder's error fails the commit before anything is written. SIGINT, SIGTERM and
+// SIGHUP wait while commit() runs on this thread (io/Interrupt.h). A link is followed: the file it
+// leads to is replaced and the link stays (/dev/stdout when stdout is a file). A device or a pipe
+// (/dev/null, /dev/full, a terminal, a FIFO), named or linked to, is written in place, before the
+// others, and cannot be taken back. (A crash between two renames can still leave the first; nothing
+// short of a journal prevents that.)
 class OutputSet {
 public:
     void add(std::string path, Result<Bytes> bytes);
@@ -56,8 +63,11 @@ struct DecodedImage {
     std::vector<std::uint8_t> pixels8;    // when bitDepth == 8, top row first
     std::vector<std::uint16_t> pixels16;  // when bitDepth == 16, top row first
 };
-// Reads a PNG (stb_image), keeping its channel count and bit depth.
+// Reads a PNG (stb_image), keeping its channel count and bit depth. Its chunks and declared size are
+// checked first (scene/ImageCheck.h): at most 16384x16384 pixels, and only what its data can fill.
 Result<DecodedImage> readPng(const std::string& path);
+// The same on a file's bytes in memory; `name` stands for the file in messages.
+Result<DecodedImage> decodePng(std::span<const std::uint8_t> bytes, const std::string& name);
 
 // Buffers ⇄ images in file order.
 std::vector<std::uint8_t> flipRows(const std::uint8_t* rows, int width, int height, int bytesPerPixel);

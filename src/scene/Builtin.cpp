@@ -35,6 +35,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "base/Format.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
 
@@ -44,8 +45,28 @@ namespace {
 
 using Params = std::map<std::string, std::string>;
 
+// What one spec may make frugal build. A built-in scene grows with its parameters, some as products
+// (every domino has a key per frame of its fall; copies repeat a whole scene), so that a few
+// characters can ask for more memory than a machine has, or for minutes of work; the counts are
+// checked before anything is built.
+// - 2^26 animation keys (20 bytes each, 1.3 GB): 1.5x the 44.6 million of
+//   builtin:dominoes?polygons=60000, the largest scene the docs use (6 s to build);
+// - 2^17 nodes and meshes (a cube is one of each: 65,535 cubes take 1.5 s to build, and are as many
+//   draws): 13x the 10,000 dominoes of that scene.
+constexpr double kMaxKeys = 67108864.0;
+constexpr double kMaxObjects = 131072.0;
+
+// Animation keys of a scene (built-ins that wrap another scene add theirs to its own).
+double animationKeys(const Scene& scene) {
+    double keys = 0.0;
+    for (const Animation& animation : scene.animations)
+        for (const AnimChannel& channel : animation.channels) keys += double(channel.times.size());
+    return keys;
+}
+
+// Messages quote the spec and its parameters through oneLine: a spec is the user's text.
 struct ParamReader {
-    const std::string& scene;
+    std::string scene;  // the spec, as messages quote it
     Params params;
     std::string error;
 
@@ -56,10 +77,14 @@ struct ParamReader {
         params.erase(it);
         double value = 0.0;
         auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        // A rejected value gives way to the fallback: callers convert before they check `error`.
         if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-            fail(key + "=" + text + " is not a number");
-        } else if (value < lo || value > hi) {
-            fail(key + "=" + text + " is out of range [" + trim(lo) + ", " + trim(hi) + "]");
+            fail(oneLine(key + "=" + text, 80) + " is not a number");
+            return fallback;
+        }
+        if (value < lo || value > hi) {
+            fail(oneLine(key + "=" + text, 80) + " is out of range [" + trim(lo) + ", " + trim(hi) + "]");
+            return fallback;
         }
         return value;
     }
@@ -72,6 +97,15 @@ struct ParamReader {
     }
     void fail(const std::string& why) {
         if (error.empty()) error = scene + ": " + why;
+    }
+    // Fails when the scene asked for is over the budget below; `what` says what makes it that large.
+    void budget(double keys, double objects, const std::string& what) {
+        if (keys > kMaxKeys)
+            fail(what + " need " + fmt(keys) + " animation keys, more than frugal's limit of " +
+                 std::to_string(std::uint64_t(kMaxKeys)));
+        else if (objects > kMaxObjects)
+            fail(what + " need " + fmt(objects) + " nodes and meshes, more than frugal's limit of " +
+                 std::to_string(std::uint64_t(kMaxObjects)));
     }
     static std::string trim(double v) {
         char buf[32];
@@ -174,6 +208,9 @@ Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
     if (!in.error.empty()) return Error{in.error};
     const int count = std::max(1, int(std::lround(polygons / 6.0)));
     const int moving = std::clamp(int(std::lround((1.0 - staticShare) * count)), 1, count);
+    in.budget(double(count) * (moving + 1), count + 9.0,
+              std::to_string(count) + " dominoes falling over " + std::to_string(moving) + " frames each");
+    if (!in.error.empty()) return Error{in.error};
 
     Scene scene;
     scene.fps = 30.0;
@@ -194,6 +231,24 @@ Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
 
     // A leaning domino rests on the next one: its top touches where the next one stands.
     const float restAngle = std::asin(std::min(1.0f, spacing / height));
+    // Domino i falls during frames [i, i + moving]: one key per frame, accelerating (angle ∝ u²),
+    // so that between any two consecutive frames exactly `moving` dominoes change pose. There are
+    // only four falls (two directions, to rest or flat), each computed once: large fields have
+    // tens of millions of keys.
+    std::vector<glm::vec4> falls[2][2];  // [forward][flat]
+    const auto fall = [&](bool forward, bool flat) -> const std::vector<glm::vec4>& {
+        std::vector<glm::vec4>& values = falls[forward][flat];
+        if (!values.empty()) return values;
+        const glm::quat facing =
+            glm::angleAxis(forward ? glm::half_pi<float>() : -glm::half_pi<float>(), glm::vec3(0, 1, 0));
+        const float finalAngle = flat ? glm::half_pi<float>() : restAngle;
+        for (int k = 0; k <= moving; ++k) {
+            const float u = float(k) / float(moving);
+            const glm::quat q = facing * glm::angleAxis(finalAngle * u * u, glm::vec3(1, 0, 0));
+            values.push_back({q.x, q.y, q.z, q.w});
+        }
+        return values;
+    };
     for (int i = 0; i < count; ++i) {
         const int row = i / perRow, col = i % perRow;
         const bool forward = row % 2 == 0;  // serpentine: odd rows run back
@@ -208,20 +263,14 @@ Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
         pivot.meshes.push_back(i % kColours);
         const int node = addNode(scene, pivot, -1);
 
-        // Domino i falls during frames [i, i + moving]: one key per frame, accelerating (angle ∝ u²),
-        // so that between any two consecutive frames exactly `moving` dominoes change pose.
-        const float finalAngle = (i == count - 1 || col == perRow - 1) ? glm::half_pi<float>() : restAngle;
         AnimChannel channel;
         channel.node = node;
         channel.path = AnimPath::Rotation;
         channel.interpolation = Interp::Linear;
-        for (int k = 0; k <= moving; ++k) {
-            const float u = float(k) / float(moving);
-            const glm::quat q = facing * glm::angleAxis(finalAngle * u * u, glm::vec3(1, 0, 0));
-            // The same arithmetic as the frame times (frame / fps, in double, then float) so keys fall on frames exactly.
-            channel.times.push_back(float(double(i + k) / scene.fps));
-            channel.values.push_back({q.x, q.y, q.z, q.w});
-        }
+        channel.values = fall(forward, i == count - 1 || col == perRow - 1);
+        channel.times.resize(channel.values.size());
+        // The same arithmetic as the frame times (frame / fps, in double, then float) so keys fall on frames exactly.
+        for (int k = 0; k <= moving; ++k) channel.times[std::size_t(k)] = float(double(i + k) / scene.fps);
         Animation animation;
         animation.name = pivot.name;
         animation.channels.push_back(std::move(channel));
@@ -252,6 +301,10 @@ Result<Scene> makeCubes(ParamReader& in) {
     const double seed = in.number("seed", 1, 0, 4294967295.0);
     if (!in.error.empty()) return Error{in.error};
     const int n = int(count);
+    // The fastest cube turns 0.5 times a second, 16 keys a turn.
+    in.budget(n * std::max(2.0, std::ceil(seconds * 0.5 * 16.0) + 1.0), 2.0 * n + 1.0,
+              std::to_string(n) + " cubes turning for " + fmt(seconds) + " s");
+    if (!in.error.empty()) return Error{in.error};
 
     Scene scene;
     scene.fps = 30.0;
@@ -307,6 +360,9 @@ Result<Scene> makeCopies(ParamReader& in, const LoadOptions& options) {
     Result<Scene> loaded = loadScene(of, options);
     if (!loaded) return loaded;
     const Scene& one = *loaded;
+    in.budget(count * animationKeys(one), count * (double(one.nodes.size()) + 1.0) + double(one.meshes.size()),
+              fmt(count) + " copies of a scene of " + std::to_string(one.nodes.size()) + " nodes");
+    if (!in.error.empty()) return Error{in.error};
 
     Scene scene;
     scene.meshes = one.meshes;
@@ -351,6 +407,10 @@ Result<Scene> makeOrbit(ParamReader& in, const LoadOptions& options) {
     Result<Scene> loaded = loadScene(of, options);
     if (!loaded) return loaded;
     Scene scene = std::move(*loaded);
+    // A cube has 8 hops of 9 keys, and one more to start when staggered.
+    in.budget(animationKeys(scene) + count * 73.0, double(scene.nodes.size() + scene.meshes.size()) + count + 2.0,
+              "a scene of " + std::to_string(scene.nodes.size()) + " nodes and " + fmt(count) + " orbiting cubes");
+    if (!in.error.empty()) return Error{in.error};
     const Bounds bounds = scene.bounds(0.0);
     const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
     const float radius = bounds.empty() || bounds.radius() <= 0.0f ? 1.0f : bounds.radius();
@@ -410,6 +470,8 @@ Result<Scene> makeMaterials(ParamReader& in) {
     if (in.error.empty() && textures > materials)
         in.fail("textures=" + std::to_string(textures) + " exceeds materials=" + std::to_string(materials) +
                 " (one texture a material at most)");
+    in.budget(0.0, draws + meshCount + 1.0,
+              std::to_string(draws) + " draws of " + std::to_string(meshCount) + " meshes");
     if (!in.error.empty()) return Error{in.error};
 
     Scene scene;
@@ -470,7 +532,7 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
     const std::string prefix = "builtin:";
     std::string rest = spec.substr(spec.rfind(prefix, 0) == 0 ? prefix.size() : 0);
     std::string name = rest.substr(0, rest.find('?'));
-    ParamReader in{spec, {}, {}};
+    ParamReader in{oneLine(spec), {}, {}};
     if (rest.size() > name.size()) {
         std::string query = rest.substr(name.size() + 1);
         std::size_t at = 0;
@@ -483,7 +545,7 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
             const std::string pair = query.substr(at, end - at);
             const std::size_t eq = pair.find('=');
             if (pair.empty() || eq == std::string::npos || eq == 0)
-                return Error{spec + ": parameter '" + pair + "' is not key=value"};
+                return Error{in.scene + ": parameter '" + oneLine(pair, 80) + "' is not key=value"};
             in.params[pair.substr(0, eq)] = pair.substr(eq + 1);
             at = end + 1;
         }
@@ -499,10 +561,11 @@ Result<Scene> makeBuiltin(const std::string& spec, const LoadOptions& options) {
     else {
         std::string known;
         for (const auto& [n, _] : builtinScenes()) known += (known.empty() ? "" : ", ") + n;
-        return Error{spec + ": no such built-in scene (there are " + known + ")"};
+        return Error{in.scene + ": no such built-in scene (there are " + known + ")"};
     }
     if (!made) return made;
-    if (!in.params.empty()) return Error{spec + ": unknown parameter '" + in.params.begin()->first + "'"};
+    if (!in.params.empty())
+        return Error{in.scene + ": unknown parameter '" + oneLine(in.params.begin()->first, 80) + "'"};
 
     Scene& scene = *made;
     scene.source = spec;

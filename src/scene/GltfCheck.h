@@ -19,7 +19,6 @@ using Json = nlohmann::json;
 using load::cat;
 using load::fail;
 using load::Failure;
-using load::oneLine;
 
 std::string plural(std::size_t n, const char* singular, const char* pluralForm);
 

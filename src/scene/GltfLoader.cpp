@@ -38,6 +38,7 @@
 #include "scene/GltfContainer.h"
 #include "scene/GltfSchema.h"
 #include "scene/GltfStructure.h"
+#include "scene/ImageCheck.h"
 #include "scene/Load.h"
 #include "scene/LoadSupport.h"
 #include "scene/MeshBuild.h"
@@ -46,8 +47,6 @@ namespace frugal {
 
 namespace gltf {
 namespace {
-
-using load::readFile;
 
 // ---------------------------------------------------------------------------------------------
 // tinygltf, with image decoding deferred: it would otherwise decode every image (normal maps we do
@@ -247,7 +246,7 @@ private:
         if (std::find(scene_.unsupported.begin(), scene_.unsupported.end(), feature) == scene_.unsupported.end())
             scene_.unsupported.push_back(feature);
     }
-    void warn(const std::string& text) { scene_.warnings.push_back(cat(path_, ": ", text)); }
+    void warn(const std::string& text) { scene_.warnings.push_back(cat(load::shownPath(path_), ": ", text)); }
     void countElements(std::size_t count, const std::string& where) {
         elements_ += count;  // each count is bounded by the file size: no overflow
         if (elements_ > kMaxSceneElements)
@@ -697,6 +696,10 @@ int Converter::useTexture(int gltfTexture, int material) {
         warn(cat(imageName, " is larger than 2 GiB", drawn));
         return result;
     }
+    if (const Result<ImageSize> checked = checkTextureImage({bytes, size}); !checked) {
+        warn(cat(imageName, " cannot be decoded (", checked.error(), ")", drawn));
+        return result;
+    }
     tinygltf::Image decoded;
     std::string error, warning;
     if (!tinygltf::LoadImageData(&decoded, texture.source, &error, &warning, 0, 0, bytes, int(size), nullptr)) {
@@ -858,8 +861,7 @@ bool decodeDataUri(const std::string& uri, std::vector<unsigned char>& bytes) {
     return tinygltf::DecodeDataURI(&bytes, mime, uri, 0, false);
 }
 
-Scene loadGltfOrThrow(const std::string& path, const LoadOptions& options) {
-    const std::string file = readFile(path);
+Scene loadGltfOrThrow(std::string_view file, const std::string& path, const LoadOptions& options) {
     if (file.empty()) fail("file is empty");
     const bool binary = isBinary(path, file);
     GlbParts glb;
@@ -876,9 +878,7 @@ Scene loadGltfOrThrow(const std::string& path, const LoadOptions& options) {
     std::vector<std::string> extensions = usedExtensions(root);
 
     const std::string repacked = binary && !glb.canonical ? canonicalGlb(glb) : std::string();
-    const std::string_view forTinygltf = !binary         ? std::string_view(file)
-                                         : glb.canonical ? std::string_view(file)
-                                                         : std::string_view(repacked);
+    const std::string_view forTinygltf = binary && !glb.canonical ? std::string_view(repacked) : file;
     const std::string baseDir = dir.empty() ? std::string(".") : dir.string();
     const tinygltf::Model model = runTinygltf(forTinygltf, binary, baseDir);
     return Converter(model, path, options, std::move(extensions)).run();
@@ -888,7 +888,11 @@ Scene loadGltfOrThrow(const std::string& path, const LoadOptions& options) {
 }  // namespace gltf
 
 Result<Scene> loadGltf(const std::string& path, const LoadOptions& options) {
-    return load::guard(path, [&] { return gltf::loadGltfOrThrow(path, options); });
+    return load::guard(path, [&] { return gltf::loadGltfOrThrow(load::readFile(path), path, options); });
+}
+
+Result<Scene> loadGltfFromMemory(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+    return load::guard(name, [&] { return gltf::loadGltfOrThrow(bytes, name, options); });
 }
 
 }  // namespace frugal

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include "scene/LoadSupport.h"
+
 namespace frugal {
 
 namespace {
@@ -22,8 +24,9 @@ Result<Scene> loadScene(const std::string& spec, const LoadOptions& options) {
     if (ext == ".gltf" || ext == ".glb") return loadGltf(spec, options);
     if (ext == ".obj") return loadObj(spec, options);
     std::error_code ec;
-    if (!std::filesystem::exists(spec, ec)) return Error{spec + ": no such file"};
-    return Error{spec + ": unknown scene format '" + ext + "' (frugal reads .gltf, .glb, .obj and builtin:NAME)"};
+    if (!std::filesystem::exists(spec, ec)) return Error{load::shownPath(spec) + ": no such file"};
+    return Error{load::shownPath(spec) + ": unknown scene format '" + oneLine(ext) +
+                 "' (frugal reads .gltf, .glb, .obj and builtin:NAME)"};
 }
 
 }  // namespace frugal

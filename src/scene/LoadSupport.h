@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 
+#include "base/Format.h"  // oneLine: text from the file in messages
 #include "base/Result.h"
 #include "scene/Scene.h"
 
@@ -30,9 +30,8 @@ template <class... Args>
     throw Failure{cat(args...)};
 }
 
-// Text from the file (names, URIs, library messages) goes into one-line messages: control characters
-// become spaces, bytes that are not UTF-8 become '?', runs of spaces collapse, and it is capped.
-std::string oneLine(std::string_view text, std::size_t maxLength = 200);
+// A path as messages quote it: whole, but printable (a file name can hold a line break).
+inline std::string shownPath(const std::string& path) { return oneLine(path, path.size()); }
 
 // The whole file; fails with "no such file", "is a directory, not a file", "cannot open ...".
 std::string readFile(const std::string& path);
@@ -44,13 +43,13 @@ Result<Scene> guard(const std::string& path, Body&& body) {
     try {
         return body();
     } catch (const Failure& failure) {
-        return Error{path + ": " + failure.message};
+        return Error{shownPath(path) + ": " + failure.message};
     } catch (const std::bad_alloc&) {
-        return Error{path + ": out of memory"};
+        return Error{shownPath(path) + ": out of memory"};
     } catch (const std::exception& e) {
-        return Error{path + ": " + oneLine(e.what())};
+        return Error{shownPath(path) + ": " + oneLine(e.what())};
     } catch (...) {
-        return Error{path + ": unexpected error"};
+        return Error{shownPath(path) + ": unexpected error"};
     }
 }
 

@@ -12,12 +12,14 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -35,6 +37,25 @@ namespace {
 
 using namespace load;
 
+// tinyobjloader's number parser overflows an int (undefined behaviour) on an exponent of 10 digits
+// or more, such as 1e2147483648, so text with one is refused before it is parsed; a float ends at
+// 1e38, so no number anyone writes has one. Returns "" or the problem, with its line.
+std::string exponentProblem(std::string_view text) {
+    for (std::size_t i = 1; i < text.size(); ++i) {
+        const bool afterMantissa = std::isdigit(static_cast<unsigned char>(text[i - 1])) || text[i - 1] == '.';
+        if ((text[i] != 'e' && text[i] != 'E') || !afterMantissa) continue;
+        std::size_t k = i + 1;
+        if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+        while (k < text.size() && text[k] == '0') ++k;
+        std::size_t digits = 0;
+        while (k + digits < text.size() && std::isdigit(static_cast<unsigned char>(text[k + digits]))) ++digits;
+        if (digits >= 10)
+            return cat("line ", std::count(text.begin(), text.begin() + std::ptrdiff_t(i), '\n') + 1,
+                       ": a number with an exponent of ", digits, " digits (floats end at 1e38)");
+    }
+    return {};
+}
+
 // Reads "mtllib" files relative to the OBJ's folder. tinyobjloader's own reader splits its base
 // directory at ':' (a search path), which breaks folders whose name contains one.
 class MtlReader : public tinyobj::MaterialReader {
@@ -42,12 +63,23 @@ public:
     explicit MtlReader(std::filesystem::path dir) : dir_(std::move(dir)) {}
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* names, std::string* warn, std::string* err) override {
-        std::ifstream in(dir_ / name);
-        if (!in) {
-            if (warn) *warn += "material library '" + name + "' not found\n";
+        // Regular files only: a device such as /dev/zero never ends.
+        const std::filesystem::path file = dir_ / name;
+        std::error_code ec;
+        std::ifstream in;
+        if (std::filesystem::is_regular_file(file, ec)) in.open(file);
+        if (!in.is_open()) {
+            const bool exists = std::filesystem::exists(file, ec);
+            if (warn) *warn += "material library '" + name + (exists ? "' is not a readable file\n" : "' not found\n");
             return false;
         }
-        tinyobj::LoadMtl(names, materials, &in, warn, err);
+        const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        if (const std::string problem = exponentProblem(text); !problem.empty()) {
+            if (warn) *warn += "material library '" + name + "' not read: " + problem + "\n";
+            return false;
+        }
+        std::istringstream stream(text);
+        tinyobj::LoadMtl(names, materials, &stream, warn, err);
         return true;
     }
 
@@ -62,10 +94,10 @@ struct ObjData {
     std::vector<std::string> warnings;
 };
 
-ObjData parseObj(const std::string& path) {
-    std::string bytes = readFile(path);
+ObjData parseObj(std::string_view bytes, const std::string& path) {
     if (bytes.empty()) fail("file is empty");
-    std::istringstream in(std::move(bytes));
+    if (const std::string problem = exponentProblem(bytes); !problem.empty()) fail(problem);
+    std::istringstream in{std::string(bytes)};
     MtlReader mtl(std::filesystem::path(path).parent_path());
     ObjData obj;
     std::string warnings, errors;
@@ -186,7 +218,8 @@ public:
 
     Scene run() {
         scene_.source = path_;
-        for (const std::string& warning : obj_.warnings) scene_.warnings.push_back(cat(path_, ": ", warning));
+        for (const std::string& warning : obj_.warnings)
+            scene_.warnings.push_back(cat(shownPath(path_), ": ", warning));
         for (const tinyobj::material_t& src : obj_.materials) {
             Material material;
             material.name = src.name;
@@ -197,7 +230,7 @@ public:
         for (std::size_t s = 0; s < obj_.shapes.size(); ++s) convertShape(s);
         for (std::size_t m = 0; m < obj_.materials.size(); ++m)
             if (materialUsed_[m] && !obj_.materials[m].diffuse_texname.empty()) report("map_Kd textures");
-        if (scene_.meshes.empty()) scene_.warnings.push_back(path_ + ": no faces to draw");
+        if (scene_.meshes.empty()) scene_.warnings.push_back(shownPath(path_) + ": no faces to draw");
         scene_.buildInstances();
         return std::move(scene_);
     }
@@ -286,7 +319,7 @@ private:
             builder.finish();
             const MeshBuildStats stats = finalizeMesh(mesh, options_.optimizeOrder);
             if (stats.droppedNonFinite > 0)
-                scene_.warnings.push_back(cat(path_, ": mesh '", oneLine(mesh.name, 60), "': dropped ",
+                scene_.warnings.push_back(cat(shownPath(path_), ": mesh '", oneLine(mesh.name, 60), "': dropped ",
                                               stats.droppedNonFinite, " triangles with non-finite positions"));
             node.meshes.push_back(int(scene_.meshes.size()));
             scene_.meshes.push_back(std::move(mesh));
@@ -296,15 +329,19 @@ private:
     }
 };
 
-Scene loadObjOrThrow(const std::string& path, const LoadOptions& options) {
-    const ObjData obj = parseObj(path);
+Scene loadObjOrThrow(std::string_view bytes, const std::string& path, const LoadOptions& options) {
+    const ObjData obj = parseObj(bytes, path);
     return ObjConverter(obj, path, options).run();
 }
 
 }  // namespace
 
 Result<Scene> loadObj(const std::string& path, const LoadOptions& options) {
-    return load::guard(path, [&] { return loadObjOrThrow(path, options); });
+    return load::guard(path, [&] { return loadObjOrThrow(load::readFile(path), path, options); });
+}
+
+Result<Scene> loadObjFromMemory(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+    return load::guard(name, [&] { return loadObjOrThrow(bytes, name, options); });
 }
 
 }  // namespace frugal
