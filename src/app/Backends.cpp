@@ -117,12 +117,6 @@ std::optional<MemoryLeft> cgroupMemoryLeft() {
     return tightest;
 }
 
-std::string gigabytes(std::uint64_t bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GB", double(bytes) / 1e9);
-    return text;
-}
-
 }  // namespace
 
 std::optional<MemoryLeft> memoryLeft() {
@@ -144,13 +138,24 @@ std::optional<MemoryLeft> memoryLeft() {
     return tightest;
 }
 
+std::string gigabytes(std::uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", double(bytes) / 1e9);
+    return text;
+}
+
+std::optional<std::string> memoryProblem(std::uint64_t bytes) {
+    const std::optional<MemoryLeft> left = memoryLeft();
+    if (!left || bytes <= left->bytes) return std::nullopt;
+    return "more than the " + gigabytes(left->bytes) + " left (" + left->under + ")";
+}
+
 std::optional<std::string> frameMemoryProblem(int width, int height) {
     const std::uint64_t needed = std::uint64_t(width) * std::uint64_t(height) * kFrameBytesPerPixel;
-    const std::optional<MemoryLeft> left = memoryLeft();
-    if (!left || needed <= left->bytes) return std::nullopt;
+    const std::optional<std::string> problem = memoryProblem(needed);
+    if (!problem) return std::nullopt;
     return "needs about " + gigabytes(needed) + " (" + std::to_string(kFrameBytesPerPixel) +
-           " bytes a pixel: target, read-back, PNG encoding), more than the " + gigabytes(left->bytes) + " left (" +
-           left->under + ")";
+           " bytes a pixel: target, read-back, PNG encoding), " + *problem;
 }
 
 std::string outOfMemoryMessage() {

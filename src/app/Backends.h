@@ -60,6 +60,13 @@ struct MemoryLeft {
 };
 std::optional<MemoryLeft> memoryLeft();  // nothing when no limit could be read
 
+// Bytes as messages give them: "9.7 GB".
+std::string gigabytes(std::uint64_t bytes);
+
+// Why `bytes` more do not fit: "more than the 3.2 GB left (ulimit -v)"; nothing when they fit or
+// nothing is known.
+std::optional<std::string> memoryProblem(std::uint64_t bytes);
+
 // Why a frame of width×height does not fit: "needs about 9.7 GB (36 bytes a pixel: target,
 // read-back, PNG encoding), more than the 3.2 GB left (ulimit -v)"; nothing when it fits or nothing
 // is known.

@@ -12,6 +12,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -52,6 +54,77 @@ std::string exponentProblem(std::string_view text) {
         if (digits >= 10)
             return cat("line ", std::count(text.begin(), text.begin() + std::ptrdiff_t(i), '\n') + 1,
                        ": a number with an exponent of ", digits, " digits (floats end at 1e38)");
+    }
+    return {};
+}
+
+// Whether a number that std::from_chars found out of a double's range is too large (else it is too
+// small and reads as 0): the decimal order of its first significant digit, plus its exponent.
+bool overflows(std::string_view word) {
+    std::size_t i = (word[0] == '-') ? 1 : 0;
+    long order = 0;
+    bool significant = false;
+    for (; i < word.size() && word[i] != 'e' && word[i] != 'E'; ++i) {
+        if (word[i] == '.') {
+            if (significant) break;
+            for (++i; i < word.size() && word[i] == '0'; ++i) --order;
+            break;
+        }
+        if (word[i] != '0' || significant) {
+            significant = true;
+            ++order;
+        }
+    }
+    const std::size_t e = word.find_first_of("eE");
+    if (e != std::string_view::npos) {
+        long exponent = 0;  // at most 9 digits: exponentProblem has run
+        std::from_chars(word.data() + e + 1 + (word[e + 1] == '+' ? 1 : 0), word.data() + word.size(), exponent);
+        order += exponent;
+    }
+    return order > 0;
+}
+
+// tinyobjloader reads a word it cannot parse as a number as 0, without a word: `v nan 0 0`,
+// `v 1 x 0` and `v 0 0` all put a vertex where the file does not. So v, vn and vt lines are read here
+// first: v and vn need three numbers, vt one, and every word on them (up to a '#') must be a finite
+// float. Returns "" or the problem, with its line.
+std::string vertexLineProblem(std::string_view text) {
+    std::size_t line = 0;
+    for (std::size_t begin = 0; begin < text.size();) {
+        // Lines end at "\n", "\r\n" or "\r", as tinyobjloader reads them.
+        std::size_t end = text.find_first_of("\r\n", begin);
+        if (end == std::string_view::npos) end = text.size();
+        const std::string_view rest = text.substr(begin, end - begin);
+        begin = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
+        ++line;
+
+        std::vector<std::string_view> words;
+        for (std::size_t i = 0; i < rest.size();) {
+            i = rest.find_first_not_of(" \t", i);
+            if (i == std::string_view::npos || rest[i] == '#') break;
+            const std::size_t j = std::min(rest.find_first_of(" \t", i), rest.size());
+            words.push_back(rest.substr(i, j - i));
+            i = j;
+        }
+        if (words.empty() || (words[0] != "v" && words[0] != "vn" && words[0] != "vt")) continue;
+        const std::size_t needed = words[0] == "vt" ? 1 : 3;
+        if (words.size() - 1 < needed)
+            return cat("line ", line, ": a ", words[0], " line needs ", needed, needed == 1 ? " number" : " numbers",
+                       ", it has ", words.size() - 1);
+        for (std::size_t k = 1; k < words.size(); ++k) {
+            const std::string_view word = words[k];
+            const std::string_view digits = (word.size() > 1 && word[0] == '+' && word[1] != '-') ? word.substr(1) : word;
+            double value = 0.0;
+            const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+            const std::string shown = "'" + oneLine(word, 40) + "'";
+            if (ptr != digits.data() + digits.size() || (ec != std::errc() && ec != std::errc::result_out_of_range))
+                return cat("line ", line, ": ", shown, " in a ", words[0], " line is not a number");
+            if (ec == std::errc() && !std::isfinite(value))
+                return cat("line ", line, ": ", shown, " in a ", words[0], " line is not finite");
+            if ((ec == std::errc::result_out_of_range && overflows(digits)) ||
+                std::abs(value) > double(std::numeric_limits<float>::max()))
+                return cat("line ", line, ": ", shown, " in a ", words[0], " line does not fit a float (floats end at 3.4e38)");
+        }
     }
     return {};
 }
@@ -97,6 +170,7 @@ struct ObjData {
 ObjData parseObj(std::string_view bytes, const std::string& path) {
     if (bytes.empty()) fail("file is empty");
     if (const std::string problem = exponentProblem(bytes); !problem.empty()) fail(problem);
+    if (const std::string problem = vertexLineProblem(bytes); !problem.empty()) fail(problem);
     std::istringstream in{std::string(bytes)};
     MtlReader mtl(std::filesystem::path(path).parent_path());
     ObjData obj;
@@ -104,10 +178,12 @@ ObjData parseObj(std::string_view bytes, const std::string& path) {
     const bool ok = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warnings, &errors, &in, &mtl,
                                      /*triangulate=*/false, /*default_vcols_fallback=*/false);
     if (!ok) fail(oneLine(errors.empty() ? "tinyobjloader failed" : errors));
-    // Non-fatal errors (a broken .mtl) are kept as warnings, one per line.
+    // Non-fatal errors (a broken .mtl) are kept as warnings, one per line. tinyobjloader follows a
+    // library it could not read with a line of its own, which says less than MtlReader's.
     std::istringstream lines(warnings + errors);
     for (std::string line; std::getline(lines, line);)
-        if (!oneLine(line).empty()) obj.warnings.push_back(oneLine(line));
+        if (!oneLine(line).empty() && line != "Failed to load material file(s). Use default material.")
+            obj.warnings.push_back(oneLine(line));
     return obj;
 }
 

@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <regex>
@@ -404,6 +406,108 @@ TEST(FaultCliTest, AFrameLargerThanMemoryAllowsIsRefusedUpFront) {
         EXPECT_TRUE(std::regex_match(run.errLines()[0], refused)) << run.err;
         EXPECT_TRUE(filesIn(dir).empty());
     }
+}
+
+// --reuse makes a second target of the frame's size: a limit that holds the frame but not the pair
+// as well is refused before the pair is made (before, the first frame's read-back failed).
+TEST(FaultCliTest, AStaticPairLargerThanMemoryAllowsIsRefusedUpFront) {
+    if (kSanitized) GTEST_SKIP() << "a sanitizer's shadow memory does not fit under ulimit -v";
+    const fs::path dir = test::freshDir("FaultMemoryReuse");
+    // 12000x12000: the frame needs 5.2 GB, its target 1.7 of them; the pair and the rest 5.2 GB more.
+    const CliRun run = runFrugal(
+        dir, {"render", "builtin:cubes", "--reuse", "--size", "12000x12000", "--backend", "software", "-q"},
+        "ulimit -v 6200000 &&");
+    EXPECT_EQ(run.status, 1);
+    ASSERT_EQ(run.errLines().size(), 1u) << run.err;
+    EXPECT_TRUE(std::regex_match(run.errLines()[0],
+                                 std::regex("error: --reuse: 12000x12000 needs about 5\\.2 GB more \\(a static pair of 12 "
+                                            "bytes a pixel, then the frame's read-back and PNG encoding\\), more than "
+                                            "the [0-9]\\.[0-9] GB left \\(ulimit -v\\)")))
+        << run.err;
+    EXPECT_TRUE(filesIn(dir).empty());
+}
+
+// A memory cgroup made for one test under this process's own (a container's limit, as `docker run
+// --memory` sets it): v1 (memory.limit_in_bytes) or v2 (memory.max). Making one needs root and a
+// writable cgroup file system; where that fails, `dir()` is empty and `why()` says what failed.
+class MemoryCgroup {
+public:
+    explicit MemoryCgroup(std::uint64_t limit) {
+        std::ifstream in("/proc/self/cgroup");
+        for (std::string line; std::getline(in, line);) {
+            // "0::/path" (v2) or "4:memory:/path" (v1, controllers separated by commas).
+            const std::size_t first = line.find(':'), second = line.find(':', first + 1);
+            if (first == std::string::npos || second == std::string::npos) continue;
+            const std::string controllers = "," + line.substr(first + 1, second - first - 1) + ",";
+            const bool v2 = controllers == ",,";
+            if (!v2 && controllers.find(",memory,") == std::string::npos) continue;
+            const fs::path parent = fs::path(v2 ? "/sys/fs/cgroup" : "/sys/fs/cgroup/memory") /
+                                    fs::path(line.substr(second + 1)).relative_path();
+            const fs::path dir = parent / ("frugal-test-" + std::to_string(getpid()));
+            const char* limitFile = v2 ? "memory.max" : "memory.limit_in_bytes";
+            std::error_code ec;
+            if (!fs::create_directory(dir, ec)) {
+                why_ += dir.string() + ": " + (ec ? ec.message() : "exists") + "; ";
+                continue;
+            }
+            // A folder the kernel did not fill (a tmpfs where no cgroup v2 is mounted) is no cgroup.
+            if (!fs::exists(dir / "cgroup.procs") || !fs::exists(dir / limitFile)) {
+                why_ += dir.string() + ": no " + limitFile + " (no memory controller there); ";
+                fs::remove_all(dir, ec);
+                continue;
+            }
+            std::ofstream(dir / limitFile) << limit;
+            std::uint64_t set = 0;
+            std::ifstream(dir / limitFile) >> set;
+            if (set != limit) {
+                why_ += dir.string() + ": " + limitFile + " did not take " + std::to_string(limit) + "; ";
+                ::rmdir(dir.c_str());
+                continue;
+            }
+            dir_ = dir;
+            return;
+        }
+        if (why_.empty()) why_ = "no memory cgroup in /proc/self/cgroup";
+    }
+    ~MemoryCgroup() {
+        if (!dir_.empty()) ::rmdir(dir_.c_str());  // its processes have ended: runFrugal waits for them
+    }
+    MemoryCgroup(const MemoryCgroup&) = delete;
+    MemoryCgroup& operator=(const MemoryCgroup&) = delete;
+
+    const fs::path& dir() const { return dir_; }
+    const std::string& why() const { return why_; }
+
+private:
+    fs::path dir_;
+    std::string why_;
+};
+
+// The same under a cgroup's limit, in a cgroup made for the test: the message names the cgroup.
+// Nothing reserves terabytes in a cgroup (it counts pages used), so this holds under the sanitizers.
+TEST(FaultCliTest, AFrameLargerThanACgroupAllowsIsRefusedUpFront) {
+    const MemoryCgroup cgroup(std::uint64_t(256) << 20);
+    if (cgroup.dir().empty()) GTEST_SKIP() << "cannot make a memory cgroup here: " << cgroup.why();
+    const fs::path dir = test::freshDir("FaultCgroup");
+    const std::regex refused(
+        "error: --size 8192x8192: needs about 2\\.4 GB \\(36 bytes a pixel: target, read-back, PNG encoding\\), "
+        "more than the 0\\.[0-3] GB left \\(cgroup " +
+        cgroup.dir().string() + " memory\\.(max|limit_in_bytes)\\)");
+    for (const char* backend : {"software", "egl"}) {
+        SCOPED_TRACE(backend);
+        const CliRun run = runFrugal(dir, {"render", "--size", "8192x8192", "--backend", backend, "-q"},
+                                     "echo $$ > " + (cgroup.dir() / "cgroup.procs").string() + " &&");
+        if (run.status == 3) continue;
+        EXPECT_EQ(run.status, 1);
+        ASSERT_EQ(run.errLines().size(), 1u) << run.err;
+        EXPECT_TRUE(std::regex_match(run.errLines()[0], refused)) << run.err;
+        EXPECT_TRUE(filesIn(dir).empty());
+    }
+    // And a frame that fits the cgroup renders in it.
+    const CliRun fits = runFrugal(dir, {"render", "--size", "640x480", "--backend", "software", "-q", "-o", "fits.png"},
+                                  "echo $$ > " + (cgroup.dir() / "cgroup.procs").string() + " &&");
+    EXPECT_EQ(fits.status, 0) << fits.err;
+    EXPECT_TRUE(fs::exists(dir / "fits.png"));
 }
 
 // Whether `--backend NAME` renders here at all; the tests of a broken set-up need the sound one.

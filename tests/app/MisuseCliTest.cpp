@@ -39,7 +39,7 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
 
 TEST(MisuseCliTest, EveryCommandRefusesABrokenSceneWithOneLine) {
     const fs::path in = test::freshDir("MisuseInputs");
-    test::writeFile(in / "broken.obj", "v 1 2\nf 1 2 3\n");
+    test::writeFile(in / "broken.obj", "v 1 2 3\nf 1 2 3\n");
     test::writeFile(in / "trunc.glb", std::string("glTF\x02\x00\x00\x00", 8));
     test::writeFile(in / "empty.gltf", "");
     test::writeFile(in / "huge.gltf", R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":1e30}]})");

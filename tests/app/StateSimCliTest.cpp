@@ -114,6 +114,18 @@ TEST(StateSimCliTest, PlotWritesTheScriptBesideTheSvg) {
     EXPECT_NE(test::readAll(dir / "s.svg").find("<svg"), std::string::npos);
 }
 
+// Without gnuplot the data files stay (they are what the plot is drawn from) and one line says what
+// to install. (PATH names a folder without gnuplot; frugal is run by its full path.)
+TEST(StateSimCliTest, PlotWithoutGnuplotIsOneLineAndKeepsTheData) {
+    const fs::path dir = test::freshDir("StateSimNoGnuplot");
+    const fs::path noGnuplot = test::freshDir("StateSimNoGnuplotBin");
+    const CliRun run = runFrugal(dir, {"state-sim", "--seeds", "1", "--plot", "s.svg"}, "PATH=" + noGnuplot.string());
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(run.errLines(),
+              std::vector<std::string>{"error: --plot s.svg: gnuplot not found (Debian: apt-get install gnuplot-nox)"});
+    EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"s.csv", "s.gp"}));
+}
+
 TEST(StateSimCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
     const fs::path dir = test::freshDir("StateSimBad");
     const std::vector<test::FailingRun> cases = {

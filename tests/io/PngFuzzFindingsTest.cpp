@@ -1,6 +1,7 @@
-// Every input the PNG reader's fuzzer (fuzz/fuzz_png.cpp) found a problem with, minimised, in
+// Every input the PNG reader's fuzzer (fuzz/fuzz_png.cpp) found a problem with, minimised (or made
+// small by hand), and inputs made by hand for the checks those findings led to, in
 // tests/data/fuzz/png/: each must end in the outcome listed here, and the list names exactly the
-// files of that folder.
+// files of that folder (docs/fuzz/README.md tells them).
 #include <gtest/gtest.h>
 
 #include <cctype>

@@ -1,9 +1,14 @@
-// Every input the loader fuzzers (fuzz/, scripts/fuzz) found a problem with, minimised, in
-// tests/data/fuzz/<target>/, loaded as its fuzz target loads it: each must end in the outcome listed
-// here, a clean one-line error or a scene, and the list names exactly the files of those folders.
+// Every input the loader fuzzers (fuzz/, scripts/fuzz) found a problem with, minimised (or made small
+// by hand), and inputs made by hand for the checks those findings led to, in tests/data/fuzz/<target>/,
+// loaded as its fuzz target loads it: each must end in the outcome listed here, a clean one-line error
+// or a scene, and the list names exactly the files of those folders (docs/fuzz/README.md tells them).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -40,6 +45,14 @@ const std::vector<Finding>& findings() {
         {.file = "glb/texture-idat-claims-2gb.glb",
          .warning = "image 0 cannot be decoded (truncated PNG: chunk 1 ('IDAT') at byte 33 declares 2147483632 "
                     "bytes and a CRC, 2 bytes follow): material 0 drawn without its base colour texture"},
+        // Made by hand for the checks that finding led to: a JPEG texture declaring a size over the limit
+        // (stb would allocate 1.2 GB before finding no data), and a GIF, which stb reads and glTF forbids.
+        {.file = "glb/texture-jpeg-beyond-limit.glb",
+         .warning = "image 0 cannot be decoded (JPEG of 20000x20000 pixels, more than frugal's limit of 268435456 "
+                    "(16384x16384)): material 0 drawn without its base colour texture"},
+        {.file = "glb/texture-gif.glb",
+         .warning = "image 0 cannot be decoded (neither PNG nor JPEG, the formats glTF 2.0 allows): material 0 drawn "
+                    "without its base colour texture"},
         // tinyobjloader's exponent parser overflowed an int (UBSan).
         {.file = "obj/exponent-of-10-digits.obj",
          .error = "line 1: a number with an exponent of 10 digits (floats end at 1e38)"},
@@ -103,13 +116,50 @@ INSTANTIATE_TEST_SUITE_P(Inputs, FuzzFinding, testing::ValuesIn(findings()),
                              return name;
                          });
 
+// Found while writing fuzz_builtin, by measuring what the largest parameters ask for: a spec of a few
+// characters could ask for 10^12 animation keys, or build for minutes.
+TEST(FuzzFindingsTest, BuiltinScenesOverTheBudgetAreRefusedWithTheirNumbers) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"builtin:dominoes?polygons=6e6&static=0",
+         "builtin:dominoes?polygons=6e6&static=0: 1000000 dominoes falling over 1000000 frames each need 1e+12 "
+         "animation keys, more than frugal's limit of 67108864"},
+        {"builtin:cubes?count=3000&seconds=3600",
+         "builtin:cubes?count=3000&seconds=3600: 3000 cubes turning for 3600 s need 8.6403e+07 animation keys, more "
+         "than frugal's limit of 67108864"},
+        {"builtin:cubes?count=1000000&seconds=1",
+         "builtin:cubes?count=1000000&seconds=1: 1000000 cubes turning for 1 s need 2e+06 nodes and meshes, more "
+         "than frugal's limit of 131072"},
+        {"builtin:materials?draws=1000000",
+         "builtin:materials?draws=1000000: 1000000 draws of 40 meshes need 1.00004e+06 nodes and meshes, more than "
+         "frugal's limit of 131072"},
+        {"builtin:copies?count=1000&of=builtin:cubes?count=200",
+         "builtin:copies?count=1000&of=builtin:cubes?count=200: 1000 copies of a scene of 201 nodes need 202200 "
+         "nodes and meshes, more than frugal's limit of 131072"},
+    };
+    for (const auto& [spec, error] : cases) {
+        const Result<Scene> scene = makeBuiltin(spec);
+        ASSERT_FALSE(scene.ok()) << spec;
+        EXPECT_EQ(scene.error(), error);
+    }
+}
+
 // Found while writing the fuzzers, which read no files: the OBJ loader's material libraries.
 
-TEST(FuzzFindingsTest, AMaterialLibraryThatIsADeviceIsNotRead) {
-    // /dev/zero never ends: reading it as a material library grew a line until memory ran out.
-    const Result<Scene> scene = loadObjFromMemory("mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "in.obj");
-    ASSERT_TRUE(scene.ok()) << scene.error();
-    EXPECT_EQ(scene->warnings, std::vector<std::string>{"in.obj: material library '/dev/zero' is not a readable file"});
+TEST(FuzzFindingsTest, AMaterialLibraryThatIsNotARegularFileIsNotRead) {
+    // `mtllib /dev/zero` grew a line until memory ran out: only regular files are read. A FIFO stands
+    // for the device here (it never ends either, and opening it would wait for a writer): a sandbox
+    // may show no /dev/zero, and a test must not depend on what /dev holds. A folder neither.
+    const fs::path dir = test::freshDir("FuzzFindingsMtlNotAFile");
+    ASSERT_EQ(::mkfifo((dir / "pipe.mtl").c_str(), 0600), 0) << std::strerror(errno);
+    fs::create_directory(dir / "folder.mtl");
+    for (const char* name : {"pipe.mtl", "folder.mtl"}) {
+        const fs::path obj = dir / "in.obj";
+        test::writeFile(obj, std::string("mtllib ") + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        const Result<Scene> scene = loadObj(obj.string());
+        ASSERT_TRUE(scene.ok()) << scene.error();
+        EXPECT_EQ(scene->warnings, std::vector<std::string>{obj.string() + ": material library '" + name +
+                                                            "' is not a readable file"});
+    }
 }
 
 TEST(FuzzFindingsTest, AMaterialLibraryWithAnExponentOfTenDigitsIsNotRead) {
