@@ -12,9 +12,9 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -89,7 +89,12 @@ bool overflows(std::string_view word) {
 // first: v and vn need three numbers, vt one, and every word on them (up to a '#') must be a finite
 // float. Returns "" or the problem, with its line.
 std::string vertexLineProblem(std::string_view text) {
+    // The least double that rounds to infinity as a float: past the largest float by half its step
+    // (2^104; a tie rounds to even, infinity). 3.4028235e38, the largest float printed with 8 digits,
+    // lies above the largest float and is still one.
+    const double kFloatOverflow = double(std::numeric_limits<float>::max()) + std::ldexp(1.0, 103);
     std::size_t line = 0;
+    std::vector<std::string_view> words;
     for (std::size_t begin = 0; begin < text.size();) {
         // Lines end at "\n", "\r\n" or "\r", as tinyobjloader reads them.
         std::size_t end = text.find_first_of("\r\n", begin);
@@ -98,7 +103,7 @@ std::string vertexLineProblem(std::string_view text) {
         begin = end + ((end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ? 2 : 1);
         ++line;
 
-        std::vector<std::string_view> words;
+        words.clear();
         for (std::size_t i = 0; i < rest.size();) {
             i = rest.find_first_not_of(" \t", i);
             if (i == std::string_view::npos || rest[i] == '#') break;
@@ -113,7 +118,8 @@ std::string vertexLineProblem(std::string_view text) {
                        ", it has ", words.size() - 1);
         for (std::size_t k = 1; k < words.size(); ++k) {
             const std::string_view word = words[k];
-            const std::string_view digits = (word.size() > 1 && word[0] == '+' && word[1] != '-') ? word.substr(1) : word;
+            const std::string_view digits =
+                (word.size() > 1 && word[0] == '+' && word[1] != '-') ? word.substr(1) : word;
             double value = 0.0;
             const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
             const std::string shown = "'" + oneLine(word, 40) + "'";
@@ -121,9 +127,9 @@ std::string vertexLineProblem(std::string_view text) {
                 return cat("line ", line, ": ", shown, " in a ", words[0], " line is not a number");
             if (ec == std::errc() && !std::isfinite(value))
                 return cat("line ", line, ": ", shown, " in a ", words[0], " line is not finite");
-            if ((ec == std::errc::result_out_of_range && overflows(digits)) ||
-                std::abs(value) > double(std::numeric_limits<float>::max()))
-                return cat("line ", line, ": ", shown, " in a ", words[0], " line does not fit a float (floats end at 3.4e38)");
+            if ((ec == std::errc::result_out_of_range && overflows(digits)) || std::abs(value) >= kFloatOverflow)
+                return cat("line ", line, ": ", shown, " in a ", words[0],
+                           " line does not fit a float (floats end at 3.4e38)");
         }
     }
     return {};

@@ -414,15 +414,15 @@ TEST(FaultCliTest, AStaticPairLargerThanMemoryAllowsIsRefusedUpFront) {
     if (kSanitized) GTEST_SKIP() << "a sanitizer's shadow memory does not fit under ulimit -v";
     const fs::path dir = test::freshDir("FaultMemoryReuse");
     // 12000x12000: the frame needs 5.2 GB, its target 1.7 of them; the pair and the rest 5.2 GB more.
-    const CliRun run = runFrugal(
-        dir, {"render", "builtin:cubes", "--reuse", "--size", "12000x12000", "--backend", "software", "-q"},
-        "ulimit -v 6200000 &&");
+    const CliRun run =
+        runFrugal(dir, {"render", "builtin:cubes", "--reuse", "--size", "12000x12000", "--backend", "software", "-q"},
+                  "ulimit -v 6200000 &&");
     EXPECT_EQ(run.status, 1);
     ASSERT_EQ(run.errLines().size(), 1u) << run.err;
-    EXPECT_TRUE(std::regex_match(run.errLines()[0],
-                                 std::regex("error: --reuse: 12000x12000 needs about 5\\.2 GB more \\(a static pair of 12 "
-                                            "bytes a pixel, then the frame's read-back and PNG encoding\\), more than "
-                                            "the [0-9]\\.[0-9] GB left \\(ulimit -v\\)")))
+    EXPECT_TRUE(std::regex_match(
+        run.errLines()[0], std::regex("error: --reuse: 12000x12000 needs about 5\\.2 GB more \\(a static pair of 12 "
+                                      "bytes a pixel, then the frame's read-back and PNG encoding\\), more than "
+                                      "the [0-9]\\.[0-9] GB left \\(ulimit -v\\)")))
         << run.err;
     EXPECT_TRUE(filesIn(dir).empty());
 }

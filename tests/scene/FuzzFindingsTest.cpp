@@ -157,8 +157,8 @@ TEST(FuzzFindingsTest, AMaterialLibraryThatIsNotARegularFileIsNotRead) {
         test::writeFile(obj, std::string("mtllib ") + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         const Result<Scene> scene = loadObj(obj.string());
         ASSERT_TRUE(scene.ok()) << scene.error();
-        EXPECT_EQ(scene->warnings, std::vector<std::string>{obj.string() + ": material library '" + name +
-                                                            "' is not a readable file"});
+        EXPECT_EQ(scene->warnings,
+                  std::vector<std::string>{obj.string() + ": material library '" + name + "' is not a readable file"});
     }
 }
 

@@ -312,7 +312,8 @@ TEST(ObjLoaderTest, VertexLinesMustHoldFiniteFloats) {
          "line 4: a vn line needs 3 numbers, it has 2"},
         {"ObjNormalWord", "v 0 0 0\nv 1 0 0\nv 0 1 0\n  vn\t0 0 one\nf 1//1 2//1 3//1\n",
          "line 4: 'one' in a vn line is not a number"},
-        {"ObjTexcoordNone", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt\nf 1/1 2/1 3/1\n", "line 4: a vt line needs 1 number, it has 0"},
+        {"ObjTexcoordNone", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt\nf 1/1 2/1 3/1\n",
+         "line 4: a vt line needs 1 number, it has 0"},
         {"ObjTexcoordNotUtf8", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 \xff\nf 1/1 2/1 3/1\n",
          "line 4: '?' in a vt line is not a number"},
     };
@@ -325,11 +326,13 @@ TEST(ObjLoaderTest, VertexLinesMustHoldFiniteFloats) {
 
 TEST(ObjLoaderTest, NumbersTinyobjloaderReadsAreAccepted) {
     // Signs, no digits before or after the point, exponents, numbers too small for a double or a float
-    // (they read as 0), a comment after the numbers, and other lines that start with v.
+    // (they read as 0), the largest float as 8 digits print it (a little above it, and rounds to it),
+    // a comment after the numbers, and other lines that start with v.
     const std::string tiny = "0." + std::string(60, '0') + "1";
-    const Result<Scene> scene = loadText("ObjNumbers", "v +1 -0 .5e0\nv 1. 1e-400 " + tiny +
-                                                           "\nv 0 1E+0 0 # top\nvp 0.5 nan\nvt .25\nvn 0 0 +1\n"
-                                                           "f 1/1/1 2/1/1 3/1/1\n");
+    const Result<Scene> scene =
+        loadText("ObjNumbers", "v +1 -0 .5e0\nv 1. 1e-400 " + tiny +
+                                   "\nv 0 1E+0 0 # top\nv 3.4028235e38 0 -3.4028235e38\nvp 0.5 nan\nvt .25\n"
+                                   "vn 0 0 +1\nf 1/1/1 2/1/1 3/1/1\n");
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->meshes.size(), 1u);
     const Mesh& mesh = scene->meshes[0];
