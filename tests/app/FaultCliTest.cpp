@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -461,6 +462,13 @@ public:
             std::ifstream(dir / limitFile) >> set;
             if (set != limit) {
                 why_ += dir.string() + ": " + limitFile + " did not take " + std::to_string(limit) + "; ";
+                ::rmdir(dir.c_str());
+                continue;
+            }
+            // A process must be able to join it (a sandbox may refuse: EPERM, EBUSY).
+            const std::string join = "sh -c 'echo $$ > " + (dir / "cgroup.procs").string() + "' 2>/dev/null";
+            if (std::system(join.c_str()) != 0) {
+                why_ += dir.string() + ": a process cannot join it; ";
                 ::rmdir(dir.c_str());
                 continue;
             }
