@@ -48,6 +48,7 @@ Result<std::unique_ptr<Backend>> openBackend(const BackendSelection& selection,
 // read-back (12) and, while its colour PNG is encoded, the flipped rows, the filtered rows and
 // zlib's output (12). Measured peak resident memory of `frugal render --size 16384x16384`: 9.50 GB
 // on the software backend, 9.60 GB on egl-surfaceless (35.4 and 35.8 bytes a pixel).
+inline constexpr std::uint64_t kTargetBytesPerPixel = 12;  // a target alone: colour, depth, ids
 inline constexpr std::uint64_t kFrameBytesPerPixel = 36;
 
 // What this process may still take: the least of the address space left under `ulimit -v`

@@ -198,11 +198,11 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     TargetHandle staticTarget = kNoHandle;
     std::optional<TemporalReuse> reuse;
     if (reuseOptions.enabled) {
-        // The pair (12 bytes a pixel, measured 11.8 at 8192x8192) and what a frame still allocates after
-        // its target (the read-back and the PNG encoding): the first frame comes after the pair.
+        // The pair (a target's bytes; measured 11.8 a pixel at 8192x8192) and what a frame still
+        // allocates after its target (the read-back and the PNG encoding): the first frame comes after it.
         const std::uint64_t pixels = std::uint64_t(options.width) * std::uint64_t(options.height);
         const std::uint64_t needed =
-            staticPairBytes(options.width, options.height) + pixels * (kFrameBytesPerPixel - 12);
+            staticPairBytes(options.width, options.height) + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
         if (const std::optional<std::string> problem = memoryProblem(needed)) {
             err << "error: --reuse: " << options.width << "x" << options.height << " needs about " << gigabytes(needed)
                 << " more (a static pair of 12 bytes a pixel, then the frame's read-back and PNG encoding), "

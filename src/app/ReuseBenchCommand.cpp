@@ -262,8 +262,9 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     const int width = options.width, height = options.height;
     const TargetHandle fullTarget = session.target;
     Targets targets{backend};
-    // Five more targets of 12 bytes a pixel (colour, depth, ids), and the read-backs the frames compare.
-    const std::uint64_t needed = std::uint64_t(width) * std::uint64_t(height) * (5 * 12 + kFrameBytesPerPixel - 12);
+    // Five more targets, and the read-backs the frames compare.
+    const std::uint64_t needed = std::uint64_t(width) * std::uint64_t(height) *
+                                 (5 * kTargetBytesPerPixel + kFrameBytesPerPixel - kTargetBytesPerPixel);
     if (const std::optional<std::string> problem = memoryProblem(needed)) {
         err << "error: --size " << width << "x" << height << ": the benchmark needs about " << gigabytes(needed)
             << " more (five more targets, and the read-backs it compares), " << *problem << "\n";

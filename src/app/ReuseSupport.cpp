@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/Backends.h"
 #include "app/CameraPath.h"
 
 namespace frugal {
@@ -44,7 +45,9 @@ bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOption
     return true;
 }
 
-std::uint64_t staticPairBytes(int width, int height) { return std::uint64_t(width) * std::uint64_t(height) * 12u; }
+std::uint64_t staticPairBytes(int width, int height) {
+    return std::uint64_t(width) * std::uint64_t(height) * kTargetBytesPerPixel;
+}
 
 nlohmann::json reuseStatsJson(const ReuseFrameStats& s) {
     return {{"mode", reuseModeName(s.mode)},
