@@ -59,6 +59,11 @@ minimal variant; "skipped" says why.
                         material); "pixels_differing" says where each image differs from frugal's,
                         and for frugal's own row, where --order changed it from submission order
                         (exact depth ties); ratios "unbatched_over_batched" and "over_premerged"
+
+The cache order also times the same frame in the other depth format (--depth-format, default d24;
+see 'frugal help render'), into a target of its own, interleaved with frugal's frames: a row with
+"variant": "d32f" (or "d24"), its "pixels_differing" from frugal's image, and the ratio
+"d32f_over_d24". A backend without glClipControl skips it ("skipped" says so).
 )";
 }
 
@@ -179,6 +184,13 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         err << "error: " << original.error() << "\n";
         return kExitError;
     }
+    if (const std::string warning = fitSizeToCamera(options, *optimized); !warning.empty() && !options.quiet)
+        err << "warning: " << warning << "\n";
+    // The other depth format, timed beside the asked one.
+    RenderOptions otherFormat = options;
+    otherFormat.camera.depthFormat =
+        options.camera.depthFormat == DepthFormat::D24 ? DepthFormat::D32F : DepthFormat::D24;
+    const std::string otherName = depthFormatName(otherFormat.camera.depthFormat);
 
     // By default every GL context kind and the software reference, side by side.
     std::vector<BackendSelection> choices;
@@ -222,7 +234,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                                   "--ids: the minimal frame writes no ids, so it would not draw the same frame");
             } else if (kind) {
                 Result<std::unique_ptr<MinimalFrame>> made =
-                    createMinimalFrame(*kind, *scene, options.width, options.height);
+                    createMinimalFrame(*kind, *scene, options.width, options.height, options.camera.depthFormat);
                 if (made)
                     minimal = std::move(*made);
                 else
@@ -239,6 +251,23 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, orderCosts->costsUs());
             Sample unbatched{backend.name(), backend.renderer(), order, "unbatched", {}, std::nullopt, std::nullopt};
             Sample premerged{backend.name(), backend.renderer(), order, "premerged", {}, std::nullopt, std::nullopt};
+            Sample otherSample{backend.name(), backend.renderer(), order, otherName.c_str(), {},
+                               std::nullopt,   std::nullopt};
+            // The other depth format: its own target and projection, the same uploads.
+            ScopedTarget other(backend);
+            Result<FrameSetup> otherSetup =
+                setUpFrame(otherFormat, *scene, options.frames ? options.frames->first : 0, ids);
+            if (!otherSetup) {
+                err << "error: " << otherSetup.error() << "\n";
+                return kExitError;
+            }
+            if (variants && backend.supportsDepthFormat(otherFormat.camera.depthFormat)) {
+                other.reset(backend.createTarget(options.width, options.height, otherFormat.camera.depthFormat));
+                if (other.get() == kNoHandle)
+                    skipped.push_back(backend.name() + " " + otherName + ": no target of that size");
+            } else if (variants) {
+                skipped.push_back(backend.name() + " " + otherName + ": no glClipControl (GL 4.5 or ARB_clip_control)");
+            }
             const Scene merged = variants ? premergedScene(*scene, setup->world) : Scene{};
             std::optional<SceneRenderer> mergedRenderer;
             if (variants) {
@@ -249,13 +278,16 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                 }
                 mergedRenderer.emplace(std::move(*made));
             }
-            const auto drawFrame = [&](SceneRenderer& r, const DrawList& drawn) {
+            const auto drawFrameInto = [&](SceneRenderer& r, const DrawList& drawn, TargetHandle into,
+                                           const FrameSetup& s) {
                 if (planner)  // the plan is part of the frame's time
-                    r.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background,
-                                  planner->plan(hsrMode, setup->params, setup->world, drawn, options.width, options.height));
+                    r.renderFrame(into, options.width, options.height, s.params, s.world, options.background,
+                                  planner->plan(hsrMode, s.params, s.world, drawn, options.width, options.height));
                 else
-                    r.renderFrame(target, options.width, options.height, setup->params, setup->world, options.background,
-                                  drawn);
+                    r.renderFrame(into, options.width, options.height, s.params, s.world, options.background, drawn);
+            };
+            const auto drawFrame = [&](SceneRenderer& r, const DrawList& drawn) {
+                drawFrameInto(r, drawn, target, *setup);
             };
 
             // Each timed frame starts with its context current: backend.finish() makes it so
@@ -284,6 +316,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                     backend.finish();
                     if (i >= warmup) premerged.ms.push_back(millisecondsSince(t0));
                 }
+                if (other.get() != kNoHandle) {
+                    t0 = Clock::now();
+                    drawFrameInto(renderer, list, other.get(), *otherSetup);
+                    backend.finish();
+                    if (i >= warmup) otherSample.ms.push_back(millisecondsSince(t0));
+                }
                 if (!minimal) continue;
                 minimal->activate();
                 t0 = Clock::now();
@@ -305,6 +343,10 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                 mergedRenderer->renderFrame(target, options.width, options.height, setup->params,
                                             merged.worldTransforms(0.0), options.background);
                 premerged.pixelsDiffering = differingColorPixels(backend.readBack(target), batchedImage);
+                if (other.get() != kNoHandle) {
+                    drawFrameInto(renderer, list, other.get(), *otherSetup);
+                    otherSample.pixelsDiffering = differingColorPixels(backend.readBack(other.get()), batchedImage);
+                }
                 // Draw order decides exact depth ties only: the pixels where it changed the image.
                 drawFrame(renderer, renderer.fullList());
                 sample.pixelsDiffering = differingColorPixels(backend.readBack(target), batchedImage);
@@ -316,6 +358,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             if (variants) {
                 samples.push_back(std::move(unbatched));
                 samples.push_back(std::move(premerged));
+                if (!otherSample.ms.empty()) samples.push_back(std::move(otherSample));
             }
             if (minimal) {
                 minimalSample.pixelsEqual = backend.readBack(target).rgba == minimal->readBack().rgba;
@@ -367,6 +410,9 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             ratios["unbatched_over_batched"][b] = ratio(unbatchedRun, optimizedRun);
         if (const Sample* premergedRun = find(samples, b, "optimized", "premerged"))
             ratios["over_premerged"][b] = ratio(optimizedRun, premergedRun);
+        if (const Sample* otherRun = find(samples, b, "optimized", otherName.c_str()))
+            ratios["d32f_over_d24"][b] = options.camera.depthFormat == DepthFormat::D24 ? ratio(otherRun, optimizedRun)
+                                                                                        : ratio(optimizedRun, otherRun);
     }
 
     const char* threads = std::getenv("LP_NUM_THREADS");
@@ -378,6 +424,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         {"ids", ids},
         {"hsr", hsr::modeName(hsrMode)},
         {"draw_order", drawOrderName(drawOrder)},
+        {"depth_format", depthFormatName(options.camera.depthFormat)},
         {"runs", runs},
         {"warmup", warmup},
         {"threads", options.threads > 0 ? nlohmann::json(options.threads) : nlohmann::json("default")},

@@ -69,6 +69,12 @@ std::variant<Session, int> startSession(const RenderOptions& options, const Scen
 
 int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
     Backend& backend = *session.backend;
+    const DepthFormat format = options.camera.depthFormat;
+    if (!backend.supportsDepthFormat(format)) {
+        err << "error: --depth-format " << depthFormatName(format) << ": " << backend.name()
+            << " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs\n";
+        return kExitNoBackend;
+    }
     if (session.target == kNoHandle) {
         // A size the backend takes but this process's memory does not hold: refused before any of it is made.
         if (std::max(options.width, options.height) <= backend.maxTargetSize()) {
@@ -77,7 +83,7 @@ int prepareSession(Session& session, const RenderOptions& options, const Scene& 
                 return kExitError;
             }
         }
-        session.target = backend.createTarget(options.width, options.height);
+        session.target = backend.createTarget(options.width, options.height, format);
     }
     if (session.target == kNoHandle) {
         err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()

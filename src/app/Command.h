@@ -56,6 +56,27 @@ struct Session {
     std::optional<SceneRenderer> renderer;
 };
 
+// A target of `backend` destroyed when this goes (the static pair of --reuse, bench's other depth
+// format); kNoHandle holds nothing.
+class ScopedTarget {
+public:
+    explicit ScopedTarget(Backend& backend, TargetHandle handle = kNoHandle) : backend_(backend), handle_(handle) {}
+    ~ScopedTarget() {
+        if (handle_ != kNoHandle) backend_.destroyTarget(handle_);
+    }
+    ScopedTarget(const ScopedTarget&) = delete;
+    ScopedTarget& operator=(const ScopedTarget&) = delete;
+    TargetHandle get() const { return handle_; }
+    void reset(TargetHandle handle) {
+        if (handle_ != kNoHandle) backend_.destroyTarget(handle_);
+        handle_ = handle;
+    }
+
+private:
+    Backend& backend_;
+    TargetHandle handle_;
+};
+
 // The one-backend start of render and cull-report: opens --backend, says which unless quiet, creates
 // the target and uploads `scene`. On failure prints the one error line and gives the exit status
 // (kExitNoBackend or kExitError) instead of a session.

@@ -166,11 +166,8 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
         views = reportViews(bounds.center(), bounds.radius(), viewCount, options.camera.yfovDegrees.value_or(40.0f),
                             float(options.width) / float(options.height));
     }
-    // The render's --near/--far apply to every view.
-    for (ReportView& view : views) {
-        if (options.camera.znear) view.camera.znear = options.camera.znear;
-        if (options.camera.zfar) view.camera.zfar = options.camera.zfar;
-    }
+    // The render's --near/--far and depth settings apply to every view.
+    for (ReportView& view : views) applyDepthOptions(options.camera, view.camera);
 
     cull.bins.hull = std::find(methods.begin(), methods.end(), CullMethod::Paper) != methods.end();
     const SceneCuller culler = prepareCulling(scene, cull.bins, err, options.quiet);

@@ -1,5 +1,9 @@
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 #include <ostream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +22,12 @@ const char* infoHelp() {
 Prints what SCENE holds: nodes, meshes, instances, triangles, materials, textures, cameras,
 animations, bounds at time 0, and every feature of the file that frugal does not model, by name.
 
+For each camera (the automatic view when the scene has none): where the scene lies along its view,
+and the smallest difference in distance the depth buffer separates at the scene's far side, with
+each format (d24, d32f) and each depth range (fit, the default; file, the camera's own planes);
+with a warning where that is coarser than the scene's own detail (1 % of its triangle edges are
+shorter), since surfaces that close together may then z-fight.
+
 --state-costs measures, on the backend that runs (--backend, default auto), what changing each kind
 of render state between two draws costs (paper 004's C(s); src/gl/StateCosts.h): program (shader
 variant), mesh, texture, material, face culling and depth test, in microseconds per change over a
@@ -28,6 +38,77 @@ against the same draw again. About a second. --json FILE writes the figures as J
 }
 
 namespace {
+
+// The scene's finer detail: the length that 1 % of its triangles' edges (world space, time 0) are
+// shorter than, leaving out edges of length 0. 0 when it has no edge.
+double sceneDetail(const Scene& scene) {
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    std::vector<float> lengths;
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        const glm::mat3 m(world[std::size_t(instance.node)]);
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 a = mesh.positions[mesh.indices[t + std::size_t(k)]];
+                const glm::vec3 b = mesh.positions[mesh.indices[t + std::size_t((k + 1) % 3)]];
+                const float length = glm::length(m * (b - a));
+                if (length > 0.0f && std::isfinite(length)) lengths.push_back(length);
+            }
+    }
+    if (lengths.empty()) return 0.0;
+    const auto at = lengths.begin() + std::ptrdiff_t(lengths.size() / 100);
+    std::nth_element(lengths.begin(), at, lengths.end());
+    return double(*at);
+}
+
+// Where the scene lies along camera `index`'s view (the automatic view when none), and the depth
+// each format and range separates at its far side; a warning where that is coarser than `detail`.
+void printDepthPrecision(const Scene& scene, std::optional<int> index, double detail, std::ostream& out) {
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    int width = 800, height = 600;
+    if (index) {
+        const float aspect = scene.cameras[std::size_t(*index)].fileAspect();
+        if (aspect > 0.0f) sizeForAspect(aspect, kLongSide, width, height);
+    }
+    CameraSpec spec;
+    spec.sceneCamera = index;
+    Result<View> fitted = resolveCamera(scene, world, 0.0, spec, width, height);
+    spec.depthRange = DepthRange::File;
+    Result<View> given = resolveCamera(scene, world, 0.0, spec, width, height);
+    if (!fitted || !given) {
+        out << "    " << (fitted ? given.error() : fitted.error()) << "\n";
+        return;
+    }
+    const DepthExtent extent = depthExtent(fitted->view, scene.envelope);
+    if (scene.envelope.empty() || !(extent.farthest > 0.0)) {
+        out << "    the scene is not in front of this camera\n";
+        return;
+    }
+    const auto planes = [](const View& v) {
+        return fmt(v.znear) + " to " + (v.zfar > 0.0f ? fmt(v.zfar) : std::string("infinity"));
+    };
+    // The far side as drawn: no farther than the far plane.
+    const double d = given->zfar > 0.0f ? std::min(extent.farthest, double(given->zfar)) : extent.farthest;
+    out << "    scene at distance " << fmt(std::max(extent.nearest, 0.0)) << " to " << fmt(extent.farthest)
+        << " along the view (its bounds over the whole animation)\n";
+    out << "    depth separated at " << fmt(d) << ": fit (" << planes(*fitted) << "), file (" << planes(*given)
+        << ")\n";
+    std::string coarse;
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        char line[160];
+        const double fit = depthResolution(format, fitted->perspective, fitted->znear, fitted->zfar, d);
+        const double file = depthResolution(format, given->perspective, given->znear, given->zfar, d);
+        std::snprintf(line, sizeof line, "      %-5s fit %-12.4g file %.4g\n", depthFormatName(format), fit, file);
+        out << line;
+        for (const auto& [range, step] : {std::pair{"fit", fit}, std::pair{"file", file}})
+            if (detail > 0.0 && step > detail)
+                coarse += (coarse.empty() ? "" : ", ") + std::string(depthFormatName(format)) + " with " + range +
+                          " (" + fmt(step) + ")";
+    }
+    if (!coarse.empty())
+        out << "    warning: coarser than the scene's detail (" << fmt(detail) << "): " << coarse
+            << "; surfaces closer together than that may z-fight\n";
+}
 
 int runStateCosts(const RenderOptions& options, const std::string& jsonPath, std::ostream& out, std::ostream& err) {
     Result<Session> session = openSession(options.backend, options);
@@ -130,10 +211,20 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     out << "textures: " << scene.textures.size() << "\n";
     for (const Texture& t : scene.textures)
         out << "  '" << t.name << "' " << t.width << "x" << t.height << (t.filter == Filter::Nearest ? " nearest" : " linear") << "\n";
+    const double detail = sceneDetail(scene);
+    out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
     out << "cameras: " << scene.cameras.size() << "\n";
-    for (const Camera& c : scene.cameras) {
-        out << "  '" << c.name << "' " << (c.perspective ? "perspective yfov " + fmt(glm::degrees(c.yfov)) + " deg" : std::string("orthographic"))
-            << ", znear " << fmt(c.znear) << ", zfar " << (c.zfar > 0 ? fmt(c.zfar) : std::string("infinite")) << "\n";
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+        const Camera& c = scene.cameras[i];
+        out << "  '" << c.name << "' "
+            << (c.perspective ? "perspective yfov " + fmt(glm::degrees(c.yfov)) + " deg" : std::string("orthographic"))
+            << (c.perspective && c.aspect > 0.0f ? ", aspect ratio " + fmt(c.aspect) : std::string()) << ", znear "
+            << fmt(c.znear) << ", zfar " << (c.zfar > 0 ? fmt(c.zfar) : std::string("infinite")) << "\n";
+        printDepthPrecision(scene, int(i), detail, out);
+    }
+    if (scene.cameras.empty()) {
+        out << "  the automatic view (no camera in the scene):\n";
+        printDepthPrecision(scene, std::nullopt, detail, out);
     }
     std::size_t channels = 0;
     for (const Animation& a : scene.animations) channels += a.channels.size();

@@ -115,6 +115,7 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
         } else {
             o.width = w;
             o.height = h;
+            o.sizeGiven = true;
         }
     } else if (flag == "--backend") {
         const std::optional<std::string> text = cursor.value(flag);
@@ -155,6 +156,22 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
         if (auto v = number(flag, cursor, 1e-30, 1e30)) o.camera.znear = float(*v);
     } else if (flag == "--far") {
         if (auto v = number(flag, cursor, 0, 1e30)) o.camera.zfar = float(*v);
+    } else if (flag == "--depth-range") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        if (*text == "fit")
+            o.camera.depthRange = DepthRange::Fit;
+        else if (*text == "file")
+            o.camera.depthRange = DepthRange::File;
+        else
+            cursor.fail("--depth-range: '" + *text + "' is not a depth range (fit, file)");
+    } else if (flag == "--depth-format") {
+        const std::optional<std::string> text = cursor.value(flag);
+        if (!text) return true;
+        if (const std::optional<DepthFormat> format = parseDepthFormat(*text))
+            o.camera.depthFormat = *format;
+        else
+            cursor.fail("--depth-format: '" + *text + "' is not a depth format (d24, d32f)");
     } else if (flag == "--time") {
         if (auto v = number(flag, cursor, -1e9, 1e9)) o.time = *v;
     } else if (flag == "--fps") {
@@ -201,6 +218,9 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
 
 void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
     if (std::optional<std::string> conflict = interpConflict(o.backend, o.interp)) cursor.fail(*conflict);
+    if (o.interp != span::Interp::Exact && o.camera.depthFormat == DepthFormat::D32F)
+        cursor.fail(std::string("--interp ") + span::interpName(o.interp) +
+                    " with --depth-format d32f: the span engine interpolates a 24-bit depth; use --depth-format d24");
     const std::optional<float>& near = o.camera.znear;
     const std::optional<float>& far = o.camera.zfar;
     if (near && far && *far != 0.0f && !(*far > *near))
@@ -208,7 +228,8 @@ void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
 }
 
 const char* sharedOptionsHelp() {
-    return R"(  --size WxH            image size in pixels (default 800x600)
+    return R"(  --size WxH            image size in pixels (default 800x600, or the scene camera's aspect ratio
+                        with the longer side 800)
   --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
                         egl, egl-device, egl-surfaceless, osmesa, or software (the CPU
                         reference rasterizer, llvmpipe's rules, no GL)
@@ -226,6 +247,13 @@ const char* sharedOptionsHelp() {
   --up X,Y,Z            default 0,1,0
   --fov DEGREES         vertical field of view (default: the camera's, or 40)
   --near Z, --far Z     clip planes (default: the camera's, or around the scene); --far 0 = infinite
+  --depth-range MODE    fit (default): near and far moved inward to where the scene is (its
+                        bounds over the whole animation, along the view), never past the planes
+                        above, so nothing they keep is clipped and depth precision goes to the
+                        scene; file: the planes above as they are
+  --depth-format F      d24 (default): 24-bit depth; d32f: 32-bit float with reversed Z
+                        (glClipControl zero-to-one, 1 near, 0 far), which separates depths about
+                        1e-7 of their distance apart at any near/far ratio. See 'frugal info SCENE'
   --time SECONDS        animation time of the frame (default 0)
   --frames A:B          frames A to B inclusive, at --fps (default the scene's, 30)
   --fps N
@@ -250,18 +278,43 @@ bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder&
     return true;
 }
 
+void applyDepthOptions(const CameraSpec& options, CameraSpec& view) {
+    view.znear = options.znear;
+    view.zfar = options.zfar;
+    view.depthRange = options.depthRange;
+    view.depthFormat = options.depthFormat;
+}
+
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame) {
     if (!options.frames && options.time) return *options.time;
     return frameTime(frame, options.fps.value_or(scene.fps));
 }
 
-Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err) {
+std::string fitSizeToCamera(RenderOptions& options, const Scene& scene) {
+    std::optional<int> index = options.camera.sceneCamera;
+    if (!index && !options.camera.eye && options.cameraPath.empty() && !scene.cameras.empty()) index = 0;
+    if (!index || *index < 0 || *index >= int(scene.cameras.size())) return {};
+    const Camera& camera = scene.cameras[std::size_t(*index)];
+    const float aspect = camera.fileAspect();
+    if (!(aspect > 0.0f) || !std::isfinite(aspect)) return {};
+    if (!options.sizeGiven) sizeForAspect(aspect, kLongSide, options.width, options.height);
+    if (!aspectDiffers(aspect, options.width, options.height)) return {};
+    return options.scene + ": camera " + std::to_string(*index) + quotedName(camera.name) + " has aspect ratio " +
+           fmt(aspect) + ", the image " + fmt(double(options.width) / options.height) + " (" +
+           std::to_string(options.width) + "x" + std::to_string(options.height) +
+           "): drawn with the camera's vertical " + (camera.perspective ? "field of view" : "extent (ymag)") +
+           " and the image's aspect ratio, not stretched";
+}
+
+Result<Scene> loadForRender(RenderOptions& options, std::ostream& err) {
     Result<Scene> scene = loadScene(options.scene, options.load);
     if (!scene) return scene;
+    const std::string aspectWarning = fitSizeToCamera(options, *scene);
     // Check the first frame's camera before a backend is opened, so a bad camera is the only line.
     const int first = options.frames ? options.frames->first : 0;
     if (Result<FrameSetup> setup = setUpFrame(options, *scene, first, false); !setup) return Error{setup.error()};
     for (const std::string& warning : scene->warnings) err << "warning: " << warning << "\n";
+    if (!aspectWarning.empty()) err << "warning: " << aspectWarning << "\n";
     if (!scene->unsupported.empty()) {
         std::string names;
         for (const std::string& name : scene->unsupported) names += (names.empty() ? "" : ", ") + name;
@@ -276,8 +329,7 @@ Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, 
         const int first = options.frames ? options.frames->first : 0;
         const int last = int(options.cameraPath.size()) - 1;
         camera = options.cameraPath[std::size_t(std::clamp(frame - first, 0, last))];
-        camera.znear = options.camera.znear;
-        camera.zfar = options.camera.zfar;
+        applyDepthOptions(options.camera, camera);
     }
     Result<FrameSetup> setup =
         frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), options.width, options.height, writeIds);

@@ -47,6 +47,7 @@ struct FrameRange {
 struct RenderOptions {
     std::string scene = "builtin:default";
     int width = 800, height = 600;
+    bool sizeGiven = false;  // --size: else the scene camera's aspect ratio sizes the image (kLongSide)
     BackendSelection backend;
     std::string backendName = "auto";  // as given, for messages
     int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
@@ -81,12 +82,25 @@ bool parseIntPair(const std::string& text, int& first, int& second);
 // The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
 std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
 
+// What --near, --far, --depth-range and --depth-format (in `options`) give every view of a camera
+// path or a report: a view's own planes are replaced by them, given or not.
+void applyDepthOptions(const CameraSpec& options, CameraSpec& view);
+
 // Scene time of frame `frame`: --time when no --frames, else frame / fps (--fps or the scene's).
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame);
 
-// Loads the scene, prints its warnings (unsupported features, dropped triangles) to `err`, and checks
-// the first frame's camera, so that a bad camera fails before any backend is opened.
-Result<Scene> loadForRender(const RenderOptions& options, std::ostream& err);
+// The default image's longer side when the first frame's camera has an aspect ratio of its own.
+inline constexpr int kLongSide = 800;
+
+// Without --size, sizes the image to the aspect ratio of the scene camera the first frame uses (the
+// longer side kLongSide: 800x600 at 4:3, 800x800 at 1:1). Returns the warning to print when the
+// image's aspect ratio differs from that camera's (--size given, or a camera without one), or "".
+std::string fitSizeToCamera(RenderOptions& options, const Scene& scene);
+
+// Loads the scene, prints its warnings (unsupported features, dropped triangles, a camera's aspect
+// ratio the image does not have) to `err`, sizes the image (fitSizeToCamera), and checks the first
+// frame's camera, so that a bad camera fails before any backend is opened.
+Result<Scene> loadForRender(RenderOptions& options, std::ostream& err);
 
 // Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);

@@ -21,18 +21,22 @@
 namespace frugal {
 
 const char* renderHelp() {
-    static const std::string text = std::string(R"(usage: frugal render [SCENE] [-o FILE.png] [options]
+    static const std::string text =
+        std::string(
+            R"(usage: frugal render [SCENE] [-o FILE.png] [options]
 
 Renders SCENE (default builtin:default) offscreen and writes the colour image.
 
 outputs (each written to a temporary file and renamed, never left half-written):
   -o, --output FILE     colour PNG (default frame.png). With --frames, FILE may hold a printf
                         number such as out_%04d.png; otherwise _%04d is put before the extension
-  --depth FILE          depth: .png = 16-bit grey (top 16 of the 24 depth bits, 0 near, 65535 far),
-                        .pfm = float32 window z, exact
+  --depth FILE          depth: .png = 16-bit grey, 0 near, 65535 far (d24: the top 16 of its 24
+                        bits), with the format and planes in its text chunks; .pfm = float32
+                        window z, exact (d32f: reversed, 1 near, 0 far)
   --ids FILE            triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian
                         (R = low byte); 0 = background
-  --json FILE           metadata: scene counts, camera, backend, GL renderer, per-frame timings
+  --json FILE           metadata: scene counts, camera (the planes drawn with and the given ones,
+                        the aspect ratios, the depth format), backend, GL renderer, per-frame timings
                         (with --cull: per-frame tos, pvs and cull_ms too), and per frame the
                         state changes the backend issued, by kind ("state_changes": draws,
                         programs, meshes, textures, toggles, uniforms; software: draws only)
@@ -42,8 +46,9 @@ culling (only the triangles that may be visible are submitted; src/cull/Culling.
                         conservative never drops a triangle that owns a pixel; paper reproduces
                         paper 002 and misses some; oracle draws exactly the visible set found by an
                         id pass (a lower bound, not a shortcut). See 'frugal cull-report'.
-)" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
-R"(
+)"
+            "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
+            R"(
   --order ORDER         the draw order: submit (default), key (texture, program, mesh, as bgfx
                         sorts), or by state-change costs measured on the backend at start (about
                         a second; see 'frugal info --state-costs'): paper (paper 004's id sort over
@@ -57,7 +62,8 @@ R"(
   --reuse               temporal reuse: with the camera still, copy what static instances render
                         from a static pair (one more target) and redraw only what changed; the
                         images are the same, byte for byte. The JSON gets per-frame state counts.
-)") + reuseOptionsHelp() + "\n" + hsrOptionHelp();
+)") + reuseOptionsHelp() +
+        "\n" + hsrOptionHelp();
     return text.c_str();
 }
 
@@ -209,7 +215,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
                 << *problem << "\n";
             return kExitError;
         }
-        staticTarget = backend.createTarget(options.width, options.height);
+        staticTarget = backend.createTarget(options.width, options.height, options.camera.depthFormat);
         if (staticTarget == kNoHandle) {
             err << "error: --reuse: " << backend.name() << " could not create the static pair (" << options.width << "x"
                 << options.height << ", " << staticPairBytes(options.width, options.height) << " bytes)\n";
@@ -217,13 +223,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         }
         reuse.emplace(scene, options.width, options.height, reuseOptions.settings);
     }
-    struct StaticPair {
-        Backend& backend;
-        TargetHandle target;
-        ~StaticPair() {
-            if (target != kNoHandle) backend.destroyTarget(target);
-        }
-    } staticPair{backend, staticTarget};
+    const ScopedTarget staticPair(backend, staticTarget);
 
     const int frameCount = range.last - range.first + 1;
     nlohmann::json frames = nlohmann::json::array();
@@ -304,7 +304,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         files.add(framePath(outputs.color, frame, sequence), encodeColorPng(buffers));
         if (!outputs.depth.empty())
             files.add(framePath(outputs.depth, frame, sequence),
-                      hasExtension(outputs.depth, ".pfm") ? encodeDepthPfm(buffers) : encodeDepthPng(buffers));
+                      hasExtension(outputs.depth, ".pfm")
+                          ? encodeDepthPfm(buffers)
+                          : encodeDepthPng(buffers, DepthInfo{view.znear, view.zfar, view.perspective}));
         if (!outputs.ids.empty()) files.add(framePath(outputs.ids, frame, sequence), encodeIdPng(buffers));
         Result<bool> written = files.commit();
         if (!written) {
@@ -314,9 +316,21 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const auto t3 = Clock::now();
 
         if (frame == range.first) {
-            cameraJson = {{"source", view.source}, {"eye", vec(view.eye)}, {"forward", vec(view.forward)},
-                          {"perspective", view.perspective}, {"yfov_degrees", glm::degrees(view.yfov)},
-                          {"znear", view.znear}, {"zfar", view.zfar}};
+            cameraJson = {{"source", view.source},
+                          {"eye", vec(view.eye)},
+                          {"forward", vec(view.forward)},
+                          {"perspective", view.perspective},
+                          {"yfov_degrees", glm::degrees(view.yfov)},
+                          {"znear", view.znear},
+                          {"zfar", view.zfar},
+                          {"depth_range", depthRangeName(view.depthRange)},
+                          {"given_znear", view.givenNear},
+                          {"given_zfar", view.givenFar},
+                          {"depth_format", depthFormatName(view.depthFormat)},
+                          {"aspect_ratio", view.aspect},
+                          {"file_aspect_ratio",
+                           view.fileAspect > 0.0f ? nlohmann::json(view.fileAspect) : nlohmann::json(nullptr)},
+                          {"aspect_ratio_differs", aspectDiffers(view.fileAspect, options.width, options.height)}};
         }
         frames.push_back({{"frame", frame}, {"time", time}, {"render_ms", ms(t1 - t0)}, {"readback_ms", ms(t2 - t1)},
                           {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});

@@ -271,7 +271,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
         return kExitError;
     }
     for (TargetHandle* t : {&targets.render, &targets.statics, &targets.oracle, &targets.image, &targets.oracleWhole}) {
-        *t = backend.createTarget(width, height);
+        *t = backend.createTarget(width, height, options.camera.depthFormat);
         if (*t == kNoHandle) {
             err << "error: --size " << width << "x" << height << ": " << backend.name()
                 << " could not create the benchmark's six targets (the full render's, the reuse frame's, its static "
@@ -340,7 +340,8 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
                 case 0:
                     // t_w on the whole oracle's target (its plan overwrites all of it): a clear of the
                     // full render's own target just before it would warm that target's cache.
-                    clearMs = time([&] { backend.clear(targets.oracleWhole, whole, background, 1.0f); });
+                    clearMs = time(
+                        [&] { backend.clear(targets.oracleWhole, whole, background, farDepth(params.depthFormat)); });
                     fullMs = time([&] { renderer.renderFrame(fullTarget, width, height, params, world, background, list); });
                     break;
                 case 1:

@@ -297,7 +297,8 @@ std::optional<int> soakAllCycles(const SoakContext& c, const BackendSelection& c
 
     SoakCycles targets = cyclesOf("target");
     soakCycles(c.settings, *reference, targets, progress, [&]() -> Result<std::uint64_t> {
-        const TargetHandle target = backend.createTarget(c.options.width, c.options.height);
+        const TargetHandle target =
+            backend.createTarget(c.options.width, c.options.height, c.options.camera.depthFormat);
         if (target == kNoHandle) return Error{"createTarget failed"};
         Result<std::uint64_t> hash = cycleImage(c, drawFrame(c, backend, *session.renderer, target, time));
         backend.destroyTarget(target);

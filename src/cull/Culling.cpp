@@ -23,14 +23,15 @@ struct Plane {
     double eval(const glm::dvec3& x) const { return p.x * x.x + p.y * x.y + p.z * x.z + p.w; }
 };
 
-// The six clip planes (-w ≤ x, y, z ≤ w) of `m` (clip = m · point) in the point's space
-// (Gribb & Hartmann). A plane with no normal (the far plane of an infinite projection) is dropped
-// when it holds everywhere.
-std::vector<Plane> clipPlanes(const glm::dmat4& m) {
+// The six clip planes (-w ≤ x, y ≤ w; -w ≤ z ≤ w for D24, 0 ≤ z ≤ w for D32F's zero-to-one clip
+// space) of `m` (clip = m · point) in the point's space (Gribb & Hartmann). A plane with no normal
+// (the far plane of an infinite projection) is dropped when it holds everywhere.
+std::vector<Plane> clipPlanes(const glm::dmat4& m, DepthFormat format) {
     auto row = [&m](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
     const glm::dvec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+    const glm::dvec4 zLow = format == DepthFormat::D32F ? r2 : r3 + r2;
     std::vector<Plane> planes;
-    for (const glm::dvec4& p : {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2}) {
+    for (const glm::dvec4& p : {r3 + r0, r3 - r0, r3 + r1, r3 - r1, zLow, r3 - r2}) {
         const double n = glm::length(glm::dvec3(p));
         if (n == 0.0 && p.w >= 0.0) continue;
         planes.push_back(Plane{p});
@@ -76,9 +77,12 @@ struct InstanceView {
     float marginBase = 0.0f, marginPerD = 0.0f;
 
     InstanceView(const glm::mat4& model, const View& view) {
-        const glm::dmat4 m(model), v(view.view), p(view.projection);
+        // The frustum of the given planes (render/Camera.h): the fit moves them only where no
+        // triangle is, so every triangle is inside both or neither; paper 002's sphere tests, which
+        // look at the bounding sphere and not the triangles, keep their classes and bins this way.
+        const glm::dmat4 m(model), v(view.view), p(view.givenProjection);
         mvp = p * v * m;
-        planes = clipPlanes(mvp);
+        planes = clipPlanes(mvp, view.depthFormat);
         const glm::dmat4 toObject = glm::inverse(v * m);
         eye = toObject * (view.perspective ? glm::dvec4(0, 0, 0, 1) : glm::dvec4(0, 0, 1, 0));
         if (!view.perspective) eye = glm::dvec4(glm::normalize(glm::dvec3(eye)), 0.0);
@@ -220,7 +224,8 @@ SphereClass classifySphere(const Sphere& sphere, const glm::mat4& model, const V
     const double scale = std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
                                    glm::length(glm::dvec3(m[2]))});
     const double radius = sphere.radius * scale;
-    const std::vector<Plane> planes = clipPlanes(glm::dmat4(view.projection) * glm::dmat4(view.view));
+    const std::vector<Plane> planes =
+        clipPlanes(glm::dmat4(view.givenProjection) * glm::dmat4(view.view), view.depthFormat);
     bool whole = true;
     for (const Plane& plane : planes) {
         const double n = glm::length(glm::dvec3(plane.p));

@@ -18,6 +18,16 @@ std::string GlApi::load(const GlContext& context) {
         return std::string("GL entry point gl" #name " not found (") + contextKindName(context.kind()) + ")";
     FRUGAL_GL_FUNCTIONS(FRUGAL_GL_LOAD)
 #undef FRUGAL_GL_LOAD
+    GLint major = 0, minor = 0, extensions = 0;
+    GetIntegerv(GL_MAJOR_VERSION, &major);
+    GetIntegerv(GL_MINOR_VERSION, &minor);
+    bool clipControl = major * 10 + minor >= 45;
+    GetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+    for (GLint i = 0; i < extensions && !clipControl; ++i) {
+        const GLubyte* name = GetStringi(GL_EXTENSIONS, GLuint(i));
+        clipControl = name != nullptr && std::strcmp(reinterpret_cast<const char*>(name), "GL_ARB_clip_control") == 0;
+    }
+    if (clipControl) ClipControl = reinterpret_cast<PFNGLCLIPCONTROLPROC>(context.getProcAddress("glClipControl"));
     return {};
 }
 

@@ -24,6 +24,7 @@ class GlContext;
     X(PFNGLGETERRORPROC, GetError)                               \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
     X(PFNGLGETSTRINGPROC, GetString)                             \
+    X(PFNGLGETSTRINGIPROC, GetStringi)                           \
     X(PFNGLENABLEPROC, Enable)                                   \
     X(PFNGLDISABLEPROC, Disable)                                 \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                             \
@@ -105,6 +106,9 @@ struct GlApi {
 #define FRUGAL_GL_MEMBER(type, name) type name = nullptr;
     FRUGAL_GL_FUNCTIONS(FRUGAL_GL_MEMBER)
 #undef FRUGAL_GL_MEMBER
+    // GL 4.5 or ARB_clip_control, for D32F targets: loaded when the context has it (load() checks the
+    // version and the extension list, as get-proc-address may answer for any name), else nullptr.
+    PFNGLCLIPCONTROLPROC ClipControl = nullptr;
 
     // Loads every entry point through `context` (which must be current: some implementations only
     // answer for the current API). Returns "" on success, else one line naming the first missing

@@ -2,10 +2,16 @@
 //
 // Targets: one FBO each with three renderbuffers (renderbuffers, not textures: a target is only
 // drawn, cleared, blitted and read, never sampled): RGBA8 colour on attachment 0, R32UI triangle ids
-// on attachment 1, DEPTH_COMPONENT24 depth. A new target is cleared to transparent black, far depth
-// and id 0, so its contents are defined in both backends.
+// on attachment 1, DEPTH_COMPONENT24 or DEPTH_COMPONENT32F depth. A new target is cleared to
+// transparent black, far depth and id 0, so its contents are defined in both backends.
 //
-// Depth read-back: glReadPixels(GL_DEPTH_COMPONENT, GL_UNSIGNED_INT) returns the stored 24-bit
+// Depth formats (render/Image.h): a D24 target is drawn with GL's default clip space and GL_LESS; a
+// D32F target with glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) and GL_GREATER (reversed Z). Both
+// are context state, set when a draw goes to a target of the other format (cached, so a sequence in
+// one format sets them once). D32F needs glClipControl (GL 4.5 or ARB_clip_control): without it
+// supportsDepthFormat says no and createTarget refuses. Its read-back (GL_FLOAT) is the stored float.
+//
+// D24 read-back: glReadPixels(GL_DEPTH_COMPONENT, GL_UNSIGNED_INT) returns the stored 24-bit
 // value D as a 32-bit normalised integer, D·(2³²−1)/(2²⁴−1) = 256·D + D·255/(2²⁴−1), which is
 // 256·D plus at most 255, so >> 8 gives D back. Measured on llvmpipe (DepthReadBackIsTheStored24-
 // BitValue in tests/gl/GlBackendGLTest.cpp): clear depth 1.0 reads 0xFFFFFF, 0.0 reads 0, and 0.5
@@ -100,6 +106,7 @@ enum class DrawSet : std::uint8_t { Unknown, Color, ColorAndIds, Ids };
 struct GlTarget {
     int width = 0, height = 0;
     GLuint fbo = 0, color = 0, ids = 0, depth = 0;
+    DepthFormat depthFormat = DepthFormat::D24;
     DrawSet drawSet = DrawSet::Unknown;
     GLenum readBuffer = GL_NONE;  // GL_NONE = not known
     // false: every id is known to be 0 (see the top of the file). True until the first clear, as
@@ -224,7 +231,10 @@ public:
     int maxTargetSize() const override { return maxTargetSize_; }
     int maxTextureSize() const override { return maxTextureSize_; }
 
-    TargetHandle createTarget(int width, int height) override;
+    bool supportsDepthFormat(DepthFormat format) const override {
+        return format == DepthFormat::D24 || gl_.ClipControl != nullptr;
+    }
+    TargetHandle createTarget(int width, int height, DepthFormat format) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     TextureHandle uploadTexture(const Texture& texture) override;
@@ -337,6 +347,14 @@ private:
     // DepthMode::Off is GL_DEPTH_TEST disabled, which also stops depth writes (GL 4.5 §14.9.4); the
     // depth mask stays GL_TRUE, so clears (glClearBuffer honours the mask) keep clearing depth.
     void setDepthTest(bool on) { setEnabled(GL_DEPTH_TEST, cache_.depthTestOn, on); }
+    // The clip space and depth test of a target's format (the top of this file).
+    void setDepthConvention(DepthFormat format) {
+        if (cache_.depthFormat == int(format)) return;
+        const bool reversed = format == DepthFormat::D32F;
+        if (gl_.ClipControl) gl_.ClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+        gl_.DepthFunc(reversed ? GL_GREATER : GL_LESS);
+        cache_.depthFormat = int(format);
+    }
     void bindVao(GLuint vao) {
         if (cache_.vao == vao) return;
         gl_.BindVertexArray(vao);
@@ -382,7 +400,7 @@ private:
     GlProgram programs_[kVariantCount];
     struct {
         GLuint drawFbo = 0, readFbo = 0, vao = 0, texture = 0, program = 0;
-        int scissorOn = -1, cullOn = -1, depthTestOn = -1;
+        int scissorOn = -1, cullOn = -1, depthTestOn = -1, depthFormat = -1;
         Rect scissor{-1, -1, -1, -1};
         int viewportWidth = -1, viewportHeight = -1;
     } cache_;
@@ -433,11 +451,11 @@ std::string GlBackend::initialise() {
     // The full variant has every line of both sources: if it compiles, the others do.
     if (std::string reason = compileVariant(kTextureBit | kColorsBit | kIdsBit); !reason.empty()) return reason;
 
-    // The fixed state (Backend.h): GL_LESS with depth writes, no blending (the default), no
-    // dithering (Mesa may dither 8-bit targets otherwise), counter-clockwise front faces. The depth
-    // test itself is per draw (DepthMode, setDepthTest).
+    // The fixed state (Backend.h): depth writes, no blending (the default), no dithering (Mesa may
+    // dither 8-bit targets otherwise), counter-clockwise front faces. The depth test itself is per
+    // draw (DepthMode, setDepthTest), its function per target format (setDepthConvention).
     setDepthTest(true);
-    gl_.DepthFunc(GL_LESS);
+    setDepthConvention(DepthFormat::D24);
     gl_.DepthMask(GL_TRUE);
     gl_.Disable(GL_DITHER);
     gl_.Disable(GL_BLEND);
@@ -493,9 +511,10 @@ GlProgram* GlBackend::program(unsigned variant) {
     return &p;
 }
 
-TargetHandle GlBackend::createTarget(int width, int height) {
+TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format) {
     // Sizes outside what GL can attach or view are refused, not clamped: the caller reports them.
     if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_) return kNoHandle;
+    if (!supportsDepthFormat(format)) return kNoHandle;
     activate();
     while (gl_.GetError() != GL_NO_ERROR) {
     }
@@ -508,7 +527,9 @@ TargetHandle GlBackend::createTarget(int width, int height) {
     t.color = renderbuffers[0];
     t.ids = renderbuffers[1];
     t.depth = renderbuffers[2];
-    const GLenum formats[3] = {GL_RGBA8, GL_R32UI, GL_DEPTH_COMPONENT24};
+    t.depthFormat = format;
+    const GLenum formats[3] = {
+        GL_RGBA8, GL_R32UI, format == DepthFormat::D32F ? GLenum(GL_DEPTH_COMPONENT32F) : GLenum(GL_DEPTH_COMPONENT24)};
     for (int i = 0; i < 3; ++i) {
         gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
         gl_.RenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
@@ -526,7 +547,7 @@ TargetHandle GlBackend::createTarget(int width, int height) {
         return kNoHandle;
     }
     const TargetHandle handle = targets_.add(t);
-    clear(handle, Rect{0, 0, width, height}, glm::vec4(0.0f), 1.0f);
+    clear(handle, Rect{0, 0, width, height}, glm::vec4(0.0f), farDepth(format));
     return handle;
 }
 
@@ -736,6 +757,8 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
 void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     assert(targets_.find(target) != nullptr && "beginFrame: no such target");
     if (targets_.find(target) == nullptr) return;
+    assert(targets_.find(target)->depthFormat == frame.depthFormat &&
+           "beginFrame: the projection is for another depth format");
     frameTarget_ = target;
     frame_ = frame;
     // The lighting goes to each program on its first draw of the frame (uniforms are per program).
@@ -764,6 +787,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     setScissor(false);
     setCull(!params.doubleSided);
     setDepthTest(params.depth == DepthMode::Test);
+    setDepthConvention(target.depthFormat);
     if (texture) bindTexture(texture);
 
     const Lighting& light = frame_.lighting;
@@ -945,6 +969,7 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     assert(source != nullptr && dest != nullptr && "copy: no such target");
     if (source == nullptr || dest == nullptr || from == to) return;
     assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
+    assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
     const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
     if (r.empty() || !(color || depth || ids)) return;
     activate();
@@ -992,9 +1017,14 @@ Buffers GlBackend::readBack(TargetHandle target) {
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     readFrom(*t, GL_COLOR_ATTACHMENT1);
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
-    gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
-    // 32-bit normalised → the stored 24-bit value (see the top of this file).
-    for (std::uint32_t& d : out.depth) d >>= 8;
+    out.depthFormat = t->depthFormat;
+    if (t->depthFormat == DepthFormat::D32F) {
+        gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());  // the floats' bits
+    } else {
+        gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
+        // 32-bit normalised → the stored 24-bit value (see the top of this file).
+        for (std::uint32_t& d : out.depth) d >>= 8;
+    }
     check("readBack");
     return out;
 }

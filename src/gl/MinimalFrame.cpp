@@ -36,7 +36,7 @@ public:
     }
 
     // "" or why the frame cannot be drawn.
-    std::string initialise(int width, int height);
+    std::string initialise(int width, int height, DepthFormat format);
 
     void render(const FrameParams& frame, const std::vector<glm::mat4>& world, const glm::vec4& background) override;
     void finish() override {
@@ -63,6 +63,7 @@ private:
     GlApi gl_;
     bool loaded_ = false;
     int width_ = 0, height_ = 0;
+    DepthFormat format_ = DepthFormat::D24;
     GLuint program_ = 0, fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLint mvp_ = -1, normalMatrix_ = -1, factor_ = -1, toLight_ = -1, ambient_ = -1, diffuse_ = -1;
@@ -70,7 +71,7 @@ private:
     int cullOn_ = -1;
 };
 
-std::string Minimal::initialise(int width, int height) {
+std::string Minimal::initialise(int width, int height, DepthFormat format) {
     if (!context_->makeCurrent()) return "could not make the context current";
     if (std::string missing = gl_.load(*context_); !missing.empty()) return missing;
     loaded_ = true;
@@ -83,13 +84,17 @@ std::string Minimal::initialise(int width, int height) {
         return "a " + std::to_string(width) + "x" + std::to_string(height) + " target is beyond this context";
     width_ = width;
     height_ = height;
+    format_ = format;
+    if (format == DepthFormat::D32F && gl_.ClipControl == nullptr)
+        return "no glClipControl for d32f (GL 4.5 or ARB_clip_control)";
 
     // Colour and depth only, the FBO's default draw buffer (colour attachment 0).
     gl_.GenRenderbuffers(2, renderbuffers_);
     gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[0]);
     gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
     gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers_[1]);
-    gl_.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    gl_.RenderbufferStorage(GL_RENDERBUFFER, format == DepthFormat::D32F ? GL_DEPTH_COMPONENT32F : GL_DEPTH_COMPONENT24,
+                            width, height);
     gl_.GenFramebuffers(1, &fbo_);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
     gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers_[0]);
@@ -111,10 +116,16 @@ std::string Minimal::initialise(int width, int height) {
 
     // The backend's fixed state (GlBackend::initialise), where it differs from GL's defaults.
     gl_.Enable(GL_DEPTH_TEST);
-    gl_.DepthFunc(GL_LESS);
     gl_.Disable(GL_DITHER);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl_.ClearDepth(1.0);
+    if (format == DepthFormat::D32F) {
+        gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        gl_.DepthFunc(GL_GREATER);
+        gl_.ClearDepth(0.0);
+    } else {
+        gl_.DepthFunc(GL_LESS);
+        gl_.ClearDepth(1.0);
+    }
 
     meshes_.resize(scene_->meshes.size());
     for (std::size_t i = 0; i < scene_->meshes.size(); ++i) {
@@ -191,9 +202,14 @@ Buffers Minimal::readBack() {
     out.height = height_;
     out.rgba.resize(out.pixelCount() * 4);
     out.depth.resize(out.pixelCount());
+    out.depthFormat = format_;
     gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
-    gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
-    for (std::uint32_t& d : out.depth) d >>= 8;  // the stored 24-bit value (GlBackend.cpp)
+    if (format_ == DepthFormat::D32F) {
+        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());
+    } else {
+        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
+        for (std::uint32_t& d : out.depth) d >>= 8;  // the stored 24-bit value (GlBackend.cpp)
+    }
     return out;
 }
 
@@ -213,13 +229,14 @@ std::string minimalFrameUnsupported(const Scene& scene) {
     return {};
 }
 
-Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const Scene& scene, int width, int height) {
+Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const Scene& scene, int width, int height,
+                                                         DepthFormat format) {
     const std::string name = "minimal frame: ";
     if (std::string reason = minimalFrameUnsupported(scene); !reason.empty()) return Error{name + reason};
     Result<std::unique_ptr<GlContext>> context = createContext(kind);
     if (!context) return Error{name + context.error()};
     auto frame = std::make_unique<Minimal>(std::move(*context), scene);
-    if (std::string reason = frame->initialise(width, height); !reason.empty()) return Error{name + reason};
+    if (std::string reason = frame->initialise(width, height, format); !reason.empty()) return Error{name + reason};
     return std::unique_ptr<MinimalFrame>(std::move(frame));
 }
 

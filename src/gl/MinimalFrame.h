@@ -45,9 +45,11 @@ public:
 std::string minimalFrameUnsupported(const Scene& scene);
 
 // A context of `kind` (the EGL device platform with software devices allowed, as
-// `--backend egl-device` opens it), a width × height target, and the scene's meshes uploaded.
-// `scene` must outlive the result. Errors, "minimal frame: <why>": the context's error,
-// minimalFrameUnsupported's reason, a size the context cannot take, a shader that does not compile.
-Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const Scene& scene, int width, int height);
+// `--backend egl-device` opens it), a width × height target with depth of `format` (D32F: reversed
+// Z, as the backend draws it), and the scene's meshes uploaded. `scene` must outlive the result.
+// Errors, "minimal frame: <why>": the context's error, minimalFrameUnsupported's reason, a size the
+// context cannot take, no glClipControl for D32F, a shader that does not compile.
+Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const Scene& scene, int width, int height,
+                                                         DepthFormat format = DepthFormat::D24);
 
 }  // namespace frugal

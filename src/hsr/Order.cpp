@@ -15,15 +15,16 @@ struct WindowVertex {
     bool unbounded = false;
 };
 
-WindowVertex toWindow(const glm::mat4& mvp, const glm::vec3& position, int width, int height) {
+WindowVertex toWindow(const glm::mat4& mvp, const glm::vec3& position, int width, int height, bool reversed) {
     const glm::vec4 c = mvp * glm::vec4(position, 1.0f);
     WindowVertex v;
     if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(c.w))) {
         v.unbounded = true;
         return v;
     }
+    // D32F's clip space holds 0 ≤ z ≤ w (near at z = w), D24's −w ≤ z ≤ w.
     v.outside = std::uint8_t((c.x < -c.w ? 1 : 0) | (c.x > c.w ? 2 : 0) | (c.y < -c.w ? 4 : 0) | (c.y > c.w ? 8 : 0) |
-                             (c.z < -c.w ? 16 : 0) | (c.z > c.w ? 32 : 0));
+                             (c.z < (reversed ? 0.0f : -c.w) ? 16 : 0) | (c.z > c.w ? 32 : 0));
     if (!(c.w > 0.0f)) {
         v.unbounded = true;
         return v;
@@ -32,7 +33,8 @@ WindowVertex toWindow(const glm::mat4& mvp, const glm::vec3& position, int width
     const double band = 4.0 * (width + height) + 16.0;
     v.x = std::clamp((double(c.x) / c.w + 1.0) * 0.5 * width, -band, band);
     v.y = std::clamp((double(c.y) / c.w + 1.0) * 0.5 * height, -band, band);
-    v.z = (double(c.z) / c.w + 1.0) * 0.5;
+    // Depth as D24 orders it, 0 near and 1 far, in both formats (D32F's window z is 1 near, 0 far).
+    v.z = reversed ? 1.0 - double(c.z) / c.w : (double(c.z) / c.w + 1.0) * 0.5;
     return v;
 }
 
@@ -52,6 +54,8 @@ ScreenTriangles screenTriangles(const Scene& scene, const FrameParams& frame, co
     if (width < 1 || height < 1) return out;
     const glm::mat4 viewProjection = frame.projection * frame.view;
     const Extent whole{0, 0, width - 1, height - 1, 0.0f, 1.0f};
+    const bool reversed = frame.depthFormat == DepthFormat::D32F;
+    const double zMargin = reversed ? kZMarginF32 : kZMargin;
     const auto margin = [](double v) { return 1.0 + 1e-5 * std::abs(v); };
     std::vector<WindowVertex> vertices;
     for (const DrawCommand& command : list) {
@@ -61,7 +65,8 @@ ScreenTriangles screenTriangles(const Scene& scene, const FrameParams& frame, co
         const bool singleSided = mesh.material < 0 || !scene.materials[std::size_t(mesh.material)].doubleSided;
         const glm::mat4 mvp = viewProjection * world[std::size_t(instance.node)];
         vertices.resize(mesh.positions.size());
-        for (std::size_t i = 0; i < mesh.positions.size(); ++i) vertices[i] = toWindow(mvp, mesh.positions[i], width, height);
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+            vertices[i] = toWindow(mvp, mesh.positions[i], width, height, reversed);
         const std::uint32_t meshTriangles = std::uint32_t(mesh.triangleCount());
         for (const IndexRange& range : command.ranges) {
             const std::uint32_t first = std::min(range.firstTriangle, meshTriangles);
@@ -85,8 +90,8 @@ ScreenTriangles screenTriangles(const Scene& scene, const FrameParams& frame, co
                     e.y1 = std::min(height - 1, int(std::ceil(maxY + margin(maxY))) - 1);
                     if (e.x0 > e.x1 || e.y0 > e.y1) continue;
                     const double minZ = std::min({a.z, b.z, c.z}), maxZ = std::max({a.z, b.z, c.z});
-                    e.z0 = float(std::clamp(minZ - kZMargin, 0.0, 1.0));
-                    e.z1 = float(std::clamp(maxZ + kZMargin, 0.0, 1.0));
+                    e.z0 = float(std::clamp(minZ - zMargin, 0.0, 1.0));
+                    e.z1 = float(std::clamp(maxZ + zMargin, 0.0, 1.0));
                     depth = float((std::clamp(a.z, 0.0, 1.0) + std::clamp(b.z, 0.0, 1.0) + std::clamp(c.z, 0.0, 1.0)) / 3.0);
                 } else {
                     // Only the bounded vertices count; the others sit on the near plane (z 0).

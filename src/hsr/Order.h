@@ -16,7 +16,8 @@
 //   rasterizer that leaves out a triangle's right and top edge (ranges [0, 5] and [5, 9] then cover
 //   no common pixel column). Stated on the pixels a triangle covers, the same rule is "they share
 //   one pixel": so our boxes are pixel sets and the test (hsr/Flags.h) is inclusive.
-// - z: the closed range [z0, z1] of the vertices' window z (depth range [0, 1], smaller is nearer),
+// - z: the closed range [z0, z1] of the vertices' window z (depth range [0, 1], smaller is nearer;
+//   D32F's reversed window z is taken as 1 − z so that this holds in both formats),
 //   widened by kZMargin on each side and clamped to [0, 1]. Window z is affine over the triangle in
 //   window space, so every covered pixel's depth lies between the vertices'; clipping against the
 //   near and far planes only adds points on edges, whose z lies between the ends'. The margin covers
@@ -55,6 +56,10 @@ namespace frugal::hsr {
 
 // Two 24-bit depth steps on each side of a triangle's z range (window z units, see above).
 inline constexpr float kZMargin = 2.0f / 16777215.0f;
+// The same for D32F, whose window z (reversed, then taken as 1 − z here so that 0 is near in both
+// formats) is a float in [0, 1]: eight of its largest steps, 2⁻²⁴ each below 1, cover the depth
+// plane's float error there and below.
+inline constexpr float kZMarginF32 = 8.0f / 16777216.0f;
 
 // A triangle's extents: pixels [x0, x1] × [y0, y1], both ends included, and depth [z0, z1], closed.
 // Never empty: x0 ≤ x1, y0 ≤ y1, z0 ≤ z1.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -46,12 +47,18 @@ std::vector<std::uint8_t> flipRows(const std::uint8_t* rows, int width, int heig
     return out;
 }
 
-Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst) {
+Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst,
+                        const PngText& text) {
     if (channels < 1 || channels > 4) return Error{"PNG encoder: channels must be 1 to 4, got " + std::to_string(channels)};
     if (bitDepth != 8 && bitDepth != 16) return Error{"PNG encoder: bit depth must be 8 or 16, got " + std::to_string(bitDepth)};
     if (width < 1 || height < 1)
         return Error{"PNG encoder: width and height must be at least 1, got " + std::to_string(width) + "x" +
                      std::to_string(height)};
+    for (const auto& [keyword, value] : text) {
+        const bool printable = std::all_of(keyword.begin(), keyword.end(), [](char c) { return c >= 32 && c <= 126; });
+        if (keyword.empty() || keyword.size() > 79 || !printable || keyword.front() == ' ' || keyword.back() == ' ')
+            return Error{"PNG encoder: a tEXt keyword is 1 to 79 printable characters, got '" + keyword + "'"};
+    }
     const std::size_t sampleBytes = bitDepth / 8;
     const std::size_t stride = std::size_t(width) * channels * sampleBytes;
     // Filter type 0 (none) per row; PNG stores 16-bit samples big-endian.
@@ -91,6 +98,12 @@ Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const
     header.push_back(0);  // adaptive filtering
     header.push_back(0);  // no interlace
     chunk(out, "IHDR", header);
+    for (const auto& [keyword, value] : text) {
+        Bytes data(keyword.begin(), keyword.end());
+        data.push_back(0);
+        data.insert(data.end(), value.begin(), value.end());
+        chunk(out, "tEXt", data);
+    }
     chunk(out, "IDAT", packed);
     chunk(out, "IEND", {});
     return out;
@@ -101,11 +114,29 @@ Result<Bytes> encodeColorPng(const Buffers& b) {
     return encodePng(b.width, b.height, 4, 8, rows.data());
 }
 
-Result<Bytes> encodeDepthPng(const Buffers& b) {
+Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info) {
     std::vector<std::uint16_t> depth16(b.pixelCount());
-    for (std::size_t i = 0; i < depth16.size(); ++i) depth16[i] = std::uint16_t(b.depth[i] >> 8);
+    const bool reversed = b.depthFormat == DepthFormat::D32F;
+    for (std::size_t i = 0; i < depth16.size(); ++i)
+        depth16[i] = reversed ? std::uint16_t(std::lround((1.0 - double(b.windowDepth(i))) * 65535.0))
+                              : std::uint16_t(b.depth[i] >> 8);
     const std::vector<std::uint8_t> rows = flipRows(reinterpret_cast<const std::uint8_t*>(depth16.data()), b.width, b.height, 2);
-    return encodePng(b.width, b.height, 1, 16, rows.data());
+    PngText text;
+    if (info) {
+        const auto number = [](float v) {
+            char s[32];
+            std::snprintf(s, sizeof s, "%.9g", double(v));
+            return std::string(s);
+        };
+        text = {
+            {"depth_format", depthFormatName(b.depthFormat)},
+            {"depth_znear", number(info->znear)},
+            {"depth_zfar", info->zfar > 0.0f ? number(info->zfar) : std::string("inf")},
+            {"depth_projection", info->perspective ? "perspective" : "orthographic"},
+            {"depth_encoding", reversed ? "(1 - window z) * 65535, rounded: 0 near, 65535 far (window z 1 near, 0 far)"
+                                        : "the top 16 bits of the 24-bit window z: 0 near, 65535 far"}};
+    }
+    return encodePng(b.width, b.height, 1, 16, rows.data(), text);
 }
 
 Bytes encodeDepthPfm(const Buffers& b) {
@@ -113,8 +144,8 @@ Bytes encodeDepthPfm(const Buffers& b) {
     const std::string header = "Pf\n" + std::to_string(b.width) + " " + std::to_string(b.height) + "\n-1.0\n";
     Bytes out(header.begin(), header.end());
     out.reserve(out.size() + b.pixelCount() * 4);
-    for (std::uint32_t d : b.depth) {
-        const float z = float(double(d) / double(kDepthMax));
+    for (std::size_t i = 0; i < b.depth.size(); ++i) {
+        const float z = b.windowDepth(i);
         std::uint8_t bytes[4];
         std::memcpy(bytes, &z, 4);
         out.insert(out.end(), bytes, bytes + 4);

@@ -2,8 +2,11 @@
 // files are top row first as every viewer expects.
 //
 // - colour: 8-bit RGBA PNG;
-// - depth: 16-bit greyscale PNG holding the top 16 bits of the 24-bit depth (0 near, 65535 far), or
-//   PFM (portable float map, window z as float32) for the exact values;
+// - depth: 16-bit greyscale PNG, 0 near and 65535 far (D24: the top 16 bits of the 24-bit value;
+//   D32F: (1 − window z) · 65535 rounded, its window z being reversed), with what it was drawn with
+//   in tEXt chunks (DepthInfo); or PFM (portable float map, window z as float32) for the exact values:
+//   D24's value / 16777215, D32F's stored float (reversed: 1 near, 0 far). PFM has no room for text:
+//   the render JSON says which planes and format a sequence used;
 // - triangle ids: 8-bit RGBA PNG whose bytes are the 32-bit id, little-endian (R = bits 0-7,
 //   G = 8-15, B = 16-23, A = 24-31); 0 is the background.
 // Files are written atomically: to a temporary file in the same folder, then renamed, so an
@@ -11,24 +14,39 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "render/Image.h"
 #include "base/Result.h"
+#include "render/Image.h"
 
 namespace frugal {
 
 using Bytes = std::vector<std::uint8_t>;
 
+// A PNG tEXt chunk: keyword (1–79 printable Latin-1 characters) and text.
+using PngText = std::vector<std::pair<std::string, std::string>>;
+
 // PNG encoder (zlib). `channels` 1..4, `bitDepth` 8 or 16 (16-bit samples given as uint16 in host
-// order), rows given top row first, 1 to 2^31 − 1 pixels a side (the PNG limit). Errors:
-// "PNG encoder: <what>, got <value>" for a format PNG cannot hold, or zlib's failure.
-Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst);
+// order), rows given top row first, 1 to 2^31 − 1 pixels a side (the PNG limit), `text` as tEXt
+// chunks after the header. Errors: "PNG encoder: <what>, got <value>" for a format PNG cannot hold or
+// a keyword PNG does not allow, or zlib's failure.
+Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst,
+                        const PngText& text = {});
+
+// How a depth image was drawn: its format, planes (zfar 0 = infinite) and projection. A depth PNG
+// carries them as the tEXt chunks depth_format ("d24", "d32f"), depth_znear, depth_zfar ("inf" when
+// infinite), depth_projection ("perspective", "orthographic") and depth_encoding (the line above).
+struct DepthInfo {
+    float znear = 0.0f, zfar = 0.0f;
+    bool perspective = true;
+};
 
 Result<Bytes> encodeColorPng(const Buffers& buffers);
-Result<Bytes> encodeDepthPng(const Buffers& buffers);
+Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt);
 Bytes encodeDepthPfm(const Buffers& buffers);
 Result<Bytes> encodeIdPng(const Buffers& buffers);
 

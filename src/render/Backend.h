@@ -2,10 +2,12 @@
 // filament backend). Implemented by the GL backend (src/gl/) and the software reference
 // (src/software/). Plans made by cull/ and reuse/ are executed through this interface only.
 //
-// Render target: colour RGBA8 + depth 24-bit + triangle id R32UI, same formats in every backend.
-// Depth test GL_LESS (or none: DepthMode), depth range [0,1], no blending. Draws are executed in call order, and within a
-// draw call the ranges in the order given, the triangles of a range in index-buffer order: that is
-// the documented order in which depth ties resolve (the first triangle drawn keeps the pixel).
+// Render target: colour RGBA8 + depth (24-bit, or 32-bit float with reversed Z: DepthFormat,
+// render/Image.h) + triangle id R32UI, same formats in every backend. Depth test "nearer passes"
+// (GL_LESS for D24, GL_GREATER for D32F; or none: DepthMode), depth range [0,1], no blending. Draws
+// are executed in call order, and within a draw call the ranges in the order given, the triangles of
+// a range in index-buffer order: that is the documented order in which depth ties resolve (the first
+// triangle drawn keeps the pixel).
 #pragma once
 
 #include <cstdint>
@@ -47,12 +49,15 @@ struct Lighting {
 struct FrameParams {
     glm::mat4 view{1.0f};
     glm::mat4 projection{1.0f};
+    // The projection's depth convention (render/Image.h); the target drawn into must have this format.
+    DepthFormat depthFormat = DepthFormat::D24;
     Lighting lighting;
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
 };
 
 // How a draw uses the depth buffer.
-//   Test: the z-buffer: a fragment passes when its depth is less than the stored one, and writes it.
+//   Test: the z-buffer: a fragment passes when it is nearer than the stored depth (less for D24,
+//         greater for D32F), and writes it.
 //   Off:  no depth read and no depth write: every covered pixel takes the fragment, in draw order
 //         (the painter's method; hidden-surface modes of paper 003, src/hsr/).
 enum class DepthMode : std::uint8_t { Test, Off };
@@ -110,8 +115,12 @@ public:
     virtual int maxTargetSize() const = 0;
     // Largest width or height uploadTexture accepts (GL_MAX_TEXTURE_SIZE).
     virtual int maxTextureSize() const = 0;
-    // kNoHandle when width or height is < 1 or > maxTargetSize(), or the allocation fails.
-    virtual TargetHandle createTarget(int width, int height) = 0;
+    // Whether createTarget can make targets of `format` (D32F needs glClipControl: GL 4.5 or
+    // ARB_clip_control).
+    virtual bool supportsDepthFormat(DepthFormat format) const = 0;
+    // A target cleared to transparent black, the far depth of `format` and id 0. kNoHandle when width
+    // or height is < 1 or > maxTargetSize(), the format is not supported, or the allocation fails.
+    virtual TargetHandle createTarget(int width, int height, DepthFormat format = DepthFormat::D24) = 0;
     virtual void destroyTarget(TargetHandle target) = 0;
 
     virtual MeshHandle uploadMesh(const Mesh& mesh) = 0;
@@ -122,6 +131,7 @@ public:
     virtual void releaseTexture(TextureHandle texture) = 0;
 
     // Starts drawing into `target` with the given camera and light; following draws use them.
+    // frame.depthFormat must be the target's format.
     virtual void beginFrame(TargetHandle target, const FrameParams& frame) = 0;
     virtual void draw(const DrawParams& params, std::span<const IndexRange> ranges) = 0;
     // The same mesh, texture, faces and depth mode (`params`) drawn once per instance, in instance
@@ -130,10 +140,10 @@ public:
     // backend issues one instanced draw; this default (the software backend's) calls draw().
     virtual void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range);
 
-    // Clears a rectangle of the target: colour to `color`, depth to `depth` (window z), ids to 0.
-    virtual void clear(TargetHandle target, const Rect& rect, const glm::vec4& color,
-                       float depth = 1.0f) = 0;
-    // Copies a rectangle (same position) from one target to another of the same size.
+    // Clears a rectangle of the target: colour to `color`, depth to `depth` (window z, clamped to
+    // [0, 1]), ids to 0. farDepth(format) is the far plane.
+    virtual void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) = 0;
+    // Copies a rectangle (same position) from one target to another of the same size and depth format.
     virtual void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
                       bool depth, bool ids) = 0;
     // Reads the whole target back. Waits for the rendering to finish.

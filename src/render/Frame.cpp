@@ -17,6 +17,7 @@ Result<FrameSetup> setUpFrame(const Scene& scene, const CameraSpec& camera, doub
     setup.view = *view;
     setup.params.view = view->view;
     setup.params.projection = view->projection;
+    setup.params.depthFormat = view->depthFormat;
     setup.params.writeIds = writeIds;
     return setup;
 }

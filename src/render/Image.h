@@ -2,18 +2,41 @@
 //
 // Window convention: row 0 is the bottom row (GL window origin bottom-left). Images are flipped once,
 // when written to a file (see io/ImageIO.h).
-// Depth: 24-bit unsigned integers, 0 = near, 0xFFFFFF = far (window z in [0,1] × 16777215); both
-// backends render into a 24-bit depth buffer, so values compare exactly.
+// Depth, in one of two formats (DepthFormat); both backends store the same values, so they compare
+// exactly.
 // Triangle ids: 32-bit, 0 = background (see scene/Scene.h for how ids are formed).
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace frugal {
 
 inline constexpr std::uint32_t kDepthMax = 0xFFFFFFu;
+
+// The depth buffer's format, and with it the depth convention of the projection that draws into it.
+//   D24:  24-bit unsigned normalised; GL's default clip space (clip z in [-w, w]), window z 0 at the
+//         near plane and 1 at the far one, test GL_LESS, cleared to 1. A value is window z × 16777215.
+//         Its steps are even in window z, which crowds them at the near plane: at distance d between
+//         planes n and f it separates depths about d²·(f − n)/(f·n·2²⁴) apart.
+//   D32F: 32-bit float with reversed Z: glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) (clip z in
+//         [0, w]), window z 1 at the near plane and 0 at the far one, test GL_GREATER, cleared to 0.
+//         Window z falls about as n/d, and a float's steps shrink with its value, so the two cancel:
+//         it separates depths about 2⁻²³·d apart at any distance and any near/far ratio.
+enum class DepthFormat : std::uint8_t { D24, D32F };
+
+inline const char* depthFormatName(DepthFormat format) { return format == DepthFormat::D32F ? "d32f" : "d24"; }
+inline std::optional<DepthFormat> parseDepthFormat(std::string_view name) {
+    if (name == "d24") return DepthFormat::D24;
+    if (name == "d32f") return DepthFormat::D32F;
+    return std::nullopt;
+}
+// Window z of the far plane: what a target of `format` is cleared to.
+inline float farDepth(DepthFormat format) { return format == DepthFormat::D32F ? 0.0f : 1.0f; }
 
 struct Rect {
     int x = 0, y = 0, width = 0, height = 0;  // window coordinates, origin bottom-left
@@ -32,10 +55,18 @@ struct Buffers {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba;     // 4 bytes a pixel
-    std::vector<std::uint32_t> depth;   // 24-bit values
+    // D24: the 24-bit values. D32F: the floats' bits; window z is never negative, so these order as
+    // the floats do and their difference counts the floats between two values (ULPs).
+    std::vector<std::uint32_t> depth;
     std::vector<std::uint32_t> ids;     // triangle ids
+    DepthFormat depthFormat = DepthFormat::D24;
 
     std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+    // Window z of pixel i, in [0, 1] (D24: exactly the stored value / 16777215, rounded to float).
+    float windowDepth(std::size_t i) const {
+        return depthFormat == DepthFormat::D32F ? std::bit_cast<float>(depth[i])
+                                                : float(double(depth[i]) / double(kDepthMax));
+    }
 };
 
 }  // namespace frugal

@@ -117,7 +117,7 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
 
 void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                                 const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list) {
-    backend_->clear(target, Rect{0, 0, width, height}, background, 1.0f);
+    backend_->clear(target, Rect{0, 0, width, height}, background, farDepth(frame.depthFormat));
     backend_->beginFrame(target, frame);
     draw(list, world);
 }
@@ -129,7 +129,8 @@ void SceneRenderer::execute(const FramePlan& plan, TargetHandle target, TargetHa
     for (const PlanStep& step : plan) {
         switch (step.op) {
         case PlanStep::Op::Clear:
-            for (const Rect& rect : step.rects) backend_->clear(handle(step.to), rect, background, 1.0f);
+            for (const Rect& rect : step.rects)
+                backend_->clear(handle(step.to), rect, background, farDepth(frame.depthFormat));
             break;
         case PlanStep::Op::Copy:
             // Ids only when the frame writes them: otherwise both targets hold the zeros of their last

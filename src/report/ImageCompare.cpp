@@ -66,6 +66,9 @@ Result<ImageComparison> compareBuffers(const Buffers& actual, const Buffers& ref
                      sizeText(reference.width, reference.height)};
     for (const std::string& problem : {checkLengths(actual, "actual"), checkLengths(reference, "reference")})
         if (!problem.empty()) return Error{problem};
+    if (!actual.depth.empty() && !reference.depth.empty() && actual.depthFormat != reference.depthFormat)
+        return Error{std::string("depth formats differ: actual ") + depthFormatName(actual.depthFormat) +
+                     ", reference " + depthFormatName(reference.depthFormat)};
 
     const std::size_t n = actual.pixelCount();
     const int tolerance = options.tolerance;
@@ -86,7 +89,10 @@ Result<ImageComparison> compareBuffers(const Buffers& actual, const Buffers& ref
     } else if (options.background) {
         c.coverageSource = ImageComparison::CoverageSource::BackgroundColor;
     }
-    if (depth) c.depth = ImageComparison::Depth{};
+    if (depth) {
+        c.depth = ImageComparison::Depth{};
+        c.depth->format = actual.depthFormat;
+    }
 
     const std::uint8_t* bg = options.background ? options.background->data() : nullptr;
     auto isBackgroundColor = [&](const std::uint8_t* p) {
@@ -231,7 +237,8 @@ std::string comparisonJson(const ImageComparison& c) {
     }
     nlohmann::ordered_json depth = nullptr;
     if (c.depth) {
-        depth = {{"max_difference_lsb", c.depth->maxDifference},
+        depth = {{"format", depthFormatName(c.depth->format)},
+                 {"max_difference_lsb", c.depth->maxDifference},
                  {"differing_pixels", c.depth->differingPixels},
                  {"compared_pixels", c.depth->comparedPixels},
                  {"worst_pixel", positionJson(c.depth->worstPixel)}};
@@ -280,7 +287,8 @@ std::string comparisonSummary(const ImageComparison& c, const std::string& actua
     }
     if (c.idMismatches) s += indent + "triangle-id mismatches: " + std::to_string(*c.idMismatches) + "\n";
     if (c.depth) {
-        s += indent + "depth: largest difference " + std::to_string(c.depth->maxDifference) + " LSB (24-bit), " +
+        s += indent + "depth: largest difference " + std::to_string(c.depth->maxDifference) +
+             (c.depth->format == DepthFormat::D32F ? " ULP (32-bit float), " : " LSB (24-bit), ") +
              std::to_string(c.depth->differingPixels) + " of " + std::to_string(c.depth->comparedPixels) +
              " pixels differ";
         if (c.depth->worstPixel)

@@ -63,7 +63,9 @@ struct ImageComparison {
     std::optional<std::size_t> idMismatches;  // when both sides have ids
 
     struct Depth {
-        std::uint32_t maxDifference = 0;   // 24-bit LSB
+        DepthFormat format = DepthFormat::D24;
+        // D24: 24-bit steps (LSB). D32F: floats between the two values (ULP; Buffers' depth bits).
+        std::uint32_t maxDifference = 0;
         std::size_t differingPixels = 0;   // pixels compared whose depth differs at all
         std::size_t comparedPixels = 0;
         std::optional<PixelPosition> worstPixel;
@@ -101,8 +103,8 @@ Result<Bytes> encodeMaskPng(const ImageComparison& comparison);
 // The metrics as a JSON object (keys: size, pixels, tolerance, passed, failing_pixels,
 // failing_fraction, max_channel_difference, worst_pixel, identical, psnr_db (null when infinite),
 // coverage {source, mismatches, covered_only_in_actual, covered_only_in_reference},
-// id_mismatches, depth {max_difference_lsb, differing_pixels, compared_pixels, worst_pixel}; absent
-// measurements are null).
+// id_mismatches, depth {format, max_difference_lsb (ULP for d32f), differing_pixels, compared_pixels, worst_pixel};
+// absent measurements are null).
 std::string comparisonJson(const ImageComparison& comparison);
 
 // The metrics for people, a few lines each indented by `indent`, ending in a newline. `actual` and

@@ -16,6 +16,7 @@ glm::mat4 localMatrix(const Node& node) {
 
 void Scene::buildInstances() {
     instances.clear();
+    envelope = computeEnvelope();
     std::uint32_t nextId = 1;
     for (int n = 0; n < int(nodes.size()); ++n) {
         for (int mesh : nodes[n].meshes) {
@@ -139,6 +140,160 @@ Bounds Scene::bounds(double time) const {
         for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
     }
     return bounds;
+}
+
+namespace {
+
+// A box in double, for the envelope's arithmetic.
+struct Box {
+    glm::dvec3 min{INFINITY}, max{-INFINITY};
+    bool empty() const { return min.x > max.x; }
+    void add(const glm::dvec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void add(const Box& b) {
+        if (!b.empty()) add(b.min), add(b.max);
+    }
+    glm::dvec3 center() const { return (min + max) * 0.5; }
+    double halfDiagonal() const { return glm::length(max - min) * 0.5; }
+};
+
+Box transformed(const glm::mat4& m, const Box& b) {
+    Box out;
+    if (b.empty()) return out;
+    const glm::dmat4 d(m);
+    for (int corner = 0; corner < 8; ++corner)
+        out.add(glm::dvec3(d * glm::dvec4(corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y,
+                                          corner & 4 ? b.max.z : b.min.z, 1.0)));
+    return out;
+}
+
+// Every value a channel takes at any time lies in the box of its keys: linear and step pieces stay
+// between their keys (a slerp's are unit quaternions, not boxed here), a cubic Hermite piece inside
+// its Bezier control points p0, p0 + m0/3, p1 - m1/3, p1 (m scaled by the key interval, glTF
+// appendix C), and times outside the keys hold the first or last value.
+void addChannelValues(const AnimChannel& channel, Box& box) {
+    if (channel.interpolation != Interp::CubicSpline) {
+        for (const glm::vec4& v : channel.values) box.add(glm::dvec3(v));
+        return;
+    }
+    const std::size_t keys = channel.times.size();
+    for (std::size_t k = 0; k < keys && 3 * k + 2 < channel.values.size(); ++k) {
+        const glm::dvec3 p(channel.values[3 * k + 1]);
+        box.add(p);
+        if (k + 1 < keys) {
+            const double dt = double(channel.times[k + 1]) - double(channel.times[k]);
+            box.add(p + glm::dvec3(channel.values[3 * k + 2]) * (dt / 3.0));
+            box.add(glm::dvec3(channel.values[3 * (k + 1) + 1]) - glm::dvec3(channel.values[3 * (k + 1)]) * (dt / 3.0));
+        }
+    }
+}
+
+// What the animations can do to one node's local transform T·R·S.
+struct NodeMotion {
+    bool animated = false, rotates = false;
+    Box translation, scale;  // the values each takes (the node's own when not animated)
+};
+
+// The box, in the parent's frame, of `content` (in the node's frame) under every local transform
+// the node can take: the content becomes a ball (centre c, radius r), scaling moves c within a box
+// and grows r by the largest scale, a rotation turns the ball about the origin (any rotation: the
+// ball about the origin that holds it), and the translations move it within their box.
+Box sweep(const Node& node, const NodeMotion& motion, const Box& content) {
+    if (content.empty()) return content;
+    const glm::dvec3 c = content.center();
+    const double r = content.halfDiagonal();
+    Box scaled;
+    double largestScale = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double a = c[axis] * motion.scale.min[axis], b = c[axis] * motion.scale.max[axis];
+        scaled.min[axis] = std::min(a, b);
+        scaled.max[axis] = std::max(a, b);
+        largestScale = std::max({largestScale, std::abs(motion.scale.min[axis]), std::abs(motion.scale.max[axis])});
+    }
+    glm::dvec3 centre = scaled.center();
+    double radius = r * largestScale + scaled.halfDiagonal();
+    if (motion.rotates) {
+        radius += glm::length(centre);
+        centre = glm::dvec3(0.0);
+    } else {
+        centre = glm::dmat3(glm::mat3_cast(node.rotation)) * centre;
+    }
+    centre += motion.translation.center();
+    radius += motion.translation.halfDiagonal();
+    Box out;
+    out.add(centre - glm::dvec3(radius));
+    out.add(centre + glm::dvec3(radius));
+    return out;
+}
+
+}  // namespace
+
+Bounds Scene::computeEnvelope() const {
+    const std::size_t n = nodes.size();
+    std::vector<NodeMotion> motion(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        motion[i].translation.add(glm::dvec3(nodes[i].translation));
+        motion[i].scale.add(glm::dvec3(nodes[i].scale));
+    }
+    // A channel replaces the node's own value at every time (worldTransforms), so an animated path
+    // takes only its channels' values.
+    std::vector<std::uint8_t> replaced(n * 3, 0);
+    for (const Animation& animation : animations)
+        for (const AnimChannel& channel : animation.channels) {
+            if (channel.node < 0 || channel.node >= int(n) || channel.values.empty()) continue;
+            NodeMotion& m = motion[std::size_t(channel.node)];
+            m.animated = true;
+            const int path = int(channel.path);
+            if (channel.path == AnimPath::Rotation) {
+                m.rotates = true;
+                continue;
+            }
+            Box& box = channel.path == AnimPath::Translation ? m.translation : m.scale;
+            if (!replaced[std::size_t(channel.node) * 3 + path]) box = Box{};
+            replaced[std::size_t(channel.node) * 3 + path] = 1;
+            addChannelValues(channel, box);
+        }
+
+    // A non-finite vertex draws nothing (its triangles' clip distances are not finite): left out.
+    std::vector<Box> meshBoxes(meshes.size());
+    for (std::size_t m = 0; m < meshes.size(); ++m)
+        for (std::uint32_t index : meshes[m].indices) {
+            const glm::vec3& p = meshes[m].positions[index];
+            if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) meshBoxes[m].add(glm::dvec3(p));
+        }
+
+    // Parents before children (loaders reject cycles), then each node's content, children first.
+    std::vector<int> order, stack;
+    for (int i = 0; i < int(n); ++i)
+        if (nodes[i].parent < 0) stack.push_back(i);
+    while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        order.push_back(i);
+        for (int child : nodes[i].children) stack.push_back(child);
+    }
+    std::vector<Box> content(n), swept(n);
+    Box world;
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const std::size_t i = std::size_t(*it);
+        for (int mesh : nodes[i].meshes) content[i].add(meshBoxes[std::size_t(mesh)]);
+        for (int child : nodes[i].children) content[i].add(swept[std::size_t(child)]);
+        swept[i] = motion[i].animated && !nodes[i].hasMatrix ? sweep(nodes[i], motion[i], content[i])
+                                                             : transformed(localMatrix(nodes[i]), content[i]);
+        if (nodes[i].parent < 0) world.add(swept[i]);
+    }
+    Bounds out;
+    const bool finite =
+        std::isfinite(world.min.x + world.min.y + world.min.z + world.max.x + world.max.y + world.max.z);
+    if (world.empty() || !finite) return out;  // nothing drawn, or transforms beyond float: no fit
+    // Rounded outward to float.
+    for (int axis = 0; axis < 3; ++axis) {
+        out.min[axis] = std::nextafter(float(world.min[axis]), -INFINITY);
+        out.max[axis] = std::nextafter(float(world.max[axis]), INFINITY);
+    }
+    return out;
 }
 
 }  // namespace frugal

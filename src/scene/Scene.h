@@ -86,6 +86,12 @@ struct Camera {
     float znear = 0.01f;
     float zfar = 0.0f;   // 0 = infinite (perspective only)
     float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
+
+    // The aspect ratio (width / height) the file gives: aspectRatio, or xmag / ymag; 0 = none.
+    float fileAspect() const {
+        if (perspective) return aspect;
+        return ymag != 0.0f ? xmag / ymag : 0.0f;
+    }
 };
 
 enum class AnimPath : std::uint8_t { Translation, Rotation, Scale };
@@ -130,14 +136,22 @@ struct Scene {
     std::vector<std::string> warnings;
     // Frames per second the scene's animation is meant to be sampled at (builtins set it).
     double fps = 30.0;
+    // A world-space box that holds every instance's triangles at every time, animations included:
+    // conservative, not tight, where something moves (a part that rotates counts as the ball it can
+    // sweep; computeEnvelope). Set by buildInstances(); empty when nothing is drawn. Depth ranges
+    // are fitted to it (render/Camera.h), so a still camera keeps one projection while parts move.
+    Bounds envelope;
 
-    // Rebuilds `instances` (and their ids) from the node hierarchy. Loaders call it last.
+    // Rebuilds `instances` (and their ids) from the node hierarchy, and `envelope`. Loaders call it
+    // last, and so must anything that changes nodes, meshes or animations afterwards.
     void buildInstances();
     std::size_t triangleCount() const;  // over instances
     double duration() const;            // last key time of any animation, 0 if static
     // World matrix of every node at `time` seconds (animations sampled, hierarchy applied).
     std::vector<glm::mat4> worldTransforms(double time) const;
     Bounds bounds(double time) const;
+    // The envelope as defined above, computed from the meshes, nodes and animations.
+    Bounds computeEnvelope() const;
 };
 
 // Samples one channel at `time` (clamped to its key range). Rotations are slerped (Linear) or

@@ -33,9 +33,10 @@ struct VertexJob {
 // eight-pixel span never reaches into the next row).
 struct TargetView {
     std::uint32_t* color = nullptr;  // RGBA8, R in the low byte
-    std::uint32_t* depth = nullptr;  // 24-bit values
+    std::uint32_t* depth = nullptr;  // 24-bit values, or D32F's float bits
     std::uint32_t* ids = nullptr;
     int width = 0, height = 0, stride = 0;
+    DepthFormat depthFormat = DepthFormat::D24;
 };
 
 inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;

@@ -19,13 +19,13 @@ void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
         glm::vec4 c;
         for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
         job.clip[i] = c;
-        job.mask[i] = std::uint8_t(clipMask(c));
+        job.mask[i] = std::uint8_t(clipMask(c, vp.halfZ));
 
         SetupVertex& v = job.out[i];
         const float oow = 1.0f / c.w;
         v.x = simd::fmas(c.x * oow, vp.sx, vp.tx);
         v.y = simd::fmas(c.y * oow, vp.sy, vp.ty);
-        v.z = simd::fmas(c.z * oow, 0.5f, 0.5f);
+        v.z = simd::fmas(c.z * oow, vp.sz, vp.tz);
         v.oow = oow;
 
         const glm::vec3 n = job.normals ? job.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -59,6 +59,7 @@ void raster(const Triangle& t, TileState& tile) {
     const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), zscale = simd::splat(16777215.0f);
     const I8 lane = simd::ramp(0);
     const std::uint32_t stride = std::uint32_t(tile.target.stride);
+    const bool reversed = tile.target.depthFormat == DepthFormat::D32F;
     std::uint32_t myIndex = kNoWinner;
 
     for (int by = y0 & ~7; by <= y1; by += 8) {
@@ -101,10 +102,19 @@ void raster(const Triangle& t, TileState& tile) {
                 I8 pass = mask;
                 if (t.depthTest) {  // DepthMode::Off skips the depth plane, the read and the write
                     F8 z = simd::fma(dzdy, simd::splat(float(y)), simd::fma(dzdx, pxf, z0));
-                    z = simd::min(simd::max(z, zero), one);
-                    const I8 zi = simd::toIntRound(z * zscale);
                     std::uint32_t* depthRow = tile.target.depth + std::size_t(y) * stride + bx;
-                    pass = mask & simd::gt(simd::loadi(depthRow), zi);
+                    I8 zi;
+                    if (reversed) {
+                        // D32F: lp_build_depth_clamp's min(z, 1) then max(·, 0), minps/maxps taking
+                        // the second operand on a tie or NaN, so −0 and NaN never get through and
+                        // the bits order as the floats do: GL_GREATER is an integer ">".
+                        zi = simd::bits(simd::max(simd::min(z, one), zero));
+                        pass = mask & simd::gt(zi, simd::loadi(depthRow));
+                    } else {
+                        z = simd::min(simd::max(z, zero), one);
+                        zi = simd::toIntRound(z * zscale);
+                        pass = mask & simd::gt(simd::loadi(depthRow), zi);
+                    }
                     if (simd::laneBits(pass) == 0) continue;
                     simd::storeMasked(depthRow, pass, zi);
                 }

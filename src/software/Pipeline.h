@@ -38,6 +38,7 @@ struct DrawInput {
     DrawShading shading;
     std::uint32_t firstId = 1;
     bool doubleSided = false;
+    DepthFormat depthFormat = DepthFormat::D24;  // the target's
 };
 
 class Pipeline {

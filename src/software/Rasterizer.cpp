@@ -14,7 +14,7 @@
 
 namespace frugal::sw {
 
-Viewport makeViewport(int width, int height) {
+Viewport makeViewport(int width, int height, DepthFormat format) {
     Viewport v;
     v.width = width;
     v.height = height;
@@ -23,17 +23,22 @@ Viewport makeViewport(int width, int height) {
     v.tx = float(width) * 0.5f;
     v.sy = float(height) * 0.5f;
     v.ty = float(height) * 0.5f;
+    if (format == DepthFormat::D32F) {  // clip_halfz: scale f − n, offset n
+        v.sz = 1.0f;
+        v.tz = 0.0f;
+        v.halfZ = true;
+    }
     return v;
 }
 
-unsigned clipMask(const glm::vec4& c) {
+unsigned clipMask(const glm::vec4& c, bool halfZ) {
     // Unordered comparisons: "x > w" is !(x <= w), so a NaN sets the bit.
     unsigned mask = 0;
     if (!(c.x <= c.w)) mask |= 1u;
     if (!(c.x + c.w >= 0.0f)) mask |= 2u;
     if (!(c.y <= c.w)) mask |= 4u;
     if (!(c.y + c.w >= 0.0f)) mask |= 8u;
-    if (!(c.z + c.w >= 0.0f)) mask |= 16u;
+    if (!(halfZ ? c.z >= 0.0f : c.z + c.w >= 0.0f)) mask |= 16u;
     if (!(c.z <= c.w)) mask |= 32u;
     return mask;
 }
@@ -43,7 +48,7 @@ SetupVertex clippedWindowVertex(const glm::vec4& clip, const Viewport& viewport)
     const float oow = 1.0f / clip.w;
     v.x = clip.x * oow * viewport.sx + viewport.tx;
     v.y = clip.y * oow * viewport.sy + viewport.ty;
-    v.z = clip.z * oow * 0.5f + 0.5f;
+    v.z = clip.z * oow * viewport.sz + viewport.tz;
     v.oow = oow;
     return v;
 }

@@ -17,7 +17,14 @@
 // Mesa's sources read: lp_setup_tri.c, lp_rast.h, lp_state_setup.c, draw_pipe_clip.c,
 // draw_cliptest_tmp.h, draw_pipe_cull.c, draw_pt_vsplit.c. Not covered, because frugal never uses
 // them: window-system framebuffers (flipped, bottom_edge_rule = 1), scissored draws, MSAA, polygon
-// offset, depth clamp, glClipControl, a viewport origin other than (0, 0).
+// offset, depth clamp, a viewport origin other than (0, 0).
+//
+// Two depth formats (render/Image.h). D24 is what the rules below describe. D32F is drawn with
+// glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) and GL_GREATER into a 32-bit float buffer (reversed
+// Z), and differs in exactly four places, each marked "D32F" below: the clip mask's bit 4 is z < 0,
+// the near clip plane is (0, 0, 1, 0), the viewport's depth scale and offset are 1 and 0 instead of
+// 0.5 and 0.5, and the depth is stored as the clamped float itself, compared with ">". Everything
+// else, the depth plane equation included, is the same arithmetic.
 //
 // Conventions. Window coordinates y-up, origin bottom-left; pixel (px, py) has its centre at
 // (px + 0.5, py + 0.5) and is tested there only (no multisampling). Depth is window z in [0, 1] stored
@@ -29,15 +36,17 @@
 //    for llvmpipe. Found by experiment: of eight orderings, fused and unfused, only this one gives
 //    llvmpipe's depth bit for bit (coverage cannot tell them apart at 1/256 pixel). The normal matrix
 //    (mat3) is applied the same way.
-//    Clip mask (generate_clipmask): bit 0 x > w, 1 x + w < 0, 2 y > w, 3 y + w < 0, 4 z + w < 0,
-//    5 z > w, as LLVM unordered compares (a NaN sets the bit).
+//    Clip mask (generate_clipmask): bit 0 x > w, 1 x + w < 0, 2 y > w, 3 y + w < 0, 4 z + w < 0
+//    (D32F: z < 0, clip_halfz), 5 z > w, as LLVM unordered compares (a NaN sets the bit).
 //    Viewport (generate_viewport): oow = 1 / w (a true division); xw = fma(x·oow, W/2, W/2),
-//    yw = fma(y·oow, H/2, H/2), zw = fma(z·oow, 0.5, 0.5). lp_build_fmuladd emits llvm.fmuladd, which
+//    yw = fma(y·oow, H/2, H/2), zw = fma(z·oow, 0.5, 0.5) (D32F: fma(z·oow, 1, 0), the zero-to-one
+//    viewport of depth range [0, 1]). lp_build_fmuladd emits llvm.fmuladd, which
 //    LLVM fuses when the host CPU has FMA (and it compiles for the host): fused or not is decided
 //    from the CPU at run time, like llvmpipe.
 // 2. Clipping (draw_pipe_clip.c, do_clip_tri). A triangle whose three masks OR to 0 is drawn as is;
 //    AND ≠ 0 drops it; otherwise it is clipped against the planes whose bit is set, in bit order,
-//    against (−1,0,0,1), (1,0,0,1), (0,−1,0,1), (0,1,0,1), (0,0,1,1), (0,0,−1,1): no guard band,
+//    against (−1,0,0,1), (1,0,0,1), (0,−1,0,1), (0,1,0,1), (0,0,1,1) (D32F: (0,0,1,0)), (0,0,−1,1):
+//    no guard band,
 //    x and y are clipped too. dp = ((x·a + y·b) + z·c) + w·d; a non-finite dp drops the triangle;
 //    dp ≥ 0 is inside. The walk starts at vertex 0 and emits [prev if inside][intersection if the
 //    sign changes] for each edge prev → cur, so the output list starts with vertex 0 when it is
@@ -73,7 +82,8 @@
 //    lp_build_clamped_float_to_unsigned_norm with 24 = mantissa + 1 bits): at pixel (px, py),
 //    z = fma(dzdy, py, fma(dzdx, px, a)) with px, py the integer pixel coordinates (the −0.5 above
 //    puts the sample at the centre), clamped to [0, 1], stored as round_even(z · 16777215.0f) with
-//    the product rounded to float first. With all of the above the depth buffer is identical. Two
+//    the product rounded to float first (D32F: the clamped float is stored, and the test is
+//    z > stored). With all of the above the depth buffer is identical. Two
 //    details decide the last bits (measured against llvmpipe): rounding the product in double
 //    instead of float costs up to 1 LSB; starting the clipper's output list anywhere but at
 //    vertex 0 (2.) makes another vertex anchor the plane of each fan triangle, and clipped
@@ -93,6 +103,8 @@
 #include <glm/glm.hpp>
 #include <utility>
 #include <vector>
+
+#include "render/Image.h"
 
 namespace frugal::sw {
 
@@ -127,16 +139,18 @@ struct Triangle {
 struct Viewport {
     int width = 0, height = 0;
     float sx = 0, tx = 0, sy = 0, ty = 0;  // W/2, W/2, H/2, H/2
+    float sz = 0.5f, tz = 0.5f;            // depth scale and offset: 0.5, 0.5 (D32F: 1, 0)
+    bool halfZ = false;                    // D32F's zero-to-one clip space (near plane z ≥ 0)
 };
 
-Viewport makeViewport(int width, int height);
+Viewport makeViewport(int width, int height, DepthFormat format = DepthFormat::D24);
 
 // Window coordinates of a clip-space vertex made by the clipper: unfused, as the C code of
 // draw_pipe_clip.c interp() computes them.
 SetupVertex clippedWindowVertex(const glm::vec4& clip, const Viewport& viewport);
 
-// Clip-mask bits of a clip-space position (1. above).
-unsigned clipMask(const glm::vec4& clip);
+// Clip-mask bits of a clip-space position (1. above); `halfZ`: the zero-to-one clip space.
+unsigned clipMask(const glm::vec4& clip, bool halfZ);
 
 // The draw module's cull stage for a triangle in a batch that runs the pipeline (2a. above): true
 // when it passes the triangle on (front-facing by the float determinant, or NaN).
@@ -201,10 +215,10 @@ struct Segment {
 
 namespace detail {
 // dp = plane · v, summed left to right like draw_pipe_clip.c dot4.
-inline float planeDistance(int plane, const glm::vec4& v) {
-    static constexpr float kPlanes[6][4] = {{-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1},
-                                            {0, 1, 0, 1},  {0, 0, 1, 1}, {0, 0, -1, 1}};
-    const float* p = kPlanes[plane];
+inline float planeDistance(int plane, const glm::vec4& v, bool halfZ) {
+    static constexpr float kPlanes[7][4] = {{-1, 0, 0, 1}, {1, 0, 0, 1},  {0, -1, 0, 1}, {0, 1, 0, 1},
+                                            {0, 0, 1, 1},  {0, 0, -1, 1}, {0, 0, 1, 0}};
+    const float* p = kPlanes[plane == 4 && halfZ ? 6 : plane];
     return ((v.x * p[0] + v.y * p[1]) + v.z * p[2]) + v.w * p[3];
 }
 
@@ -233,13 +247,13 @@ void clipTriangle(const glm::vec4* const clip[3], const SetupVertex* const in[3]
         mask &= mask - 1;
         if (n >= kMax - 1) return;
         inList[n] = inList[0];
-        float dpPrev = detail::planeDistance(plane, inList[0].clip);
+        float dpPrev = detail::planeDistance(plane, inList[0].clip, viewport.halfZ);
         if (!std::isfinite(dpPrev)) return;
         int count = 0;
         for (int i = 1; i <= n; ++i) {
             const detail::ClipNode& prev = inList[i - 1];
             const detail::ClipNode& cur = inList[i];
-            const float dp = detail::planeDistance(plane, cur.clip);
+            const float dp = detail::planeDistance(plane, cur.clip, viewport.halfZ);
             if (!std::isfinite(dp)) return;
             bool differentSign;
             if (dpPrev >= 0.0f) {

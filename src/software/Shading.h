@@ -27,7 +27,9 @@
 // 0xFFFFFF) (0.5 → 0x800000). A clear of part of the target is drawn by the state tracker as a quad
 // (st_cb_clear.c clear_with_quad) at z' = z·2 − 1, which the pipeline maps back with
 // fma(z', 0.5, 0.5) and stores like any fragment (Rasterizer.h, 5.). The two differ in the last bit
-// for some values, so both are reproduced.
+// for some values, so both are reproduced. D32F stores the float itself: a whole clear the (clamped)
+// value, a partial one the quad's window z (the quad ignores glClipControl: st_cb_clear.c gives the
+// clear its own rasterizer state).
 //
 // Texture sampling (no mipmaps: the base level only, as the GL backend sets it up). Texels are RGBA8;
 // a texel is decoded as float(x) · float(1/255).
@@ -43,11 +45,14 @@
 //   coordinates and weights in float, the blend as fma(w, v1 − v0, v0) on decoded texels.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "render/Image.h"
 #include "scene/Scene.h"
 
 namespace frugal::sw {
@@ -83,19 +88,27 @@ inline std::uint32_t packColor(const glm::vec4& c) {
            std::uint32_t(floatToUnorm8(c.b)) << 16 | std::uint32_t(floatToUnorm8(c.a)) << 24;
 }
 
-// Depth value of glClear over the whole target (util_pack_z).
-inline std::uint32_t clearDepthWhole(float z) {
-    const double d = std::fmin(std::fmax(double(z), 0.0), 1.0);  // the GL backend clamps first
+// Depth value of glClear over the whole target (util_pack_z): D24's 24-bit value, or D32F's float
+// as it is (its bits). The GL backend clamps to [0, 1] first (std::clamp: −0 stays −0).
+inline std::uint32_t clearDepthWhole(float z, DepthFormat format) {
+    if (format == DepthFormat::D32F) return std::bit_cast<std::uint32_t>(std::clamp(z, 0.0f, 1.0f));
+    const double d = std::fmin(std::fmax(double(z), 0.0), 1.0);
     if (d == 1.0) return 0xFFFFFFu;
     return std::uint32_t(std::lrint(d * double(0xFFFFFF)));
 }
 
-// Depth value of glClear over part of the target: a quad through the pipeline. `fused`: the host's
-// viewport transform fuses (Rasterizer.h, 1.).
-inline std::uint32_t clearDepthQuad(float z, bool fused) {
+// Depth value of glClear over part of the target: a quad through the pipeline at NDC z·2 − 1, with
+// the clear's own rasterizer state (GL's clip space whatever glClipControl says: st_cb_clear.c).
+// `fused`: the host's viewport transform fuses (Rasterizer.h, 1.). The fragment's clamp to [0, 1]:
+// D24 in the unorm conversion; D32F as lp_build_depth_clamp does it, min(z, 1) then max(·, 0).
+inline std::uint32_t clearDepthQuad(float z, bool fused, DepthFormat format) {
     z = std::fmin(std::fmax(z, 0.0f), 1.0f);
     const float ndc = z * 2.0f - 1.0f;
     float window = fused ? std::fma(ndc, 0.5f, 0.5f) : ndc * 0.5f + 0.5f;
+    if (format == DepthFormat::D32F) {
+        window = window < 1.0f ? window : 1.0f;
+        return std::bit_cast<std::uint32_t>(window > 0.0f ? window : 0.0f);
+    }
     window = std::fmin(std::fmax(window, 0.0f), 1.0f);
     return std::uint32_t(std::nearbyint(window * 16777215.0f));
 }

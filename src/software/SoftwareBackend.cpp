@@ -32,8 +32,9 @@ constexpr int kMaxSize = 16384;
 struct SwTarget {
     int width = 0, height = 0, stride = 0;  // stride: a multiple of 8 (Kernels.h, TargetView)
     std::vector<std::uint32_t> color, depth, ids;
+    DepthFormat depthFormat = DepthFormat::D24;
 
-    sw::TargetView view() { return {color.data(), depth.data(), ids.data(), width, height, stride}; }
+    sw::TargetView view() { return {color.data(), depth.data(), ids.data(), width, height, stride, depthFormat}; }
 };
 
 class SoftwareBackend final : public Backend {
@@ -55,7 +56,11 @@ public:
     int maxTargetSize() const override { return kMaxSize; }
     int maxTextureSize() const override { return kMaxSize; }
 
-    TargetHandle createTarget(int width, int height) override;
+    // The --interp span engine models a 24-bit depth buffer only.
+    bool supportsDepthFormat(DepthFormat format) const override {
+        return format == DepthFormat::D24 || pipeline_.interp() == span::Interp::Exact;
+    }
+    TargetHandle createTarget(int width, int height, DepthFormat format) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     void releaseMesh(MeshHandle mesh) override;
@@ -91,17 +96,19 @@ private:
     glm::mat4 viewProjection_{1.0f};
 };
 
-TargetHandle SoftwareBackend::createTarget(int width, int height) {
+TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format) {
     if (width <= 0 || height <= 0 || width > kMaxSize || height > kMaxSize) return kNoHandle;
+    if (!supportsDepthFormat(format)) return kNoHandle;
     SwTarget t;
     t.width = width;
     t.height = height;
+    t.depthFormat = format;
     t.stride = (width + 7) & ~7;
     const std::size_t pixels = std::size_t(t.stride) * std::size_t(height);
     try {
         // Contents defined from the start, like the GL backend: transparent black, far depth, id 0.
         t.color.assign(pixels, 0u);
-        t.depth.assign(pixels, sw::clearDepthWhole(1.0f));
+        t.depth.assign(pixels, sw::clearDepthWhole(farDepth(format), format));
         t.ids.assign(pixels, 0u);
     } catch (const std::bad_alloc&) {
         return kNoHandle;
@@ -176,6 +183,8 @@ TextureHandle SoftwareBackend::uploadTexture(const Texture& texture) {
 void SoftwareBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     assert(targets_.find(target) != nullptr && "beginFrame: no such target");
     if (targets_.find(target) == nullptr) return;
+    assert(targets_.find(target)->depthFormat == frame.depthFormat &&
+           "beginFrame: the projection is for another depth format");
     if (target != frameTarget_) flush();
     frameTarget_ = target;
     frame_ = frame;
@@ -203,6 +212,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.colors = !mesh->colors.empty();
     input.firstId = params.firstId;
     input.doubleSided = params.doubleSided;
+    input.depthFormat = target->depthFormat;
     pipeline_.draw(*mesh, target->width, target->height, input, ranges);
 }
 
@@ -216,7 +226,8 @@ void SoftwareBackend::clear(TargetHandle target, const Rect& rect, const glm::ve
     // Mesa clears the whole target with pipe->clear and a part of it with a quad (Shading.h).
     const bool whole = r.x == 0 && r.y == 0 && r.width == t->width && r.height == t->height;
     const std::uint32_t c = sw::packColor(color);
-    const std::uint32_t z = whole ? sw::clearDepthWhole(depth) : sw::clearDepthQuad(depth, pipeline_.fusedViewport());
+    const std::uint32_t z = whole ? sw::clearDepthWhole(depth, t->depthFormat)
+                                  : sw::clearDepthQuad(depth, pipeline_.fusedViewport(), t->depthFormat);
     // Bands of rows on the pool: a full-HD clear writes 24 MB.
     constexpr int kBand = 64;
     const int bands = (r.height + kBand - 1) / kBand;
@@ -241,6 +252,7 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
     assert(source != nullptr && dest != nullptr && "copy: no such target");
     if (source == nullptr || dest == nullptr || from == to) return;
     assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
+    assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
     const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
     if (r.empty() || !(color || depth || ids)) return;
     flush();
@@ -262,6 +274,7 @@ Buffers SoftwareBackend::readBack(TargetHandle target) {
     flush();
     out.width = t->width;
     out.height = t->height;
+    out.depthFormat = t->depthFormat;
     out.rgba.resize(out.pixelCount() * 4);
     out.depth.resize(out.pixelCount());
     out.ids.resize(out.pixelCount());

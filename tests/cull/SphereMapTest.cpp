@@ -793,6 +793,7 @@ TEST(ViewsTest, ViewClassesHoldAgainstTheirFrustum) {
             CameraSpec spec = rv.camera;
             spec.znear = s.radius * 1e-4f;
             spec.zfar = s.radius * 1e4f;
+            spec.depthRange = DepthRange::File;  // the frustum around the report view's sphere, as given
             const Result<View> view = resolveCamera(scene, world, 0.0, spec, s.width, s.height);
             ASSERT_TRUE(view) << view.error();
             // Also resolvable with fitted near/far (the up vector is never parallel to the view).

@@ -140,7 +140,10 @@ void checkScaled(float factor) {
         for (bool inMesh : {true, false}) {
             for (bool doubleSided : {false, true}) {
                 Scene scene = test::singleMeshScene(inMesh ? test::scaledMesh(*base, factor) : *base, doubleSided);
-                if (!inMesh) scene.nodes[0].scale = glm::vec3(factor);
+                if (!inMesh) {
+                    scene.nodes[0].scale = glm::vec3(factor);
+                    scene.buildInstances();  // the envelope follows the node (Scene.h)
+                }
                 const std::string label = base->name + (inMesh ? " mesh" : " node") + " scaled by " +
                                           std::to_string(factor) + (doubleSided ? " double" : " single");
                 CullBench bench(std::move(scene), 96, 72);
@@ -309,6 +312,7 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
                 }
             m.indices = std::move(indices);
             m.triangleSource = std::move(sources);
+            finiteScene.buildInstances();
         }
         ASSERT_EQ(finiteScene.meshes[0].triangleCount() + 4, reordered.triangleCount());
         std::map<std::uint32_t, std::size_t> bySource;  // source → triangle of the reordered mesh

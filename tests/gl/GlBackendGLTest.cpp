@@ -128,7 +128,7 @@ Buffers drawTwoTriangles(Backend& backend, bool doubleSided, bool writeIds) {
     EXPECT_NE(handle, kNoHandle);
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
     EXPECT_NE(target, kNoHandle);
-    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     drawFrontAndBack(backend, target, handle, writeIds, doubleSided);
     Buffers out = backend.readBack(target);
     backend.destroyTarget(target);
@@ -186,7 +186,7 @@ Buffers renderDenseScene(Backend& backend, bool writeIds) {
     EXPECT_NE(handle, kNoHandle);
     EXPECT_NE(texture, kNoHandle);
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
-    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     FrameParams frame;
     frame.view = glm::lookAt(glm::vec3(0.3f, 0.4f, 2.6f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
     frame.projection = glm::perspective(0.9f, float(kWidth) / kHeight, 0.5f, 10.0f);
@@ -319,7 +319,7 @@ TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
     const MeshHandle handle = backend_->uploadMesh(mesh);
     const TargetHandle target = backend_->createTarget(kWidth, kHeight);
     for (bool writeIds : {true, false}) {
-        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
         backend_->beginFrame(target, simpleFrame(writeIds));
         DrawParams params;
         params.mesh = handle;
@@ -354,7 +354,7 @@ TEST_P(GlBackendGLTest, ManyShortRangesDrawTheSameAsOneRangeAtATime) {
     ASSERT_GE(ranges.size(), 100u);
 
     const auto render = [&](bool gathered) {
-        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
         backend_->beginFrame(target, frame);
         if (gathered) {
             backend_->draw(params, ranges);
@@ -393,7 +393,7 @@ Mesh threeLayers(const std::array<float, 3>& zs) {
 // A cleared target with a frame begun, lit by the ambient term alone (a pixel is its colour).
 TargetHandle startUnlitFrame(Backend& backend) {
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
-    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     FrameParams frame = simpleFrame();
     frame.lighting.ambient = 1.0f;
     frame.lighting.diffuse = 0.0f;
@@ -484,7 +484,7 @@ TEST_P(GlBackendGLTest, InstancedDrawsEqualOneDrawPerInstance) {
     params.doubleSided = true;
     for (const bool ids : {true, false}) {
         SCOPED_TRACE(ids ? "with ids" : "without ids");
-        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
         backend_->beginFrame(target, simpleFrame(ids));
         for (const InstanceParams& instance : instances) {
             DrawParams one = params;
@@ -494,7 +494,7 @@ TEST_P(GlBackendGLTest, InstancedDrawsEqualOneDrawPerInstance) {
             backend_->draw(one, all(frontAndBack()));
         }
         const Buffers separate = backend_->readBack(target);
-        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
         backend_->beginFrame(target, simpleFrame(ids));
         const StateChanges before = backend_->stateChanges();
         backend_->drawInstances(params, instances, IndexRange{0, 2});
@@ -547,7 +547,7 @@ TEST_P(GlBackendGLTest, ClearsASubRectangle) {
     // Draw the front triangle so ids are non-zero, then clear a rectangle across it.
     const Mesh mesh = frontAndBack();
     const MeshHandle handle = backend_->uploadMesh(mesh);
-    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     backend_->beginFrame(target, simpleFrame());
     DrawParams params;
     params.mesh = handle;
@@ -582,7 +582,7 @@ TEST_P(GlBackendGLTest, CopiesARectanglePerAttachment) {
     const Mesh mesh = frontAndBack();
     const MeshHandle handle = backend_->uploadMesh(mesh);
     const TargetHandle source = backend_->createTarget(kWidth, kHeight);
-    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     backend_->beginFrame(source, simpleFrame());
     DrawParams params;
     params.mesh = handle;
@@ -627,7 +627,7 @@ TEST_P(GlBackendGLTest, CopiesARectanglePerAttachment) {
         EXPECT_EQ(changedIds > 0, c.ids);
     }
     // A frame drawn after copies still goes to its target with ids.
-    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->clear(source, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     backend_->beginFrame(source, simpleFrame());
     backend_->draw(params, all(mesh));
     EXPECT_TRUE(identical(backend_->readBack(source), src, "draw-after-copy"));
@@ -665,7 +665,7 @@ TEST_P(GlBackendGLTest, OneByOneTarget) {
     big.indices = {0, 1, 2};
     big.triangleSource = {4};
     const MeshHandle mesh = backend_->uploadMesh(big);
-    backend_->clear(target, Rect{0, 0, 1, 1}, kBackground);
+    backend_->clear(target, Rect{0, 0, 1, 1}, kBackground, 1.0f);
     backend_->beginFrame(target, simpleFrame());
     DrawParams params;
     params.mesh = mesh;
@@ -712,7 +712,7 @@ TEST_P(GlBackendGLTest, MeshWithoutNormalsOrSourcesUsesDefaults) {
     const MeshHandle handle = backend_->uploadMesh(mesh);
     ASSERT_NE(handle, kNoHandle);
     const TargetHandle target = backend_->createTarget(kWidth, kHeight);
-    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
     backend_->beginFrame(target, simpleFrame());
     DrawParams params;
     params.mesh = handle;
@@ -741,7 +741,7 @@ TEST_P(GlBackendGLTest, ClearAfterAFrameWithIdsZeroesThemForAFrameWithout) {
     const Rect whole{0, 0, kWidth, kHeight};
     EXPECT_TRUE(allIdsZero(backend_->readBack(target))) << "a new target";
 
-    backend_->clear(target, whole, kBackground);
+    backend_->clear(target, whole, kBackground, 1.0f);
     drawFrontAndBack(*backend_, target, mesh, true);
     const Buffers withIds = backend_->readBack(target);
     ASSERT_EQ(withIds.ids[at(withIds, kFrontX, kCentroidY)], 107u);
@@ -749,7 +749,7 @@ TEST_P(GlBackendGLTest, ClearAfterAFrameWithIdsZeroesThemForAFrameWithout) {
     // Frames alternate with and without ids: ids are exactly the drawn ones, or all 0.
     for (int frame = 0; frame < 6; ++frame) {
         const bool writeIds = frame % 3 == 2;
-        backend_->clear(target, whole, kBackground);
+        backend_->clear(target, whole, kBackground, 1.0f);
         drawFrontAndBack(*backend_, target, mesh, writeIds);
         const Buffers b = backend_->readBack(target);
         EXPECT_TRUE(identical(b, withIds, "alternating-ids-" + std::to_string(frame), /*compareIds=*/writeIds));
@@ -764,14 +764,14 @@ TEST_P(GlBackendGLTest, PartialClearsOfIdsClearTheRectangleOnly) {
     const MeshHandle mesh = backend_->uploadMesh(frontAndBack());
     const TargetHandle target = backend_->createTarget(kWidth, kHeight);
     const Rect whole{0, 0, kWidth, kHeight};
-    backend_->clear(target, whole, kBackground);
+    backend_->clear(target, whole, kBackground, 1.0f);
     drawFrontAndBack(*backend_, target, mesh, true);
     const Buffers drawn = backend_->readBack(target);
 
     // A rectangle over part of both triangles and background, cleared, then drawn again without
     // ids: inside, the ids are 0 (the triangles come back in colour); outside, the first frame's.
     const Rect rect{10, 12, 44, 6};
-    backend_->clear(target, rect, kBackground);
+    backend_->clear(target, rect, kBackground, 1.0f);
     drawFrontAndBack(*backend_, target, mesh, false);
     Buffers b = backend_->readBack(target);
     EXPECT_TRUE(identical(b, drawn, "partial-clear-colour", /*compareIds=*/false));
@@ -787,8 +787,8 @@ TEST_P(GlBackendGLTest, PartialClearsOfIdsClearTheRectangleOnly) {
     EXPECT_GT(kept, 100) << "ids outside the rectangle must survive";
 
     // Two partial clears that together cover the target are not one whole clear: ids still cleared.
-    backend_->clear(target, Rect{0, 0, kWidth, kHeight / 2}, kBackground);
-    backend_->clear(target, Rect{0, kHeight / 2, kWidth, kHeight - kHeight / 2}, kBackground);
+    backend_->clear(target, Rect{0, 0, kWidth, kHeight / 2}, kBackground, 1.0f);
+    backend_->clear(target, Rect{0, kHeight / 2, kWidth, kHeight - kHeight / 2}, kBackground, 1.0f);
     EXPECT_TRUE(allIdsZero(backend_->readBack(target)));
     drawFrontAndBack(*backend_, target, mesh, false);
     EXPECT_TRUE(allIdsZero(backend_->readBack(target)));
@@ -799,7 +799,7 @@ TEST_P(GlBackendGLTest, IdsCopiedIntoATargetAreClearedLikeDrawnOnes) {
     const MeshHandle mesh = backend_->uploadMesh(frontAndBack());
     const Rect whole{0, 0, kWidth, kHeight};
     const TargetHandle source = backend_->createTarget(kWidth, kHeight);
-    backend_->clear(source, whole, kBackground);
+    backend_->clear(source, whole, kBackground, 1.0f);
     drawFrontAndBack(*backend_, source, mesh, true);
     const Buffers src = backend_->readBack(source);
 
@@ -809,7 +809,7 @@ TEST_P(GlBackendGLTest, IdsCopiedIntoATargetAreClearedLikeDrawnOnes) {
     ASSERT_EQ(backend_->readBack(dest).ids, src.ids);
 
     const Rect rect{12, 10, 40, 12};
-    backend_->clear(dest, rect, kBackground);
+    backend_->clear(dest, rect, kBackground, 1.0f);
     Buffers b = backend_->readBack(dest);
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
@@ -817,14 +817,14 @@ TEST_P(GlBackendGLTest, IdsCopiedIntoATargetAreClearedLikeDrawnOnes) {
             ASSERT_EQ(b.ids[at(b, x, y)], inside ? 0u : src.ids[at(src, x, y)]) << x << ", " << y;
         }
     }
-    backend_->clear(dest, whole, kBackground);
+    backend_->clear(dest, whole, kBackground, 1.0f);
     drawFrontAndBack(*backend_, dest, mesh, false);
     b = backend_->readBack(dest);
     EXPECT_TRUE(allIdsZero(b));
     EXPECT_TRUE(identical(b, src, "copied-ids-then-cleared", /*compareIds=*/false));
 
     // Colour and depth copied from a target with ids bring no ids along.
-    backend_->clear(dest, whole, kBackground);
+    backend_->clear(dest, whole, kBackground, 1.0f);
     backend_->copy(source, dest, whole, /*color=*/true, /*depth=*/true, /*ids=*/false);
     EXPECT_TRUE(allIdsZero(backend_->readBack(dest)));
     backend_->destroyTarget(source);
@@ -868,7 +868,7 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
     };
     const auto render = [&](Backend& backend, const Handles& h, const Draw& d, const FrameParams& base,
                             const glm::mat4& model, const glm::vec4& factor, std::uint32_t firstId) {
-        backend.clear(h.target, Rect{0, 0, kWidth, kHeight}, kBackground);
+        backend.clear(h.target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
         FrameParams frame = base;
         frame.writeIds = d.ids;
         backend.beginFrame(h.target, frame);

@@ -24,8 +24,9 @@ const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
 
 using Frame = test::RenderedFrame;
 
-Frame render(Backend& backend, const Scene& scene, int w, int h, double time = 0.0, bool ids = true) {
-    return test::renderScene(backend, scene, w, h, time, ids, kBackground);
+Frame render(Backend& backend, const Scene& scene, int w, int h, double time = 0.0, bool ids = true,
+             const CameraSpec& camera = {}) {
+    return test::renderScene(backend, scene, w, h, time, ids, kBackground, camera);
 }
 
 // Saves both images when they differ, so a failure can be looked at.
@@ -82,7 +83,10 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     camera.zfar = 10.0f;
     test::addCameraNode(scene, camera, {0, 0, 4});
 
-    const Frame frame = render(*backend, scene, 64, 48);
+    // The camera's planes as given (the fit would hug the flat square: render/Camera.h).
+    CameraSpec given;
+    given.depthRange = DepthRange::File;
+    const Frame frame = render(*backend, scene, 64, 48, 0.0, true, given);
     const Lighting light;
     const float lambert = std::max(0.0f, glm::dot(glm::vec3(0, 0, 1), light.toLight));
     const std::size_t centre = std::size_t(24) * 64 + 32;

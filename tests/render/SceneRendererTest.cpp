@@ -21,7 +21,8 @@ public:
     std::string renderer() const override { return "test"; }
     int maxTargetSize() const override { return 64; }
     int maxTextureSize() const override { return 32; }
-    TargetHandle createTarget(int, int) override { return 1; }
+    bool supportsDepthFormat(DepthFormat) const override { return true; }
+    TargetHandle createTarget(int, int, DepthFormat) override { return 1; }
     void destroyTarget(TargetHandle) override {}
     void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh)); }
     void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture)); }

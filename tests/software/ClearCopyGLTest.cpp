@@ -4,6 +4,7 @@
 // planes touched, interleaved with draws so that pending work is flushed in order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
@@ -44,22 +45,42 @@ TEST_F(ClearCopyGLTest, KnownClearValues) {
     }
 }
 
+// D32F stores a whole clear's value as it is (clamped to [0, 1] by the backend), 0 for a new target.
+TEST_F(ClearCopyGLTest, KnownClearValuesD32f) {
+    for (Backend* backend : backends) {
+        const TargetHandle target = backend->createTarget(8, 4, DepthFormat::D32F);
+        ASSERT_NE(target, kNoHandle) << backend->name();
+        EXPECT_EQ(backend->readBack(target).depth[0], 0u) << backend->name();
+        for (const float z : {0.3f, 1.0f, 1.5f, -0.25f}) {
+            backend->clear(target, Rect{0, 0, 8, 4}, glm::vec4(0.0f), z);
+            const Buffers b = backend->readBack(target);
+            EXPECT_EQ(b.depthFormat, DepthFormat::D32F);
+            EXPECT_EQ(b.windowDepth(0), std::clamp(z, 0.0f, 1.0f)) << backend->name() << " " << z;
+        }
+        backend->destroyTarget(target);
+    }
+}
+
 // New targets are transparent black, far, id 0 on both.
 TEST_F(ClearCopyGLTest, NewTargetsAreDefined) {
-    Buffers out[2];
-    for (int i = 0; i < 2; ++i) {
-        const TargetHandle target = backends[i]->createTarget(13, 7);
-        out[i] = backends[i]->readBack(target);
-        backends[i]->destroyTarget(target);
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        Buffers out[2];
+        for (int i = 0; i < 2; ++i) {
+            const TargetHandle target = backends[i]->createTarget(13, 7, format);
+            out[i] = backends[i]->readBack(target);
+            backends[i]->destroyTarget(target);
+        }
+        EXPECT_EQ(out[0].rgba, out[1].rgba);
+        EXPECT_EQ(out[0].depth, out[1].depth);
+        EXPECT_EQ(out[0].ids, out[1].ids);
+        EXPECT_EQ(out[0].depth[0], test::farValue(format));
     }
-    EXPECT_EQ(out[0].rgba, out[1].rgba);
-    EXPECT_EQ(out[0].depth, out[1].depth);
-    EXPECT_EQ(out[0].ids, out[1].ids);
 }
 
 // Random sequences of clears (whole and partial, in and out of bounds), copies between two targets
 // (any subset of planes), and draws; both targets compared after every step.
-TEST_F(ClearCopyGLTest, RandomSequencesMatch) {
+void randomSequences(Backend& reference, Backend& software, DepthFormat format) {
+    const std::array<Backend*, 2> backends{&reference, &software};
     const int width = 53, height = 37;
     std::mt19937 rng(9);
     const auto uniform = [&](float a, float b) { return std::uniform_real_distribution<float>(a, b)(rng); };
@@ -77,7 +98,8 @@ TEST_F(ClearCopyGLTest, RandomSequencesMatch) {
     std::array<std::array<TargetHandle, 2>, 2> targets{};  // [backend][target]
     std::array<MeshHandle, 2> meshes{};
     for (int i = 0; i < 2; ++i) {
-        targets[i] = {backends[i]->createTarget(width, height), backends[i]->createTarget(width, height)};
+        targets[i] = {backends[i]->createTarget(width, height, format),
+                      backends[i]->createTarget(width, height, format)};
         meshes[i] = backends[i]->uploadMesh(mesh);
     }
     const auto randomRect = [&] {
@@ -103,6 +125,7 @@ TEST_F(ClearCopyGLTest, RandomSequencesMatch) {
         const bool planes[3] = {integer(0, 1) == 1, integer(0, 1) == 1, integer(0, 1) == 1};
         FrameParams frame;
         frame.writeIds = integer(0, 3) != 0;
+        frame.depthFormat = format;
         DrawParams draw;
         draw.doubleSided = integer(0, 1) == 1;
         draw.firstId = std::uint32_t(integer(1, 1000));
@@ -128,18 +151,23 @@ TEST_F(ClearCopyGLTest, RandomSequencesMatch) {
         // are pending together.
         if (step % 10 != 9) continue;
         for (int t = 0; t < 2; ++t) {
-            const Buffers a = reference->readBack(targets[0][t]);
-            const Buffers b = software->readBack(targets[1][t]);
+            const Buffers a = reference.readBack(targets[0][t]);
+            const Buffers b = software.readBack(targets[1][t]);
             const test::Comparison c = test::compareBuffers(a, b);
             const bool same = c.depth == 0 && c.ids == 0 && c.color == 0 && !c.sizeMismatch;
-            EXPECT_TRUE(same) << "after step " << step << ", target " << t << ": " << c.summary();
+            EXPECT_TRUE(same) << depthFormatName(format) << " after step " << step << ", target " << t << ": "
+                              << c.summary();
             if (!same) {
-                test::saveImages("ClearCopy-step" + std::to_string(step), a, b);
+                test::saveImages(std::string("ClearCopy-") + depthFormatName(format) + "-step" + std::to_string(step),
+                                 a, b);
                 return;
             }
         }
     }
 }
+
+TEST_F(ClearCopyGLTest, RandomSequencesMatch) { randomSequences(*reference, *software, DepthFormat::D24); }
+TEST_F(ClearCopyGLTest, RandomSequencesMatchD32f) { randomSequences(*reference, *software, DepthFormat::D32F); }
 
 // A copy between targets of different sizes is refused by contract (assert), a copy onto itself and
 // one with no planes do nothing; a clear of an empty rectangle does nothing.

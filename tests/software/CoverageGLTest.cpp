@@ -28,13 +28,14 @@ using test::Comparison;
 
 const glm::vec4 kClear{0.1f, 0.2f, 0.3f, 1.0f};
 
-// The same target and mesh on the reference and on the software backend.
+// The same target (of one depth format) and mesh on the reference and on the software backend.
 class Twin {
 public:
-    Twin(Backend& reference, Backend& software, int width, int height) : width_(width), height_(height) {
+    Twin(Backend& reference, Backend& software, int width, int height, DepthFormat format = DepthFormat::D24)
+        : width_(width), height_(height), format_(format) {
         backends_ = {&reference, &software};
         for (int i = 0; i < 2; ++i) {
-            targets_[i] = backends_[i]->createTarget(width, height);
+            targets_[i] = backends_[i]->createTarget(width, height, format);
             EXPECT_NE(targets_[i], kNoHandle) << "createTarget(" << width << ", " << height << ") on " << i;
         }
     }
@@ -52,10 +53,11 @@ public:
     }
 
     // Clears, draws `ranges` of the mesh with `draw` (its mesh is filled in), reads both back.
-    std::array<Buffers, 2> render(const FrameParams& frame, DrawParams draw, const std::vector<IndexRange>& ranges) {
+    std::array<Buffers, 2> render(FrameParams frame, DrawParams draw, const std::vector<IndexRange>& ranges) {
         std::array<Buffers, 2> out;
+        frame.depthFormat = format_;
         for (int i = 0; i < 2; ++i) {
-            backends_[i]->clear(targets_[i], Rect{0, 0, width_, height_}, kClear, 1.0f);
+            backends_[i]->clear(targets_[i], Rect{0, 0, width_, height_}, kClear, farDepth(format_));
             backends_[i]->beginFrame(targets_[i], frame);
             draw.mesh = meshes_[i];
             backends_[i]->draw(draw, ranges);
@@ -66,6 +68,7 @@ public:
 
 private:
     int width_, height_;
+    DepthFormat format_;
     std::array<Backend*, 2> backends_{};
     std::array<TargetHandle, 2> targets_{};
     std::array<MeshHandle, 2> meshes_{};
@@ -126,9 +129,16 @@ struct Case {
     glm::mat4 model{1.0f}, view{1.0f}, projection{1.0f};
 };
 
+// GL's perspective projection, or for D32F the reversed zero-to-one one (render/Camera.h).
+glm::mat4 perspectiveFor(DepthFormat format, float fov, float aspect, float znear, float zfar) {
+    return format == DepthFormat::D32F ? glm::perspectiveRH_ZO(fov, aspect, zfar, znear)
+                                       : glm::perspective(fov, aspect, znear, zfar);
+}
+
 class Generator {
 public:
-    Generator(int width, int height, unsigned seed) : w_(float(width)), h_(float(height)), rng_(seed) {}
+    Generator(int width, int height, unsigned seed, DepthFormat format = DepthFormat::D24)
+        : w_(float(width)), h_(float(height)), format_(format), rng_(seed) {}
 
     float uniform(float a, float b) { return std::uniform_real_distribution<float>(a, b)(rng_); }
     int integer(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
@@ -182,7 +192,8 @@ public:
                 const float distance = kind == NearPlane ? uniform(0.0f, 1.0f) : uniform(4.0f, 6.0f);
                 c.view = glm::lookAt(glm::vec3(uniform(-0.3f, 0.3f), uniform(-0.3f, 0.3f), distance), glm::vec3(0.0f),
                                      glm::vec3(0.0f, 1.0f, 0.0f));
-                c.projection = glm::perspective(uniform(0.5f, 1.4f), w_ / h_, kind == NearPlane ? 0.3f : 0.1f, 30.0f);
+                c.projection =
+                    perspectiveFor(format_, uniform(0.5f, 1.4f), w_ / h_, kind == NearPlane ? 0.3f : 0.1f, 30.0f);
                 break;
             }
             default:
@@ -202,6 +213,7 @@ public:
 
 private:
     float w_, h_;
+    DepthFormat format_;
     std::mt19937 rng_;
 };
 
@@ -215,10 +227,12 @@ protected:
     std::unique_ptr<Backend> reference, software;
 };
 
-// One triangle per draw, `perKind` of each kind.
-void singleTriangles(Backend& reference, Backend& software, int width, int height, int perKind, unsigned seed) {
-    Twin twin(reference, software, width, height);
-    Generator gen(width, height, seed);
+// One triangle per draw, `perKind` of each kind. In D32F the clip-space kinds (z in [−0.95, 0.95],
+// w = 1) cross the zero-to-one near plane z = 0 half the time: its clipping is compared too.
+void singleTriangles(Backend& reference, Backend& software, int width, int height, int perKind, unsigned seed,
+                     DepthFormat format = DepthFormat::D24) {
+    Twin twin(reference, software, width, height, format);
+    Generator gen(width, height, seed, format);
     const int count = perKind * kKinds;
     std::vector<Case> cases;
     Mesh mesh;
@@ -233,7 +247,8 @@ void singleTriangles(Backend& reference, Backend& software, int width, int heigh
 
     std::array<Tally, kKinds> tallies;
     for (int k = 0; k < kKinds; ++k)
-        tallies[k].name = "SingleTriangle-" + std::to_string(width) + "x" + std::to_string(height) + "-" + kindName(k);
+        tallies[k].name = "SingleTriangle-" + std::to_string(width) + "x" + std::to_string(height) + "-" +
+                          depthFormatName(format) + "-" + kindName(k);
     for (int i = 0; i < count; ++i) {
         const Case& c = cases[i];
         FrameParams frame;
@@ -251,15 +266,22 @@ void singleTriangles(Backend& reference, Backend& software, int width, int heigh
 TEST_F(CoverageGLTest, SingleTrianglesAt256x256) { singleTriangles(*reference, *software, 256, 256, 100, 1); }
 TEST_F(CoverageGLTest, SingleTrianglesAt61x47) { singleTriangles(*reference, *software, 61, 47, 100, 2); }
 TEST_F(CoverageGLTest, SingleTrianglesAt800x600) { singleTriangles(*reference, *software, 800, 600, 25, 3); }
+// The float depth buffer with reversed Z: the same coverage and ids, and every stored float equal.
+TEST_F(CoverageGLTest, SingleTrianglesAt256x256D32f) {
+    singleTriangles(*reference, *software, 256, 256, 100, 21, DepthFormat::D32F);
+}
+TEST_F(CoverageGLTest, SingleTrianglesAt61x47D32f) {
+    singleTriangles(*reference, *software, 61, 47, 100, 22, DepthFormat::D32F);
+}
 
 // Thousands of triangles in one draw: overlaps, equal depths (ties keep the first drawn), the
 // parallel setup, bins across tiles; with ids (array pass) and without (indexed pass), and through
 // several index ranges, adjacent and out of order.
-TEST_F(CoverageGLTest, ManyTrianglesPerDraw) {
+void manyTrianglesPerDraw(Backend& reference, Backend& software, DepthFormat format) {
     for (const auto& size : {std::array<int, 2>{800, 600}, std::array<int, 2>{61, 47}}) {
         const int width = size[0], height = size[1];
-        Twin twin(*reference, *software, width, height);
-        Generator gen(width, height, 7);
+        Twin twin(reference, software, width, height, format);
+        Generator gen(width, height, 7, format);
         Mesh mesh;
         const int count = 6000;
         for (int i = 0; i < count; ++i) {
@@ -281,11 +303,12 @@ TEST_F(CoverageGLTest, ManyTrianglesPerDraw) {
         twin.upload(mesh);
         const std::uint32_t triangles = std::uint32_t(mesh.triangleCount());
         Tally tally;
-        tally.name = "ManyTriangles-" + std::to_string(width) + "x" + std::to_string(height);
+        tally.name =
+            "ManyTriangles-" + std::to_string(width) + "x" + std::to_string(height) + "-" + depthFormatName(format);
         for (int pass = 0; pass < 4; ++pass) {
             FrameParams frame;
             frame.view = glm::lookAt(glm::vec3(0.2f, -0.3f, 5.0f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
-            frame.projection = glm::perspective(0.9f, float(width) / float(height), 0.5f, 20.0f);
+            frame.projection = perspectiveFor(format, 0.9f, float(width) / float(height), 0.5f, 20.0f);
             frame.writeIds = pass != 1;
             DrawParams draw;
             draw.doubleSided = pass < 2;  // passes 2 and 3 cull back faces
@@ -297,6 +320,9 @@ TEST_F(CoverageGLTest, ManyTrianglesPerDraw) {
         tally.check();
     }
 }
+
+TEST_F(CoverageGLTest, ManyTrianglesPerDraw) { manyTrianglesPerDraw(*reference, *software, DepthFormat::D24); }
+TEST_F(CoverageGLTest, ManyTrianglesPerDrawD32f) { manyTrianglesPerDraw(*reference, *software, DepthFormat::D32F); }
 
 // NaN, Inf and w = 0 must neither crash nor hang, and give what llvmpipe gives: triangles with a
 // non-finite clip distance vanish; w = 0 at a vertex that needs clipping is clipped away.
@@ -329,23 +355,26 @@ TEST_F(CoverageGLTest, DegenerateInputMatchesLlvmpipe) {
         {"huge-1e20-w", {{-1e20f, -1e20f, 0.5f}, {1e20f, -1e20f, 0.5f}, {0, 1e20f, 0.5f}}, wIsZ},
         {"tiny-w", {{0.5f, 0.5f, 1e-30f}, {0.5f, -0.5f, 1}, {-0.5f, 0.5f, 1}}, wIsZ},
     };
-    Twin twin(*reference, *software, 64, 64);
     Mesh mesh;
     for (const Input& in : inputs) {
         for (const glm::vec3& p : in.p) mesh.positions.push_back(p);
         const auto base = std::uint32_t(mesh.positions.size() - 3);
         mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
     }
-    twin.upload(mesh);
-    for (std::uint32_t i = 0; i < std::size(inputs); ++i) {
-        for (bool doubleSided : {true, false}) {
-            FrameParams frame;
-            frame.projection = inputs[i].projection;
-            DrawParams draw;
-            draw.doubleSided = doubleSided;
-            const auto out = twin.render(frame, draw, {{i, 1}});
-            test::expectMatches(std::string("Degenerate-") + inputs[i].name + (doubleSided ? "-both" : "-front"),
-                                out[0], out[1], 1.0, 0);
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        Twin twin(*reference, *software, 64, 64, format);
+        twin.upload(mesh);
+        for (std::uint32_t i = 0; i < std::size(inputs); ++i) {
+            for (bool doubleSided : {true, false}) {
+                FrameParams frame;
+                frame.projection = inputs[i].projection;
+                DrawParams draw;
+                draw.doubleSided = doubleSided;
+                const auto out = twin.render(frame, draw, {{i, 1}});
+                test::expectMatches(std::string("Degenerate-") + depthFormatName(format) + "-" + inputs[i].name +
+                                        (doubleSided ? "-both" : "-front"),
+                                    out[0], out[1], 1.0, 0);
+            }
         }
     }
 }

@@ -10,14 +10,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
-#include "render/Backend.h"
 #include "io/ImageIO.h"
+#include "render/Backend.h"
 #include "software/SoftwareBackend.h"
 
 namespace frugal::test {
@@ -54,13 +55,18 @@ struct Comparison {
     }
 };
 
-// `drawn(i)`: whether pixel i was drawn, judged from depth against `clearDepth` (ids may be off).
+// The depth value of a target cleared to its far plane (render/Image.h), as read back.
+inline std::uint32_t farValue(DepthFormat format) { return format == DepthFormat::D32F ? 0u : kDepthMax; }
+
+// `drawn(i)`: whether pixel i was drawn, judged from depth against `clearDepth` (default: the far
+// value of the reference's format; ids may be off). Depth differences are in LSB (D24) or ULP (D32F).
 inline Comparison compareBuffers(const Buffers& reference, const Buffers& actual,
-                                 std::uint32_t clearDepth = kDepthMax) {
+                                 std::optional<std::uint32_t> clearValue = std::nullopt) {
     Comparison c;
+    const std::uint32_t clearDepth = clearValue.value_or(farValue(reference.depthFormat));
     if (reference.width != actual.width || reference.height != actual.height ||
-        reference.rgba.size() != actual.rgba.size() || reference.depth.size() != actual.depth.size() ||
-        reference.ids.size() != actual.ids.size()) {
+        reference.depthFormat != actual.depthFormat || reference.rgba.size() != actual.rgba.size() ||
+        reference.depth.size() != actual.depth.size() || reference.ids.size() != actual.ids.size()) {
         c.sizeMismatch = true;
         return c;
     }
@@ -102,8 +108,9 @@ inline void saveImages(const std::string& name, const Buffers& reference, const 
     for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
         std::uint8_t* p = &diff.rgba[4 * i];
         p[3] = 255;
-        const bool a = reference.depth[i] != kDepthMax || reference.ids[i] != 0;
-        const bool b = actual.depth[i] != kDepthMax || actual.ids[i] != 0;
+        const std::uint32_t far = farValue(reference.depthFormat);
+        const bool a = reference.depth[i] != far || reference.ids[i] != 0;
+        const bool b = actual.depth[i] != far || actual.ids[i] != 0;
         int worst = 0;
         for (int k = 0; k < 4; ++k)
             worst = std::max(worst, std::abs(int(reference.rgba[4 * i + k]) - int(actual.rgba[4 * i + k])));
