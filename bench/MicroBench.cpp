@@ -127,8 +127,8 @@ void BM_CullBunny(benchmark::State& state) {
         Result<FrameSetup> frame = setUpFrame(*scene, view.camera, 0.0, 800, 600, false);
         if (frame) frames.push_back(std::move(*frame));
     }
-    const CullMethod method = kCullMethods[state.range(0)];
-    state.SetLabel(cullMethodName(method));
+    const Cull method = kCulls[state.range(0)];
+    state.SetLabel(toString(method));
     std::size_t at = 0, submitted = 0;
     for (auto _ : state) {
         const FrameSetup& frame = frames[at++ % frames.size()];

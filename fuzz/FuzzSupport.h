@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "base/Result.h"
-#include "scene/Scene.h"
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
 
 namespace frugal::fuzz {
 
@@ -71,7 +71,7 @@ inline void checkScene(const Scene& scene) {
     }
     for (int root : scene.roots)
         if (!inRange(root, scene.nodes.size())) broken("root out of range");
-    for (const Camera& camera : scene.cameras)
+    for (const SceneCamera& camera : scene.cameras)
         if (!inRange(camera.node, scene.nodes.size())) broken("camera node out of range");
     std::uint64_t ids = 1;  // 0 is the background
     for (const Instance& instance : scene.instances) {

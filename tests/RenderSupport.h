@@ -15,14 +15,15 @@ struct RenderedFrame {
 };
 
 // The scene at `time` through `camera` (default: the scene's own, planes fitted) on a fresh
-// width × height target of the camera's depth format (destroyed after), cleared to `background`.
-// Set-up failures are test failures, and give an empty frame.
+// width × height target of depth `format` (destroyed after), cleared to `background`. Set-up
+// failures are test failures, and give an empty frame.
 inline RenderedFrame renderScene(Backend& backend, const Scene& scene, int width, int height, double time, bool ids,
-                                 const glm::vec4& background, const CameraSpec& camera = {}) {
-    const TargetHandle target = backend.createTarget(width, height, camera.depthFormat);
+                                 const glm::vec4& background, const Camera& camera = {},
+                                 DepthFormat format = DepthFormat::D24) {
+    const TargetHandle target = backend.createTarget(width, height, format);
     EXPECT_NE(target, kNoHandle);
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    Result<FrameSetup> setup = setUpFrame(scene, camera, time, width, height, ids);
+    Result<FrameSetup> setup = setUpFrame(scene, camera, time, width, height, ids, format);
     EXPECT_TRUE(renderer) << renderer.error();
     EXPECT_TRUE(setup) << setup.error();
     if (target == kNoHandle || !renderer || !setup) return {};

@@ -3,8 +3,6 @@
 // in tests/gl), so it needs nothing but the reuse, report and render modules.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <functional>
 #include <optional>
 #include <sstream>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "cull/Culling.h"
 #include "render/Frame.h"
@@ -52,7 +51,7 @@ struct SequenceResult {
     std::string describe() const {
         std::ostringstream out;
         for (std::size_t i = 0; i < stats.size(); ++i) {
-            out << "\n  frame " << i << ": " << reuseModeName(stats[i].mode) << " (" << stats[i].reason << ")";
+            out << "\n  frame " << i << ": " << toString(stats[i].mode) << " (" << stats[i].reason << ")";
             if (i < matches.size()) out << ", " << matches[i].differing << " differ, " << matches[i].ties << " ties";
             out << ", redrawn " << stats[i].redrawnTris << "/" << stats[i].drawnTris << ", copied "
                 << stats[i].copiedPx << ", cleared " << stats[i].clearedPx;
@@ -92,7 +91,7 @@ inline SequenceResult runSequence(Backend& backend, const Scene& scene, int widt
         result.matches.push_back(match);
         result.errors += match.errors();
         result.ties += match.ties;
-        EXPECT_EQ(match.errors(), 0u) << "frame " << i << " (" << reuseModeName(reuse.stats().mode) << ", "
+        EXPECT_EQ(match.errors(), 0u) << "frame " << i << " (" << toString(reuse.stats().mode) << ", "
                                       << reuse.stats().reason << "): " << match.errors() << " pixels differ in depth";
         if (inspect) inspect(i, a, b, reuse.stats());
     }
@@ -103,7 +102,7 @@ inline SequenceResult runSequence(Backend& backend, const Scene& scene, int widt
 }
 
 // Frame `i` of `scene` at scene time `time` through `camera`, drawn whole.
-inline SequenceFrame frameAt(const Scene& scene, const CameraSpec& camera, double time, int width, int height) {
+inline SequenceFrame frameAt(const Scene& scene, const Camera& camera, double time, int width, int height) {
     Result<FrameSetup> setup = setUpFrame(scene, camera, time, width, height, true);
     EXPECT_TRUE(setup.ok()) << (setup.ok() ? "" : setup.error());
     SequenceFrame f;
@@ -115,7 +114,7 @@ inline SequenceFrame frameAt(const Scene& scene, const CameraSpec& camera, doubl
 }
 
 // The usual sequence: the scene's animation at its fps, seen through `camera`, drawn whole.
-inline std::function<SequenceFrame(int)> animated(const Scene& scene, const CameraSpec& camera, int width, int height) {
+inline std::function<SequenceFrame(int)> animated(const Scene& scene, const Camera& camera, int width, int height) {
     return [&scene, camera, width, height](int i) { return frameAt(scene, camera, frameTime(i, scene.fps), width, height); };
 }
 
@@ -127,9 +126,9 @@ inline Scene loadOrFail(const std::string& spec) {
 
 // A look-at camera with fixed clip planes (fitted ones follow the animated bounds, which would make
 // every frame a camera change).
-inline CameraSpec eyeAt(const glm::vec3& eye, const glm::vec3& target, float fovDegrees = 50.0f, float znear = 0.1f,
-                        float zfar = 200.0f) {
-    CameraSpec spec;
+inline Camera eyeAt(const glm::vec3& eye, const glm::vec3& target, float fovDegrees = 50.0f, float znear = 0.1f,
+                    float zfar = 200.0f) {
+    Camera spec;
     spec.eye = eye;
     spec.target = target;
     spec.yfovDegrees = fovDegrees;
@@ -262,7 +261,7 @@ inline SequenceResult expectExactOn(Backend& backend, const Scene& scene, int wi
 }
 
 // A fixed camera and the scene's animation, with the frame's draw list edited by `edit`.
-inline Frames withCamera(const Scene& scene, const CameraSpec& camera, int width, int height,
+inline Frames withCamera(const Scene& scene, const Camera& camera, int width, int height,
                          std::function<void(int, SequenceFrame&)> edit = {}) {
     return [&scene, camera, width, height, edit](int i) {
         SequenceFrame f = frameAt(scene, camera, frameTime(i, scene.fps), width, height);
@@ -272,7 +271,7 @@ inline Frames withCamera(const Scene& scene, const CameraSpec& camera, int width
 }
 
 // Looking at the backdrop of addBackdrop from above and in front.
-inline CameraSpec overviewCamera() { return eyeAt({0.0f, 8.0f, 14.0f}, {0.0f, 0.0f, 0.0f}, 50.0f, 0.5f, 60.0f); }
+inline Camera overviewCamera() { return eyeAt({0.0f, 8.0f, 14.0f}, {0.0f, 0.0f, 0.0f}, 50.0f, 0.5f, 60.0f); }
 
 // The backdrop and two boxes that pass the camera of overviewCamera(): one flies along the line of
 // sight through the near plane and the eye to behind the camera (a vertex behind the eye: extents
@@ -282,7 +281,7 @@ inline Scene flyThroughScene() {
     addBackdrop(scene);
     const int green = addMaterial(scene, {0.1f, 0.8f, 0.2f, 1.0f}, true);
     const int cube = addMesh(scene, boxMesh(glm::vec3(-0.6f), glm::vec3(0.6f), green, "flyer"));
-    const CameraSpec camera = overviewCamera();
+    const Camera camera = overviewCamera();
     const glm::vec3 eye = *camera.eye;
     const glm::vec3 back = glm::normalize(eye - *camera.target);  // from the scene towards the eye, and beyond
     const int flyer = addNodeWith(scene, cube, eye - 9.0f * back);
@@ -320,8 +319,8 @@ struct CameraPath {
         const float r = bounds.radius();
         return [&scene, angles = angle, bounds, r, width, height](int i) {
             const float a = angles[std::size_t(i)];
-            const CameraSpec camera = eyeAt(bounds.center() + glm::vec3(std::sin(a), 0.7f, std::cos(a)) * r * 1.4f,
-                                            bounds.center(), 45.0f, 0.1f, r * 6.0f);
+            const Camera camera = eyeAt(bounds.center() + glm::vec3(std::sin(a), 0.7f, std::cos(a)) * r * 1.4f,
+                                        bounds.center(), 45.0f, 0.1f, r * 6.0f);
             return frameAt(scene, camera, frameTime(i, scene.fps), width, height);
         };
     }
@@ -331,14 +330,14 @@ struct CameraPath {
 // moving, still. Each frame draws `method`'s list; `culled` counts the frames that drop something.
 inline const std::vector<float> kCullAngles = {0, 0, 0, 0, 0, 0.3f, 0.6f, 0.6f, 0.6f, 0.6f, 0.6f, 0.6f};
 inline const char* const kCullModes = "RUUUUFFRUUUU";
-inline Frames culledFrames(const Scene& scene, const SceneCuller& culler, CullMethod method, int width, int height,
+inline Frames culledFrames(const Scene& scene, const SceneCuller& culler, Cull method, int width, int height,
                            int& culled) {
     const Bounds bounds = scene.bounds(0.0);
     const float r = bounds.radius();
     return [&scene, &culler, method, bounds, r, width, height, &culled](int i) {
         const float a = kCullAngles[std::size_t(i)];
-        const CameraSpec camera = eyeAt(bounds.center() + glm::vec3(std::sin(a) * 0.4f, 0.35f, std::cos(a) * 0.5f) * r,
-                                        bounds.center() + glm::vec3(0.2f * r, 0.0f, 0.0f), 50.0f, 0.05f, r * 6.0f);
+        const Camera camera = eyeAt(bounds.center() + glm::vec3(std::sin(a) * 0.4f, 0.35f, std::cos(a) * 0.5f) * r,
+                                    bounds.center() + glm::vec3(0.2f * r, 0.0f, 0.0f), 50.0f, 0.05f, r * 6.0f);
         Result<FrameSetup> setup = setUpFrame(scene, camera, frameTime(i, scene.fps), width, height, true);
         EXPECT_TRUE(setup) << (setup ? "" : setup.error());
         SequenceFrame f;
@@ -366,6 +365,6 @@ inline Scene coplanarQuadsScene() {
     scene.buildInstances();
     return scene;
 }
-inline CameraSpec coplanarQuadsCamera() { return eyeAt({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 50.0f, 0.5f, 20.0f); }
+inline Camera coplanarQuadsCamera() { return eyeAt({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 50.0f, 0.5f, 20.0f); }
 
 }  // namespace frugal::test

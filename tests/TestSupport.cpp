@@ -1,12 +1,12 @@
 #include "TestSupport.h"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+
+#include <sys/wait.h>
 
 namespace frugal::test {
 
@@ -120,7 +120,7 @@ Scene oneMeshScene(Mesh mesh, const Material& material) {
     return scene;
 }
 
-int addCameraNode(Scene& scene, Camera camera, const glm::vec3& position) {
+int addCameraNode(Scene& scene, SceneCamera camera, const glm::vec3& position) {
     Node node;
     node.translation = position;
     node.camera = int(scene.cameras.size());

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/Scene.h"
+#include <frugal/Scene.h>
 
 namespace frugal::test {
 
@@ -50,6 +50,6 @@ Mesh looseTriangles(const std::vector<glm::vec3>& positions);
 // A scene with one root node drawing `mesh` with `material` (the mesh gets material 0).
 Scene oneMeshScene(Mesh mesh, const Material& material = {});
 // Adds a root node at `position`, looking down -z, that carries `camera`; returns the camera's index.
-int addCameraNode(Scene& scene, Camera camera, const glm::vec3& position);
+int addCameraNode(Scene& scene, SceneCamera camera, const glm::vec3& position);
 
 }  // namespace frugal::test

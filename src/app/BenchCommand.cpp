@@ -18,15 +18,16 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/Backends.h"
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
-#include "app/OrderSupport.h"
 #include "base/Stats.h"
 #include "gl/MinimalFrame.h"
 #include "render/SceneRenderer.h"
+#include "renderer/Backends.h"
+#include "renderer/StateOrder.h"
+#include "renderer/StatsJson.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {
@@ -151,7 +152,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     bool ids = false;
     int runs = 30, warmup = 5;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    DrawOrder drawOrder = DrawOrder::Submit;
+    Order drawOrder = Order::Submit;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
     CommandLine command{"bench", benchHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
@@ -188,23 +189,20 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         err << "warning: " << warning << "\n";
     // The other depth format, timed beside the asked one.
     RenderOptions otherFormat = options;
-    otherFormat.camera.depthFormat =
-        options.camera.depthFormat == DepthFormat::D24 ? DepthFormat::D32F : DepthFormat::D24;
-    const std::string otherName = depthFormatName(otherFormat.camera.depthFormat);
+    otherFormat.depthFormat = options.depthFormat == DepthFormat::D24 ? DepthFormat::D32F : DepthFormat::D24;
+    const std::string otherName = depthFormatName(otherFormat.depthFormat);
 
     // By default every GL context kind and the software reference, side by side.
-    std::vector<BackendSelection> choices;
-    if (options.backend.software || options.backend.gl != BackendChoice::Auto) {
+    std::vector<BackendKind> choices;
+    if (options.backend != BackendKind::Auto)
         choices = {options.backend};
-    } else {
-        choices = {{false, BackendChoice::EglDevice}, {false, BackendChoice::EglSurfaceless},
-                   {false, BackendChoice::OsMesa}, {true, BackendChoice::Auto}};
-    }
+    else
+        choices = {BackendKind::EglDevice, BackendKind::EglSurfaceless, BackendKind::OsMesa, BackendKind::Software};
 
     nlohmann::json skipped = nlohmann::json::array();
     std::vector<Sample> samples;
     using Clock = std::chrono::steady_clock;
-    for (const BackendSelection& choice : choices) {
+    for (const BackendKind choice : choices) {
         Result<Session> opened = openSession(choice, options);
         if (!opened) {
             skipped.push_back(opened.error());
@@ -227,14 +225,15 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
 
             // The minimal program on a context of the same kind, for GL backends.
             std::unique_ptr<MinimalFrame> minimal;
-            const std::optional<ContextKind> kind = choice.software ? std::nullopt : contextKindNamed(backend.name());
+            const std::optional<ContextKind> kind =
+                choice == BackendKind::Software ? std::nullopt : contextKindNamed(backend.name());
             const std::string minimalLabel = backend.name() + " minimal (" + order + "): ";
             if (kind && ids) {
                 skipped.push_back(minimalLabel +
                                   "--ids: the minimal frame writes no ids, so it would not draw the same frame");
             } else if (kind) {
                 Result<std::unique_ptr<MinimalFrame>> made =
-                    createMinimalFrame(*kind, *scene, options.width, options.height, options.camera.depthFormat);
+                    createMinimalFrame(*kind, *scene, options.width, options.height, options.depthFormat);
                 if (made)
                     minimal = std::move(*made);
                 else
@@ -243,9 +242,9 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
             Sample minimalSample{backend.name(), backend.renderer(), order, "minimal", {}, std::nullopt, std::nullopt};
             // In the cache order also: the same list unbatched, and the batching floor (premerged).
             const bool variants = std::string(order) == "optimized";
-            Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, backend, 0, err, options.quiet);
+            Result<OrderCosts> orderCosts = startOrderCosts(drawOrder, backend, 0, err, options.quiet);
             if (!orderCosts) {
-                err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
+                err << "error: --order " << toString(drawOrder) << ": " << orderCosts.error() << "\n";
                 return kExitError;
             }
             const DrawList list = orderFrameDraws(*scene, renderer.fullList(), drawOrder, orderCosts->costsUs());
@@ -261,8 +260,8 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
                 err << "error: " << otherSetup.error() << "\n";
                 return kExitError;
             }
-            if (variants && backend.supportsDepthFormat(otherFormat.camera.depthFormat)) {
-                other.reset(backend.createTarget(options.width, options.height, otherFormat.camera.depthFormat));
+            if (variants && backend.supportsDepthFormat(otherFormat.depthFormat)) {
+                other.reset(backend.createTarget(options.width, options.height, otherFormat.depthFormat));
                 if (other.get() == kNoHandle)
                     skipped.push_back(backend.name() + " " + otherName + ": no target of that size");
             } else if (variants) {
@@ -411,8 +410,8 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         if (const Sample* premergedRun = find(samples, b, "optimized", "premerged"))
             ratios["over_premerged"][b] = ratio(optimizedRun, premergedRun);
         if (const Sample* otherRun = find(samples, b, "optimized", otherName.c_str()))
-            ratios["d32f_over_d24"][b] = options.camera.depthFormat == DepthFormat::D24 ? ratio(otherRun, optimizedRun)
-                                                                                        : ratio(optimizedRun, otherRun);
+            ratios["d32f_over_d24"][b] =
+                options.depthFormat == DepthFormat::D24 ? ratio(otherRun, optimizedRun) : ratio(optimizedRun, otherRun);
     }
 
     const char* threads = std::getenv("LP_NUM_THREADS");
@@ -422,9 +421,9 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
         {"size", {options.width, options.height}},
         {"triangles", optimized->triangleCount()},
         {"ids", ids},
-        {"hsr", hsr::modeName(hsrMode)},
-        {"draw_order", drawOrderName(drawOrder)},
-        {"depth_format", depthFormatName(options.camera.depthFormat)},
+        {"hsr", toString(hsrMode)},
+        {"draw_order", toString(drawOrder)},
+        {"depth_format", depthFormatName(options.depthFormat)},
         {"runs", runs},
         {"warmup", warmup},
         {"threads", options.threads > 0 ? nlohmann::json(options.threads) : nlohmann::json("default")},

@@ -15,7 +15,7 @@ std::string point(const glm::vec3& p) { return "(" + fmt(p.x) + ", " + fmt(p.y) 
 
 }  // namespace
 
-Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
+Result<std::vector<Camera>> readCameraPath(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return Error{"--camera-path " + path + ": cannot read the file"};
     nlohmann::json doc;
@@ -27,7 +27,7 @@ Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
     if (doc.is_object() && doc.contains("views")) doc = doc["views"];
     if (!doc.is_array() || doc.empty())
         return Error{"--camera-path " + path + ": expected a non-empty list of {\"eye\",\"target\",\"up\",\"fov\"}"};
-    std::vector<CameraSpec> views;
+    std::vector<Camera> views;
     for (std::size_t i = 0; i < doc.size(); ++i) {
         const nlohmann::json& entry = doc[i];
         const std::string where = "--camera-path " + path + ": entry " + std::to_string(i) + ": ";
@@ -44,7 +44,7 @@ Result<std::vector<CameraSpec>> readCameraPath(const std::string& path) {
                 return Error{where + key + ": not a finite point"};
             return std::optional<glm::vec3>{value};
         };
-        CameraSpec view;
+        Camera view;
         Result<std::optional<glm::vec3>> eye = vec("eye", true), target = vec("target", true), up = vec("up", false);
         if (!eye) return Error{eye.error()};
         if (!target) return Error{target.error()};

@@ -7,12 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
+
 #include "render/Camera.h"
 
 namespace frugal {
 
 // Errors name the flag, the file and the entry: "--camera-path F: entry 3: eye: expected 3 numbers".
-Result<std::vector<CameraSpec>> readCameraPath(const std::string& path);
+Result<std::vector<Camera>> readCameraPath(const std::string& path);
 
 }  // namespace frugal

@@ -99,4 +99,11 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     return kExitUsage;
 }
 
+int exitStatus(ErrorKind kind) { return kind == ErrorKind::BackendUnavailable ? kExitNoBackend : kExitError; }
+
+int fail(std::ostream& err, const Error& error) {
+    err << "error: " << (error.aboutSetting ? "--" : "") << error.message << "\n";
+    return exitStatus(error.kind);
+}
+
 }  // namespace frugal

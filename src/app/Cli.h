@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <frugal/Result.h>
+
 namespace frugal {
 
 // Exit codes, also listed by `frugal --help`.
@@ -14,6 +16,14 @@ enum ExitCode : int {
     kExitUsage = 2,        // bad command line
     kExitNoBackend = 3,    // the requested backend is not available on this machine
 };
+
+// The exit status of an error of `kind` (the one place that decides it): backend unavailable 3,
+// every other 1 (an interrupted command then ends by its signal: io/Interrupt.h).
+int exitStatus(ErrorKind kind);
+
+// Prints `error` as its one line, "error: <message>" ("error: --<message>" when the message starts
+// with a setting's name: Error::aboutSetting), and gives exitStatus(error.kind).
+int fail(std::ostream& err, const Error& error);
 
 // Runs `frugal args...` (args without the program name). Normal output goes to `out`, progress,
 // warnings and errors (one line each, "error: <what>: <why>") to `err`.

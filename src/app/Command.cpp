@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "app/Cli.h"
+#include "app/CullSupport.h"
 
 namespace frugal {
 
@@ -35,6 +36,29 @@ std::optional<int> parseCommandLine(const CommandLine& command, const std::vecto
     return std::nullopt;
 }
 
+void printRendererStart(const Renderer& renderer, std::ostream& err) {
+    if (const std::optional<Renderer::CullPreparation> prep = renderer.cullPreparation())
+        err << cullPreparedLine(renderer.scene(), *prep) << "\n";
+    err << "backend: " << renderer.backendName() << " (" << renderer.backendRenderer() << ")\n";
+    if (const std::optional<StateCosts> costs = renderer.stateCosts())
+        err << stateCostsLine(renderer.settings().order, renderer.backendName(), *costs) << "\n";
+}
+
+std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs) {
+    std::string line = std::string("order ") + toString(order) + ": state costs on " + backendName + " (us):";
+    for (std::size_t k = 0; k < costs.us.size(); ++k)
+        line += (k ? ", " : " ") + costs.kinds[k] + " " + fmt(costs.us[k]);
+    return line;
+}
+
+Result<OrderCosts> startOrderCosts(Order order, Backend& backend, int refineEvery, std::ostream& err, bool quiet) {
+    Result<OrderCosts> costs = OrderCosts::start(order, backend, refineEvery);
+    if (costs && !quiet)
+        if (const std::optional<StateCosts> report = costs->report())
+            err << stateCostsLine(order, backend.name(), *report) << "\n";
+    return costs;
+}
+
 std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions& options, bool* given) {
     return [&options, given, seen = false](const std::string& argument, ArgCursor& cursor) mutable {
         if (seen) {
@@ -47,9 +71,9 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
     };
 }
 
-Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options) {
+Result<Session> openSession(BackendKind kind, const RenderOptions& options) {
     Session session;
-    Result<std::unique_ptr<Backend>> backend = openBackend(selection, &session.log, options.threads, options.interp);
+    Result<std::unique_ptr<Backend>> backend = openBackend(kind, &session.log, options.threads, options.interp);
     if (!backend) return Error{backend.error()};
     session.backend = std::move(*backend);
     return session;
@@ -69,7 +93,7 @@ std::variant<Session, int> startSession(const RenderOptions& options, const Scen
 
 int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
     Backend& backend = *session.backend;
-    const DepthFormat format = options.camera.depthFormat;
+    const DepthFormat format = options.depthFormat;
     if (!backend.supportsDepthFormat(format)) {
         err << "error: --depth-format " << depthFormatName(format) << ": " << backend.name()
             << " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs\n";

@@ -19,8 +19,11 @@
 #include <variant>
 #include <vector>
 
+#include <frugal/Renderer.h>
+
 #include "app/Options.h"
 #include "render/SceneRenderer.h"
+#include "renderer/StateOrder.h"
 
 namespace frugal {
 
@@ -77,6 +80,17 @@ private:
     TargetHandle handle_;
 };
 
+// What a renderer prepared, as `render` says it before the first frame: "cull: 1 mesh, ..." (with
+// culling), "backend: egl-surfaceless (llvmpipe ...)", "order best: state costs on ..." (with a
+// cost-driven order).
+void printRendererStart(const Renderer& renderer, std::ostream& err);
+
+// "order best: state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ..." (no newline).
+std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs);
+
+// OrderCosts::start, with stateCostsLine on `err` unless quiet (for paper, greedy and best).
+Result<OrderCosts> startOrderCosts(Order order, Backend& backend, int refineEvery, std::ostream& err, bool quiet);
+
 // The one-backend start of render and cull-report: opens --backend, says which unless quiet, creates
 // the target and uploads `scene`. On failure prints the one error line and gives the exit status
 // (kExitNoBackend or kExitError) instead of a session.
@@ -85,7 +99,7 @@ std::variant<Session, int> startSession(const RenderOptions& options, const Scen
 // Opens `selection` with the options' thread count and --interp. A failure means the backend is not
 // available here (exit status kExitNoBackend); the message is its reason (print it after
 // "error: <label>: ").
-Result<Session> openSession(const BackendSelection& selection, const RenderOptions& options);
+Result<Session> openSession(BackendKind kind, const RenderOptions& options);
 
 // Creates the target (unless the session has one) and uploads `scene` into an open session,
 // replacing the scene uploaded before. On failure prints the one error line

@@ -14,15 +14,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/CameraPath.h"
 #include "app/Cli.h"
 #include "app/Command.h"
-#include "app/CameraPath.h"
 #include "app/Commands.h"
 #include "app/CullSupport.h"
 #include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
 #include "cull/Views.h"
+#include "renderer/Oracle.h"
 #include "report/CullReport.h"
 #include "report/ImageCompare.h"
 
@@ -86,7 +87,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     int viewCount = 32, repeat = 5;
     bool viewsGiven = false;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    std::vector<CullMethod> methods(std::begin(kCullMethods), std::end(kCullMethods));
+    std::vector<Cull> methods(std::begin(kCulls), std::end(kCulls));
     CommandLine command{"cull-report", cullReportHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (parseCullOption(flag, cursor, cull, false)) return true;
@@ -104,14 +105,15 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             std::stringstream items(*list);
             std::string item;
             while (std::getline(items, item, ',')) {
-                const std::optional<CullMethod> method = parseCullMethod(item);
+                const std::optional<Cull> method = fromString(item, kCulls);
                 if (!method) {
-                    cursor.fail("--methods " + *list + ": unknown method '" + item + "' (methods: " + cullMethodNames() + ")");
+                    cursor.fail("--methods " + *list + ": unknown method '" + item + "' (methods: " + namesOf(kCulls) +
+                                ")");
                     return true;
                 }
                 if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
             }
-            if (methods.empty()) cursor.fail("--methods: empty list (methods: " + cullMethodNames() + ")");
+            if (methods.empty()) cursor.fail("--methods: empty list (methods: " + namesOf(kCulls) + ")");
         } else if (flag == "--camera-path") {
             const std::optional<std::string> path = cursor.value(flag);
             if (!path) return true;
@@ -148,12 +150,12 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     std::vector<ReportView> views;
     std::string timing = "cold";
     if (!outputs.cameraPath.empty()) {
-        Result<std::vector<CameraSpec>> path = readCameraPath(outputs.cameraPath);
+        Result<std::vector<Camera>> path = readCameraPath(outputs.cameraPath);
         if (!path) {
             err << "error: " << path.error() << "\n";
             return kExitError;
         }
-        for (const CameraSpec& camera : *path) views.push_back(ReportView{"path", camera});
+        for (const Camera& camera : *path) views.push_back(ReportView{"path", camera});
         timing = "path";
     } else if (options.camera.sceneCamera || options.camera.eye || options.camera.target) {
         views.push_back(ReportView{"camera", options.camera});
@@ -169,7 +171,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     // The render's --near/--far and depth settings apply to every view.
     for (ReportView& view : views) applyDepthOptions(options.camera, view.camera);
 
-    cull.bins.hull = std::find(methods.begin(), methods.end(), CullMethod::Paper) != methods.end();
+    cull.bins.hull = std::find(methods.begin(), methods.end(), Cull::Paper) != methods.end();
     const SceneCuller culler = prepareCulling(scene, cull.bins, err, options.quiet);
 
     std::variant<Session, int> started = startSession(options, scene, err);
@@ -193,7 +195,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     report.timing = timing;
 
     for (std::size_t v = 0; v < views.size(); ++v) {
-        Result<FrameSetup> setup = setUpFrame(scene, views[v].camera, time, width, height, false);
+        Result<FrameSetup> setup = setUpFrame(scene, views[v].camera, time, width, height, false, options.depthFormat);
         if (!setup) {
             err << "error: view " << v << " (" << views[v].viewClass << "): " << setup.error() << "\n";
             return kExitError;
@@ -242,7 +244,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             const bool record = round >= 0;
             for (std::size_t m = 0; m < methods.size(); ++m) {
                 Timing& t = timings[m];
-                if (methods[m] == CullMethod::None || methods[m] == CullMethod::Oracle) continue;
+                if (methods[m] == Cull::None || methods[m] == Cull::Oracle) continue;
                 const auto t0 = Clock::now();
                 t.list = culler.cull(methods[m], scene, world, setup->view);
                 const double cullMs = msSince(t0);
@@ -268,15 +270,15 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                  << " of " << scene.triangleCount() << ", full " << fmt(fullMs) << " ms, oracle " << fmt(oracleMs) << " ms";
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Timing& t = timings[m];
-            if (methods[m] == CullMethod::None) {
+            if (methods[m] == Cull::None) {
                 t = fullTiming;
                 t.list = full;
-            } else if (methods[m] == CullMethod::Oracle) {
+            } else if (methods[m] == Cull::Oracle) {
                 t = oracleTiming;
             }
             MethodResult result;
-            result.method = cullMethodName(methods[m]);
-            const TriangleSet pvs = methods[m] == CullMethod::Oracle ? oracle->rvs : drawnSet(scene, t.list);
+            result.method = toString(methods[m]);
+            const TriangleSet pvs = methods[m] == Cull::Oracle ? oracle->rvs : drawnSet(scene, t.list);
             const SetCounts counts = compareSets(scene, pvs, oracle->rvs);
             result.tos = counts.tos;
             result.pvs = counts.pvs;
@@ -284,7 +286,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             result.misses = counts.misses;
             result.waste = counts.waste;
             // The image this plan draws, against the full render's.
-            if (methods[m] == CullMethod::Oracle)
+            if (methods[m] == Cull::Oracle)
                 draw(*oracle->renderer, nullptr);
             else
                 draw(renderer, &t.list);
@@ -296,7 +298,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             result.ratioToOracle = total / oracleMs;
             result.ratioToFull = total / fullMs;
             result.ratioToFullCullface = total / cullfaceMs;
-            if (methods[m] != CullMethod::None && methods[m] != CullMethod::Oracle)
+            if (methods[m] != Cull::None && methods[m] != Cull::Oracle)
                 progress << "; " << result.method << " x" << fmt(std::round(result.ratioToOracle * 100) / 100)
                          << (result.misses ? " misses " + std::to_string(result.misses) : "");
             view.methods.push_back(std::move(result));
@@ -323,7 +325,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                           {"paper_bunny", {{"hull_ms", 5000}, {"hull_vertices", 3023}, {"hull_faces", 6042},
                                            {"map_bytes", 4.3e6}, {"access_bytes", 0.51e6}}}};
     json["repeat"] = repeat;
-    json["hsr"] = hsr::modeName(hsrMode);
+    json["hsr"] = toString(hsrMode);
     json["renderer"] = backend.renderer();
 
     const ReportTexts texts{[&json] { return json.dump(2) + "\n"; }, [&report] { return cullReportCsv(report); },
@@ -332,28 +334,30 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
 
     // The summary, a line per method, then per view class.
     out << "method        median pvs  misses  views missed  pixels  cull ms  draw ms  /oracle  /full  /cullface  worst view\n";
-    for (CullMethod method : methods) {
-        const nlohmann::json& s = json["summary"][cullMethodName(method)];
+    for (Cull method : methods) {
+        const nlohmann::json& s = json["summary"][toString(method)];
         char line[256];
-        std::snprintf(line, sizeof line, "%-13s %10.0f %7zu %13zu %7zu %8.3f %8.3f %8.3f %6.3f %10.3f  %d (%s, x%.3f)\n",
-                      cullMethodName(method), s["median_pvs"].get<double>(), s["total_misses"].get<std::size_t>(),
-                      s["views_with_misses"].get<std::size_t>(), s["total_pixels_differing"].get<std::size_t>(),
-                      s["median_cull_ms"].get<double>(), s["median_draw_ms"].get<double>(),
-                      s["median_ratio_to_oracle"].get<double>(), s["median_ratio_to_full"].get<double>(),
-                      s["median_ratio_to_full_cullface"].get<double>(), s["worst_view"]["index"].get<int>(),
-                      s["worst_view"]["class"].get<std::string>().c_str(), s["worst_view"]["ratio_to_oracle"].get<double>());
+        std::snprintf(
+            line, sizeof line, "%-13s %10.0f %7zu %13zu %7zu %8.3f %8.3f %8.3f %6.3f %10.3f  %d (%s, x%.3f)\n",
+            toString(method), s["median_pvs"].get<double>(), s["total_misses"].get<std::size_t>(),
+            s["views_with_misses"].get<std::size_t>(), s["total_pixels_differing"].get<std::size_t>(),
+            s["median_cull_ms"].get<double>(), s["median_draw_ms"].get<double>(),
+            s["median_ratio_to_oracle"].get<double>(), s["median_ratio_to_full"].get<double>(),
+            s["median_ratio_to_full_cullface"].get<double>(), s["worst_view"]["index"].get<int>(),
+            s["worst_view"]["class"].get<std::string>().c_str(), s["worst_view"]["ratio_to_oracle"].get<double>());
         out << line;
     }
     out << "\nclass     method        views  median pvs of tos   speed-up (full, cullface)  misses\n";
     for (const auto& [viewClass, byMethod] : json["by_class"].items())
-        for (CullMethod method : methods) {
-            if (!byMethod.contains(cullMethodName(method))) continue;
-            const nlohmann::json& c = byMethod[cullMethodName(method)];
+        for (Cull method : methods) {
+            if (!byMethod.contains(toString(method))) continue;
+            const nlohmann::json& c = byMethod[toString(method)];
             char line[256];
             std::snprintf(line, sizeof line, "%-9s %-13s %5zu  %10.0f of %-6zu  %8.3f %8.3f          %7zu\n",
-                          viewClass.c_str(), cullMethodName(method), c["views"].get<std::size_t>(),
-                          c["median_pvs"].get<double>(), c["tos"].get<std::size_t>(), c["median_speed_up"].get<double>(),
-                          c["median_speed_up_over_cullface"].get<double>(), c["total_misses"].get<std::size_t>());
+                          viewClass.c_str(), toString(method), c["views"].get<std::size_t>(),
+                          c["median_pvs"].get<double>(), c["tos"].get<std::size_t>(),
+                          c["median_speed_up"].get<double>(), c["median_speed_up_over_cullface"].get<double>(),
+                          c["total_misses"].get<std::size_t>());
             out << line;
         }
     return kExitOk;

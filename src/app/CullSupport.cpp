@@ -1,6 +1,5 @@
 #include "app/CullSupport.h"
 
-#include <chrono>
 #include <ostream>
 
 namespace frugal {
@@ -9,8 +8,9 @@ bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& op
     if (withMethod && flag == "--cull") {
         const std::optional<std::string> value = cursor.value(flag);
         if (!value) return true;
-        const std::optional<CullMethod> method = parseCullMethod(*value);
-        if (!method) cursor.fail("--cull " + *value + ": unknown method (methods: " + cullMethodNames() + ")");
+        const std::optional<Cull> method = fromString(*value, kCulls);
+        if (!method)
+            cursor.fail("--cull " + *value + ": unknown method (methods: " + namesOf(kCulls) + ")");
         else options.method = *method;
         return true;
     }
@@ -27,45 +27,34 @@ bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& op
     return false;
 }
 
+std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation& prep) {
+    std::size_t triangles = 0;
+    for (const Mesh& mesh : scene.meshes) triangles += mesh.triangleCount();
+    std::string line = "cull: " + std::to_string(scene.meshes.size()) +
+                       (scene.meshes.size() == 1 ? " mesh, " : " meshes, ") + std::to_string(triangles) +
+                       " triangles prepared in " + fmt(prep.totalMs) + " ms (sphere " + fmt(prep.sphereMs) + ", map " +
+                       fmt(prep.mapMs) + ", clusters " + fmt(prep.clusterMs);
+    if (prep.hull) line += ", hull " + fmt(prep.hullMs);
+    return line + ")";
+}
+
 SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet) {
     SceneCuller culler = SceneCuller::prepare(scene, bins);
     if (!quiet) {
         const PrepStats stats = culler.totals();
-        std::size_t triangles = 0;
-        for (const Mesh& mesh : scene.meshes) triangles += mesh.triangleCount();
-        err << "cull: " << scene.meshes.size() << (scene.meshes.size() == 1 ? " mesh, " : " meshes, ") << triangles
-            << " triangles prepared in " << fmt(stats.totalMs()) << " ms (sphere " << fmt(stats.sphereMs) << ", map "
-            << fmt(stats.mapMs) << ", clusters " << fmt(stats.clusterMs);
-        if (bins.hull) err << ", hull " << fmt(stats.hullMs);
-        err << ")\n";
+        err << cullPreparedLine(
+                   scene, {stats.sphereMs, stats.mapMs, stats.clusterMs, stats.hullMs, stats.totalMs(), bins.hull})
+            << "\n";
     }
     return culler;
 }
 
 std::optional<SceneCuller> prepareCullOption(Scene& scene, const CullOptions& options, std::ostream& err, bool quiet) {
-    const CullMethod method = options.method.value_or(CullMethod::None);
-    if (method == CullMethod::None) return std::nullopt;
+    const Cull method = options.method.value_or(Cull::None);
+    if (method == Cull::None) return std::nullopt;
     MapParams bins = options.bins;
-    bins.hull = method == CullMethod::Paper;
+    bins.hull = method == Cull::Paper;
     return prepareCulling(scene, bins, err, quiet);
-}
-
-Result<Oracle> makeOracle(SceneRenderer& full, TargetHandle target, int width, int height, FrameParams frame,
-                          const std::vector<glm::mat4>& world, const glm::vec4& background) {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    frame.writeIds = true;
-    full.renderFrame(target, width, height, frame, world, background);
-    Result<TriangleSet> rvs = visibleSet(full.scene(), full.backend().readBack(target));
-    if (!rvs) return Error{rvs.error()};
-    Oracle oracle;
-    oracle.rvs = std::move(*rvs);
-    oracle.scene = std::make_unique<Scene>(oracleScene(full.scene(), oracle.rvs));
-    oracle.ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    Result<SceneRenderer> renderer = SceneRenderer::create(full.backend(), *oracle.scene);
-    if (!renderer) return Error{"oracle: " + renderer.error()};
-    oracle.renderer.emplace(std::move(*renderer));
-    return oracle;
 }
 
 }  // namespace frugal

@@ -8,15 +8,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/Backends.h"
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
-#include "app/OrderSupport.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
 #include "render/SceneRenderer.h"
+#include "renderer/Backends.h"
+#include "renderer/StateOrder.h"
+#include "renderer/StatsJson.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {
@@ -64,7 +65,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     compare.tolerance = kDefaultTolerance;
     std::string outDir, jsonPath;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    DrawOrder drawOrder = DrawOrder::Submit;
+    Order drawOrder = Order::Submit;
     CommandLine command{"diff", diffHelp(), &options};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
         if (flag == "--tolerance") {
@@ -81,7 +82,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     };
     command.positional = sceneArgument(options);
     command.finish = [&options](ArgCursor& cursor) {
-        if (options.backend.software)
+        if (options.backend == BackendKind::Software)
             cursor.fail("--backend software: diff compares a GL backend with the software reference; choose auto, egl, "
                         "egl-device, egl-surfaceless or osmesa");
     };
@@ -100,7 +101,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
 
     // The GL backend under test, then the software reference.
     Session sessions[2];
-    const BackendSelection selections[2] = {options.backend, BackendSelection{true, BackendChoice::Auto}};
+    const BackendKind selections[2] = {options.backend, BackendKind::Software};
     const std::string labels[2] = {"--backend " + options.backendName, "software reference"};
     for (int k = 0; k < 2; ++k) {
         Result<Session> opened = openSession(selections[k], options);
@@ -119,9 +120,9 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
     const TargetHandle targets[2] = {sessions[0].target, sessions[1].target};
     // paper, greedy and best order by the GL backend's measured costs; both backends draw that list.
-    Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, *sessions[0].backend, 0, err, options.quiet);
+    Result<OrderCosts> orderCosts = startOrderCosts(drawOrder, *sessions[0].backend, 0, err, options.quiet);
     if (!orderCosts) {
-        err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
+        err << "error: --order " << toString(drawOrder) << ": " << orderCosts.error() << "\n";
         return kExitError;
     }
     SceneRenderer* renderers[2] = {&*sessions[0].renderer, &*sessions[1].renderer};
@@ -211,8 +212,8 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             {"scene", options.scene},
             {"size", {options.width, options.height}},
             {"tolerance", compare.tolerance},
-            {"hsr", hsr::modeName(hsrMode)},
-            {"draw_order", drawOrderName(drawOrder)},
+            {"hsr", toString(hsrMode)},
+            {"draw_order", toString(drawOrder)},
             {"passed", failedFrames == 0},
             {"failed_frames", failedFrames},
             {"actual", {{"backend", actualName}, {"renderer", backends[0]->renderer()}, {"backend_log", log}}},

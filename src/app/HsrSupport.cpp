@@ -1,14 +1,12 @@
 #include "app/HsrSupport.h"
 
-#include <nlohmann/json.hpp>
-
 namespace frugal {
 
 bool parseHsrOption(const std::string& flag, ArgCursor& cursor, hsr::Mode& mode) {
     if (flag != "--hsr") return false;
     const std::optional<std::string> value = cursor.value(flag);
     if (!value) return true;
-    if (std::optional<hsr::Mode> parsed = hsr::parseMode(*value))
+    if (std::optional<hsr::Mode> parsed = fromString(*value, kHsrs))
         mode = *parsed;
     else
         cursor.fail("--hsr " + *value + ": not a mode (zbuffer, depthsort, adaptive or adaptive-convex)");
@@ -28,15 +26,6 @@ const char* hsrOptionHelp() {
                         Besides zbuffer, the depth image holds only the depth-tested polygons.
                         See 'frugal hsr-bench'.
 )";
-}
-
-nlohmann::json hsrJson(hsr::Mode mode, const hsr::PlanStats& stats) {
-    return {{"mode", hsr::modeName(mode)},
-            {"polygons", stats.polygons},
-            {"zbuffered_polygons", mode == hsr::Mode::ZBuffer ? stats.polygons : stats.flagged},
-            {"zbuffered_share", stats.zbufferedShare(mode)},
-            {"draws", stats.draws},
-            {"plan_ms", stats.ms}};
 }
 
 }  // namespace frugal

@@ -70,7 +70,7 @@ void printDepthPrecision(const Scene& scene, std::optional<int> index, double de
         const float aspect = scene.cameras[std::size_t(*index)].fileAspect();
         if (aspect > 0.0f) sizeForAspect(aspect, kLongSide, width, height);
     }
-    CameraSpec spec;
+    Camera spec;
     spec.sceneCamera = index;
     Result<View> fitted = resolveCamera(scene, world, 0.0, spec, width, height);
     spec.depthRange = DepthRange::File;
@@ -215,7 +215,7 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
     out << "cameras: " << scene.cameras.size() << "\n";
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
-        const Camera& c = scene.cameras[i];
+        const SceneCamera& c = scene.cameras[i];
         out << "  '" << c.name << "' "
             << (c.perspective ? "perspective yfov " + fmt(glm::degrees(c.yfov)) + " deg" : std::string("orthographic"))
             << (c.perspective && c.aspect > 0.0f ? ", aspect ratio " + fmt(c.aspect) : std::string()) << ", znear "

@@ -120,17 +120,20 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
     } else if (flag == "--backend") {
         const std::optional<std::string> text = cursor.value(flag);
         if (!text) return true;
-        Result<BackendSelection> choice = parseBackendSelection(*text);
-        if (!choice) cursor.fail("--backend: " + choice.error());
-        else {
-            o.backend = *choice;
+        const std::optional<BackendKind> kind = fromString(*text, kBackendKinds);
+        if (!kind) {
+            cursor.fail("--backend: unknown backend '" + *text +
+                        "' (expected auto, egl, egl-device, egl-surfaceless, osmesa or software)");
+        } else {
+            o.backend = *kind;
             o.backendName = *text;
         }
     } else if (flag == "--interp") {
         const std::optional<std::string> text = cursor.value(flag);
         if (!text) return true;
-        Result<span::Interp> mode = parseInterp(*text);
-        if (!mode) cursor.fail(mode.error());
+        const std::optional<DepthInterp> mode = fromString(*text, kDepthInterps);
+        if (!mode)
+            cursor.fail("--interp " + *text + ": not a mode (exact, span or dda)");
         else o.interp = *mode;
     } else if (flag == "--threads") {
         if (auto v = number(flag, cursor, 1, 256)) {
@@ -169,7 +172,7 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
         const std::optional<std::string> text = cursor.value(flag);
         if (!text) return true;
         if (const std::optional<DepthFormat> format = parseDepthFormat(*text))
-            o.camera.depthFormat = *format;
+            o.depthFormat = *format;
         else
             cursor.fail("--depth-format: '" + *text + "' is not a depth format (d24, d32f)");
     } else if (flag == "--time") {
@@ -217,9 +220,11 @@ bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions
 }
 
 void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
-    if (std::optional<std::string> conflict = interpConflict(o.backend, o.interp)) cursor.fail(*conflict);
-    if (o.interp != span::Interp::Exact && o.camera.depthFormat == DepthFormat::D32F)
-        cursor.fail(std::string("--interp ") + span::interpName(o.interp) +
+    if (o.backend != BackendKind::Software && o.interp != DepthInterp::Exact)
+        cursor.fail(std::string("--interp ") + toString(o.interp) +
+                    ": only the software backend models the span interpolator (use --backend software)");
+    if (o.interp != DepthInterp::Exact && o.depthFormat == DepthFormat::D32F)
+        cursor.fail(std::string("--interp ") + toString(o.interp) +
                     " with --depth-format d32f: the span engine interpolates a 24-bit depth; use --depth-format d24");
     const std::optional<float>& near = o.camera.znear;
     const std::optional<float>& far = o.camera.zfar;
@@ -265,12 +270,12 @@ const char* sharedOptionsHelp() {
 )";
 }
 
-bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder& order) {
+bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, Order& order) {
     if (flag != "--order") return false;
     const std::optional<std::string> value = cursor.value(flag);
     if (!value) return true;
-    for (DrawOrder o : {DrawOrder::Submit, DrawOrder::Key, DrawOrder::Paper, DrawOrder::Greedy, DrawOrder::Best})
-        if (*value == drawOrderName(o)) {
+    for (Order o : {Order::Submit, Order::Key, Order::Paper, Order::Greedy, Order::Best})
+        if (*value == toString(o)) {
             order = o;
             return true;
         }
@@ -278,11 +283,10 @@ bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder&
     return true;
 }
 
-void applyDepthOptions(const CameraSpec& options, CameraSpec& view) {
+void applyDepthOptions(const Camera& options, Camera& view) {
     view.znear = options.znear;
     view.zfar = options.zfar;
     view.depthRange = options.depthRange;
-    view.depthFormat = options.depthFormat;
 }
 
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame) {
@@ -294,7 +298,7 @@ std::string fitSizeToCamera(RenderOptions& options, const Scene& scene) {
     std::optional<int> index = options.camera.sceneCamera;
     if (!index && !options.camera.eye && options.cameraPath.empty() && !scene.cameras.empty()) index = 0;
     if (!index || *index < 0 || *index >= int(scene.cameras.size())) return {};
-    const Camera& camera = scene.cameras[std::size_t(*index)];
+    const SceneCamera& camera = scene.cameras[std::size_t(*index)];
     const float aspect = camera.fileAspect();
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) return {};
     if (!options.sizeGiven) sizeForAspect(aspect, kLongSide, options.width, options.height);
@@ -323,16 +327,31 @@ Result<Scene> loadForRender(RenderOptions& options, std::ostream& err) {
     return scene;
 }
 
+Settings rendererSettings(const RenderOptions& options) {
+    Settings s;
+    s.width = options.width;
+    s.height = options.height;
+    s.backend = options.backend;
+    s.threads = options.threads;
+    s.interp = options.interp;
+    s.depthFormat = options.depthFormat;
+    s.background = options.background;
+    return s;
+}
+
+Camera cameraOf(const RenderOptions& options, int frame) {
+    if (options.cameraPath.empty()) return options.camera;
+    const int first = options.frames ? options.frames->first : 0;
+    const int last = int(options.cameraPath.size()) - 1;
+    Camera camera = options.cameraPath[std::size_t(std::clamp(frame - first, 0, last))];
+    applyDepthOptions(options.camera, camera);
+    return camera;
+}
+
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
-    CameraSpec camera = options.camera;
-    if (!options.cameraPath.empty()) {
-        const int first = options.frames ? options.frames->first : 0;
-        const int last = int(options.cameraPath.size()) - 1;
-        camera = options.cameraPath[std::size_t(std::clamp(frame - first, 0, last))];
-        applyDepthOptions(options.camera, camera);
-    }
-    Result<FrameSetup> setup =
-        frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), options.width, options.height, writeIds);
+    const Camera camera = cameraOf(options, frame);
+    Result<FrameSetup> setup = frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), options.width,
+                                                  options.height, writeIds, options.depthFormat);
     if (!setup) return Error{options.scene + ": " + setup.error()};
     return setup;
 }

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "app/Backends.h"
 #include "base/Format.h"
 #include "render/Backend.h"
 #include "render/Camera.h"
 #include "render/Frame.h"
 #include "render/Plan.h"
+#include "renderer/Backends.h"
 #include "scene/Load.h"
 
 namespace frugal {
@@ -48,14 +48,15 @@ struct RenderOptions {
     std::string scene = "builtin:default";
     int width = 800, height = 600;
     bool sizeGiven = false;  // --size: else the scene camera's aspect ratio sizes the image (kLongSide)
-    BackendSelection backend;
+    BackendKind backend = BackendKind::Auto;
     std::string backendName = "auto";  // as given, for messages
     int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
-    span::Interp interp = span::Interp::Exact;  // --interp: the software backend's depth along a span
-    CameraSpec camera;
+    DepthInterp interp = DepthInterp::Exact;  // --interp: the software backend's depth along a span
+    Camera camera;
+    DepthFormat depthFormat = DepthFormat::D24;  // --depth-format
     // --camera-path (render, reuse-bench; app/CameraPath.h): entry i is frame first + i, the last
     // one holds; --near/--far still apply. Empty: `camera` for every frame.
-    std::vector<CameraSpec> cameraPath;
+    std::vector<Camera> cameraPath;
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;
     std::optional<double> fps;    // default: the scene's
@@ -72,9 +73,9 @@ void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
 // Help text of the shared options.
 const char* sharedOptionsHelp();
 
-// --order submit|key|paper|greedy|best (render, diff, bench; render/Plan.h's DrawOrder). False when
+// --order submit|key|paper|greedy|best (render, diff, bench; render/Plan.h's Order). False when
 // `flag` is not --order.
-bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, DrawOrder& order);
+bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, Order& order);
 
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
 bool parseIntPair(const std::string& text, int& first, int& second);
@@ -82,9 +83,9 @@ bool parseIntPair(const std::string& text, int& first, int& second);
 // The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
 std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
 
-// What --near, --far, --depth-range and --depth-format (in `options`) give every view of a camera
-// path or a report: a view's own planes are replaced by them, given or not.
-void applyDepthOptions(const CameraSpec& options, CameraSpec& view);
+// What --near, --far and --depth-range (in `options`) give every view of a camera path or a report:
+// a view's own planes are replaced by them, given or not.
+void applyDepthOptions(const Camera& options, Camera& view);
 
 // Scene time of frame `frame`: --time when no --frames, else frame / fps (--fps or the scene's).
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame);
@@ -101,6 +102,14 @@ std::string fitSizeToCamera(RenderOptions& options, const Scene& scene);
 // ratio the image does not have) to `err`, sizes the image (fitSizeToCamera), and checks the first
 // frame's camera, so that a bad camera fails before any backend is opened.
 Result<Scene> loadForRender(RenderOptions& options, std::ostream& err);
+
+// The renderer's settings the shared options give (frugal/Settings.h): size, backend, threads,
+// interp, depth format, background; the command fills in its own.
+Settings rendererSettings(const RenderOptions& options);
+
+// The camera of frame `frame`: the --camera-path entry (the last holds) with --near, --far and
+// --depth-range, or the camera the options give.
+Camera cameraOf(const RenderOptions& options, int frame);
 
 // Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);

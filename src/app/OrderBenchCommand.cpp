@@ -14,9 +14,10 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/OrderSupport.h"
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
+#include "renderer/StateOrder.h"
+#include "renderer/StatsJson.h"
 #include "report/ImageCompare.h"
 #include "report/ReportText.h"
 
@@ -47,7 +48,6 @@ the state-change costs measured on each backend at start (printed).
 
 namespace {
 
-constexpr DrawOrder kOrders[] = {DrawOrder::Submit, DrawOrder::Key, DrawOrder::Paper, DrawOrder::Greedy, DrawOrder::Best};
 constexpr int kOrderCount = 5;
 
 std::string orderBenchGnuplot(const std::string& csvPath, const std::string& svgPath, const std::string& scene) {
@@ -110,27 +110,27 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
         err << "error: " << setup.error() << "\n";
         return kExitError;
     }
-    std::vector<BackendSelection> choices;
-    if (options.backend.software || options.backend.gl != BackendChoice::Auto)
+    std::vector<BackendKind> choices;
+    if (options.backend != BackendKind::Auto)
         choices = {options.backend};
     else
-        choices = {{false, BackendChoice::Auto}, {true, BackendChoice::Auto}};
+        choices = {BackendKind::Auto, BackendKind::Software};
 
     using Clock = std::chrono::steady_clock;
     const auto msSince = [](Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); };
     nlohmann::json backends = nlohmann::json::array();
     std::ostringstream csv;
     csv << "backend,order,median_ms,min_ms,max_ms,order_ms,draws,programs,meshes,textures,toggles,uniforms,tie_px\n";
-    for (const BackendSelection& choice : choices) {
+    for (const BackendKind choice : choices) {
         Result<Session> opened = openSession(choice, options);
         if (!opened) {
-            if (!options.quiet) err << "skipped " << backendSelectionName(choice) << ": " << opened.error() << "\n";
+            if (!options.quiet) err << "skipped " << toString(choice) << ": " << opened.error() << "\n";
             continue;
         }
         if (int prepared = prepareSession(*opened, options, scene, err); prepared != kExitOk) return prepared;
         Backend& backend = *opened->backend;
         SceneRenderer& renderer = *opened->renderer;
-        Result<OrderCosts> costs = OrderCosts::start(DrawOrder::Best, backend, 0, err, options.quiet);
+        Result<OrderCosts> costs = startOrderCosts(Order::Best, backend, 0, err, options.quiet);
         if (!costs) {
             err << "error: " << costs.error() << "\n";
             return kExitError;
@@ -172,16 +172,21 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
             const double med = median(ms[o]);
             const auto [lo, hi] = std::minmax_element(ms[o].begin(), ms[o].end());
             const StateChanges& c = changes[o];
-            orders.push_back({{"order", drawOrderName(kOrders[o])}, {"median_ms", med}, {"min_ms", *lo}, {"max_ms", *hi},
-                              {"order_ms", orderMs[o]}, {"state_changes", stateChangesJson(c)}, {"tie_px", tie}});
-            csv << backend.name() << "," << drawOrderName(kOrders[o]) << "," << med << "," << *lo << "," << *hi << ","
+            orders.push_back({{"order", toString(kOrders[o])},
+                              {"median_ms", med},
+                              {"min_ms", *lo},
+                              {"max_ms", *hi},
+                              {"order_ms", orderMs[o]},
+                              {"state_changes", stateChangesJson(c)},
+                              {"tie_px", tie}});
+            csv << backend.name() << "," << toString(kOrders[o]) << "," << med << "," << *lo << "," << *hi << ","
                 << orderMs[o] << "," << c.draws << "," << c.programs << "," << c.meshes << "," << c.textures << ","
                 << c.toggles << "," << c.uniforms << "," << tie << "\n";
             char line[200];
             std::snprintf(line, sizeof line,
                           "  %-7s %8.3f ms (%.3f-%.3f), order %7.3f ms, draws %5llu programs %4llu meshes %5llu "
                           "textures %4llu toggles %4llu uniforms %5llu, tie px %zu\n",
-                          drawOrderName(kOrders[o]), med, *lo, *hi, orderMs[o], (unsigned long long)c.draws,
+                          toString(kOrders[o]), med, *lo, *hi, orderMs[o], (unsigned long long)c.draws,
                           (unsigned long long)c.programs, (unsigned long long)c.meshes, (unsigned long long)c.textures,
                           (unsigned long long)c.toggles, (unsigned long long)c.uniforms, tie);
             out << backend.name() << line;

@@ -11,11 +11,13 @@
 #include "app/Commands.h"
 #include "app/CullSupport.h"
 #include "app/HsrSupport.h"
-#include "app/OrderSupport.h"
 #include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
 #include "render/SceneRenderer.h"
+#include "renderer/Oracle.h"
+#include "renderer/StateOrder.h"
+#include "renderer/StatsJson.h"
 #include "software/SoftwareBackend.h"
 
 namespace frugal {
@@ -106,306 +108,278 @@ std::string checkPattern(const std::string& flag, const std::string& path) {
 
 nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
-// One frame with temporal reuse: the plan, executed; its statistics as JSON.
-nlohmann::json renderReused(TemporalReuse& reuse, SceneRenderer& renderer, TargetHandle target, TargetHandle staticTarget,
-                            const FrameSetup& setup, const DrawList* list, const glm::vec4& background) {
-    // Without a list: the whole scene.
-    const FramePlan plan = list ? reuse.plan(setup.params, setup.world, *list, background)
-                                : reuse.plan(setup.params, setup.world, background);
-    renderer.execute(plan, target, staticTarget, setup.params, setup.world, background);
-    return reuseStatsJson(reuse.stats());
-}
-
-}  // namespace
-
-int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+// Everything `render` reads from its command line.
+struct RenderRequest {
     RenderOptions options;
     Outputs outputs;
     CullOptions cull;
-    ReuseCliOptions reuseOptions;
-    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    DrawOrder drawOrder = DrawOrder::Submit;
-    int refineCostsEvery = 10;
-    CommandLine command{"render", renderHelp(), &options};
-    command.option = [&outputs, &cull, &reuseOptions, &options, &hsrMode, &drawOrder, &refineCostsEvery](
-                         const std::string& flag, ArgCursor& cursor) {
-        if (parseCullOption(flag, cursor, cull, true)) return true;
-        if (parseHsrOption(flag, cursor, hsrMode)) return true;
-        if (parseDrawOrderOption(flag, cursor, drawOrder)) return true;
+    ReuseCliOptions reuse;
+    hsr::Mode hsr = hsr::Mode::ZBuffer;
+    Order order = Order::Submit;
+    int refineCosts = 10;
+};
+
+// The command line into `request`: the exit status to return, or nothing to go on.
+std::optional<int> parseRender(const std::vector<std::string>& args, RenderRequest& r, std::ostream& out,
+                               std::ostream& err) {
+    CommandLine command{"render", renderHelp(), &r.options};
+    command.option = [&r](const std::string& flag, ArgCursor& cursor) {
+        if (parseCullOption(flag, cursor, r.cull, true) || parseHsrOption(flag, cursor, r.hsr) ||
+            parseDrawOrderOption(flag, cursor, r.order) || parseReuseOption(flag, cursor, r.reuse, r.options, true))
+            return true;
         if (flag == "--refine-costs") {
-            if (const std::optional<int> every = wholeNumber(flag, cursor, 0, 1000000)) refineCostsEvery = *every;
+            if (const std::optional<int> every = wholeNumber(flag, cursor, 0, 1000000)) r.refineCosts = *every;
             return true;
         }
-        if (parseReuseOption(flag, cursor, reuseOptions, options, true)) return true;
-        if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json") return false;
+        if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json")
+            return false;
         const std::optional<std::string> path = cursor.value(flag);
         if (!path) return true;
-        if (path->empty()) cursor.fail(flag + ": empty file name");
-        else if (flag == "--depth") outputs.depth = *path;
-        else if (flag == "--ids") outputs.ids = *path;
-        else if (flag == "--json") outputs.json = *path;
-        else outputs.color = *path;
+        if (path->empty())
+            cursor.fail(flag + ": empty file name");
+        else if (flag == "--depth")
+            r.outputs.depth = *path;
+        else if (flag == "--ids")
+            r.outputs.ids = *path;
+        else if (flag == "--json")
+            r.outputs.json = *path;
+        else
+            r.outputs.color = *path;
         return true;
     };
-    command.positional = sceneArgument(options);
-    command.finish = [&outputs, &options, &cull, &reuseOptions, &hsrMode](ArgCursor& cursor) {
-        if (reuseOptions.enabled && cull.method == CullMethod::Oracle)
+    command.positional = sceneArgument(r.options);
+    command.finish = [&r](ArgCursor& cursor) {
+        const Outputs& o = r.outputs;
+        const Cull method = r.cull.method.value_or(Cull::None);
+        if (r.reuse.enabled && method == Cull::Oracle)
             cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (hsrMode != hsr::Mode::ZBuffer && reuseOptions.enabled)
-            cursor.fail(std::string("--hsr ") + hsr::modeName(hsrMode) +
+        else if (r.hsr != hsr::Mode::ZBuffer && r.reuse.enabled)
+            cursor.fail(std::string("--hsr ") + toString(r.hsr) +
                         " with --reuse: reuse redraws what moved with the z-buffer over the static image; use one");
-        else if (hsrMode != hsr::Mode::ZBuffer && cull.method == CullMethod::Oracle)
-            cursor.fail(std::string("--hsr ") + hsr::modeName(hsrMode) +
+        else if (r.hsr != hsr::Mode::ZBuffer && method == Cull::Oracle)
+            cursor.fail(std::string("--hsr ") + toString(r.hsr) +
                         " with --cull oracle: the oracle draws its own scene; use --cull with a method");
-        else if (!hasExtension(outputs.color, ".png"))
-            cursor.fail("-o " + outputs.color + ": the colour image is written as PNG; name it .png");
-        else if (!outputs.depth.empty() && !hasExtension(outputs.depth, ".png") && !hasExtension(outputs.depth, ".pfm"))
-            cursor.fail("--depth " + outputs.depth + ": name it .png (16-bit) or .pfm (float32)");
-        else if (!outputs.ids.empty() && !hasExtension(outputs.ids, ".png"))
-            cursor.fail("--ids " + outputs.ids + ": the id image is written as PNG; name it .png");
-        else if (options.frames)
-            for (const auto& [flag, path] : {std::pair{"-o", outputs.color}, {"--depth", outputs.depth}, {"--ids", outputs.ids}})
+        else if (!hasExtension(o.color, ".png"))
+            cursor.fail("-o " + o.color + ": the colour image is written as PNG; name it .png");
+        else if (!o.depth.empty() && !hasExtension(o.depth, ".png") && !hasExtension(o.depth, ".pfm"))
+            cursor.fail("--depth " + o.depth + ": name it .png (16-bit) or .pfm (float32)");
+        else if (!o.ids.empty() && !hasExtension(o.ids, ".png"))
+            cursor.fail("--ids " + o.ids + ": the id image is written as PNG; name it .png");
+        else if (r.options.frames)
+            for (const auto& [flag, path] : {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}})
                 if (!path.empty()) {
                     const std::string problem = checkPattern(flag, path);
                     if (!problem.empty()) cursor.fail(problem);
                 }
     };
-    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
+    return parseCommandLine(command, args, out, err);
+}
 
-    Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) {
-        err << "error: " << loaded.error() << "\n";
-        return kExitError;
+Settings settingsOf(const RenderRequest& r) {
+    Settings s = rendererSettings(r.options);
+    s.cull = r.cull.method.value_or(Cull::None);
+    s.cullBinsTheta = r.cull.bins.thetaBins;
+    s.cullBinsPhi = r.cull.bins.phiBins;
+    s.order = r.order;
+    s.refineCosts = r.refineCosts;
+    s.reuse = r.reuse.enabled;
+    s.reuseSettings = r.reuse.settings;
+    s.hsr = r.hsr;
+    s.ids = !r.outputs.ids.empty();
+    return s;
+}
+
+// The render JSON, written as frames finish: their records go to a spool (an anonymous file, so
+// that a long sequence holds none of them in memory), and finish() puts the document together,
+// byte for byte what one nlohmann dump(2) of it would be. A record waits for the next frame, which
+// says whether a cost round ran between the two (it belongs to the earlier record).
+class RenderJson {
+public:
+    explicit RenderJson(std::string path) : path_(std::move(path)) {}
+    bool enabled() const { return !path_.empty(); }
+
+    Result<bool> add(nlohmann::json record, const FrameStats& stats) {
+        if (!enabled()) return true;
+        if (!spool_) {
+            Result<Spool> made = Spool::create(path_);
+            if (!made) return made.failure();
+            spool_.emplace(std::move(*made));
+        }
+        if (!pending_.is_null()) {
+            if (const nlohmann::json refined = refinementJson(stats); !refined.is_null()) pending_.update(refined);
+            if (Result<bool> put = flush(); !put) return put;
+        }
+        pending_ = std::move(record);
+        return true;
     }
-    Scene& scene = *loaded;
-    const CullMethod method = cull.method.value_or(CullMethod::None);
-    std::optional<SceneCuller> culler = prepareCullOption(scene, cull, err, options.quiet);  // before the upload
+
+    // The whole document, "frames" filled from the spool. Error (Io): the path's.
+    Result<bool> finish(nlohmann::json meta) {
+        if (!enabled()) return true;
+        if (Result<bool> put = flush(); !put) return put;
+        meta["frames"] = nlohmann::json::array();
+        const std::string text = meta.dump(2) + "\n";
+        const std::string marker = "\"frames\": []";
+        const std::size_t at = text.find(marker);
+        const std::string head = text.substr(0, at) + "\"frames\": [\n";
+        const std::string tail = "\n  ]" + text.substr(at + marker.size());
+        return writeFileAtomic(path_,
+                               Content(Bytes(head.begin(), head.end()), *spool_, Bytes(tail.begin(), tail.end())));
+    }
+
+private:
+    // The pending record, indented as an element of "frames" (two levels: four spaces).
+    Result<bool> flush() {
+        if (pending_.is_null()) return true;
+        std::string text = (first_ ? "" : ",\n") + std::string("    ");
+        for (const char c : pending_.dump(2)) {
+            text += c;
+            if (c == '\n') text += "    ";
+        }
+        first_ = false;
+        pending_ = nullptr;
+        return spool_->append(text);
+    }
+
+    std::string path_;
+    std::optional<Spool> spool_;
+    nlohmann::json pending_;
+    bool first_ = true;
+};
+
+// The frame's files, all or none.
+Result<bool> writeFrameFiles(const Outputs& o, const Frame& frame, int index, bool sequence) {
+    OutputSet files;
+    files.add(framePath(o.color, index, sequence), encodeColorPng(frame.color));
+    if (!o.depth.empty())
+        files.add(framePath(o.depth, index, sequence), hasExtension(o.depth, ".pfm")
+                                                           ? Result<Content>(Content(encodeDepthPfm(frame.depth)))
+                                                           : Result<Content>(encodeDepthPng(frame.depth)));
+    if (!o.ids.empty()) files.add(framePath(o.ids, index, sequence), encodeIdPng(frame.ids));
+    return files.commit();
+}
+
+// "frame 3 (4/10): 8.2 ms (conservative: 31000 of 69666 triangles) -> out_0003.png".
+std::string progressLine(const Settings& s, std::size_t triangles, const FrameStats& stats, int index, int done,
+                         int count, const std::string& file) {
+    std::string line = "frame " + std::to_string(index) + " (" + std::to_string(done) + "/" + std::to_string(count) +
+                       "): " + fmt(stats.renderMs) + " ms";
+    if (stats.cull)
+        line += std::string(" (") + toString(s.cull) + ": " + std::to_string(stats.cull->pvs) + " of " +
+                std::to_string(triangles) + " triangles)";
+    if (stats.hsr)
+        line += std::string(" (") + toString(s.hsr) + ": " + std::to_string(stats.hsr->zbuffered(s.hsr)) + " of " +
+                std::to_string(stats.hsr->polygons) + " polygons depth-tested)";
+    if (stats.reuse) {
+        line += std::string(" (") + toString(stats.reuse->mode) + ": " + std::to_string(stats.reuse->redrawnTris) +
+                " of " + std::to_string(stats.reuse->drawnTris) + " triangles drawn";
+        if (stats.reuse->mode == ReuseMode::Full) line += "; " + stats.reuse->reason;
+        line += ")";
+    }
+    return line + " -> " + file;
+}
+
+// The document's fields besides "frames".
+nlohmann::json renderMeta(const RenderRequest& r, const Renderer& renderer, const nlohmann::json& camera) {
+    const Scene& scene = renderer.scene();
+    const Settings& s = renderer.settings();
+    const std::optional<StateCosts> costs = renderer.stateCosts();
+    const ReuseSettings& reuse = s.reuseSettings;
+    return {
+        {"scene", r.options.scene},
+        {"counts",
+         {{"nodes", scene.nodes.size()},
+          {"meshes", scene.meshes.size()},
+          {"instances", scene.instances.size()},
+          {"triangles", scene.triangleCount()},
+          {"materials", scene.materials.size()},
+          {"textures", scene.textures.size()},
+          {"animations", scene.animations.size()}}},
+        {"unsupported", scene.unsupported},
+        {"size", {s.width, s.height}},
+        {"backend", renderer.backendName()},
+        {"renderer", renderer.backendRenderer()},
+        {"backend_log", renderer.backendLog()},
+        {"camera", camera},
+        {"cull", toString(s.cull)},
+        {"hsr", toString(s.hsr)},
+        {"draw_order", toString(s.order)},
+        {"state_costs", costs ? stateCostsJson(*costs) : nlohmann::json(nullptr)},
+        {"reuse", s.reuse ? nlohmann::json{{"grain", reuse.grain},
+                                           {"cell", reuse.cell},
+                                           {"fallback", reuse.fallback},
+                                           {"static_pair_bytes", renderer.staticPairBytes()}}
+                          : nlohmann::json(nullptr)},
+    };
+}
+
+nlohmann::json cameraJson(const View& view, const Settings& s) {
+    return {{"source", view.source},
+            {"eye", vec(view.eye)},
+            {"forward", vec(view.forward)},
+            {"perspective", view.perspective},
+            {"yfov_degrees", glm::degrees(view.yfov)},
+            {"znear", view.znear},
+            {"zfar", view.zfar},
+            {"depth_range", depthRangeName(view.depthRange)},
+            {"given_znear", view.givenNear},
+            {"given_zfar", view.givenFar},
+            {"depth_format", depthFormatName(view.depthFormat)},
+            {"aspect_ratio", view.aspect},
+            {"file_aspect_ratio", view.fileAspect > 0.0f ? nlohmann::json(view.fileAspect) : nlohmann::json(nullptr)},
+            {"aspect_ratio_differs", aspectDiffers(view.fileAspect, s.width, s.height)}};
+}
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    RenderRequest r;
+    if (std::optional<int> status = parseRender(args, r, out, err)) return *status;
+    const RenderOptions& options = r.options;
+
+    Result<Scene> loaded = loadForRender(r.options, err);
+    if (!loaded) return fail(err, loaded.failure());
+    Result<Renderer> made = Renderer::create(std::move(*loaded), settingsOf(r));
+    if (!made) return fail(err, made.failure());
+    Renderer& renderer = *made;
+    const Settings& s = renderer.settings();
+    if (!options.quiet) printRendererStart(renderer, err);
 
     const FrameRange range = options.frames.value_or(FrameRange{});
-    std::optional<hsr::Planner> planner;
-    if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(scene);
-
-    std::variant<Session, int> started = startSession(options, scene, err);
-    if (const int* status = std::get_if<int>(&started)) return *status;
-    Session& session = std::get<Session>(started);
-    Backend& backend = *session.backend;
-    SceneRenderer& renderer = *session.renderer;
-    const TargetHandle target = session.target;
-    const std::vector<std::string>& log = session.log;
-
-    // paper, greedy and best order by costs measured on this backend, refined between frames.
-    Result<OrderCosts> orderCosts = OrderCosts::start(drawOrder, backend, refineCostsEvery, err, options.quiet);
-    if (!orderCosts) {
-        err << "error: --order " << drawOrderName(drawOrder) << ": " << orderCosts.error() << "\n";
-        return kExitError;
-    }
-
-    // Temporal reuse: the static pair is one more target of the same size.
-    TargetHandle staticTarget = kNoHandle;
-    std::optional<TemporalReuse> reuse;
-    if (reuseOptions.enabled) {
-        // The pair (a target's bytes; measured 11.8 a pixel at 8192x8192) and what a frame still
-        // allocates after its target (the read-back and the PNG encoding): the first frame comes after it.
-        const std::uint64_t pixels = std::uint64_t(options.width) * std::uint64_t(options.height);
-        const std::uint64_t needed =
-            staticPairBytes(options.width, options.height) + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
-        if (const std::optional<std::string> problem = memoryProblem(needed)) {
-            err << "error: --reuse: " << options.width << "x" << options.height << " needs about " << gigabytes(needed)
-                << " more (a static pair of 12 bytes a pixel, then the frame's read-back and PNG encoding), "
-                << *problem << "\n";
-            return kExitError;
-        }
-        staticTarget = backend.createTarget(options.width, options.height, options.camera.depthFormat);
-        if (staticTarget == kNoHandle) {
-            err << "error: --reuse: " << backend.name() << " could not create the static pair (" << options.width << "x"
-                << options.height << ", " << staticPairBytes(options.width, options.height) << " bytes)\n";
-            return kExitError;
-        }
-        reuse.emplace(scene, options.width, options.height, reuseOptions.settings);
-    }
-    const ScopedTarget staticPair(backend, staticTarget);
-
     const int frameCount = range.last - range.first + 1;
-    nlohmann::json frames = nlohmann::json::array();
-    InterpStats interpSeen;  // --interp: the software backend's counters after the previous frame
-    nlohmann::json cameraJson;
-    using Clock = std::chrono::steady_clock;
-    auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
-
+    RenderJson json(r.outputs.json);
+    nlohmann::json camera;
+    std::uint64_t overflow = 0;  // --interp: spans that overflowed, over every frame
     // SIGINT, SIGTERM and SIGHUP stop the sequence between frames: the frames written stay, the
     // JSON is not written (io/Interrupt.h).
     InterruptPoints interrupts;
-    for (int frame = range.first; frame <= range.last; ++frame) {
-        if (const int caught = interrupts.arrived()) {
-            err << "error: " << interruptedAfter(caught, frame - range.first, frameCount) << "\n";
-            return kExitError;
-        }
-        Result<FrameSetup> setup = setUpFrame(options, scene, frame, !outputs.ids.empty());
-        if (!setup) {
-            err << "error: " << setup.error() << "\n";
-            return kExitError;
-        }
-        const double time = setup->time;
-        const View& view = setup->view;
-
-        nlohmann::json cullJson, reuseJson, hsrFrameJson;
-        const StateChanges changesBefore = backend.stateChanges();
-        // The frame's list as drawn: in the --hsr mode's order and depth modes (the plan is timed).
-        const auto drawList = [&](const DrawList& submitted) {
-            const DrawList list = orderFrameDraws(scene, submitted, drawOrder, orderCosts->costsUs());
-            if (!planner) {
-                renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                     options.background, list);
-                return;
-            }
-            hsr::PlanStats stats;
-            const DrawList planned =
-                planner->plan(hsrMode, setup->params, setup->world, list, options.width, options.height, &stats);
-            hsrFrameJson = hsrJson(hsrMode, stats);
-            renderer.renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                 options.background, planned);
-        };
-        auto t0 = Clock::now();
-        if (method == CullMethod::Oracle) {
-            // The id pass and the oracle's own index buffers come before the clock starts.
-            Result<Oracle> oracle = makeOracle(renderer, target, options.width, options.height, setup->params,
-                                               setup->world, options.background);
-            if (!oracle) {
-                err << "error: " << options.scene << ": " << oracle.error() << "\n";
-                return kExitError;
-            }
-            cullJson = {{"tos", scene.triangleCount()}, {"pvs", oracle->rvs.count}, {"cull_ms", oracle->ms}};
-            t0 = Clock::now();
-            oracle->renderer->renderFrame(target, options.width, options.height, setup->params, setup->world,
-                                          options.background);
-        } else if (culler) {
-            const DrawList list = culler->cull(method, scene, setup->world, view);
-            const double cullMs = ms(Clock::now() - t0);
-            std::size_t ranges = 0;
-            for (const DrawCommand& draw : list) ranges += draw.ranges.size();
-            cullJson = {{"tos", scene.triangleCount()}, {"pvs", submittedTriangles(scene, list)}, {"cull_ms", cullMs},
-                        {"ranges", ranges}};
-            if (reuse)
-                reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, &list, options.background);
-            else
-                drawList(list);
-        } else if (reuse) {
-            reuseJson = renderReused(*reuse, renderer, target, staticTarget, *setup, nullptr, options.background);
-        } else {
-            drawList(renderer.fullList());
-        }
-        backend.finish();
-        const auto t1 = Clock::now();
-        const Buffers buffers = backend.readBack(target);
-        const auto t2 = Clock::now();
-
-        OutputSet files;
-        const bool sequence = range.sequence;
-        files.add(framePath(outputs.color, frame, sequence), encodeColorPng(buffers));
-        if (!outputs.depth.empty())
-            files.add(framePath(outputs.depth, frame, sequence),
-                      hasExtension(outputs.depth, ".pfm")
-                          ? encodeDepthPfm(buffers)
-                          : encodeDepthPng(buffers, DepthInfo{view.znear, view.zfar, view.perspective}));
-        if (!outputs.ids.empty()) files.add(framePath(outputs.ids, frame, sequence), encodeIdPng(buffers));
-        Result<bool> written = files.commit();
-        if (!written) {
-            err << "error: " << written.error() << "\n";
-            return kExitError;
-        }
-        const auto t3 = Clock::now();
-
-        if (frame == range.first) {
-            cameraJson = {{"source", view.source},
-                          {"eye", vec(view.eye)},
-                          {"forward", vec(view.forward)},
-                          {"perspective", view.perspective},
-                          {"yfov_degrees", glm::degrees(view.yfov)},
-                          {"znear", view.znear},
-                          {"zfar", view.zfar},
-                          {"depth_range", depthRangeName(view.depthRange)},
-                          {"given_znear", view.givenNear},
-                          {"given_zfar", view.givenFar},
-                          {"depth_format", depthFormatName(view.depthFormat)},
-                          {"aspect_ratio", view.aspect},
-                          {"file_aspect_ratio",
-                           view.fileAspect > 0.0f ? nlohmann::json(view.fileAspect) : nlohmann::json(nullptr)},
-                          {"aspect_ratio_differs", aspectDiffers(view.fileAspect, options.width, options.height)}};
-        }
-        frames.push_back({{"frame", frame}, {"time", time}, {"render_ms", ms(t1 - t0)}, {"readback_ms", ms(t2 - t1)},
-                          {"write_ms", ms(t3 - t2)}, {"file", framePath(outputs.color, frame, sequence)}});
-        if (!cullJson.is_null()) frames.back().update(cullJson);
-        if (!reuseJson.is_null()) frames.back()["reuse"] = reuseJson;
-        if (!hsrFrameJson.is_null()) frames.back()["hsr"] = hsrFrameJson;
-        frames.back()["state_changes"] = stateChangesJson(backend.stateChanges() - changesBefore);
-        if (options.interp != span::Interp::Exact)
-            if (const std::optional<InterpStats> interp = softwareInterpStats(backend)) {
-                // The backend's counters run from its start: per frame, the difference.
-                frames.back()["interp"] = {{"mode", span::interpName(options.interp)},
-                                           {"spans", interp->spans - interpSeen.spans},
-                                           {"overflow", interp->overflow - interpSeen.overflow}};
-                interpSeen = *interp;
-            }
-        // Between frames, outside every timing above: one more cost round when due; the frames after
-        // this one are ordered by the refined costs.
-        const auto refineStart = Clock::now();
-        if (frame < range.last && orderCosts->refine(frame - range.first + 1)) {
-            frames.back()["refined_state_costs_us"] = orderCosts->costsUs();
-            frames.back()["refine_ms"] = ms(Clock::now() - refineStart);
-        }
-        if (!options.quiet) {
-            err << "frame " << frame << " (" << (frame - range.first + 1) << "/" << frameCount << "): "
-                << fmt(ms(t1 - t0)) << " ms";
-            if (!cullJson.is_null())
-                err << " (" << cullMethodName(method) << ": " << cullJson["pvs"].get<std::size_t>() << " of "
-                    << scene.triangleCount() << " triangles)";
-            if (!hsrFrameJson.is_null())
-                err << " (" << hsr::modeName(hsrMode) << ": " << hsrFrameJson["zbuffered_polygons"].get<std::size_t>()
-                    << " of " << hsrFrameJson["polygons"].get<std::size_t>() << " polygons depth-tested)";
-            if (reuse) {
-                const ReuseFrameStats& stats = reuse->stats();
-                err << " (" << reuseModeName(stats.mode) << ": " << stats.redrawnTris << " of " << stats.drawnTris
-                    << " triangles drawn";
-                if (stats.mode == ReuseMode::Full) err << "; " << stats.reason;
-                err << ")";
-            }
-            err << " -> " << framePath(outputs.color, frame, sequence) << "\n";
-        }
+    for (int index = range.first; index <= range.last; ++index) {
+        if (const int caught = interrupts.arrived())
+            return fail(err, Error{interruptedAfter(caught, index - range.first, frameCount), ErrorKind::Interrupted});
+        Result<Frame> frame = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index));
+        if (!frame) return fail(err, frame.failure());
+        const auto writeStart = std::chrono::steady_clock::now();
+        if (Result<bool> written = writeFrameFiles(r.outputs, *frame, index, range.sequence); !written)
+            return fail(err, written.failure());
+        const double writeMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
+        const std::string file = framePath(r.outputs.color, index, range.sequence);
+        if (index == range.first) camera = cameraJson(frame->view, s);
+        nlohmann::json record = frameStatsJson(frame->stats, s);
+        record.update({{"frame", index}, {"write_ms", writeMs}, {"file", file}});
+        if (Result<bool> kept = json.add(std::move(record), frame->stats); !kept) return fail(err, kept.failure());
+        if (frame->stats.interp) overflow += frame->stats.interp->overflow;
+        if (!options.quiet)
+            err << progressLine(s, renderer.scene().triangleCount(), frame->stats, index, index - range.first + 1,
+                                frameCount, file)
+                << "\n";
     }
-
-    if (interpSeen.overflow > 0)
-        err << "warning: --interp " << span::interpName(options.interp) << ": " << interpSeen.overflow
+    if (overflow > 0)
+        err << "warning: --interp " << toString(s.interp) << ": " << overflow
             << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";
-    if (!outputs.json.empty()) {
-        nlohmann::json meta = {
-            {"scene", options.scene},
-            {"counts", {{"nodes", scene.nodes.size()}, {"meshes", scene.meshes.size()}, {"instances", scene.instances.size()},
-                        {"triangles", scene.triangleCount()}, {"materials", scene.materials.size()},
-                        {"textures", scene.textures.size()}, {"animations", scene.animations.size()}}},
-            {"unsupported", scene.unsupported},
-            {"size", {options.width, options.height}},
-            {"backend", backend.name()},
-            {"renderer", backend.renderer()},
-            {"backend_log", log},
-            {"camera", cameraJson},
-            {"cull", cullMethodName(method)},
-            {"hsr", hsr::modeName(hsrMode)},
-            {"draw_order", drawOrderName(drawOrder)},
-            {"state_costs", orderCosts->json()},
-            {"reuse", reuse ? nlohmann::json{{"grain", reuseOptions.settings.grain}, {"cell", reuseOptions.settings.cell},
-                                             {"fallback", reuseOptions.settings.fallback},
-                                             {"static_pair_bytes", staticPairBytes(options.width, options.height)}}
-                            : nlohmann::json(nullptr)},
-            {"frames", frames},
-        };
-        const std::string text = meta.dump(2) + "\n";
-        Result<bool> written = writeFileAtomic(outputs.json, Bytes(text.begin(), text.end()));
-        if (!written) {
-            err << "error: " << written.error() << "\n";
-            return kExitError;
-        }
-    }
-    if (!options.quiet && !range.sequence) out << "wrote " << outputs.color << "\n";
+    if (Result<bool> written = json.finish(renderMeta(r, renderer, camera)); !written)
+        return fail(err, written.failure());
+    if (!options.quiet && !range.sequence) out << "wrote " << r.outputs.color << "\n";
     return kExitOk;
 }
 

@@ -29,6 +29,7 @@
 #include "app/ReportOutputs.h"
 #include "app/ReuseSupport.h"
 #include "base/Stats.h"
+#include "renderer/Oracle.h"
 #include "report/ReuseCheck.h"
 #include "report/ReuseReport.h"
 #include "reuse/CellGrid.h"
@@ -146,7 +147,7 @@ double numberOr(const nlohmann::json& value, double fallback) {
 ReuseBenchFrame describeFrame(int frame, const ReuseFrameStats& stats, std::size_t draws, std::size_t fullDraws) {
     ReuseBenchFrame result;
     result.frame = frame;
-    result.mode = reuseModeName(stats.mode);
+    result.mode = toString(stats.mode);
     result.reason = stats.reason;
     result.pDD = stats.triangles[kDD];
     result.pDS = stats.triangles[kDS];
@@ -172,12 +173,13 @@ std::optional<std::string> checkOracle(int frame, const char* which, const Buffe
 }
 
 // The printed summary: modes, the medians side by side, the fitted cost model, ties and errors.
-void printSummary(std::ostream& out, const ReuseBench& bench, const nlohmann::json& summary, CullMethod method,
+void printSummary(std::ostream& out, const ReuseBench& bench, const nlohmann::json& summary, Cull method,
                   const FrameRange& range, int frameCount) {
     const nlohmann::json& modes = summary["modes"];
-    out << "reuse-bench " << bench.scene << ", " << bench.width << "x" << bench.height << ", " << bench.backend << ", frames "
-        << range.first << ".." << range.last << ", " << bench.repeat << (bench.repeat == 1 ? " round" : " rounds")
-        << (method != CullMethod::None ? std::string(", cull ") + cullMethodName(method) : std::string()) << "\n";
+    out << "reuse-bench " << bench.scene << ", " << bench.width << "x" << bench.height << ", " << bench.backend
+        << ", frames " << range.first << ".." << range.last << ", " << bench.repeat
+        << (bench.repeat == 1 ? " round" : " rounds")
+        << (method != Cull::None ? std::string(", cull ") + toString(method) : std::string()) << "\n";
     out << "frames " << frameCount << ": reuse " << modes["reuse"].get<std::size_t>() << ", rebuild "
         << modes["rebuild"].get<std::size_t>() << ", full " << modes["full"].get<std::size_t>() << "; static share "
         << percent(numberOr(summary["static_share"], 0.0)) << " of the triangles (mean over reuse frames)\n";
@@ -208,7 +210,6 @@ void printSummary(std::ostream& out, const ReuseBench& bench, const nlohmann::js
         << fmt(numberOr(summary["max_overlap_ms"], 0.0)) << " ms, ties " << summary["total_tie_px"].get<std::uint64_t>()
         << " px, errors " << summary["total_error_px"].get<std::uint64_t>() << " px\n";
     if (summary.contains("note")) out << "note: " << summary["note"].get<std::string>() << "\n";
-
 }
 
 }  // namespace
@@ -238,7 +239,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     command.finish = [&](ArgCursor& cursor) {
         if (!options.frames)
             cursor.fail("--frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)");
-        else if (cull.method == CullMethod::Oracle)
+        else if (cull.method == Cull::Oracle)
             cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
         else if (const std::string problem = plotProblem(outputs); !problem.empty())
             cursor.fail(problem);
@@ -251,7 +252,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
         return kExitError;
     }
     Scene& scene = *loaded;
-    const CullMethod method = cull.method.value_or(CullMethod::None);
+    const Cull method = cull.method.value_or(Cull::None);
     std::optional<SceneCuller> culler = prepareCullOption(scene, cull, err, options.quiet);  // before the upload
 
     std::variant<Session, int> started = startSession(options, scene, err);
@@ -271,7 +272,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
         return kExitError;
     }
     for (TargetHandle* t : {&targets.render, &targets.statics, &targets.oracle, &targets.image, &targets.oracleWhole}) {
-        *t = backend.createTarget(width, height, options.camera.depthFormat);
+        *t = backend.createTarget(width, height, options.depthFormat);
         if (*t == kNoHandle) {
             err << "error: --size " << width << "x" << height << ": " << backend.name()
                 << " could not create the benchmark's six targets (the full render's, the reuse frame's, its static "
@@ -293,7 +294,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     reuse::CellGrid dirty(width, height, reuseOptions.settings.cell);
     for (int round = -1; round < repeat; ++round) {  // round -1: the warm-up, untimed, and the check
         const bool timed = round >= 0;
-        TemporalReuse reuse(scene, width, height, reuseOptions.settings);
+        TemporalReuse reuse(scene, width, height, reuseOptionsFrom(reuseOptions.settings));
         std::vector<double> roundFull, roundReuse, roundOracle, roundOracleWhole;
         for (int i = 0; i < frameCount; ++i) {
             const int frame = range.first + i;
@@ -419,7 +420,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     bench.backend = backend.name();
     bench.renderer = backend.renderer();
     bench.repeat = repeat;
-    bench.cull = cullMethodName(method);
+    bench.cull = toString(method);
     bench.grain = reuseOptions.settings.grain;
     bench.cell = reuseOptions.settings.cell;
     bench.fallback = reuseOptions.settings.fallback;

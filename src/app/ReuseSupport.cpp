@@ -1,9 +1,7 @@
 #include "app/ReuseSupport.h"
 
-#include <nlohmann/json.hpp>
-
-#include "app/Backends.h"
 #include "app/CameraPath.h"
+#include "renderer/Backends.h"
 
 namespace frugal {
 
@@ -28,7 +26,7 @@ bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOption
     } else if (flag == "--no-fallback") {
         options.settings.fallback = false;
     } else if (flag == "--exact-static") {
-        options.settings.paperSteps = false;
+        options.settings.exactStatic = true;
     } else if (flag == "--reuse-grain") {
         if (auto n = wholeNumber(flag, cursor, 0, 1 << 30)) options.settings.grain = *n;
     } else if (flag == "--reuse-cell") {
@@ -36,7 +34,7 @@ bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOption
     } else if (flag == "--camera-path") {
         const std::optional<std::string> path = cursor.value(flag);
         if (!path) return true;
-        Result<std::vector<CameraSpec>> cameras = readCameraPath(*path);
+        Result<std::vector<Camera>> cameras = readCameraPath(*path);
         if (!cameras) cursor.fail(cameras.error());
         else render.cameraPath = std::move(*cameras);
     } else {
@@ -47,25 +45,6 @@ bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOption
 
 std::uint64_t staticPairBytes(int width, int height) {
     return std::uint64_t(width) * std::uint64_t(height) * kTargetBytesPerPixel;
-}
-
-nlohmann::json reuseStatsJson(const ReuseFrameStats& s) {
-    return {{"mode", reuseModeName(s.mode)},
-            {"reason", s.reason},
-            {"p_dd", s.triangles[kDD]},
-            {"p_ds", s.triangles[kDS]},
-            {"p_sd", s.triangles[kSD]},
-            {"p_ss", s.triangles[kSS]},
-            {"instances", {{"p_dd", s.instances[kDD]}, {"p_ds", s.instances[kDS]}, {"p_sd", s.instances[kSD]},
-                           {"p_ss", s.instances[kSS]}}},
-            {"copied_px", s.copiedPx},
-            {"cleared_px", s.clearedPx},
-            {"redrawn_tris", s.redrawnTris},
-            {"static_redrawn_tris", s.staticRedrawnTris},
-            {"rects", s.rects},
-            {"plan_ms", s.planMs},
-            {"overlap_ms", s.overlapMs},
-            {"extent_ms", s.extentMs}};
 }
 
 }  // namespace frugal

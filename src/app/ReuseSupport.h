@@ -1,12 +1,10 @@
 // The command-line side of temporal reuse, shared by `frugal render --reuse` and `frugal reuse-bench`:
-// the options, the static pair's target, and a frame's statistics as JSON.
+// the options and the static pair's size.
 #pragma once
 
 #include <cstdint>
 #include <iosfwd>
 #include <string>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "app/Options.h"
 #include "reuse/Reuse.h"
@@ -15,7 +13,7 @@ namespace frugal {
 
 struct ReuseCliOptions {
     bool enabled = false;    // render: --reuse
-    ReuseOptions settings;   // --reuse-grain N, --reuse-cell PX, --no-fallback, --exact-static
+    ReuseSettings settings;  // --reuse-grain N, --reuse-cell PX, --no-fallback, --exact-static
 };
 
 // --reuse (when `withSwitch`), --reuse-grain, --reuse-cell, --no-fallback and --exact-static; also --camera-path
@@ -28,9 +26,5 @@ const char* reuseOptionsHelp();
 // The static pair's size in bytes for a width × height target (colour RGBA8, depth 24-bit in 32,
 // ids 32-bit: 12 bytes a pixel).
 std::uint64_t staticPairBytes(int width, int height);
-
-// {"mode","reason","p_dd","p_ds","p_sd","p_ss" (triangles),"instances":{…},"copied_px","cleared_px",
-//  "redrawn_tris","static_redrawn_tris","rects","overlap_ms","extent_ms"}
-nlohmann::json reuseStatsJson(const ReuseFrameStats& stats);
 
 }  // namespace frugal

@@ -159,8 +159,8 @@ double timeOfFrame(const SoakContext& c, std::int64_t frame) {
 // Draws the frame of scene time `time` into `target` and reads it back.
 Result<Buffers> drawFrame(const SoakContext& c, Backend& backend, SceneRenderer& renderer, TargetHandle target,
                           double time) {
-    Result<FrameSetup> setup =
-        setUpFrame(c.scene, c.options.camera, time, c.options.width, c.options.height, c.settings.ids);
+    Result<FrameSetup> setup = setUpFrame(c.scene, c.options.camera, time, c.options.width, c.options.height,
+                                          c.settings.ids, c.options.depthFormat);
     if (!setup) return Error{c.options.scene + ": " + setup.error()};
     renderer.renderFrame(target, c.options.width, c.options.height, setup->params, setup->world, c.options.background);
     return backend.readBack(target);
@@ -257,8 +257,8 @@ Result<std::uint64_t> cycleImage(const SoakContext& c, Result<Buffers> image) {
 // The three kinds of cycles on one backend selection, each cycle's image compared with the first
 // frame of a session opened before them (a cycle that repeats its predecessor's fault exactly would
 // agree with itself). Nothing on success, else the exit status after the error line.
-std::optional<int> soakAllCycles(const SoakContext& c, const BackendSelection& choice, const std::string& name,
-                                 SoakReport& report, Progress& progress, std::ostream& err) {
+std::optional<int> soakAllCycles(const SoakContext& c, BackendKind choice, const std::string& name, SoakReport& report,
+                                 Progress& progress, std::ostream& err) {
     const double time = timeOfFrame(c, 0);
     const auto cyclesOf = [&name](const char* kind) {
         SoakCycles run;
@@ -297,8 +297,7 @@ std::optional<int> soakAllCycles(const SoakContext& c, const BackendSelection& c
 
     SoakCycles targets = cyclesOf("target");
     soakCycles(c.settings, *reference, targets, progress, [&]() -> Result<std::uint64_t> {
-        const TargetHandle target =
-            backend.createTarget(c.options.width, c.options.height, c.options.camera.depthFormat);
+        const TargetHandle target = backend.createTarget(c.options.width, c.options.height, c.options.depthFormat);
         if (target == kNoHandle) return Error{"createTarget failed"};
         Result<std::uint64_t> hash = cycleImage(c, drawFrame(c, backend, *session.renderer, target, time));
         backend.destroyTarget(target);
@@ -364,7 +363,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                                          : "--frames 0 with --cycles 0: nothing to do");
         else if (settings.minimal && settings.ids)
             cursor.fail("--minimal with --ids: the minimal GL program draws no ids");
-        else if (settings.minimal && options.backend.software)
+        else if (settings.minimal && options.backend == BackendKind::Software)
             cursor.fail("--minimal with --backend software: the minimal program is a GL program; pick a GL backend");
         else if (settings.warmup && settings.frames > 0 && *settings.warmup >= settings.frames)
             cursor.fail("--warmup " + std::to_string(*settings.warmup) + ": must be less than --frames " +
@@ -387,14 +386,12 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         settings.period.value_or(options.time ? 1 : std::max(1, int(std::lround(scene.duration() * fps))));
     const SoakContext context{options, scene, settings, period, fps, colorBytes(options.background)};
 
-    std::vector<BackendSelection> choices;
-    if (options.backend.software || options.backend.gl != BackendChoice::Auto)
+    std::vector<BackendKind> choices;
+    if (options.backend != BackendKind::Auto)
         choices = {options.backend};
     else
-        choices = {
-            {false, BackendChoice::EglDevice}, {false, BackendChoice::EglSurfaceless}, {false, BackendChoice::OsMesa}};
-    if (!settings.minimal && choices.size() > 1)
-        choices.insert(choices.begin(), BackendSelection{true, BackendChoice::Auto});
+        choices = {BackendKind::EglDevice, BackendKind::EglSurfaceless, BackendKind::OsMesa};
+    if (!settings.minimal && choices.size() > 1) choices.insert(choices.begin(), BackendKind::Software);
 
     SoakReport report;
     report.scene = options.scene;
@@ -405,12 +402,12 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     report.ids = settings.ids;
     report.maxGrowthPct = maxGrowth;
     Progress progress(err, options.quiet);
-    std::vector<std::pair<BackendSelection, std::string>> opened;  // the selections that open, by name
-    for (const BackendSelection& choice : choices) {
+    std::vector<std::pair<BackendKind, std::string>> opened;  // the kinds that open, by name
+    for (const BackendKind choice : choices) {
         Result<Session> session = openSession(choice, options);
         if (!session) {
-            report.skipped.push_back({backendSelectionName(choice), session.error()});
-            if (!options.quiet) err << "skipped " << backendSelectionName(choice) << ": " << session.error() << "\n";
+            report.skipped.push_back({toString(choice), session.error()});
+            if (!options.quiet) err << "skipped " << toString(choice) << ": " << session.error() << "\n";
             continue;
         }
         opened.emplace_back(choice, session->backend->name());
@@ -431,7 +428,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             MinimalFrame& frame = **minimal;
             const auto draw = [&](double time) -> Result<Buffers> {
                 Result<FrameSetup> setup =
-                    setUpFrame(scene, options.camera, time, options.width, options.height, false);
+                    setUpFrame(scene, options.camera, time, options.width, options.height, false, options.depthFormat);
                 if (!setup) return Error{options.scene + ": " + setup.error()};
                 frame.render(setup->params, setup->world, options.background);
                 return frame.readBack();

@@ -165,7 +165,7 @@ Result<SceneCase> loadSceneCase(const std::string& spec, int width, int height) 
     // The camera's own planes, not fitted to the scene (render/Camera.h): the engine's error grows
     // with the depth's slope across a span, which the fit makes steeper (builtin:cubes: worst 14 LSB
     // against 2), and this reports the engine as paper 001 measured it.
-    CameraSpec camera;
+    Camera camera;
     camera.depthRange = DepthRange::File;
     Result<FrameSetup> setup = setUpFrame(*scene, camera, 0.0, width, height, true);
     if (!setup) return Error{named(setup.error())};
@@ -295,10 +295,18 @@ std::string reportJson(const Report& r) {
     j["spans_per_second"] = speed;
     nlohmann::json render = nlohmann::json::array();
     for (const RenderRow& row : r.render)
-        render.push_back({{"scene", row.scene}, {"size", {row.width, row.height}}, {"mode", interpName(row.mode)},
-                          {"colour_px", row.colourPx}, {"id_px", row.idPx}, {"worst_lsb", row.worstLsb},
-                          {"mean_lsb", row.meanLsb}, {"depth_changed_px", row.depthChangedPx}, {"overflow", row.overflow},
-                          {"spans", row.spans}, {"frame_ms", row.frameMs}, {"exact_frame_ms", row.exactFrameMs},
+        render.push_back({{"scene", row.scene},
+                          {"size", {row.width, row.height}},
+                          {"mode", toString(row.mode)},
+                          {"colour_px", row.colourPx},
+                          {"id_px", row.idPx},
+                          {"worst_lsb", row.worstLsb},
+                          {"mean_lsb", row.meanLsb},
+                          {"depth_changed_px", row.depthChangedPx},
+                          {"overflow", row.overflow},
+                          {"spans", row.spans},
+                          {"frame_ms", row.frameMs},
+                          {"exact_frame_ms", row.exactFrameMs},
                           {"spans_per_second", row.spansPerSecond}});
     j["render"] = render;
     return j.dump(2) + "\n";
@@ -424,9 +432,9 @@ void printRender(std::ostream& out, const Report& r) {
             out << "  " << row.scene << " " << row.width << "x" << row.height << "\n";
         char line[200];
         std::snprintf(line, sizeof line, "  %-5s  %9zu  %7zu  %5u  %7.4f  %8zu  %8llu  %11llu  %8.2f  %8.2f  %12.0f\n",
-                      interpName(row.mode), row.colourPx, row.idPx, row.worstLsb, row.meanLsb, row.depthChangedPx,
-                      static_cast<unsigned long long>(row.overflow), static_cast<unsigned long long>(row.spans), row.frameMs,
-                      row.exactFrameMs, row.spansPerSecond);
+                      toString(row.mode), row.colourPx, row.idPx, row.worstLsb, row.meanLsb, row.depthChangedPx,
+                      static_cast<unsigned long long>(row.overflow), static_cast<unsigned long long>(row.spans),
+                      row.frameMs, row.exactFrameMs, row.spansPerSecond);
         out << line;
     }
 }

@@ -1,11 +1,11 @@
-#include <malloc.h>
-
 #include <iostream>
 #include <new>
 
-#include "app/Backends.h"
+#include <malloc.h>
+
 #include "app/Cli.h"
 #include "io/Interrupt.h"
+#include "renderer/Backends.h"
 
 int main(int argc, char** argv) {
     frugal::installInterruptHandler();  // before any file is written or any thread started
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
     int status = frugal::kExitError;
     try {
         status = frugal::runCli(args, std::cout, std::cerr);
-    } catch (const std::bad_alloc&) {  // past the checks made up front (app/Backends.h)
+    } catch (const std::bad_alloc&) {  // past the checks made up front (renderer/Backends.h)
         std::cerr << "error: " << frugal::outOfMemoryMessage() << "\n";
     }
     frugal::raiseNotedSignal();  // a command stopped by a signal ends by it (io/Interrupt.h)

@@ -240,31 +240,6 @@ SphereClass classifySphere(const Sphere& sphere, const glm::mat4& model, const V
 
 }  // namespace
 
-const char* cullMethodName(CullMethod method) {
-    switch (method) {
-        case CullMethod::None: return "none";
-        case CullMethod::Sphere: return "sphere";
-        case CullMethod::Backface: return "backface";
-        case CullMethod::Cones: return "cones";
-        case CullMethod::Paper: return "paper";
-        case CullMethod::Conservative: return "conservative";
-        case CullMethod::Oracle: return "oracle";
-    }
-    return "?";
-}
-
-std::optional<CullMethod> parseCullMethod(std::string_view name) {
-    for (CullMethod method : kCullMethods)
-        if (name == cullMethodName(method)) return method;
-    return std::nullopt;
-}
-
-std::string cullMethodNames() {
-    std::string names;
-    for (CullMethod method : kCullMethods) names += (names.empty() ? "" : ", ") + std::string(cullMethodName(method));
-    return names;
-}
-
 SceneCuller SceneCuller::prepare(Scene& scene, const MapParams& params) {
     SceneCuller culler;
     culler.maps_.reserve(scene.meshes.size());
@@ -308,10 +283,10 @@ SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::v
     return classifySphere(maps_[std::size_t(in.mesh)].sphere, world[std::size_t(in.node)], view);
 }
 
-DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vector<glm::mat4>& world,
+DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world,
                            const View& view) const {
     DrawList list;
-    if (method == CullMethod::None || method == CullMethod::Oracle) return fullDrawList(scene);
+    if (method == Cull::None || method == Cull::Oracle) return fullDrawList(scene);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
@@ -323,18 +298,18 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
         RangeList out;
 
         switch (method) {
-            case CullMethod::Sphere:
+            case Cull::Sphere:
                 if (classifySphere(map.sphere, model, view) != SphereClass::Outside) out.add(0, triangles);
                 break;
 
-            case CullMethod::Backface: {
+            case Cull::Backface: {
                 const InstanceView iv(model, view);
                 Outcodes vertices(mesh, iv.mvp);
                 testTriangles(mesh, map, iv, vertices, 0, triangles, false, singleSided, out);
                 break;
             }
 
-            case CullMethod::Cones: {
+            case Cull::Cones: {
                 const InstanceView iv(model, view);
                 for (const Cluster& c : map.clusters) {
                     if (boxSide(iv.planes, c.boxMin, c.boxMax) == Side::Outside) continue;
@@ -344,7 +319,7 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                 break;
             }
 
-            case CullMethod::Conservative: {
+            case Cull::Conservative: {
                 const InstanceView iv(model, view);
                 Outcodes vertices(mesh, iv.mvp);
                 for (const Cluster& c : map.clusters) {
@@ -361,7 +336,7 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                 break;
             }
 
-            case CullMethod::Paper: {
+            case Cull::Paper: {
                 const SphereClass sphereClass = classifySphere(map.sphere, model, view);
                 if (sphereClass == SphereClass::Outside) break;
                 const InstanceView iv(model, view);
@@ -409,8 +384,8 @@ DrawList SceneCuller::cull(CullMethod method, const Scene& scene, const std::vec
                 break;
             }
 
-            case CullMethod::None:
-            case CullMethod::Oracle:
+            case Cull::None:
+            case Cull::Oracle:
                 break;
         }
         if (!out.ranges.empty()) list.push_back(DrawCommand{int(i), std::move(out.ranges)});

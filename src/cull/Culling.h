@@ -29,22 +29,14 @@
 
 #include <glm/glm.hpp>
 
+#include <frugal/Scene.h>
+#include <frugal/Settings.h>
+
 #include "cull/SphereMap.h"
 #include "render/Camera.h"
 #include "render/Plan.h"
-#include "scene/Scene.h"
 
 namespace frugal {
-
-enum class CullMethod { None, Sphere, Backface, Cones, Paper, Conservative, Oracle };
-
-inline constexpr CullMethod kCullMethods[] = {CullMethod::None,  CullMethod::Sphere,       CullMethod::Backface,
-                                              CullMethod::Cones, CullMethod::Paper,        CullMethod::Conservative,
-                                              CullMethod::Oracle};
-
-const char* cullMethodName(CullMethod method);
-std::optional<CullMethod> parseCullMethod(std::string_view name);
-std::string cullMethodNames();  // "none, sphere, backface, cones, paper, conservative, oracle"
 
 // How the paper method classified an instance's bounding sphere against the frustum.
 enum class SphereClass { Outside, Partial, Whole };
@@ -57,8 +49,7 @@ public:
 
     // The plan of `method` for one frame: node transforms `world`, camera `view` (render/Camera.h).
     // Instances in scene order; instances with nothing to draw are left out.
-    DrawList cull(CullMethod method, const Scene& scene, const std::vector<glm::mat4>& world,
-                  const View& view) const;
+    DrawList cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world, const View& view) const;
 
     // How the paper method sees instance `instance` in this frame.
     SphereClass classify(const Scene& scene, int instance, const std::vector<glm::mat4>& world,

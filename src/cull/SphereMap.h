@@ -23,8 +23,9 @@
 
 #include <glm/glm.hpp>
 
+#include <frugal/Scene.h>
+
 #include "cull/Geometry.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 

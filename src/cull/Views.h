@@ -20,7 +20,7 @@ namespace frugal {
 
 struct ReportView {
     std::string viewClass;  // "whole", "partial", "grazing", "inside", "pole"
-    CameraSpec camera;      // eye, target, up and fov; near/far fitted by resolveCamera
+    Camera camera;          // eye, target, up and fov; near/far fitted by resolveCamera
 };
 
 // `count` views (≥ 1) of a sphere (world space) seen with a vertical field of view `yfovDegrees`

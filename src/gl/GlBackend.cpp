@@ -5,7 +5,7 @@
 // on attachment 1, DEPTH_COMPONENT24 or DEPTH_COMPONENT32F depth. A new target is cleared to
 // transparent black, far depth and id 0, so its contents are defined in both backends.
 //
-// Depth formats (render/Image.h): a D24 target is drawn with GL's default clip space and GL_LESS; a
+// Depth formats (frugal/Image.h): a D24 target is drawn with GL's default clip space and GL_LESS; a
 // D32F target with glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) and GL_GREATER (reversed Z). Both
 // are context state, set when a draw goes to a target of the other format (cached, so a sequence in
 // one format sets them once). D32F needs glClipControl (GL 4.5 or ARB_clip_control): without it
@@ -75,9 +75,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <utility>
+
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <utility>
 
 #include "gl/GlApi.h"
 #include "gl/Shaders.h"
@@ -736,7 +737,7 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
     GLuint name = 0;
     gl_.GenTextures(1, &name);
     bindTexture(name);
-    // Rows as stored: the first row is v = 0, which is where glTF puts (0,0) (scene/Scene.h).
+    // Rows as stored: the first row is v = 0, which is where glTF puts (0,0) (frugal/Scene.h).
     gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                    texture.rgba.data());
     // Base level only (Scene.h: no mipmaps in either backend).

@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <frugal/Result.h>
+
 #include "gl/GlContext.h"
 #include "render/Backend.h"
-#include "base/Result.h"
 
 namespace frugal {
 

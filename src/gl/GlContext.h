@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
 
 namespace frugal {
 

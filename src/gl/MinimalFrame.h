@@ -12,16 +12,18 @@
 // images equal the backend's bit for bit (tests/gl/MinimalFrameGLTest.cpp).
 #pragma once
 
-#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "base/Result.h"
+#include <glm/glm.hpp>
+
+#include <frugal/Image.h>
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
+
 #include "gl/GlContext.h"
 #include "render/Backend.h"
-#include "render/Image.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 

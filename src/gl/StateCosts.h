@@ -36,7 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
+
 #include "render/Backend.h"
 
 namespace frugal {

@@ -48,9 +48,10 @@
 
 #include <glm/glm.hpp>
 
+#include <frugal/Scene.h>
+
 #include "render/Backend.h"
 #include "render/Plan.h"
-#include "scene/Scene.h"
 
 namespace frugal::hsr {
 

@@ -8,28 +8,6 @@
 
 namespace frugal::hsr {
 
-const char* modeName(Mode mode) {
-    switch (mode) {
-    case Mode::ZBuffer: return "zbuffer";
-    case Mode::DepthSort: return "depthsort";
-    case Mode::Adaptive: return "adaptive";
-    case Mode::AdaptiveConvex: return "adaptive-convex";
-    }
-    return "?";
-}
-
-std::optional<Mode> parseMode(const std::string& name) {
-    for (Mode mode : {Mode::ZBuffer, Mode::DepthSort, Mode::Adaptive, Mode::AdaptiveConvex})
-        if (name == modeName(mode)) return mode;
-    return std::nullopt;
-}
-
-double PlanStats::zbufferedShare(Mode mode) const {
-    if (mode == Mode::ZBuffer) return 1.0;
-    if (mode == Mode::DepthSort || polygons == 0) return 0.0;  // adaptive, adaptive-convex: the flagged
-    return double(flagged) / double(polygons);
-}
-
 Planner::Planner(const Scene& scene) : scene_(&scene) {
     polygons_.reserve(scene.meshes.size());
     for (const Mesh& mesh : scene.meshes) polygons_.push_back(groupPolygons(mesh));

@@ -66,26 +66,18 @@
 
 #include <glm/glm.hpp>
 
+#include <frugal/Scene.h>
+#include <frugal/Stats.h>
+
 #include "hsr/Polygons.h"
 #include "render/Backend.h"
 #include "render/Plan.h"
-#include "scene/Scene.h"
 
 namespace frugal::hsr {
 
-enum class Mode : std::uint8_t { ZBuffer, DepthSort, Adaptive, AdaptiveConvex };
+using Mode = frugal::Hsr;  // frugal/Settings.h: its names are toString's
 
-const char* modeName(Mode mode);  // "zbuffer", "depthsort", "adaptive", "adaptive-convex"
-std::optional<Mode> parseMode(const std::string& name);
-
-struct PlanStats {
-    std::size_t polygons = 0;  // listed polygons (in view, not clearly back-facing)
-    std::size_t flagged = 0;   // adaptive: polygons drawn with the z-buffer
-    std::size_t draws = 0;     // draw commands in the plan
-    double ms = 0.0;           // extents + sort + flags + the list, on the calling thread
-    // The share of polygons drawn with the depth test: 1 for zbuffer, 0 for depthsort.
-    double zbufferedShare(Mode mode) const;
-};
+using PlanStats = HsrStats;  // frugal/Stats.h
 
 class Planner {
 public:

@@ -20,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/Scene.h"
+#include <frugal/Scene.h>
 
 namespace frugal::hsr {
 

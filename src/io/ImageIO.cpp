@@ -14,9 +14,9 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <stb_image.h>
+#include <zlib.h>
 
 #include "base/Format.h"
 #include "io/Interrupt.h"
@@ -109,18 +109,23 @@ Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const
     return out;
 }
 
-Result<Bytes> encodeColorPng(const Buffers& b) {
-    const std::vector<std::uint8_t> rows = flipRows(b.rgba.data(), b.width, b.height, 4);
-    return encodePng(b.width, b.height, 4, 8, rows.data());
+namespace {
+
+// The encoders on one plane each (rows bottom-up), for Buffers and for the images alike.
+Result<Bytes> colorPng(int width, int height, const std::uint8_t* rgba) {
+    const std::vector<std::uint8_t> rows = flipRows(rgba, width, height, 4);
+    return encodePng(width, height, 4, 8, rows.data());
 }
 
-Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info) {
-    std::vector<std::uint16_t> depth16(b.pixelCount());
-    const bool reversed = b.depthFormat == DepthFormat::D32F;
+Result<Bytes> depthPng(int width, int height, const std::uint32_t* values, DepthFormat format,
+                       const std::optional<DepthInfo>& info) {
+    std::vector<std::uint16_t> depth16(std::size_t(width) * std::size_t(height));
+    const bool reversed = format == DepthFormat::D32F;
     for (std::size_t i = 0; i < depth16.size(); ++i)
-        depth16[i] = reversed ? std::uint16_t(std::lround((1.0 - double(b.windowDepth(i))) * 65535.0))
-                              : std::uint16_t(b.depth[i] >> 8);
-    const std::vector<std::uint8_t> rows = flipRows(reinterpret_cast<const std::uint8_t*>(depth16.data()), b.width, b.height, 2);
+        depth16[i] = reversed ? std::uint16_t(std::lround((1.0 - double(windowDepth(format, values[i]))) * 65535.0))
+                              : std::uint16_t(values[i] >> 8);
+    const std::vector<std::uint8_t> rows =
+        flipRows(reinterpret_cast<const std::uint8_t*>(depth16.data()), width, height, 2);
     PngText text;
     if (info) {
         const auto number = [](float v) {
@@ -129,23 +134,24 @@ Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& i
             return std::string(s);
         };
         text = {
-            {"depth_format", depthFormatName(b.depthFormat)},
+            {"depth_format", depthFormatName(format)},
             {"depth_znear", number(info->znear)},
             {"depth_zfar", info->zfar > 0.0f ? number(info->zfar) : std::string("inf")},
             {"depth_projection", info->perspective ? "perspective" : "orthographic"},
             {"depth_encoding", reversed ? "(1 - window z) * 65535, rounded: 0 near, 65535 far (window z 1 near, 0 far)"
                                         : "the top 16 bits of the 24-bit window z: 0 near, 65535 far"}};
     }
-    return encodePng(b.width, b.height, 1, 16, rows.data(), text);
+    return encodePng(width, height, 1, 16, rows.data(), text);
 }
 
-Bytes encodeDepthPfm(const Buffers& b) {
+Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat format) {
     // PFM stores rows bottom-up already, little-endian when the scale is negative.
-    const std::string header = "Pf\n" + std::to_string(b.width) + " " + std::to_string(b.height) + "\n-1.0\n";
+    const std::string header = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
     Bytes out(header.begin(), header.end());
-    out.reserve(out.size() + b.pixelCount() * 4);
-    for (std::size_t i = 0; i < b.depth.size(); ++i) {
-        const float z = b.windowDepth(i);
+    out.reserve(out.size() + pixels * 4);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const float z = windowDepth(format, values[i]);
         std::uint8_t bytes[4];
         std::memcpy(bytes, &z, 4);
         out.insert(out.end(), bytes, bytes + 4);
@@ -153,37 +159,91 @@ Bytes encodeDepthPfm(const Buffers& b) {
     return out;
 }
 
-Result<Bytes> encodeIdPng(const Buffers& b) {
-    std::vector<std::uint8_t> bytes(b.pixelCount() * 4);
-    for (std::size_t i = 0; i < b.ids.size(); ++i)
-        for (int k = 0; k < 4; ++k) bytes[4 * i + k] = std::uint8_t(b.ids[i] >> (8 * k));
-    const std::vector<std::uint8_t> rows = flipRows(bytes.data(), b.width, b.height, 4);
-    return encodePng(b.width, b.height, 4, 8, rows.data());
+Result<Bytes> idPng(int width, int height, const std::uint32_t* ids) {
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    std::vector<std::uint8_t> bytes(pixels * 4);
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (int k = 0; k < 4; ++k) bytes[4 * i + k] = std::uint8_t(ids[i] >> (8 * k));
+    const std::vector<std::uint8_t> rows = flipRows(bytes.data(), width, height, 4);
+    return encodePng(width, height, 4, 8, rows.data());
+}
+
+}  // namespace
+
+Result<Bytes> encodeColorPng(const Buffers& b) { return colorPng(b.width, b.height, b.rgba.data()); }
+Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info) {
+    return depthPng(b.width, b.height, b.depth.data(), b.depthFormat, info);
+}
+Bytes encodeDepthPfm(const Buffers& b) { return depthPfm(b.width, b.height, b.depth.data(), b.depthFormat); }
+Result<Bytes> encodeIdPng(const Buffers& b) { return idPng(b.width, b.height, b.ids.data()); }
+
+Result<Bytes> encodeColorPng(const ColorImage& image) { return colorPng(image.width, image.height, image.rgba.data()); }
+Result<Bytes> encodeDepthPng(const DepthImage& image) {
+    return depthPng(image.width, image.height, image.values.data(), image.format,
+                    DepthInfo{image.znear, image.zfar, image.perspective});
+}
+Bytes encodeDepthPfm(const DepthImage& image) {
+    return depthPfm(image.width, image.height, image.values.data(), image.format);
+}
+Result<Bytes> encodeIdPng(const IdImage& image) { return idPng(image.width, image.height, image.ids.data()); }
+
+Result<bool> writePng(const std::string& path, const ColorImage& image) {
+    return writeFileAtomic(path, encodeColorPng(image));
+}
+Result<bool> writePng(const std::string& path, const DepthImage& image) {
+    return writeFileAtomic(path, encodeDepthPng(image));
+}
+Result<bool> writePfm(const std::string& path, const DepthImage& image) {
+    return writeFileAtomic(path, encodeDepthPfm(image));
+}
+Result<bool> writePng(const std::string& path, const IdImage& image) {
+    return writeFileAtomic(path, encodeIdPng(image));
 }
 
 namespace {
 
-// Writes all of `bytes` to `fd` and closes it: "" or why not, with how far it got.
-std::string writeAndClose(int fd, const Bytes& bytes) {
-    std::size_t done = 0;
-    while (done < bytes.size()) {
-        // At most 1 GiB a call: Linux writes at most 0x7ffff000 bytes at once anyway.
-        const std::size_t chunk = std::min<std::size_t>(bytes.size() - done, std::size_t(1) << 30);
-        const ssize_t n = ::write(fd, bytes.data() + done, chunk);
-        if (n > 0) {
-            done += std::size_t(n);
-        } else if (n < 0 && errno == EINTR) {
-            continue;
-        } else {
-            const int error = n < 0 ? errno : EIO;
-            ::close(fd);
-            return "write failed after " + std::to_string(done) + " of " + std::to_string(bytes.size()) +
-                   " bytes: " + std::strerror(error);
+// Writes all of `content` to `fd` and closes it: "" or why not, with how far it got.
+std::string writeAndClose(int fd, const Content& content) {
+    std::uint64_t done = 0;
+    const std::uint64_t total = content.size();
+    const auto failed = [&](int error) {
+        ::close(fd);
+        return "write failed after " + std::to_string(done) + " of " + std::to_string(total) +
+               " bytes: " + std::strerror(error);
+    };
+    const auto put = [&](const std::uint8_t* data, std::size_t size) -> std::string {
+        std::size_t at = 0;
+        while (at < size) {
+            // At most 1 GiB a call: Linux writes at most 0x7ffff000 bytes at once anyway.
+            const std::size_t chunk = std::min<std::size_t>(size - at, std::size_t(1) << 30);
+            const ssize_t n = ::write(fd, data + at, chunk);
+            if (n > 0) {
+                at += std::size_t(n);
+                done += std::uint64_t(n);
+            } else if (!(n < 0 && errno == EINTR)) {
+                return failed(n < 0 ? errno : EIO);
+            }
+        }
+        return {};
+    };
+    if (std::string why = put(content.head.data(), content.head.size()); !why.empty()) return why;
+    if (content.body) {
+        // The body in pieces of 1 MiB, read from its start.
+        std::vector<std::uint8_t> piece(std::size_t(1) << 20);
+        for (std::uint64_t offset = 0; offset < content.body->size();) {
+            const ssize_t n = ::pread(content.body->fd(), piece.data(),
+                                      std::size_t(std::min<std::uint64_t>(piece.size(), content.body->size() - offset)),
+                                      off_t(offset));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return failed(n < 0 ? errno : EIO);
+            if (std::string why = put(piece.data(), std::size_t(n)); !why.empty()) return why;
+            offset += std::uint64_t(n);
         }
     }
+    if (std::string why = put(content.tail.data(), content.tail.size()); !why.empty()) return why;
     if (::close(fd) != 0) {  // where a file system reports a full disk late (NFS)
         const int error = errno;
-        return "write failed when closing after " + std::to_string(bytes.size()) + " bytes: " + std::strerror(error);
+        return "write failed when closing after " + std::to_string(total) + " bytes: " + std::strerror(error);
     }
     return {};
 }
@@ -206,10 +266,10 @@ std::optional<std::string> replacedPath(const std::string& path) {
     return target.string();
 }
 
-Result<bool> writeInPlace(const std::string& path, const Bytes& bytes) {
+Result<bool> writeInPlace(const std::string& path, const Content& bytes) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (fd < 0) return Error{path + ": cannot write: " + std::strerror(errno)};
-    if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why};
+    if (fd < 0) return Error{path + ": cannot write: " + std::strerror(errno), ErrorKind::Io};
+    if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why, ErrorKind::Io};
     return true;
 }
 
@@ -217,7 +277,8 @@ Result<bool> writeInPlace(const std::string& path, const Bytes& bytes) {
 // removes it); errors name `path`. O_EXCL: no other writer, in this process or another (even one
 // with the same pid in another pid namespace), can share the file, and no link planted at that name
 // is followed.
-Result<bool> writeTemporary(const std::string& path, const std::string& target, const Bytes& bytes, std::string& temp) {
+Result<bool> writeTemporary(const std::string& path, const std::string& target, const Content& bytes,
+                            std::string& temp) {
     const std::string base = target + ".tmp-" + std::to_string(::getpid());
     constexpr int kNames = 100;
     for (int attempt = 0; attempt < kNames; ++attempt) {
@@ -227,24 +288,27 @@ Result<bool> writeTemporary(const std::string& path, const std::string& target, 
             const int error = errno;
             temp.clear();  // not ours to remove
             if (error == EEXIST) continue;
-            return Error{path + ": cannot write: " + std::strerror(error)};
+            return Error{path + ": cannot write: " + std::strerror(error), ErrorKind::Io};
         }
-        if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why};
+        if (std::string why = writeAndClose(fd, bytes); !why.empty()) return Error{path + ": " + why, ErrorKind::Io};
         return true;
     }
-    return Error{path + ": cannot write: " + std::to_string(kNames) + " temporary names beside it are taken (" +
-                 base + ", ...)"};
+    return Error{
+        path + ": cannot write: " + std::to_string(kNames) + " temporary names beside it are taken (" + base + ", ...)",
+        ErrorKind::Io};
 }
 
 }  // namespace
 
-Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes) {
+Result<bool> writeFileAtomic(const std::string& path, Result<Content> bytes) {
     OutputSet set;
     set.add(path, std::move(bytes));
     return set.commit();
 }
 
-void OutputSet::add(std::string path, Result<Bytes> bytes) { files_.emplace_back(std::move(path), std::move(bytes)); }
+void OutputSet::add(std::string path, Result<Content> content) {
+    files_.emplace_back(std::move(path), std::move(content));
+}
 
 Result<bool> OutputSet::commit() {
     for (const auto& [path, bytes] : files_)
@@ -298,8 +362,9 @@ Result<bool> OutputSet::commit() {
             }
             const int error = errno;
             if (error != ENOENT || attempt == 100)
-                return Error{files_[replaced[k].file].first + ": cannot keep the old file while replacing it: " +
-                             std::strerror(error)};
+                return Error{files_[replaced[k].file].first +
+                                 ": cannot keep the old file while replacing it: " + std::strerror(error),
+                             ErrorKind::Io};
         }
     }
     for (std::size_t k = 0; k < replaced.size(); ++k) {
@@ -313,8 +378,9 @@ Result<bool> OutputSet::commit() {
             if (scratch.backups[j].empty()) ::unlink(earlier.c_str());
             else if (std::rename(scratch.backups[j].c_str(), earlier.c_str()) == 0) scratch.backups[j].clear();
         }
-        return Error{files_[replaced[k].file].first +
-                     ": cannot rename the finished file into place: " + std::strerror(error)};
+        return Error{
+            files_[replaced[k].file].first + ": cannot rename the finished file into place: " + std::strerror(error),
+            ErrorKind::Io};
     }
     files_.clear();
     return true;
@@ -334,7 +400,7 @@ std::string stbReason() {
 
 Result<DecodedImage> readPng(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) return Error{path + ": cannot open"};
+    if (!in) return Error{path + ": cannot open", ErrorKind::Io};
     const std::vector<std::uint8_t> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     return decodePng(data, path);
 }
@@ -363,6 +429,54 @@ Result<DecodedImage> decodePng(std::span<const std::uint8_t> data, const std::st
         stbi_image_free(pixels);
     }
     return image;
+}
+
+Result<Spool> Spool::create(const std::string& near) {
+    std::string folder = std::filesystem::path(near).parent_path().string();
+    if (folder.empty()) folder = ".";
+    int fd = ::open(folder.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+    if (fd < 0) {  // a file system or a folder without O_TMPFILE: the system's temporary folder
+        if (FILE* file = std::tmpfile()) {
+            fd = ::dup(::fileno(file));
+            std::fclose(file);
+        }
+    }
+    if (fd < 0) return Error{near + ": cannot keep a temporary file: " + std::strerror(errno), ErrorKind::Io};
+    return Spool(fd, near);
+}
+
+Spool::Spool(Spool&& other) noexcept : fd_(other.fd_), near_(std::move(other.near_)), size_(other.size_) {
+    other.fd_ = -1;
+}
+Spool& Spool::operator=(Spool&& other) noexcept {
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = other.fd_;
+        near_ = std::move(other.near_);
+        size_ = other.size_;
+        other.fd_ = -1;
+    }
+    return *this;
+}
+Spool::~Spool() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+Result<bool> Spool::append(std::string_view bytes) {
+    std::size_t at = 0;
+    while (at < bytes.size()) {
+        const ssize_t n = ::pwrite(fd_, bytes.data() + at, bytes.size() - at, off_t(size_ + at));
+        if (n > 0) {
+            at += std::size_t(n);
+        } else if (!(n < 0 && errno == EINTR)) {
+            const int error = n < 0 ? errno : EIO;
+            return Error{near_ + ": write failed after " + std::to_string(size_ + at) +
+                             " bytes of its temporary file: " + std::strerror(error),
+                         ErrorKind::Io};
+        }
+    }
+    size_ += bytes.size();
+    return true;
 }
 
 }  // namespace frugal

@@ -17,11 +17,13 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
-#include "base/Result.h"
-#include "render/Image.h"
+#include <frugal/Files.h>
+#include <frugal/Image.h>
+#include <frugal/Result.h>
 
 namespace frugal {
 
@@ -49,11 +51,56 @@ Result<Bytes> encodeColorPng(const Buffers& buffers);
 Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt);
 Bytes encodeDepthPfm(const Buffers& buffers);
 Result<Bytes> encodeIdPng(const Buffers& buffers);
+// The same for one image each (a depth PNG with the image's planes as its text).
+Result<Bytes> encodeColorPng(const ColorImage& image);
+Result<Bytes> encodeDepthPng(const DepthImage& image);
+Bytes encodeDepthPfm(const DepthImage& image);
+Result<Bytes> encodeIdPng(const IdImage& image);
+
+// A file's bytes held outside memory while a long run writes them piece by piece (the frames of a
+// render JSON): an anonymous file in the folder of `near` (O_TMPFILE: no name, gone when the process
+// ends, however it ends), or in the system's temporary folder where that is not possible.
+class Spool {
+public:
+    // Error (Io): "<near>: cannot keep a temporary file: <why>".
+    static Result<Spool> create(const std::string& near);
+    Spool(Spool&& other) noexcept;
+    Spool& operator=(Spool&& other) noexcept;
+    Spool(const Spool&) = delete;
+    Spool& operator=(const Spool&) = delete;
+    ~Spool();
+
+    // Appends; error (Io): "<near>: <why, with the bytes written>".
+    Result<bool> append(std::string_view bytes);
+    std::uint64_t size() const { return size_; }
+    int fd() const { return fd_; }
+
+private:
+    Spool(int fd, std::string near) : fd_(fd), near_(std::move(near)) {}
+    int fd_ = -1;
+    std::string near_;
+    std::uint64_t size_ = 0;
+};
+
+// What a file is made of: `head`, then the whole of `body` when given (read in pieces, never all
+// in memory), then `tail`.
+struct Content {
+    Bytes head;
+    const Spool* body = nullptr;
+    Bytes tail;
+    Content(Bytes bytes = {}) : head(std::move(bytes)) {}  // NOLINT: implicit, a file of bytes
+    Content(Bytes head_, const Spool& body_, Bytes tail_)
+        : head(std::move(head_)), body(&body_), tail(std::move(tail_)) {}
+    std::uint64_t size() const { return head.size() + (body ? body->size() : 0) + tail.size(); }
+};
 
 // Writes `bytes` to `path` atomically. Error: "<path>: <why>" (also when `bytes` is an encoder's
 // error: then nothing is written), e.g. "out.png: write failed after 4096 of 9120 bytes: File too
 // large", "/sys/x.png: cannot write: Permission denied".
-Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes);
+Result<bool> writeFileAtomic(const std::string& path, Result<Content> bytes);
+inline Result<bool> writeFileAtomic(const std::string& path, Bytes bytes) {
+    return writeFileAtomic(path, Result<Content>(Content(std::move(bytes))));
+}
 
 // Several files that appear together or not at all. commit() writes each to a temporary name in
 // its folder ("<path>.tmp-<pid>", created exclusively, so two processes writing into one folder,
@@ -68,12 +115,13 @@ Result<bool> writeFileAtomic(const std::string& path, Result<Bytes> bytes);
 // short of a journal prevents that.)
 class OutputSet {
 public:
-    void add(std::string path, Result<Bytes> bytes);
+    void add(std::string path, Result<Content> content);
+    void add(std::string path, Bytes bytes) { add(std::move(path), Result<Content>(Content(std::move(bytes)))); }
     Result<bool> commit();
     bool empty() const { return files_.empty(); }
 
 private:
-    std::vector<std::pair<std::string, Result<Bytes>>> files_;
+    std::vector<std::pair<std::string, Result<Content>>> files_;
 };
 
 struct DecodedImage {

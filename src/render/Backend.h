@@ -3,7 +3,7 @@
 // (src/software/). Plans made by cull/ and reuse/ are executed through this interface only.
 //
 // Render target: colour RGBA8 + depth (24-bit, or 32-bit float with reversed Z: DepthFormat,
-// render/Image.h) + triangle id R32UI, same formats in every backend. Depth test "nearer passes"
+// frugal/Image.h) + triangle id R32UI, same formats in every backend. Depth test "nearer passes"
 // (GL_LESS for D24, GL_GREATER for D32F; or none: DepthMode), depth range [0,1], no blending. Draws
 // are executed in call order, and within a draw call the ranges in the order given, the triangles of
 // a range in index-buffer order: that is the documented order in which depth ties resolve (the first
@@ -17,8 +17,9 @@
 
 #include <glm/glm.hpp>
 
-#include "render/Image.h"
-#include "scene/Scene.h"
+#include <frugal/Image.h>
+#include <frugal/Scene.h>
+#include <frugal/Stats.h>
 
 namespace frugal {
 
@@ -49,7 +50,7 @@ struct Lighting {
 struct FrameParams {
     glm::mat4 view{1.0f};
     glm::mat4 projection{1.0f};
-    // The projection's depth convention (render/Image.h); the target drawn into must have this format.
+    // The projection's depth convention (frugal/Image.h); the target drawn into must have this format.
     DepthFormat depthFormat = DepthFormat::D24;
     Lighting lighting;
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
@@ -78,25 +79,6 @@ struct InstanceParams {
     glm::mat4 model{1.0f};
     glm::vec4 baseColorFactor{1.0f};
     std::uint32_t firstId = 1;
-};
-
-// The state changes a backend issued since it was made, by kind (a frame's are a difference): for
-// the GL backend the calls its state cache let through (a repeat of the current state is not a
-// change), for the software backend, which keeps no such state, the draws alone. What a draw order costs in state
-// changes (issue 10, paper 004) is read here, not predicted.
-struct StateChanges {
-    std::uint64_t draws = 0;     // draw calls (glDraw*, glMultiDraw*)
-    std::uint64_t programs = 0;  // program binds (a shader variant)
-    std::uint64_t meshes = 0;    // vertex array binds
-    std::uint64_t textures = 0;  // texture binds
-    std::uint64_t toggles = 0;   // glEnable / glDisable: face culling, depth test, scissor
-    std::uint64_t uniforms = 0;  // uniform uploads: transforms, material, lighting, first id
-
-    // The changes between two readings (a frame's: after − before).
-    StateChanges operator-(const StateChanges& before) const {
-        return {draws - before.draws, programs - before.programs, meshes - before.meshes,
-                textures - before.textures, toggles - before.toggles, uniforms - before.uniforms};
-    }
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute

@@ -114,8 +114,8 @@ double depthResolution(DepthFormat format, bool perspective, double n, double f,
     return std::max(step, computed);
 }
 
-Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& world, double time,
-                           const CameraSpec& spec, int width, int height) {
+Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& world, double time, const Camera& spec,
+                           int width, int height, DepthFormat format) {
     const float viewportAspect = float(width) / float(std::max(height, 1));
     View v;
     v.aspect = viewportAspect;
@@ -128,7 +128,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
         if (index < 0 || index >= int(scene.cameras.size()))
             return Error{"camera " + std::to_string(index) + ": the scene has " + std::to_string(scene.cameras.size()) +
                          " camera" + (scene.cameras.size() == 1 ? "" : "s")};
-        const Camera& camera = scene.cameras[index];
+        const SceneCamera& camera = scene.cameras[index];
         glm::mat4 cameraWorld = camera.node >= 0 ? world[camera.node] : glm::mat4(1.0f);
         // A camera node's scale must not reach the view: keep rotation and translation only.
         const glm::vec3 eye = glm::vec3(cameraWorld[3]);
@@ -148,7 +148,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
             if (v.zfar <= v.znear) return Error{"camera " + std::to_string(index) + ": orthographic zfar " + fmt(v.zfar) + " must exceed znear " + fmt(v.znear)};
             v.ymag = camera.ymag;
             v.fileAspect = camera.fileAspect();
-            return finish(v, scene.envelope, spec.depthRange, spec.depthFormat);
+            return finish(v, scene.envelope, spec.depthRange, format);
         }
         v.fileAspect = camera.fileAspect();
         if (!(v.znear > 0.0f)) return Error{"camera " + std::to_string(index) + ": znear " + fmt(v.znear) + " must be > 0"};
@@ -156,7 +156,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
             return Error{"camera " + std::to_string(index) + ": zfar " + fmt(v.zfar) + " must exceed znear " + fmt(v.znear)};
         if (!(v.yfov > 0.0f && v.yfov < glm::pi<float>()))
             return Error{"camera " + std::to_string(index) + ": yfov " + fmt(glm::degrees(v.yfov)) + " degrees is outside (0, 180)"};
-        return finish(v, scene.envelope, spec.depthRange, spec.depthFormat);
+        return finish(v, scene.envelope, spec.depthRange, format);
     }
 
     const Bounds bounds = scene.bounds(time);
@@ -202,7 +202,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
     v.eye = eye;
     v.forward = glm::normalize(forward);
     v.view = glm::lookAt(eye, target, spec.up);
-    return finish(v, scene.envelope, spec.depthRange, spec.depthFormat);
+    return finish(v, scene.envelope, spec.depthRange, format);
 }
 
 }  // namespace frugal

@@ -7,12 +7,12 @@ namespace frugal {
 
 double frameTime(int frame, double fps) { return double(frame) / fps; }
 
-Result<FrameSetup> setUpFrame(const Scene& scene, const CameraSpec& camera, double time, int width, int height,
-                              bool writeIds) {
+Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
+                              bool writeIds, DepthFormat format) {
     FrameSetup setup;
     setup.time = time;
     setup.world = scene.worldTransforms(time);
-    Result<View> view = resolveCamera(scene, setup.world, time, camera, width, height);
+    Result<View> view = resolveCamera(scene, setup.world, time, camera, width, height, format);
     if (!view) return Error{view.error()};
     setup.view = *view;
     setup.params.view = view->view;

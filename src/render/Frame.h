@@ -9,10 +9,11 @@
 
 #include <glm/glm.hpp>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
+
 #include "render/Backend.h"
 #include "render/Camera.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 
@@ -26,10 +27,10 @@ struct FrameSetup {
     FrameParams params;
 };
 
-// The frame at scene time `time`, seen through `camera` on a width × height target.
-// Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
-Result<FrameSetup> setUpFrame(const Scene& scene, const CameraSpec& camera, double time, int width, int height,
-                              bool writeIds);
+// The frame at scene time `time`, seen through `camera` on a width × height target whose depth
+// buffer has `format`. Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
+Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
+                              bool writeIds, DepthFormat format = DepthFormat::D24);
 
 // A clear colour as the 8-bit target holds it (GL's unorm conversion: clamp to [0,1], ×255, round
 // to nearest).

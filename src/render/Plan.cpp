@@ -5,19 +5,8 @@
 
 namespace frugal {
 
-const char* drawOrderName(DrawOrder order) {
-    switch (order) {
-    case DrawOrder::Submit: return "submit";
-    case DrawOrder::Key: return "key";
-    case DrawOrder::Paper: return "paper";
-    case DrawOrder::Greedy: return "greedy";
-    case DrawOrder::Best: return "best";
-    }
-    return "?";
-}
-
-DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order) {
-    if (order != DrawOrder::Key) return list;
+DrawList orderDraws(const Scene& scene, DrawList list, Order order) {
+    if (order != Order::Key) return list;
     const auto key = [&scene](const DrawCommand& command) {
         const Mesh& mesh = scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)];
         const int texture = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)].baseColorTexture : -1;

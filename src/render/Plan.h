@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include <frugal/Settings.h>
+
 #include "render/Backend.h"
 
 namespace frugal {
@@ -30,9 +32,7 @@ DrawList fullDrawList(const Scene& scene);
 // may give such a pixel to the other one; the commands report those pixels (tie_px).
 // paper, greedy and best order by measured state-change costs (src/order/, app/OrderSupport.h);
 // orderDraws leaves the list as it is for them.
-enum class DrawOrder : std::uint8_t { Submit, Key, Paper, Greedy, Best };
-const char* drawOrderName(DrawOrder order);  // "submit", "key", "paper", "greedy", "best"
-DrawList orderDraws(const Scene& scene, DrawList list, DrawOrder order);
+DrawList orderDraws(const Scene& scene, DrawList list, Order order);
 
 // The two targets a frame plan names: the one the frame is rendered into, and the static pair of
 // temporal reuse (src/reuse/), which holds what the static instances alone render to.

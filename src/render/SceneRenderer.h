@@ -3,7 +3,8 @@
 
 #include <vector>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
+
 #include "render/Backend.h"
 #include "render/Plan.h"
 

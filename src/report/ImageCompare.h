@@ -2,7 +2,7 @@
 // per-channel tolerance. Used by `frugal compare`, `frugal diff` and image regression tests.
 //
 // Conventions:
-// - Inputs are Buffers (render/Image.h): RGBA8 colour, optional triangle ids and 24-bit depth, rows
+// - Inputs are Buffers (frugal/Image.h): RGBA8 colour, optional triangle ids and 24-bit depth, rows
 //   bottom-up. PNGs are brought into that form by buffersFromPng (rows flipped once).
 // - A pixel FAILS when any of its four channels (alpha included) differs by more than `tolerance`
 //   8-bit steps. The verdict is colour only: a comparison passes when no pixel fails. Ids and depth
@@ -29,9 +29,10 @@
 #include <optional>
 #include <string>
 
-#include "render/Image.h"
+#include <frugal/Image.h>
+#include <frugal/Result.h>
+
 #include "io/ImageIO.h"
-#include "base/Result.h"
 
 namespace frugal {
 

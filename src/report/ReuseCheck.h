@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "render/Image.h"
+#include <frugal/Image.h>
 
 namespace frugal {
 

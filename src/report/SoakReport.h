@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "render/Image.h"
+#include <frugal/Image.h>
 
 namespace frugal {
 

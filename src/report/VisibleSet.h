@@ -10,10 +10,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "base/Result.h"
-#include "render/Image.h"
+#include <frugal/Image.h>
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
+
 #include "render/Plan.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 

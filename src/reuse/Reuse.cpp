@@ -37,15 +37,6 @@ bool sameRanges(const std::vector<IndexRange>& a, const std::vector<IndexRange>&
 
 }  // namespace
 
-const char* reuseModeName(ReuseMode mode) {
-    switch (mode) {
-    case ReuseMode::Full: return "full";
-    case ReuseMode::Rebuild: return "rebuild";
-    case ReuseMode::Reuse: return "reuse";
-    }
-    return "?";
-}
-
 bool TemporalReuse::MaterialKey::operator==(const MaterialKey& other) const {
     return std::memcmp(&factor, &other.factor, sizeof factor) == 0 && texture == other.texture &&
            doubleSided == other.doubleSided;
@@ -380,6 +371,15 @@ FramePlan TemporalReuse::reusePlan(const DrawList& list, const std::vector<glm::
         if (nowDynamic_[i]) computeExtents(int(i), viewProjection, world);
     stats_.extentMs = msSince(t1);
     return plan;
+}
+
+ReuseOptions reuseOptionsFrom(const ReuseSettings& settings) {
+    ReuseOptions options;
+    options.grain = settings.grain;
+    options.cell = settings.cell;
+    options.fallback = settings.fallback;
+    options.paperSteps = !settings.exactStatic;
+    return options;
 }
 
 }  // namespace frugal

@@ -58,8 +58,10 @@
 #include <string>
 #include <vector>
 
-#include "reuse/CellGrid.h"
+#include <frugal/Settings.h>
+
 #include "render/Plan.h"
+#include "reuse/CellGrid.h"
 
 namespace frugal {
 
@@ -85,26 +87,10 @@ struct ReuseOptions {
     bool paperSteps = true;  // false: steps a–d, the static pair kept exact (see above)
 };
 
-enum class ReuseMode : std::uint8_t { Full, Rebuild, Reuse };
-const char* reuseModeName(ReuseMode mode);
+// The options of the renderer's settings (frugal/Settings.h), the costs left at their defaults.
+ReuseOptions reuseOptionsFrom(const ReuseSettings& settings);
 
-enum ReuseState : int { kDD = 0, kDS = 1, kSD = 2, kSS = 3 };
-
-struct ReuseFrameStats {
-    ReuseMode mode = ReuseMode::Full;
-    std::string reason;                     // why this mode: "camera moved", "first still frame", ...
-    std::array<std::uint64_t, 4> instances{};  // per ReuseState
-    std::array<std::uint64_t, 4> triangles{};  // the instances' mesh triangles, per ReuseState
-    std::uint64_t copiedPx = 0;             // static → render (step 1) and render → static (step 5 or the rebuild)
-    std::uint64_t clearedPx = 0;            // step 2 (and the whole target on full and rebuild frames)
-    std::uint64_t redrawnTris = 0;          // every triangle this frame drew (all of them on full frames)
-    std::uint64_t staticRedrawnTris = 0;    // of those, static ones drawn again (steps 3 + 4; all on a rebuild)
-    std::uint64_t drawnTris = 0;            // what a full render of this frame draws
-    std::uint64_t rects = 0;                // clear and copy rectangles issued
-    double planMs = 0.0;                    // the whole plan: classification, extents, ⊗ tests, rectangles
-    double extentMs = 0.0;                  // extents of the instances that moved
-    double overlapMs = 0.0;                 // grid marking and the ⊗ tests
-};
+using ReuseFrameStats = ReuseStats;  // frugal/Stats.h
 
 class TemporalReuse {
 public:

@@ -180,7 +180,7 @@ int addCamera(Scene& scene, const glm::vec3& eye, const glm::vec3& target, float
     node.hasMatrix = true;
     node.matrix = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
     node.camera = int(scene.cameras.size());
-    Camera camera;
+    SceneCamera camera;
     camera.name = "camera";
     camera.node = int(scene.nodes.size());
     camera.yfov = glm::radians(40.0f);

@@ -18,21 +18,21 @@
 // scenes) every root node, so that a bare node list still renders. Nodes outside that scene are kept,
 // so node indices match the file and animation targets stay valid, but they get no meshes and so
 // no instances.
-#include <tiny_gltf.h>
-
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <map>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
 
 #include "scene/GltfCheck.h"
 #include "scene/GltfContainer.h"
@@ -470,7 +470,7 @@ void Converter::convertNodes() {
 void Converter::addCamera(int node) {
     const tinygltf::Camera& src = model_.cameras[std::size_t(model_.nodes[std::size_t(node)].camera)];
     const std::string where = cat("cameras[", model_.nodes[std::size_t(node)].camera, "]");
-    Camera camera;
+    SceneCamera camera;
     camera.name = src.name;
     camera.node = node;
     if (src.type == "perspective") {

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "base/Result.h"
+#include <frugal/Result.h>
 
 namespace frugal {
 

@@ -8,9 +8,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
+
 #include "base/Format.h"  // oneLine: text from the file in messages
-#include "base/Result.h"
-#include "scene/Scene.h"
 
 namespace frugal::load {
 

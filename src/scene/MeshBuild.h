@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/Scene.h"
+#include <frugal/Scene.h>
 
 namespace frugal {
 

@@ -1,9 +1,9 @@
-#include "scene/Scene.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include <frugal/Scene.h>
 
 namespace frugal {
 

@@ -19,7 +19,7 @@
 // them: window-system framebuffers (flipped, bottom_edge_rule = 1), scissored draws, MSAA, polygon
 // offset, depth clamp, a viewport origin other than (0, 0).
 //
-// Two depth formats (render/Image.h). D24 is what the rules below describe. D32F is drawn with
+// Two depth formats (frugal/Image.h). D24 is what the rules below describe. D32F is drawn with
 // glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) and GL_GREATER into a 32-bit float buffer (reversed
 // Z), and differs in exactly four places, each marked "D32F" below: the clip mask's bit 4 is z < 0,
 // the near clip plane is (0, 0, 1, 0), the viewport's depth scale and offset are 1 and 0 instead of
@@ -100,11 +100,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <utility>
 #include <vector>
 
-#include "render/Image.h"
+#include <glm/glm.hpp>
+
+#include <frugal/Image.h>
 
 namespace frugal::sw {
 

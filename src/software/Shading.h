@@ -49,11 +49,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <vector>
 
-#include "render/Image.h"
-#include "scene/Scene.h"
+#include <glm/glm.hpp>
+
+#include <frugal/Image.h>
+#include <frugal/Scene.h>
 
 namespace frugal::sw {
 

@@ -6,12 +6,13 @@
 #include <cassert>
 #include <cstdint>
 #include <cstring>
-#include <glm/gtc/matrix_inverse.hpp>
 #include <new>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <glm/gtc/matrix_inverse.hpp>
 
 #include "render/Handles.h"
 #include "render/IndexRanges.h"
@@ -48,7 +49,7 @@ public:
         // Not Exact: the depth is not llvmpipe's, and the description says so.
         const std::string interp = pipeline_.interp() == span::Interp::Exact
                                        ? ""
-                                       : std::string(", ") + span::interpName(pipeline_.interp()) + " depth interpolation";
+                                       : std::string(", ") + toString(pipeline_.interp()) + " depth interpolation";
         return std::string("frugal software rasterizer (llvmpipe rules, ") + pipeline_.kernelName() + " kernels, " +
                std::to_string(pipeline_.threads()) + (pipeline_.threads() == 1 ? " thread" : " threads") + interp + ")";
     }

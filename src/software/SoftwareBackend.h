@@ -37,19 +37,10 @@ struct SoftwareOptions {
     span::Interp interp = span::Interp::Exact;  // depth along a span (above); not Exact: the slow path
 };
 
-// What the interpolation slow path did since the backend was made (all zero in Exact mode).
-struct InterpStats {
-    std::uint64_t spans = 0;     // span::fillSpan calls: one per covered run of a triangle's row per tile
-    std::uint64_t pixels = 0;    // of those, the tile's pixels (the depths that met the depth test)
-    std::uint64_t overflow = 0;  // calls that reported an overflow: their values were clamped (or the
-                                 // span zeroed), never wrapped. A call fills its run from the run's
-                                 // first column, so a run across several tiles may count once per tile.
-    std::uint8_t overflowBits = 0;  // span/Engine.h OverflowBits of all those calls, or'ed
-};
-
 std::unique_ptr<Backend> makeSoftwareBackend(const SoftwareOptions& options = {});
 
-// The slow path's counters of a backend made by makeSoftwareBackend; nothing for any other backend.
+// The interpolation slow path's counters (frugal/Stats.h InterpStats) since a backend made by
+// makeSoftwareBackend was made (all zero in Exact mode); nothing for any other backend.
 // Read them after readBack or finish (pending draws are not rasterized yet).
 std::optional<InterpStats> softwareInterpStats(const Backend& backend);
 

@@ -2,8 +2,6 @@
 // conventions, bins, the triangle order with its invariants (bins contiguous, clusters tiling bins,
 // entries sorted, planes, ids carried along), degenerate and non-finite meshes, and the classes of
 // the views measured against their own frustum.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +11,8 @@
 #include <string>
 #include <tuple>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "cull/SphereMap.h"
@@ -790,7 +790,7 @@ TEST(ViewsTest, ViewClassesHoldAgainstTheirFrustum) {
             EXPECT_NEAR(glm::length(rv.camera.up), 1.0f, 1e-5f);
             const glm::vec3 eye = *rv.camera.eye, target = *rv.camera.target;
             const double distance = glm::length(glm::dvec3(eye) - glm::dvec3(s.center));
-            CameraSpec spec = rv.camera;
+            Camera spec = rv.camera;
             spec.znear = s.radius * 1e-4f;
             spec.zfar = s.radius * 1e4f;
             spec.depthRange = DepthRange::File;  // the frustum around the report view's sphere, as given
@@ -838,7 +838,7 @@ TEST(ViewsTest, GrazingViewsAreLessThanTenPercentDeep) {
         const Scene scene = tinyScene(glm::vec3(0.0f));
         for (std::size_t k = 0; k < views.size(); ++k) {
             if (views[k].viewClass != "grazing") continue;
-            CameraSpec spec = views[k].camera;
+            Camera spec = views[k].camera;
             spec.znear = 1e-4f;
             spec.zfar = 1e4f;
             const Result<View> view = resolveCamera(scene, scene.worldTransforms(0.0), 0.0, spec, width, height);

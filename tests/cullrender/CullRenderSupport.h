@@ -11,8 +11,6 @@
 // the instance's mesh; submittedTriangles agrees with the drawn set.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -22,6 +20,7 @@
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "cull/Culling.h"
 #include "cull/Views.h"
@@ -35,8 +34,7 @@
 namespace frugal::test {
 
 // The methods that must never miss a visible triangle.
-inline constexpr CullMethod kNeverMiss[] = {CullMethod::Sphere, CullMethod::Backface, CullMethod::Cones,
-                                            CullMethod::Conservative};
+inline constexpr Cull kNeverMiss[] = {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Conservative};
 
 inline const glm::vec4 kBackground{0.1f, 0.15f, 0.2f, 1.0f};
 
@@ -89,14 +87,14 @@ struct MethodTally {
 struct FrameResult {
     bool rendered = false;                   // the full frame was rendered and its RVS measured
     std::size_t rvs = 0, tos = 0;
-    std::vector<std::pair<CullMethod, DrawList>> lists;  // every method's plan
-    std::vector<std::pair<CullMethod, SetCounts>> counts; // with a rendered frame
-    const DrawList* list(CullMethod method) const {
+    std::vector<std::pair<Cull, DrawList>> lists;    // every method's plan
+    std::vector<std::pair<Cull, SetCounts>> counts;  // with a rendered frame
+    const DrawList* list(Cull method) const {
         for (const auto& [m, l] : lists)
             if (m == method) return &l;
         return nullptr;
     }
-    SetCounts count(CullMethod method) const {
+    SetCounts count(Cull method) const {
         for (const auto& [m, c] : counts)
             if (m == method) return c;
         return {};
@@ -104,9 +102,9 @@ struct FrameResult {
 };
 
 struct Tallies {
-    std::vector<std::pair<CullMethod, MethodTally>> perMethod;
+    std::vector<std::pair<Cull, MethodTally>> perMethod;
     std::size_t frames = 0, rendered = 0;
-    MethodTally& of(CullMethod method) {
+    MethodTally& of(Cull method) {
         for (auto& [m, t] : perMethod)
             if (m == method) return t;
         perMethod.emplace_back(method, MethodTally{});
@@ -121,14 +119,14 @@ struct Tallies {
         std::ostringstream out;
         out << frames << " frames (" << rendered << " rendered)";
         for (auto& [m, t] : perMethod)
-            out << "; " << cullMethodName(m) << ": pvs " << t.pvs << "/" << t.tos << " rvs " << t.rvs << " misses "
+            out << "; " << toString(m) << ": pvs " << t.pvs << "/" << t.tos << " rvs " << t.rvs << " misses "
                 << t.misses;
         return out.str();
     }
 };
 
-inline bool isNeverMiss(CullMethod method) {
-    for (CullMethod m : kNeverMiss)
+inline bool isNeverMiss(Cull method) {
+    for (Cull m : kNeverMiss)
         if (m == method) return true;
     return false;
 }
@@ -210,12 +208,12 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
     FrameResult result;
     const Scene& scene = bench.scene;
     const DrawList full = fullDrawList(scene);
-    for (CullMethod method : kCullMethods) {
+    for (Cull method : kCulls) {
         DrawList list;
-        EXPECT_NO_THROW(list = bench.culler.cull(method, scene, setup.world, setup.view)) << cullMethodName(method);
-        expectWellFormed(scene, list, std::string(cullMethodName(method)) + " plan");
-        if (method == CullMethod::None || method == CullMethod::Oracle) {
-            EXPECT_TRUE(sameList(list, full)) << cullMethodName(method) << " must give the full list";
+        EXPECT_NO_THROW(list = bench.culler.cull(method, scene, setup.world, setup.view)) << toString(method);
+        expectWellFormed(scene, list, std::string(toString(method)) + " plan");
+        if (method == Cull::None || method == Cull::Oracle) {
+            EXPECT_TRUE(sameList(list, full)) << toString(method) << " must give the full list";
         }
         result.lists.emplace_back(method, std::move(list));
     }
@@ -236,23 +234,22 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
         const SetCounts counts = compareSets(scene, pvs, *rvs);
         result.tos = counts.tos;
         result.counts.emplace_back(method, counts);
-        EXPECT_LE(counts.pvs, counts.tos) << cullMethodName(method);
-        if (method == CullMethod::Paper || method == CullMethod::Oracle || method == CullMethod::None) continue;
-        EXPECT_EQ(counts.misses, 0u) << cullMethodName(method) << " dropped visible triangles:"
-                                     << describeMisses(scene, pvs, *rvs);
+        EXPECT_LE(counts.pvs, counts.tos) << toString(method);
+        if (method == Cull::Paper || method == Cull::Oracle || method == Cull::None) continue;
+        EXPECT_EQ(counts.misses, 0u) << toString(method)
+                                     << " dropped visible triangles:" << describeMisses(scene, pvs, *rvs);
         bench.renderer->renderFrame(bench.target, bench.width, bench.height, params, setup.world, kBackground, list);
         const Buffers culled = bench.backend->readBack(bench.target);
         EXPECT_EQ(culled.rgba.size(), reference.rgba.size());
         std::string first;
         const std::size_t differ = differingPixels(reference, culled, first);
-        EXPECT_EQ(differ, 0u) << cullMethodName(method) << ": the culled render differs from the full one in "
-                              << differ << " pixels, " << first;
+        EXPECT_EQ(differ, 0u) << toString(method) << ": the culled render differs from the full one in " << differ
+                              << " pixels, " << first;
     }
     return result;
 }
 
-inline FrameResult checkFrame(CullBench& bench, const CameraSpec& camera, const std::string& label,
-                              double time = 0.0) {
+inline FrameResult checkFrame(CullBench& bench, const Camera& camera, const std::string& label, double time = 0.0) {
     Result<FrameSetup> setup = setUpFrame(bench.scene, camera, time, bench.width, bench.height, true);
     EXPECT_TRUE(setup) << label << ": " << setup.error();
     if (!setup) return {};
@@ -275,8 +272,8 @@ inline Tallies checkReportViews(CullBench& bench, int count, const std::string& 
 // ---------------------------------------------------------------------------------------------
 // Scenes.
 
-inline CameraSpec lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up = {0.0f, 1.0f, 0.0f}) {
-    CameraSpec spec;
+inline Camera lookAt(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up = {0.0f, 1.0f, 0.0f}) {
+    Camera spec;
     spec.eye = eye;
     spec.target = target;
     spec.up = up;

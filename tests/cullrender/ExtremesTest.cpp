@@ -2,13 +2,12 @@
 // must never miss do not miss, and their plans render the full image byte for byte. Cameras inside
 // the bounding sphere, on the map's poles, near and far planes cutting the object, tiny and huge
 // coordinates, degenerate meshes, non-finite vertices that reach the mesh, orthographic cameras.
-#include <gtest/gtest.h>
-
 #include <iostream>
 #include <limits>
 #include <map>
 
 #include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
 
 #include "CullRenderSupport.h"
 #include "TestSupport.h"
@@ -24,7 +23,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 void expectSeen(Tallies& tallies) {
     EXPECT_GT(tallies.rendered, 0u) << tallies.summary();
-    EXPECT_GT(tallies.of(CullMethod::Conservative).rvs, 0u) << "nothing visible: " << tallies.summary();
+    EXPECT_GT(tallies.of(Cull::Conservative).rvs, 0u) << "nothing visible: " << tallies.summary();
 }
 
 // Both materials of a mesh, one bench each.
@@ -47,9 +46,9 @@ TEST(CullExtremesTest, CameraInsideTheBoundingSphere) {
             Tallies tallies;
             for (const glm::vec3& eye : {glm::vec3(0.0f), glm::vec3(0.2f, -0.3f, 0.1f), glm::vec3(0.0f, 0.0f, 0.7f)})
                 for (const glm::vec3& look : looks) {
-                    CameraSpec spec = test::lookAt(eye, eye + look, std::abs(glm::normalize(look).y) > 0.9f
-                                                                         ? glm::vec3(1, 0, 0)
-                                                                         : glm::vec3(0, 1, 0));
+                    Camera spec =
+                        test::lookAt(eye, eye + look,
+                                     std::abs(glm::normalize(look).y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
                     spec.znear = 0.01f;
                     tallies.add(test::checkFrame(bench, spec, mesh.name + " " + side + " from inside"));
                 }
@@ -68,8 +67,8 @@ TEST(CullExtremesTest, CameraInsideTheBoundingSphere) {
     const float r = bounds.radius();
     Tallies tallies;
     for (const glm::vec3& look : looks) {
-        CameraSpec spec = test::lookAt(c + glm::vec3(0.0f, 0.0f, 0.6f * r), c + glm::vec3(0.0f, 0.0f, 0.6f * r) + look,
-                                       std::abs(glm::normalize(look).y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
+        Camera spec = test::lookAt(c + glm::vec3(0.0f, 0.0f, 0.6f * r), c + glm::vec3(0.0f, 0.0f, 0.6f * r) + look,
+                                   std::abs(glm::normalize(look).y) > 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0));
         tallies.add(test::checkFrame(bench, spec, "bunny from inside its sphere"));
     }
     expectSeen(tallies);
@@ -88,7 +87,7 @@ TEST(CullExtremesTest, ViewAxisThroughThePoles) {
                 for (float distance : {3.0f * r, 1.5f * r})
                     tallies.add(test::checkFrame(bench, test::lookAt(c + glm::vec3(0, 0, sign * distance), c),
                                                  mesh.name + " " + side + " pole " + std::to_string(sign)));
-                CameraSpec fromCentre = test::lookAt(c, c + glm::vec3(0, 0, sign));
+                Camera fromCentre = test::lookAt(c, c + glm::vec3(0, 0, sign));
                 fromCentre.znear = 0.01f * r;
                 tallies.add(test::checkFrame(bench, fromCentre, mesh.name + " " + side + " from the centre along z"));
             }
@@ -101,12 +100,12 @@ TEST(CullExtremesTest, ObjectStraddlingTheNearPlane) {
     forBothSides(test::finished(test::blobMesh(9, 16, 28)), [](CullBench& bench, const std::string& side) {
         Tallies tallies;
         for (float znear : {3.0f, 2.5f, 3.6f, 2.05f}) {
-            CameraSpec spec = test::lookAt({0.0f, 0.0f, 3.0f}, glm::vec3(0.0f));
+            Camera spec = test::lookAt({0.0f, 0.0f, 3.0f}, glm::vec3(0.0f));
             spec.znear = znear;
             spec.zfar = 10.0f;
             tallies.add(test::checkFrame(bench, spec, side + " near " + std::to_string(znear)));
             // Oblique: the near plane cuts the object off-centre.
-            CameraSpec oblique = test::lookAt({1.2f, 0.5f, 2.6f}, {0.3f, 0.0f, 0.0f});
+            Camera oblique = test::lookAt({1.2f, 0.5f, 2.6f}, {0.3f, 0.0f, 0.0f});
             oblique.znear = znear;
             oblique.zfar = 0.0f;  // infinite far plane
             tallies.add(test::checkFrame(bench, oblique, side + " oblique near " + std::to_string(znear)));
@@ -119,11 +118,11 @@ TEST(CullExtremesTest, ObjectStraddlingTheFarPlane) {
     forBothSides(test::finished(test::blobMesh(10, 16, 28)), [](CullBench& bench, const std::string& side) {
         Tallies tallies;
         for (float zfar : {3.0f, 2.5f, 3.7f, 2.02f}) {
-            CameraSpec spec = test::lookAt({0.0f, 0.0f, 3.0f}, glm::vec3(0.0f));
+            Camera spec = test::lookAt({0.0f, 0.0f, 3.0f}, glm::vec3(0.0f));
             spec.znear = 0.1f;
             spec.zfar = zfar;
             tallies.add(test::checkFrame(bench, spec, side + " far " + std::to_string(zfar)));
-            CameraSpec oblique = test::lookAt({-1.5f, 1.0f, 2.4f}, {0.2f, -0.1f, 0.0f});
+            Camera oblique = test::lookAt({-1.5f, 1.0f, 2.4f}, {0.2f, -0.1f, 0.0f});
             oblique.znear = 0.1f;
             oblique.zfar = zfar;
             tallies.add(test::checkFrame(bench, oblique, side + " oblique far " + std::to_string(zfar)));
@@ -152,7 +151,8 @@ void checkScaled(float factor) {
                 tallies.add(test::checkFrame(bench, {}, label + ", fitted camera"));
                 tallies.add(test::checkFrame(bench, test::lookAt(glm::vec3(0.3f, 0.2f, 3.0f) * factor, glm::vec3(0.0f)),
                                              label + ", outside"));
-                CameraSpec inside = test::lookAt(glm::vec3(0.1f, 0.0f, 0.2f) * factor, glm::vec3(0.0f, 0.0f, -1.0f) * factor);
+                Camera inside =
+                    test::lookAt(glm::vec3(0.1f, 0.0f, 0.2f) * factor, glm::vec3(0.0f, 0.0f, -1.0f) * factor);
                 inside.znear = 0.01f * factor;
                 inside.zfar = 10.0f * factor;
                 tallies.add(test::checkFrame(bench, inside, label + ", inside"));
@@ -177,11 +177,11 @@ Mesh handMesh(const std::string& name, std::vector<glm::vec3> positions, std::ve
 }
 
 // Cameras all around a small object at the origin, plus one at its centre.
-std::vector<CameraSpec> aroundTheOrigin(float distance) {
-    std::vector<CameraSpec> views;
+std::vector<Camera> aroundTheOrigin(float distance) {
+    std::vector<Camera> views;
     const glm::vec3 eyes[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0.6f, 0.5f, 0.62f}, {-0.3f, -0.9f, 0.3f}, {0, 1, 0.001f}};
     for (const glm::vec3& e : eyes) views.push_back(test::lookAt(distance * glm::normalize(e), glm::vec3(0.0f)));
-    CameraSpec centre = test::lookAt(glm::vec3(0.01f, 0.02f, 0.0f), glm::vec3(0.5f, 0.3f, -1.0f));
+    Camera centre = test::lookAt(glm::vec3(0.01f, 0.02f, 0.0f), glm::vec3(0.5f, 0.3f, -1.0f));
     centre.znear = 0.001f;
     views.push_back(centre);
     return views;
@@ -190,7 +190,8 @@ std::vector<CameraSpec> aroundTheOrigin(float distance) {
 void checkAround(const Mesh& mesh, bool expectVisible) {
     forBothSides(mesh, [&](CullBench& bench, const std::string& side) {
         Tallies tallies;
-        for (const CameraSpec& view : aroundTheOrigin(3.0f)) tallies.add(test::checkFrame(bench, view, mesh.name + " " + side));
+        for (const Camera& view : aroundTheOrigin(3.0f))
+            tallies.add(test::checkFrame(bench, view, mesh.name + " " + side));
         tallies.add(test::checkFrame(bench, {}, mesh.name + " " + side + " fitted"));
         if (expectVisible) expectSeen(tallies);
     });
@@ -234,10 +235,10 @@ TEST(CullExtremesTest, OneTriangle) {
     test::checkFrame(bench, test::lookAt({0.0f, -0.3f, 4.0f}, c), "front");
     const test::FrameResult edge = test::checkFrame(bench, test::lookAt({4.0f, 0.0f, 0.0f}, c), "edge-on");
     const test::FrameResult back = test::checkFrame(bench, test::lookAt({0.0f, -0.3f, -4.0f}, c), "back");
-    ASSERT_NE(back.list(CullMethod::Backface), nullptr);
-    EXPECT_TRUE(back.list(CullMethod::Backface)->empty()) << "a single-sided triangle seen from behind";
-    EXPECT_TRUE(back.list(CullMethod::Conservative)->empty()) << "a single-sided triangle seen from behind";
-    EXPECT_FALSE(edge.list(CullMethod::Conservative)->empty()) << "edge-on is undecided: kept";
+    ASSERT_NE(back.list(Cull::Backface), nullptr);
+    EXPECT_TRUE(back.list(Cull::Backface)->empty()) << "a single-sided triangle seen from behind";
+    EXPECT_TRUE(back.list(Cull::Conservative)->empty()) << "a single-sided triangle seen from behind";
+    EXPECT_FALSE(edge.list(Cull::Conservative)->empty()) << "edge-on is undecided: kept";
 }
 
 TEST(CullExtremesTest, AllBarycentersAtTheCentre) {
@@ -323,7 +324,7 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
         Result<SceneRenderer> finiteRenderer = SceneRenderer::create(*backend, finiteScene);
         ASSERT_TRUE(finiteRenderer) << finiteRenderer.error();
 
-        std::vector<CameraSpec> views = aroundTheOrigin(3.0f);
+        std::vector<Camera> views = aroundTheOrigin(3.0f);
         for (const ReportView& view : reportViews(glm::vec3(0.0f), 1.2f, 8)) views.push_back(view.camera);
         std::size_t seen = 0;
         for (std::size_t k = 0; k < views.size(); ++k) {
@@ -339,7 +340,7 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
             Result<TriangleSet> rvs = visibleSet(finiteScene, backend->readBack(target));
             ASSERT_TRUE(rvs) << rvs.error();
             seen += rvs->count;
-            for (CullMethod method : test::kNeverMiss) {
+            for (Cull method : test::kNeverMiss) {
                 const DrawList* list = result.list(method);
                 ASSERT_NE(list, nullptr);
                 const TriangleSet pvs = drawnSet(bench.scene, *list);
@@ -347,7 +348,7 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
                 for (std::size_t t = 0; t < rvs->perInstance[0].size(); ++t)
                     if (rvs->perInstance[0][t] && !pvs.perInstance[0][bySource.at(finiteScene.meshes[0].triangleSource[t])])
                         ++missed;
-                EXPECT_EQ(missed, 0u) << cullMethodName(method) << " dropped finite visible triangles";
+                EXPECT_EQ(missed, 0u) << toString(method) << " dropped finite visible triangles";
                 // The non-finite triangles are undecided: the triangle-level methods keep them when
                 // the frustum cannot rule them out (never required; reported for the record).
             }
@@ -367,7 +368,7 @@ Scene orthoScene(const glm::vec3& cameraPosition, const glm::quat& cameraRotatio
     soup.material = 1;
     scene.meshes.push_back(std::move(soup));
     test::addMeshNode(scene, 1, {-2.0f, -0.2f, 0.4f});
-    Camera camera;
+    SceneCamera camera;
     camera.name = "ortho";
     camera.perspective = false;
     camera.xmag = 3.2f;
@@ -398,7 +399,7 @@ TEST(CullExtremesTest, OrthographicCamera) {
     for (const Case& c : cases) {
         CullBench bench(orthoScene(c.position, c.rotation, c.znear, c.zfar), 96, 72);
         ASSERT_TRUE(bench.canRender()) << bench.uploadError;
-        CameraSpec spec;
+        Camera spec;
         spec.sceneCamera = 0;
         const test::FrameResult frame = test::checkFrame(bench, spec, c.what);
         tallies.add(frame);
@@ -408,7 +409,7 @@ TEST(CullExtremesTest, OrthographicCamera) {
     }
     expectSeen(tallies);
     // Single-sided blobs seen orthographically: facing culls some triangles.
-    EXPECT_LT(tallies.of(CullMethod::Backface).pvs, tallies.of(CullMethod::Backface).tos) << tallies.summary();
+    EXPECT_LT(tallies.of(Cull::Backface).pvs, tallies.of(Cull::Backface).tos) << tallies.summary();
 }
 
 }  // namespace
@@ -431,7 +432,7 @@ TEST(CullExtremesTest, TinyTrianglesSeenFromTheObjectOrigin) {
             ASSERT_TRUE(bench.canRender()) << bench.uploadError;
             Tallies tallies;
             for (const glm::vec3& look : {glm::vec3(0, 0, -1), glm::vec3(1, 0.2f, 0), glm::vec3(0.3f, 0.1f, 1)}) {
-                CameraSpec spec = test::lookAt(glm::vec3(offset * factor), glm::vec3(offset * factor) + look);
+                Camera spec = test::lookAt(glm::vec3(offset * factor), glm::vec3(offset * factor) + look);
                 spec.znear = 1e-3f * factor;
                 spec.zfar = 10.0f * factor;
                 std::ostringstream label;

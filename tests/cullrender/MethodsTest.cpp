@@ -33,14 +33,14 @@ Scene threeBlobs(float spacing) {
 }
 
 TEST(CullMethodsTest, NamesParseBack) {
-    for (CullMethod method : kCullMethods) {
-        const std::optional<CullMethod> parsed = parseCullMethod(cullMethodName(method));
-        ASSERT_TRUE(parsed) << cullMethodName(method);
+    for (Cull method : kCulls) {
+        const std::optional<Cull> parsed = fromString(toString(method), kCulls);
+        ASSERT_TRUE(parsed) << toString(method);
         EXPECT_EQ(*parsed, method);
     }
-    EXPECT_FALSE(parseCullMethod("Conservative"));
-    EXPECT_FALSE(parseCullMethod(""));
-    EXPECT_EQ(cullMethodNames(), "none, sphere, backface, cones, paper, conservative, oracle");
+    EXPECT_FALSE(fromString("Conservative", kCulls));
+    EXPECT_FALSE(fromString("", kCulls));
+    EXPECT_EQ(namesOf(kCulls), "none, sphere, backface, cones, paper, conservative, oracle");
 }
 
 TEST(CullMethodsTest, NoneAndOracleGiveTheFullList) {
@@ -48,13 +48,13 @@ TEST(CullMethodsTest, NoneAndOracleGiveTheFullList) {
     ASSERT_EQ(bench.scene.instances.size(), 4u);
     const DrawList full = fullDrawList(bench.scene);
     ASSERT_EQ(full.size(), 3u) << "the empty mesh's instance is not drawn";
-    for (const CameraSpec& spec : {test::lookAt({3, 0, 8}, {3, 0, 0}), test::lookAt({3, 0, -8}, {3, 0, 0}),
-                                   test::lookAt({40, 0, 0}, {80, 0, 0})}) {
+    for (const Camera& spec : {test::lookAt({3, 0, 8}, {3, 0, 0}), test::lookAt({3, 0, -8}, {3, 0, 0}),
+                               test::lookAt({40, 0, 0}, {80, 0, 0})}) {
         Result<FrameSetup> setup = setUpFrame(bench.scene, spec, 0.0, 96, 72, true);
         ASSERT_TRUE(setup) << setup.error();
-        for (CullMethod method : {CullMethod::None, CullMethod::Oracle}) {
+        for (Cull method : {Cull::None, Cull::Oracle}) {
             const DrawList list = bench.culler.cull(method, bench.scene, setup->world, setup->view);
-            EXPECT_TRUE(test::sameList(list, full)) << cullMethodName(method);
+            EXPECT_TRUE(test::sameList(list, full)) << toString(method);
         }
     }
 }
@@ -63,11 +63,11 @@ TEST(CullMethodsTest, SphereDropsAnInstanceOutsideTheFrustumAndKeepsOneInside) {
     CullBench bench(threeBlobs(3.0f), 96, 72);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
     // Looking at blob 0 from close up: blob 0 whole in view, blob 1 (x = 3) partly, blob 2 (x = 6) out.
-    CameraSpec spec = test::lookAt({0.0f, 0.0f, 5.5f}, {0.4f, 0.0f, 0.0f});
+    Camera spec = test::lookAt({0.0f, 0.0f, 5.5f}, {0.4f, 0.0f, 0.0f});
     spec.yfovDegrees = 40.0f;
     const test::FrameResult frame = test::checkFrame(bench, spec, "sphere");
     ASSERT_TRUE(frame.rendered);
-    const DrawList* sphere = frame.list(CullMethod::Sphere);
+    const DrawList* sphere = frame.list(Cull::Sphere);
     ASSERT_NE(sphere, nullptr);
     EXPECT_TRUE(hasInstance(*sphere, 0));
     EXPECT_FALSE(hasInstance(*sphere, 3)) << "blob at x = 6 is outside the frustum";
@@ -83,33 +83,33 @@ TEST(CullMethodsTest, SphereDropsAnInstanceOutsideTheFrustumAndKeepsOneInside) {
     EXPECT_EQ(bench.culler.classify(bench.scene, 0, setup->world, setup->view), SphereClass::Whole);
     EXPECT_EQ(bench.culler.classify(bench.scene, 3, setup->world, setup->view), SphereClass::Outside);
     // The other methods drop it too.
-    for (CullMethod method : test::kNeverMiss) EXPECT_FALSE(hasInstance(*frame.list(method), 3)) << cullMethodName(method);
+    for (Cull method : test::kNeverMiss) EXPECT_FALSE(hasInstance(*frame.list(method), 3)) << toString(method);
     // Looking straight at blob 2 only.
     const test::FrameResult other = test::checkFrame(bench, test::lookAt({6.0f, 0.0f, 3.5f}, {6.0f, 0.0f, 0.0f}), "other");
-    EXPECT_TRUE(hasInstance(*other.list(CullMethod::Sphere), 3));
-    EXPECT_FALSE(hasInstance(*other.list(CullMethod::Sphere), 0));
+    EXPECT_TRUE(hasInstance(*other.list(Cull::Sphere), 3));
+    EXPECT_FALSE(hasInstance(*other.list(Cull::Sphere), 0));
 }
 
 TEST(CullMethodsTest, InstanceBehindTheCameraIsDropped) {
     CullBench bench(threeBlobs(3.0f), 96, 72);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
     // The eye between blob 1 and blob 2 looking at blob 2 (+x): blobs 0 and 1 are behind it.
-    CameraSpec spec = test::lookAt({4.5f, 0.0f, 0.0f}, {6.0f, 0.0f, 0.0f});
+    Camera spec = test::lookAt({4.5f, 0.0f, 0.0f}, {6.0f, 0.0f, 0.0f});
     spec.znear = 0.05f;
     spec.zfar = 100.0f;
     const test::FrameResult frame = test::checkFrame(bench, spec, "behind");
     ASSERT_TRUE(frame.rendered);
-    for (CullMethod method : {CullMethod::Sphere, CullMethod::Backface, CullMethod::Conservative, CullMethod::Cones}) {
+    for (Cull method : {Cull::Sphere, Cull::Backface, Cull::Conservative, Cull::Cones}) {
         const DrawList* list = frame.list(method);
         ASSERT_NE(list, nullptr);
-        EXPECT_FALSE(hasInstance(*list, 0)) << cullMethodName(method) << " keeps the blob behind the camera";
-        EXPECT_TRUE(hasInstance(*list, 3)) << cullMethodName(method) << " drops the blob in front";
+        EXPECT_FALSE(hasInstance(*list, 0)) << toString(method) << " keeps the blob behind the camera";
+        EXPECT_TRUE(hasInstance(*list, 3)) << toString(method) << " drops the blob in front";
     }
     // Even the far plane at infinity, and the paper method, see it as outside.
     spec.zfar = 0.0f;
     const test::FrameResult infinite = test::checkFrame(bench, spec, "behind, infinite far plane");
-    for (CullMethod method : {CullMethod::Sphere, CullMethod::Backface, CullMethod::Conservative, CullMethod::Paper})
-        EXPECT_FALSE(hasInstance(*infinite.list(method), 0)) << cullMethodName(method);
+    for (Cull method : {Cull::Sphere, Cull::Backface, Cull::Conservative, Cull::Paper})
+        EXPECT_FALSE(hasInstance(*infinite.list(method), 0)) << toString(method);
 }
 
 TEST(CullMethodsTest, PlansAreInInstanceOrderWithRangesInsideTheMesh) {
@@ -123,9 +123,9 @@ TEST(CullMethodsTest, PlansAreInInstanceOrderWithRangesInsideTheMesh) {
         // checkFrame checks the shape of every method's plan (expectWellFormed) and the renders.
         tallies.add(test::checkFrame(bench, {}, "cubes at " + std::to_string(time), time));
         test::Tallies views = test::checkReportViews(bench, 8, "cubes", time);
-        EXPECT_GT(views.of(CullMethod::Conservative).rvs, 0u);
+        EXPECT_GT(views.of(Cull::Conservative).rvs, 0u);
     }
-    EXPECT_GT(tallies.of(CullMethod::Conservative).rvs, 0u);
+    EXPECT_GT(tallies.of(Cull::Conservative).rvs, 0u);
     // A hand-made plan with an out-of-order instance would be caught: expectWellFormed is not vacuous.
     DrawList bad = fullDrawList(bench.scene);
     ASSERT_GE(bad.size(), 2u);
@@ -166,14 +166,14 @@ TEST(CullMethodsTest, TheCheckSeesASingleDroppedTriangle) {
 
 TEST(CullMethodsTest, NoMethodKeepsHistory) {
     CullBench bench(threeBlobs(2.5f), 96, 72);
-    const CameraSpec a = test::lookAt({1, 1, 6}, {2.5f, 0, 0}), b = test::lookAt({6, -2, -3}, {4, 0, 0});
+    const Camera a = test::lookAt({1, 1, 6}, {2.5f, 0, 0}), b = test::lookAt({6, -2, -3}, {4, 0, 0});
     Result<FrameSetup> sa = setUpFrame(bench.scene, a, 0.0, 96, 72, true), sb = setUpFrame(bench.scene, b, 0.0, 96, 72, true);
     ASSERT_TRUE(sa && sb);
-    for (CullMethod method : kCullMethods) {
+    for (Cull method : kCulls) {
         const DrawList first = bench.culler.cull(method, bench.scene, sa->world, sa->view);
         (void)bench.culler.cull(method, bench.scene, sb->world, sb->view);
         const DrawList again = bench.culler.cull(method, bench.scene, sa->world, sa->view);
-        EXPECT_TRUE(test::sameList(first, again)) << cullMethodName(method);
+        EXPECT_TRUE(test::sameList(first, again)) << toString(method);
     }
 }
 

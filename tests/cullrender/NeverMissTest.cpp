@@ -2,10 +2,10 @@
 // construction) never drops a triangle that owns a pixel of the full render, and its plan renders
 // the same image byte for byte. Judged on the software reference with the id image (RVS) of the
 // full render of the same, reordered scene. `paper` may miss: its plans are only checked for shape.
-#include <gtest/gtest.h>
-
 #include <iostream>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "CullRenderSupport.h"
 
@@ -18,8 +18,8 @@ using test::Tallies;
 void expectSomethingSeen(Tallies& tallies) {
     std::cout << "[ tally    ] " << tallies.summary() << "\n";
     EXPECT_GT(tallies.rendered, 0u) << tallies.summary();
-    EXPECT_GT(tallies.of(CullMethod::Conservative).rvs, 0u) << "nothing visible: the test proves nothing; "
-                                                           << tallies.summary();
+    EXPECT_GT(tallies.of(Cull::Conservative).rvs, 0u)
+        << "nothing visible: the test proves nothing; " << tallies.summary();
 }
 
 TEST(NeverMissTest, BunnySingleSidedOverReportViews) {
@@ -30,10 +30,9 @@ TEST(NeverMissTest, BunnySingleSidedOverReportViews) {
     Tallies tallies = test::checkReportViews(bench, 12, "bunny single-sided");
     expectSomethingSeen(tallies);
     // Single-sided: backface and conservative drop about half of a closed mesh in every view.
-    EXPECT_LT(tallies.of(CullMethod::Conservative).pvs, tallies.of(CullMethod::Conservative).tos * 7 / 10)
-        << tallies.summary();
-    EXPECT_LE(tallies.of(CullMethod::Conservative).pvs, tallies.of(CullMethod::Cones).pvs) << tallies.summary();
-    EXPECT_LE(tallies.of(CullMethod::Backface).pvs, tallies.of(CullMethod::Conservative).pvs) << tallies.summary();
+    EXPECT_LT(tallies.of(Cull::Conservative).pvs, tallies.of(Cull::Conservative).tos * 7 / 10) << tallies.summary();
+    EXPECT_LE(tallies.of(Cull::Conservative).pvs, tallies.of(Cull::Cones).pvs) << tallies.summary();
+    EXPECT_LE(tallies.of(Cull::Backface).pvs, tallies.of(Cull::Conservative).pvs) << tallies.summary();
 }
 
 TEST(NeverMissTest, BunnyDoubleSidedOverReportViews) {
@@ -44,7 +43,7 @@ TEST(NeverMissTest, BunnyDoubleSidedOverReportViews) {
     Tallies tallies = test::checkReportViews(bench, 12, "bunny double-sided");
     expectSomethingSeen(tallies);
     // Double-sided: only the frustum culls, so partial and grazing views still drop something.
-    EXPECT_LT(tallies.of(CullMethod::Conservative).pvs, tallies.of(CullMethod::Conservative).tos) << tallies.summary();
+    EXPECT_LT(tallies.of(Cull::Conservative).pvs, tallies.of(Cull::Conservative).tos) << tallies.summary();
 }
 
 TEST(NeverMissTest, ThreeBunnies) {
@@ -147,17 +146,17 @@ RandomCase randomScene(unsigned seed) {
 
 // Random views of a scene: report views plus cameras inside the bounding sphere looking anywhere,
 // and cameras outside with random near/far planes.
-std::vector<CameraSpec> randomViews(const Scene& scene, unsigned seed, int count) {
+std::vector<Camera> randomViews(const Scene& scene, unsigned seed, int count) {
     std::mt19937 rng(seed * 31u + 5u);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f), unit(0.0f, 1.0f);
     const Bounds bounds = scene.bounds(0.0);
     const glm::vec3 c = bounds.center();
     const float r = bounds.radius();
-    std::vector<CameraSpec> views;
+    std::vector<Camera> views;
     for (const ReportView& view : reportViews(c, r, 4, 40.0f, 4.0f / 3.0f)) views.push_back(view.camera);
     while (int(views.size()) < count) {
         const glm::vec3 dir = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(1e-3f));
-        CameraSpec spec;
+        Camera spec;
         if (views.size() % 2 == 0) {
             // Inside the bounding sphere, looking in a random direction.
             const glm::vec3 eye = c + 0.8f * r * unit(rng) * dir;
@@ -187,7 +186,7 @@ void checkRandomScenes(unsigned firstSeed, unsigned lastSeed) {
         const std::string label = made.label;
         CullBench bench(std::move(made.scene), 96, 72);
         ASSERT_TRUE(bench.canRender()) << label << ": " << bench.uploadError;
-        const std::vector<CameraSpec> views = randomViews(bench.scene, seed, 8);
+        const std::vector<Camera> views = randomViews(bench.scene, seed, 8);
         for (std::size_t k = 0; k < views.size(); ++k)
             all.add(test::checkFrame(bench, views[k], label + ", view " + std::to_string(k)));
     }
@@ -208,7 +207,7 @@ TEST(NeverMissTest, OtherMapParams) {
         CullBench bench(std::move(made.scene), 96, 72, params);
         ASSERT_TRUE(bench.canRender()) << bench.uploadError;
         Tallies tallies;
-        const std::vector<CameraSpec> views = randomViews(bench.scene, 77, 6);
+        const std::vector<Camera> views = randomViews(bench.scene, 77, 6);
         for (std::size_t k = 0; k < views.size(); ++k)
             tallies.add(test::checkFrame(bench, views[k], label + ", view " + std::to_string(k)));
         expectSomethingSeen(tallies);

@@ -5,11 +5,11 @@
 // The bunny at 1920×1080 is chosen on purpose: there, feeding the shader an interpolated white
 // vertex colour instead of none changes one pixel (the interpolated 1.0 is 1 − 2⁻²⁴ on some
 // pixels), so these tests also hold the backend to "no colours = exactly white".
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
@@ -34,7 +34,7 @@ protected:
                           const std::string& name) {
         Result<Scene> scene = loadScene(spec, load);
         ASSERT_TRUE(scene) << scene.error();
-        Result<FrameSetup> setup = setUpFrame(*scene, CameraSpec{}, time, width, height, /*writeIds=*/false);
+        Result<FrameSetup> setup = setUpFrame(*scene, Camera{}, time, width, height, /*writeIds=*/false);
         ASSERT_TRUE(setup) << setup.error();
 
         Result<std::unique_ptr<GlContext>> context = createContext(GetParam());

@@ -2,11 +2,11 @@
 // fully and with reuse through llvmpipe, frame by frame identical in colour, depth and ids (the one
 // scene made for depth ties aside, where the ties are counted and must be what the software
 // reference counts). Skipped when no GL context can be created.
-#include <gtest/gtest.h>
-
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "ReuseSupport.h"
 #include "gl/GlBackend.h"
@@ -60,7 +60,7 @@ TEST_F(ReuseGLTest, CubesEverythingDynamic) {
 
 TEST_F(ReuseGLTest, AllDynamicBuilt) {
     const Scene scene = allDynamicScene();
-    const CameraSpec camera = overviewCamera();
+    const Camera camera = overviewCamera();
     EXPECT_EQ(expectExact(scene, 120, 90, 8, withCamera(scene, camera, 120, 90)).modes(), "RFFFFFFF");
     EXPECT_EQ(expectExact(scene, 120, 90, 8, withCamera(scene, camera, 120, 90), reuseOptions(16, 16, false)).modes(),
               "RUUUUUUU");
@@ -75,7 +75,7 @@ TEST_F(ReuseGLTest, CameraPathMovesStopsMovesAgain) {
 
 TEST_F(ReuseGLTest, AnObjectFliesThroughTheCamera) {
     const Scene scene = flyThroughScene();
-    const CameraSpec camera = overviewCamera();
+    const Camera camera = overviewCamera();
     for (bool fallback : {true, false})
         for (bool paper : {false, true}) {
             const SequenceResult r =
@@ -88,8 +88,8 @@ TEST_F(ReuseGLTest, AnObjectFliesThroughTheCamera) {
 
 TEST_F(ReuseGLTest, CulledDrawLists) {
     for (const char* spec : {"builtin:default", "builtin:cubes"}) {
-        for (CullMethod method : {CullMethod::Sphere, CullMethod::Conservative}) {
-            SCOPED_TRACE(std::string(spec) + " " + cullMethodName(method));
+        for (Cull method : {Cull::Sphere, Cull::Conservative}) {
+            SCOPED_TRACE(std::string(spec) + " " + toString(method));
             Scene scene = loadOrFail(spec);
             const SceneCuller culler = SceneCuller::prepare(scene);  // before the upload
             int culled = 0;
@@ -106,7 +106,7 @@ TEST_F(ReuseGLTest, CulledDrawLists) {
 // moving, drawn after the static one under reuse) tie on the whole overlap.
 TEST_F(ReuseGLTest, CoplanarQuadsTieOnlyWhileOneMoves) {
     const Scene scene = coplanarQuadsScene();
-    const CameraSpec camera = coplanarQuadsCamera();
+    const Camera camera = coplanarQuadsCamera();
     const SequenceResult r =
         expectExact(scene, 160, 120, 12, withCamera(scene, camera, 160, 120), reuseOptions(16, 16, false), true);
     ASSERT_EQ(r.matches.size(), 12u);

@@ -9,8 +9,8 @@
 #include "RenderSupport.h"
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
-#include "render/Frame.h"
 #include "io/ImageIO.h"
+#include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
@@ -25,7 +25,7 @@ const glm::vec4 kBackground{0.12f, 0.13f, 0.15f, 1.0f};
 using Frame = test::RenderedFrame;
 
 Frame render(Backend& backend, const Scene& scene, int w, int h, double time = 0.0, bool ids = true,
-             const CameraSpec& camera = {}) {
+             const Camera& camera = {}) {
     return test::renderScene(backend, scene, w, h, time, ids, kBackground, camera);
 }
 
@@ -77,14 +77,14 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     Material material;
     material.baseColorFactor = {0.8f, 0.4f, 0.2f, 1.0f};
     Scene scene = test::oneMeshScene(quad, material);
-    Camera camera;
+    SceneCamera camera;
     camera.yfov = glm::radians(60.0f);
     camera.znear = 1.0f;
     camera.zfar = 10.0f;
     test::addCameraNode(scene, camera, {0, 0, 4});
 
     // The camera's planes as given (the fit would hug the flat square: render/Camera.h).
-    CameraSpec given;
+    Camera given;
     given.depthRange = DepthRange::File;
     const Frame frame = render(*backend, scene, 64, 48, 0.0, true, given);
     const Lighting light;

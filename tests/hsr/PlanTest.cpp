@@ -3,13 +3,12 @@
 // the z-buffer, rendered on the software reference: the paper's cubes and the dominoes,
 // interpenetrating polygons (depthsort wrong, adaptive right), a polygon crossing the eye plane
 // (everything flagged), and exact depth ties (where the runs' submission order keeps adaptive equal).
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <iostream>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "hsr/Flags.h"
@@ -224,7 +223,7 @@ TEST(HsrPlan, AdaptiveDiffersFromTheZBufferOnlyAtDepthTies) {
                 ties += forward.ids[p] != backward.ids[p] ? 1 : 0;
                 if (image.ids[p] == forward.ids[p]) continue;
                 ++differing;
-                EXPECT_NE(forward.ids[p], backward.ids[p]) << hsr::modeName(mode) << " frame " << frame << " pixel " << p;
+                EXPECT_NE(forward.ids[p], backward.ids[p]) << toString(mode) << " frame " << frame << " pixel " << p;
             }
         }
     }
@@ -343,9 +342,10 @@ TEST(HsrPlan, ZBufferModeIsTheListItself) {
 }
 
 TEST(HsrPlan, ModeNames) {
-    for (Mode mode : {Mode::ZBuffer, Mode::DepthSort, Mode::Adaptive}) EXPECT_EQ(hsr::parseMode(hsr::modeName(mode)), mode);
-    EXPECT_FALSE(hsr::parseMode("zbuf").has_value());
-    EXPECT_FALSE(hsr::parseMode("").has_value());
+    for (Mode mode : {Mode::ZBuffer, Mode::DepthSort, Mode::Adaptive})
+        EXPECT_EQ(fromString(toString(mode), kHsrs), mode);
+    EXPECT_FALSE(fromString("zbuf", kHsrs).has_value());
+    EXPECT_FALSE(fromString("", kHsrs).has_value());
 }
 
 }  // namespace

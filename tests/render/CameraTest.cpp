@@ -1,9 +1,9 @@
 // Camera resolution and the projection conventions (GL clip space, window z in [0,1]).
-#include <gtest/gtest.h>
-
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
 #include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "render/Camera.h"
@@ -40,7 +40,7 @@ TEST(CameraTest, AutoFramingKeepsTheBoundsInsideTheFrustum) {
 
 TEST(CameraTest, LookAtPutsTheTargetAtTheCentreAndUpIsUp) {
     const Scene scene = unitScene();
-    CameraSpec spec;
+    Camera spec;
     spec.eye = glm::vec3(0, 0, 10);
     spec.target = glm::vec3(0, 0, 0);
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 64, 64);
@@ -56,12 +56,12 @@ TEST(CameraTest, LookAtPutsTheTargetAtTheCentreAndUpIsUp) {
 
 TEST(CameraTest, SceneCamerasFollowTheirNodeAndAnInfiniteFar) {
     Scene scene = unitScene();
-    Camera camera;
+    SceneCamera camera;
     camera.yfov = glm::radians(60.0f);
     camera.znear = 0.5f;
     camera.zfar = 0.0f;  // infinite
     test::addCameraNode(scene, camera, {0, 0, 5});
-    CameraSpec spec;
+    Camera spec;
     spec.depthRange = DepthRange::File;  // the camera's own planes
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 100, 100);
     ASSERT_TRUE(view) << view.error();
@@ -74,7 +74,7 @@ TEST(CameraTest, SceneCamerasFollowTheirNodeAndAnInfiniteFar) {
 TEST(CameraTest, BadCamerasAreErrorsWithNumbers) {
     const Scene scene = unitScene();
     const auto world = scene.worldTransforms(0);
-    CameraSpec spec;
+    Camera spec;
     spec.sceneCamera = 2;
     EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera 2: the scene has 0 cameras");
     spec = {};
@@ -99,7 +99,7 @@ TEST(CameraTest, BadCamerasAreErrorsWithNumbers) {
 // ratio and keeps the vertical field of view, as viewers do; the file's ratio is kept to be reported.
 TEST(CameraTest, AFileCamerasAspectRatioIsNotStretchedOntoTheImage) {
     Scene scene = unitScene();
-    Camera square;
+    SceneCamera square;
     square.yfov = glm::radians(50.0f);
     square.aspect = 1.0f;
     square.znear = 0.1f;
@@ -134,7 +134,7 @@ TEST(CameraTest, AFileCamerasAspectRatioIsNotStretchedOntoTheImage) {
 
 TEST(CameraTest, AnOrthographicCameraKeepsYmagAndTakesTheImagesAspectRatio) {
     Scene scene = unitScene();
-    Camera ortho;
+    SceneCamera ortho;
     ortho.perspective = false;
     ortho.xmag = 1.0f;
     ortho.ymag = 2.0f;
@@ -152,7 +152,7 @@ TEST(CameraTest, AnOrthographicCameraKeepsYmagAndTakesTheImagesAspectRatio) {
 // ones, and make the near/far ratio what the scene needs.
 TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
     Scene scene = unitScene();  // a triangle within [-1, 1]³
-    Camera camera;
+    SceneCamera camera;
     camera.yfov = glm::radians(40.0f);
     camera.znear = 0.05f;
     camera.zfar = 1e6f;
@@ -173,7 +173,7 @@ TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
         EXPECT_LT(z, 1.0f);
     }
     // The user's (or the file's) planes win where they are tighter than the scene.
-    CameraSpec spec;
+    Camera spec;
     spec.znear = 9.5f;
     spec.zfar = 10.5f;
     Result<View> tight = resolveCamera(scene, world, 0, spec, 64, 64);
@@ -209,15 +209,14 @@ TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
 TEST(CameraTest, D32fProjectionsAreReversedZeroToOne) {
     Scene scene = unitScene();
     const auto world = scene.worldTransforms(0);
-    CameraSpec spec;
+    Camera spec;
     spec.eye = glm::vec3(0, 0, 10);
     spec.target = glm::vec3(0, 0, 0);
-    spec.depthFormat = DepthFormat::D32F;
     spec.depthRange = DepthRange::File;
     for (const float far : {100.0f, 0.0f}) {
         spec.znear = 2.0f;
         spec.zfar = far;
-        Result<View> view = resolveCamera(scene, world, 0, spec, 64, 64);
+        Result<View> view = resolveCamera(scene, world, 0, spec, 64, 64, DepthFormat::D32F);
         ASSERT_TRUE(view) << view.error();
         EXPECT_EQ(view->depthFormat, DepthFormat::D32F);
         const auto windowZ = [&](float distance) {  // clip z / w: window z for zero-to-one
@@ -272,7 +271,7 @@ TEST(CameraTest, TheEnvelopeHoldsAnAnimatedSceneAtEveryTime) {
     // The cubic piece overshoots its keys (tangent 20 over 2 s): the control points hold it.
     EXPECT_GT(scene.bounds(0.6).max.y, 2.5f);
     // One projection for every frame of a still camera.
-    CameraSpec spec;
+    Camera spec;
     spec.eye = glm::vec3(0, 2, 15);
     spec.target = glm::vec3(0, 0, 0);
     Result<View> first = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 64, 64);

@@ -111,7 +111,7 @@ TEST(PlanTest, SetUpFrameSamplesTheSceneAndTheCameraAtItsTime) {
     channel.times = {0.0f, 1.0f};
     channel.values = {glm::vec4(0, 0, 0, 0), glm::vec4(4, 0, 0, 0)};
     scene.animations.push_back({"move", {channel}});
-    CameraSpec camera;
+    Camera camera;
     camera.eye = glm::vec3(0, 0, 10);
     camera.target = glm::vec3(0, 0, 0);
     Result<FrameSetup> setup = setUpFrame(scene, camera, frameTime(15, 30.0), 64, 48, true);

@@ -211,13 +211,13 @@ TEST(SceneRendererTest, KeyOrderGroupsDrawsByTextureProgramAndMesh) {
     }
     scene.buildInstances();
     const DrawList list = fullDrawList(scene);
-    const DrawList keyed = orderDraws(scene, list, DrawOrder::Key);
+    const DrawList keyed = orderDraws(scene, list, Order::Key);
     ASSERT_EQ(keyed.size(), 4u);
     EXPECT_EQ(keyed[0].instance, 0);  // stable within a key
     EXPECT_EQ(keyed[1].instance, 2);
     EXPECT_EQ(keyed[2].instance, 1);
     EXPECT_EQ(keyed[3].instance, 3);
-    const DrawList same = orderDraws(scene, list, DrawOrder::Submit);
+    const DrawList same = orderDraws(scene, list, Order::Submit);
     for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(same[i].instance, list[i].instance);
 }
 

@@ -54,7 +54,7 @@ Scene sharedMeshScene() {
     scene.nodes[2].name = "camera";
     scene.nodes[2].camera = 0;
     scene.roots = {0, 1, 2};
-    scene.cameras.push_back(Camera{});
+    scene.cameras.push_back(SceneCamera{});
     scene.animations.push_back(Animation{"spin", {}});
     scene.instances = {Instance{0, 0, 20}, Instance{1, 0, 1}, Instance{1, 1, 5}};
     return scene;

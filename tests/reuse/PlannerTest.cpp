@@ -3,8 +3,6 @@
 // (its world matrix, its material, its place in the draw list, a NaN), the shape of each plan
 // (steps, rectangles, the order of the draws) and the frame statistics against the plan they
 // describe. Where a plan's effect matters it is rendered on the software reference.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,6 +12,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "ReuseSupport.h"
 #include "render/IndexRanges.h"
@@ -589,7 +589,7 @@ TEST_F(ReusePlanner, EverythingDynamicFallsBackToFull) {
         EXPECT_EQ(s.instances[kSD] + s.instances[kDD], n()) << "frame " << i;
         EXPECT_EQ(s.mode, ReuseMode::Full) << "frame " << i << ": everything moves, reuse cannot pay; " << s.reason
                                            << " (copied " << s.copiedPx << ", cleared " << s.clearedPx << ")";
-        modes += reuseModeName(s.mode) + std::string(" ");
+        modes += toString(s.mode) + std::string(" ");
     }
     // With the camera moving too, a rebuild would be followed by everything dynamic: no rebuild.
     FrameParams other = params;

@@ -4,20 +4,19 @@
 // stops and moves again, objects that leave the screen, fly through the camera or appear, nothing
 // dynamic, everything dynamic, every grain × cell, culled draw lists, glTF files with node
 // animation, NaN matrices, material changes, and a scene made for exact depth ties.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
-#include <random>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
 
 #include "ReuseSupport.h"
 #include "TestSupport.h"
@@ -181,7 +180,7 @@ TEST(ReuseSequence, CameraPathMovesStopsMovesAgain) {
 // ---------------------------------------------------------------------------------------------
 // Scenes built here: a static backdrop (plate and pillars, drawn first) and dynamic objects.
 
-const CameraSpec kOverview = overviewCamera();
+const Camera kOverview = overviewCamera();
 
 TEST(ReuseSequence, ObjectsLeaveTheScreenAndComeBack) {
     Scene scene;
@@ -330,8 +329,8 @@ TEST(ReuseSequence, LargeMeshesMoving) {
     const glm::vec3 t = scene.nodes[std::size_t(second)].translation;
     animate(scene, second, AnimPath::Translation, {{0.0f, t}, {0.2f, t + glm::vec3(0.0f, 0.02f, 0.03f)}});
     const Bounds bounds = scene.bounds(0.0);
-    const CameraSpec camera = eyeAt(bounds.center() + glm::vec3(0.0f, 0.3f, 2.2f) * bounds.radius(), bounds.center(), 40.0f,
-                                    bounds.radius() * 0.1f, bounds.radius() * 10.0f);
+    const Camera camera = eyeAt(bounds.center() + glm::vec3(0.0f, 0.3f, 2.2f) * bounds.radius(), bounds.center(), 40.0f,
+                                bounds.radius() * 0.1f, bounds.radius() * 10.0f);
     const SequenceResult r = expectExact(scene, 160, 120, 8, withCamera(scene, camera, 160, 120), reuseOptions(16, 16, false));
     EXPECT_EQ(r.modes(), "RUUUUUUU") << r.describe();
     EXPECT_LT(r.stats[3].staticRedrawnTris, r.stats[3].drawnTris / 2) << "a partial redraw of the static bunny";
@@ -379,7 +378,8 @@ TEST(ReuseSequence, RandomScenesAndEvents) {
         const Frames sequence = [edited, events, angle, firstBox](int i) {
             Scene& s = *edited;
             const float a = angle[std::size_t(i)];
-            const CameraSpec camera = eyeAt({8.0f * std::sin(a), 7.0f, 12.0f * std::cos(a)}, {0.0f, 0.5f, 0.0f}, 55.0f, 0.5f, 60.0f);
+            const Camera camera =
+                eyeAt({8.0f * std::sin(a), 7.0f, 12.0f * std::cos(a)}, {0.0f, 0.5f, 0.0f}, 55.0f, 0.5f, 60.0f);
             SequenceFrame f = frameAt(s, camera, 0.0, 96, 72);
             DrawList list;
             for (const DrawCommand& c : f.list) {
@@ -440,8 +440,8 @@ TEST(ReuseSequence, OddTargetSizes) {
 
 TEST(ReuseSequence, CulledDrawLists) {
     for (const char* spec : {"builtin:default", "builtin:dominoes?polygons=1404&static=0.9866", "builtin:cubes"}) {
-        for (CullMethod method : {CullMethod::Sphere, CullMethod::Conservative}) {
-            SCOPED_TRACE(std::string(spec) + " " + cullMethodName(method));
+        for (Cull method : {Cull::Sphere, Cull::Conservative}) {
+            SCOPED_TRACE(std::string(spec) + " " + toString(method));
             Scene scene = loadOrFail(spec);
             const SceneCuller culler = SceneCuller::prepare(scene);  // reorders the meshes: before any upload
             int culled = 0;
@@ -554,7 +554,7 @@ TEST(ReuseSequence, GltfWithNodeAnimation) {
     const Scene scene = loadOrFail(path.string());
     ASSERT_EQ(scene.animations.size(), 1u);
     ASSERT_EQ(scene.instances.size(), 6u);
-    const CameraSpec camera = eyeAt({0.0f, 6.0f, 9.0f}, {0.0f, 0.0f, 0.0f}, 50.0f, 0.5f, 50.0f);
+    const Camera camera = eyeAt({0.0f, 6.0f, 9.0f}, {0.0f, 0.0f, 0.0f}, 50.0f, 0.5f, 50.0f);
     const std::vector<SequenceResult> results = expectExactEveryWay(scene, 160, 120, 36, withCamera(scene, camera, 160, 120));
     // While the animation runs (frames 1..30), the four animated nodes and the child are dynamic
     // (the stepped scale only on its key frames); afterwards nothing is.
@@ -627,7 +627,7 @@ TEST(ReuseSequence, CoplanarStaticAndDynamicQuadsTie) {
     const Scene scene = coplanarQuadsScene();
     ASSERT_EQ(scene.instances.size(), 2u);
     const std::uint32_t dynamicFirst = scene.instances[0].firstId, staticFirst = scene.instances[1].firstId;
-    const CameraSpec camera = coplanarQuadsCamera();
+    const Camera camera = coplanarQuadsCamera();
 
     auto backend = makeSoftwareBackend();
     Result<SceneRenderer> made = SceneRenderer::create(*backend, scene);

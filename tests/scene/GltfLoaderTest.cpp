@@ -1,7 +1,5 @@
 // glTF loader: every file of assimp's glTF2 test set, one hand-written file per validation rule, every
 // truncated prefix of a small .glb, and round trips of what the loader fills in.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -9,11 +7,13 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
-#include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
 #include "scene/Load.h"
@@ -1121,7 +1121,7 @@ TEST(GltfLoaderTest, CamerasAreAttachedToTheirNodes) {
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfCameras"), "cameras", asset));
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->cameras.size(), 2u);
-    const Camera& ortho = scene->cameras[0];  // in node order: node 1 first
+    const SceneCamera& ortho = scene->cameras[0];  // in node order: node 1 first
     EXPECT_EQ(ortho.name, "ortho");
     EXPECT_EQ(ortho.node, 1);
     EXPECT_FALSE(ortho.perspective);
@@ -1129,7 +1129,7 @@ TEST(GltfLoaderTest, CamerasAreAttachedToTheirNodes) {
     EXPECT_FLOAT_EQ(ortho.ymag, 3.0f);
     EXPECT_FLOAT_EQ(ortho.znear, 0.0f);
     EXPECT_FLOAT_EQ(ortho.zfar, 10.0f);
-    const Camera& persp = scene->cameras[1];
+    const SceneCamera& persp = scene->cameras[1];
     EXPECT_EQ(persp.name, "persp");
     EXPECT_EQ(persp.node, 2);
     EXPECT_TRUE(persp.perspective);

@@ -1,11 +1,12 @@
 // Scene model: hierarchy, animation sampling, mesh finalisation, instance ids.
 #include <cmath>
 
-#include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <frugal/Scene.h>
 
 #include "scene/MeshBuild.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 namespace {

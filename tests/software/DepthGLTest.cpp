@@ -8,17 +8,17 @@
 //   far plane, coordinates at 10⁻⁶ and 10⁶. d32f separates two planes 10⁻⁶ of their distance apart
 //   where d24 cannot, and the reference equals llvmpipe bit for bit in both formats;
 // - what the fit changes in d24 images: only pixels where two triangles tie in depth.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "GlReference.h"
 #include "RenderSupport.h"
@@ -51,12 +51,13 @@ std::size_t differingIds(const Buffers& a, const Buffers& b) {
     return n;
 }
 
-// The frame as `camera` sees it, rendered with `projection` instead of the camera's when given.
-Buffers render(Backend& backend, const Scene& scene, int width, int height, const CameraSpec& camera,
-               std::optional<glm::mat4> projection = std::nullopt) {
-    const TargetHandle target = backend.createTarget(width, height, camera.depthFormat);
+// The frame as `camera` sees it in depth `format`, rendered with `projection` instead of the
+// camera's when given.
+Buffers render(Backend& backend, const Scene& scene, int width, int height, const Camera& camera,
+               DepthFormat format = DepthFormat::D24, std::optional<glm::mat4> projection = std::nullopt) {
+    const TargetHandle target = backend.createTarget(width, height, format);
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    Result<FrameSetup> setup = setUpFrame(scene, camera, 0.0, width, height, true);
+    Result<FrameSetup> setup = setUpFrame(scene, camera, 0.0, width, height, true, format);
     EXPECT_NE(target, kNoHandle);
     EXPECT_TRUE(renderer) << renderer.error();
     EXPECT_TRUE(setup) << setup.error();
@@ -89,7 +90,7 @@ TEST_F(DepthGLTest, AFileCameraIsNotStretched) {
     ASSERT_EQ(scene->cameras.size(), 1u);
     ASSERT_EQ(scene->cameras[0].aspect, 1.0f);
     const glm::mat4 node = scene->worldTransforms(0.0)[std::size_t(scene->cameras[0].node)];
-    CameraSpec explicitCamera;
+    Camera explicitCamera;
     explicitCamera.eye = glm::vec3(node[3]);
     explicitCamera.target = glm::vec3(node[3]) - glm::vec3(node[2]) * 1000.0f;
     explicitCamera.up = glm::vec3(node[1]);
@@ -100,7 +101,7 @@ TEST_F(DepthGLTest, AFileCameraIsNotStretched) {
         Result<FrameSetup> setup = setUpFrame(*scene, {}, 0.0, width, height, true);
         ASSERT_TRUE(setup);
         const glm::mat4 stretched = glm::perspective(scene->cameras[0].yfov, 1.0f, setup->view.znear, setup->view.zfar);
-        const Buffers old = render(*llvmpipe, *scene, width, height, {}, stretched);
+        const Buffers old = render(*llvmpipe, *scene, width, height, {}, DepthFormat::D24, stretched);
         const std::size_t pixels = std::size_t(width) * std::size_t(height);
         const double same = meanColourDifference(file, given), stretch = meanColourDifference(file, old);
         std::printf(
@@ -120,17 +121,15 @@ TEST_F(DepthGLTest, TheFittedRangeDoesNotZFight) {
     Result<Scene> scene = loadScene(enginePath());
     ASSERT_TRUE(scene) << scene.error();
     const float near = scene->cameras[0].znear;
-    CameraSpec precise;
-    precise.depthFormat = DepthFormat::D32F;
-    const Buffers reference = render(*llvmpipe, *scene, 800, 600, precise);
+    const Buffers reference = render(*llvmpipe, *scene, 800, 600, {}, DepthFormat::D32F);
     std::map<std::string, std::size_t> wrong, flips, bigFlips;
     for (const DepthRange range : {DepthRange::Fit, DepthRange::File}) {
-        CameraSpec camera;
+        Camera camera;
         camera.depthRange = range;
         const Buffers image = render(*llvmpipe, *scene, 800, 600, camera);
         const std::string name = depthRangeName(range);
         wrong[name] = differingIds(image, reference);
-        CameraSpec moved = camera;
+        Camera moved = camera;
         moved.znear = std::max(near * (1.0f + 1e-6f), std::nextafter(near, 1.0f));
         flips[name] = differingIds(image, render(*llvmpipe, *scene, 800, 600, moved));
         moved.znear = near * 1.01f;
@@ -205,15 +204,14 @@ TEST_F(DepthGLTest, D32fSeparatesPlanesAMillionthOfTheirDistanceApartAtEveryRati
             for (int k = 0; k < 8; ++k) {
                 const double d = c.d * (1.0 + 0.0137 * k);
                 const Scene scene = twoPlanes(d, d * 1e-6);
-                CameraSpec camera;
+                Camera camera;
                 camera.eye = glm::vec3(0.0f);
                 camera.target = glm::vec3(0, 0, -1);
                 camera.znear = float(c.near);
                 camera.zfar = float(c.far);
                 camera.depthRange = DepthRange::File;  // the planes as given: the format alone separates
-                camera.depthFormat = format;
-                const Buffers gl = render(*llvmpipe, scene, 64, 48, camera);
-                const Buffers sw = render(*software, scene, 64, 48, camera);
+                const Buffers gl = render(*llvmpipe, scene, 64, 48, camera, format);
+                const Buffers sw = render(*software, scene, 64, 48, camera, format);
                 test::expectMatches("Extremes-" + label + "-" + std::to_string(k), gl, sw, 1.0, 0);
                 EXPECT_EQ(gl.depth, sw.depth) << label << ", distance " << d;
                 const double share = nearShare(gl);
@@ -230,7 +228,7 @@ TEST_F(DepthGLTest, D32fSeparatesPlanesAMillionthOfTheirDistanceApartAtEveryRati
     }
 }
 
-// The triangle behind an id (scene/Scene.h: instance firstId + source primitive).
+// The triangle behind an id (frugal/Scene.h: instance firstId + source primitive).
 struct Hit {
     const Instance* instance = nullptr;
     std::uint32_t triangle = 0;
@@ -284,9 +282,9 @@ TEST_F(DepthGLTest, TheFitChangesOnlyPixelsWhereTrianglesTieInDepth) {
         Result<Scene> scene = loadScene(f.scene);
         ASSERT_TRUE(scene) << scene.error();
         const int width = 800, height = 600;
-        CameraSpec fileCamera, fitCamera;
+        Camera fileCamera, fitCamera;
         fileCamera.depthRange = DepthRange::File;
-        const auto frameAt = [&](const CameraSpec& camera) {
+        const auto frameAt = [&](const Camera& camera) {
             const test::RenderedFrame r =
                 test::renderScene(*software, *scene, width, height, f.time, true, kBackground, camera);
             return r.buffers;

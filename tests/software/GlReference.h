@@ -3,8 +3,6 @@
 // (reference, actual, diff) into FRUGAL_TEST_OUTPUT_DIR/<name>/.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -14,6 +12,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
@@ -55,7 +55,7 @@ struct Comparison {
     }
 };
 
-// The depth value of a target cleared to its far plane (render/Image.h), as read back.
+// The depth value of a target cleared to its far plane (frugal/Image.h), as read back.
 inline std::uint32_t farValue(DepthFormat format) { return format == DepthFormat::D32F ? 0u : kDepthMax; }
 
 // `drawn(i)`: whether pixel i was drawn, judged from depth against `clearDepth` (default: the far

@@ -4,14 +4,14 @@
 // float plane, and changes colour and ids only where that flips a depth test; Dda's error grows
 // along a span and passes Span's on a long, steep one. Depth only: shading is per fragment in every
 // mode (not Gouraud), so colour changes only with the winner of a pixel.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "RenderSupport.h"
 #include "TestSupport.h"
@@ -78,7 +78,7 @@ Buffers renderCubes(Backend& backend, int width, int height) {
     // The camera's own planes (0.1 to 42 around cubes 11 to 21 away), as paper 001's engine was
     // measured: the fitted planes make the depth's slope across a span ~50 times steeper, and the
     // engine's error with it (docs/span).
-    CameraSpec camera;
+    Camera camera;
     camera.depthRange = DepthRange::File;
     return test::renderScene(backend, *scene, width, height, 0.0, true, kBackground, camera).buffers;
 }

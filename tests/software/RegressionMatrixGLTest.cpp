@@ -3,13 +3,13 @@
 // case writes actual, reference and error-mask PNGs to FRUGAL_TEST_OUTPUT_DIR/matrix-<case>/.
 // (The assimp glTF models and texture sampling are in SceneGLTest; single triangles in
 // CoverageGLTest.)
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <random>
+
+#include <gtest/gtest.h>
 
 #include "GlReference.h"
 #include "render/Frame.h"
@@ -35,7 +35,7 @@ struct MatrixCase {
     std::string name;
     std::function<Scene()> scene;
     int width, height;
-    CameraSpec camera;
+    Camera camera;
     Tolerance tolerance;
 };
 
@@ -128,7 +128,7 @@ Scene pixelGrid() {
             mesh.indices.insert(mesh.indices.end(), {a, a + 1, b + 1, a, b + 1, b});
         }
     Scene scene = single(mesh);
-    Camera camera;
+    SceneCamera camera;
     camera.perspective = false;
     camera.xmag = 32.0f;
     camera.ymag = 24.0f;
@@ -154,8 +154,8 @@ Scene scaled(float scale) {
     return single(mesh, false);
 }
 
-CameraSpec lookFrom(glm::vec3 eye, glm::vec3 target, float znear, float zfar) {
-    CameraSpec spec;
+Camera lookFrom(glm::vec3 eye, glm::vec3 target, float znear, float zfar) {
+    Camera spec;
     spec.eye = eye;
     spec.target = target;
     spec.znear = znear;

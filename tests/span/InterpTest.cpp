@@ -1,10 +1,10 @@
 // The per-span API (software/span/Interp.h) and the error tables (software/span/ErrorTable.h): the
 // paper's claim (III.2) that midpoint subdivision avoids the error add-and-shift accumulates, as
 // bounds on the error against the exact line, and overflow reported instead of wrapped.
-#include <gtest/gtest.h>
-
 #include <array>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "software/span/ErrorTable.h"
 #include "software/span/Interp.h"
@@ -16,7 +16,7 @@ TEST(SpanInterpTest, EveryModeFillsAnExactRampExactly) {
     for (Interp mode : {Interp::Exact, Interp::Span, Interp::Dda}) {
         std::vector<std::uint32_t> out(300, 0xDEAD);
         const FillResult r = fillSpan(mode, {50, 350, 1000.0, 3.0, 16}, out);
-        SCOPED_TRACE(interpName(mode));
+        SCOPED_TRACE(toString(mode));
         EXPECT_TRUE(r.ok()) << describeOverflow(r.overflow);
         for (int k = 0; k < 300; ++k) ASSERT_EQ(out[std::size_t(k)], std::uint32_t(1000 + 3 * k)) << k;
     }
@@ -32,7 +32,7 @@ TEST(SpanInterpTest, EmptySpanWritesNothing) {
 TEST(SpanInterpTest, OutOfRangeValuesAreFlaggedAndClampedNotWrapped) {
     // 0.. 65535 + 10: columns 100.. run past the top of 16 bits.
     for (Interp mode : {Interp::Exact, Interp::Span, Interp::Dda}) {
-        SCOPED_TRACE(interpName(mode));
+        SCOPED_TRACE(toString(mode));
         std::vector<std::uint32_t> out(120);
         const FillResult r = fillSpan(mode, {0, 120, 65000.0, 6.0, 16}, out);  // 65000 + 6·90 = 65540 at column 90
         EXPECT_EQ(r.overflow, kOverflowOutput);

@@ -7,15 +7,6 @@
 
 namespace frugal::span {
 
-const char* interpName(Interp mode) {
-    switch (mode) {
-    case Interp::Exact: return "exact";
-    case Interp::Span: return "span";
-    case Interp::Dda: return "dda";
-    }
-    return "?";
-}
-
 namespace {
 
 // Stores v clamped to [0, top]; flags the first column that needed it.

@@ -29,13 +29,13 @@
 #include <cstdint>
 #include <span>
 
+#include <frugal/Settings.h>
+
 #include "software/span/Engine.h"
 
 namespace frugal::span {
 
-enum class Interp : std::uint8_t { Exact, Span, Dda };
-
-const char* interpName(Interp mode);  // "exact", "span", "dda"
+using Interp = frugal::DepthInterp;  // frugal/Settings.h: its names are toString's
 
 struct SpanInput {
     int xBegin = 0;

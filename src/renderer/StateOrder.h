@@ -1,20 +1,19 @@
-// Draw orders by measured state-change costs on real frames (issue 10): each draw's render-state set
-// (RSS) as the backends set it, the kinds' costs from `info --state-costs`'s measurement
-// (gl/StateCosts.h), and paper 004's sort, greedy nearest neighbour and the best order
-// (src/order/Order.h) applied to a frame's draw list.
+// Draw orders by measured state-change costs on real frames: each draw's render-state set (RSS) as
+// the backends set it, the kinds' costs from the backend's own measurement (gl/StateCosts.h), and
+// paper 004's sort, greedy nearest neighbour and the best order (src/order/Order.h) applied to a
+// frame's draw list.
 #pragma once
 
-#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
+#include <frugal/Scene.h>
+#include <frugal/Stats.h>
 
 #include "gl/StateCosts.h"
 #include "order/Order.h"
 #include "render/Plan.h"
-#include "scene/Scene.h"
 
 namespace frugal {
 
@@ -27,28 +26,23 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
 // `list` in `order`: submit and key as orderDraws; paper, greedy and best computed on the list's
 // distinct RSSs (copies drawn together, in submission order, which keeps batches whole) with
 // `costs` under order::CostRule::SetNotHeld; paper's high-cost set has 3 kinds.
-DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder order, const std::vector<double>& costs);
-
-// {"draws","programs","meshes","textures","toggles","uniforms"}: the render and order-bench JSON.
-nlohmann::json stateChangesJson(const StateChanges& changes);
+DrawList orderFrameDraws(const Scene& scene, const DrawList& list, Order order, const std::vector<double>& costs);
 
 // The costs `order` needs on `backend` (paper, greedy, best; none for submit and key): measured at
 // start, 5 rounds of 200 draws a kind (gl/StateCosts.h), then refined while frames render: every
 // `refineEvery` frames (0: never) one more round of 100 draws between two frames, folded into the
-// running average of the last 32 rounds. start() prints one line on `err` unless quiet: "order best:
-// state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ...".
+// running average of the last 32 rounds.
 class OrderCosts {
 public:
     // Error: the measurement's (the backend refused the probe's target, mesh or texture).
-    static Result<OrderCosts> start(DrawOrder order, Backend& backend, int refineEvery, std::ostream& err, bool quiet);
+    static Result<OrderCosts> start(Order order, Backend& backend, int refineEvery);
 
     const std::vector<double>& costsUs() const { return costs_; }
     // Call between frames, with `framesDone` frames finished: one more round when one is due (never
     // inside a frame: the probe draws into a target of its own). True when the costs were refined.
     bool refine(int framesDone);
-    // {"kinds", "start_us", "us", "rounds", "refine_every"} (costs in the order of "kinds"); null for
-    // submit and key.
-    nlohmann::json json() const;
+    // What was measured (frugal/Stats.h); nothing for submit and key.
+    std::optional<StateCosts> report() const;
 
 private:
     std::unique_ptr<StateCostProbe> probe_;

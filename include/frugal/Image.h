@@ -1,10 +1,9 @@
-// CPU-side images read back from a render target.
+// Images a frame is read back as: colour (RGBA8), depth (24-bit or 32-bit float, DepthFormat) and
+// triangle ids (32-bit, 0 = background; frugal/Scene.h says how ids are formed).
 //
-// Window convention: row 0 is the bottom row (GL window origin bottom-left). Images are flipped once,
-// when written to a file (see io/ImageIO.h).
-// Depth, in one of two formats (DepthFormat); both backends store the same values, so they compare
-// exactly.
-// Triangle ids: 32-bit, 0 = background (see scene/Scene.h for how ids are formed).
+// Rows: row 0 is the bottom row (GL's window origin, bottom-left), as the backends read them back;
+// the file writers (frugal/Files.h) put the top row first, and a caller that wants it first reads
+// rows from the last. Both backends store the same values, so images compare exactly.
 #pragma once
 
 #include <algorithm>
@@ -51,22 +50,50 @@ inline Rect clipRect(const Rect& rect, int width, int height) {
     return Rect{x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
 }
 
+// Window z in [0, 1] of a stored depth value (D24: exactly value / 16777215, rounded to float;
+// D32F: the float whose bits `value` holds, 1 near, 0 far).
+inline float windowDepth(DepthFormat format, std::uint32_t value) {
+    return format == DepthFormat::D32F ? std::bit_cast<float>(value) : float(double(value) / double(kDepthMax));
+}
+
+struct ColorImage {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;  // 4 bytes a pixel, R first; rows bottom-up
+};
+
+struct DepthImage {
+    int width = 0, height = 0;
+    // D24: the 24-bit values. D32F: the floats' bits; window z is never negative, so these order as
+    // the floats do and their difference counts the floats between two values (ULPs). Rows bottom-up.
+    std::vector<std::uint32_t> values;
+    DepthFormat format = DepthFormat::D24;
+    // The planes the frame was drawn with (zfar 0 = infinite) and its projection: a depth PNG
+    // carries them (frugal/Files.h).
+    float znear = 0.0f, zfar = 0.0f;
+    bool perspective = true;
+
+    float windowDepth(std::size_t i) const { return frugal::windowDepth(format, values[i]); }
+};
+
+struct IdImage {
+    int width = 0, height = 0;
+    std::vector<std::uint32_t> ids;  // rows bottom-up; 0 = background
+};
+
+// The three planes of a target as read back at once (the comparisons and reports read them so).
 struct Buffers {
     int width = 0;
     int height = 0;
-    std::vector<std::uint8_t> rgba;     // 4 bytes a pixel
+    std::vector<std::uint8_t> rgba;  // 4 bytes a pixel
     // D24: the 24-bit values. D32F: the floats' bits; window z is never negative, so these order as
     // the floats do and their difference counts the floats between two values (ULPs).
     std::vector<std::uint32_t> depth;
-    std::vector<std::uint32_t> ids;     // triangle ids
+    std::vector<std::uint32_t> ids;  // triangle ids
     DepthFormat depthFormat = DepthFormat::D24;
 
     std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
-    // Window z of pixel i, in [0, 1] (D24: exactly the stored value / 16777215, rounded to float).
-    float windowDepth(std::size_t i) const {
-        return depthFormat == DepthFormat::D32F ? std::bit_cast<float>(depth[i])
-                                                : float(double(depth[i]) / double(kDepthMax));
-    }
+    // Window z of pixel i, in [0, 1].
+    float windowDepth(std::size_t i) const { return frugal::windowDepth(depthFormat, depth[i]); }
 };
 
 }  // namespace frugal

@@ -1,4 +1,6 @@
-// The scene model every loader produces and every other module reads.
+// Scenes: the model every loader produces and every renderer reads, and loading one from a file or
+// a built-in spec. A scene is plain data: build one in memory as well (meshes, materials, textures,
+// nodes that place meshes, cameras, animations), then call buildInstances().
 //
 // Conventions (shared by every module):
 // - Right-handed, column vectors, glm; units are whatever the file uses.
@@ -12,10 +14,13 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+
+#include <frugal/Result.h>
 
 namespace frugal {
 
@@ -45,9 +50,9 @@ struct Material {
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;  // always filled (computed when the file has none)
-    std::vector<glm::vec4> colors;   // empty = white
-    std::vector<glm::vec2> uvs;      // empty = no texture coordinates
+    std::vector<glm::vec3> normals;             // always filled (computed when the file has none)
+    std::vector<glm::vec4> colors;              // empty = white
+    std::vector<glm::vec2> uvs;                 // empty = no texture coordinates
     std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
     std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file
     int material = -1;                          // -1 = default material (white, single-sided)
@@ -77,14 +82,14 @@ struct Instance {
     std::uint32_t firstId = 1;  // id of the mesh's source primitive 0 in this instance
 };
 
-struct Camera {
+struct SceneCamera {
     std::string name;
     int node = -1;  // camera looks down the node's -Z, +Y up (glTF)
     bool perspective = true;
-    float yfov = 0.8f;   // radians
-    float aspect = 0.0f; // 0 = take the viewport's
+    float yfov = 0.8f;    // radians
+    float aspect = 0.0f;  // 0 = take the viewport's
     float znear = 0.01f;
-    float zfar = 0.0f;   // 0 = infinite (perspective only)
+    float zfar = 0.0f;               // 0 = infinite (perspective only)
     float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
 
     // The aspect ratio (width / height) the file gives: aspectRatio, or xmag / ymag; 0 = none.
@@ -101,8 +106,8 @@ struct AnimChannel {
     int node = -1;
     AnimPath path = AnimPath::Translation;
     Interp interpolation = Interp::Linear;
-    std::vector<float> times;      // strictly increasing, finite
-    std::vector<glm::vec4> values; // xyz (T, S) or xyzw quaternion (R); ×3 for CubicSpline (in, value, out)
+    std::vector<float> times;       // strictly increasing, finite
+    std::vector<glm::vec4> values;  // xyz (T, S) or xyzw quaternion (R); ×3 for CubicSpline (in, value, out)
 };
 
 struct Animation {
@@ -114,7 +119,10 @@ struct Bounds {
     glm::vec3 min{1e30f};
     glm::vec3 max{-1e30f};
     bool empty() const { return min.x > max.x; }
-    void add(const glm::vec3& p) { min = glm::min(min, p); max = glm::max(max, p); }
+    void add(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
     glm::vec3 center() const { return (min + max) * 0.5f; }
     float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
 };
@@ -127,7 +135,7 @@ struct Scene {
     std::vector<Node> nodes;
     std::vector<int> roots;
     std::vector<Instance> instances;
-    std::vector<Camera> cameras;
+    std::vector<SceneCamera> cameras;
     std::vector<Animation> animations;
     // Features in the file that frugal does not model, by name ("skins", "morph targets",
     // "KHR_materials_clearcoat", ...). Reported by `frugal info` and as a warning on render.
@@ -159,5 +167,20 @@ struct Scene {
 glm::vec4 sampleChannel(const AnimChannel& channel, double time);
 
 glm::mat4 localMatrix(const Node& node);
+
+struct LoadOptions {
+    bool optimizeOrder = true;   // reorder triangles for the vertex cache (meshoptimizer)
+    bool objDoubleSided = true;  // OBJ has no culling flag: drawn double-sided unless told otherwise
+};
+
+// A scene from `spec`: a .gltf/.glb (glTF 2.0) or .obj file, or a built-in procedural scene
+// "builtin:NAME?key=value&..." (builtinScenes). Errors, one line naming the file: a file that does
+// not exist or cannot be read, a format frugal does not read, anything the file holds that cannot be
+// drawn as given ("bunny.obj: line 12: 'nan' in a v line is not finite"). Features that are not
+// modelled (skins, morph targets, ...) load, are listed in Scene::unsupported and drawn without.
+Result<Scene> loadScene(const std::string& spec, const LoadOptions& options = {});
+
+// Names and one-line descriptions of the built-in scenes, with their parameters.
+std::vector<std::pair<std::string, std::string>> builtinScenes();
 
 }  // namespace frugal

@@ -1,11 +1,6 @@
-#include "app/OrderSupport.h"
+#include "renderer/StateOrder.h"
 
 #include <algorithm>
-#include <ostream>
-
-#include <nlohmann/json.hpp>
-
-#include "base/Format.h"
 
 namespace frugal {
 
@@ -19,24 +14,22 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
         const bool textured = material && material->baseColorTexture >= 0;
         const bool doubleSided = material && material->doubleSided && !cullAllBackFaces;
         sets.push_back({std::uint32_t(1 + (textured ? 1 : 0) + (mesh.colors.empty() ? 0 : 2)),
-                        std::uint32_t(1 + meshIndex),
-                        textured ? std::uint32_t(1 + material->baseColorTexture) : 0u,
-                        std::uint32_t(2 + mesh.material),
-                        doubleSided ? 2u : 1u,
+                        std::uint32_t(1 + meshIndex), textured ? std::uint32_t(1 + material->baseColorTexture) : 0u,
+                        std::uint32_t(2 + mesh.material), doubleSided ? 2u : 1u,
                         command.depth == DepthMode::Test ? 1u : 2u});
     }
     return sets;
 }
 
-DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder drawOrder, const std::vector<double>& costs) {
-    if (drawOrder == DrawOrder::Submit || drawOrder == DrawOrder::Key || list.size() < 2)
+DrawList orderFrameDraws(const Scene& scene, const DrawList& list, Order drawOrder, const std::vector<double>& costs) {
+    if (drawOrder == Order::Submit || drawOrder == Order::Key || list.size() < 2)
         return orderDraws(scene, list, drawOrder);
     const order::DistinctSets distinct = order::distinctSets(drawStates(scene, list));
     const order::Transitions transitions(distinct.sets, costs, order::CostRule::SetNotHeld);
     std::vector<int> classes;
-    if (drawOrder == DrawOrder::Paper)
+    if (drawOrder == Order::Paper)
         classes = order::paperOrder(distinct.sets, order::highCostSet(costs, order::thresholdForSize(costs, 3)));
-    else if (drawOrder == DrawOrder::Greedy)
+    else if (drawOrder == Order::Greedy)
         classes = order::greedyOrder(transitions);
     else
         classes = order::bestOrder(transitions, {order::greedyOrder(transitions)}).order;
@@ -46,27 +39,15 @@ DrawList orderFrameDraws(const Scene& scene, const DrawList& list, DrawOrder dra
     return out;
 }
 
-nlohmann::json stateChangesJson(const StateChanges& c) {
-    return {{"draws", c.draws}, {"programs", c.programs}, {"meshes", c.meshes},
-            {"textures", c.textures}, {"toggles", c.toggles}, {"uniforms", c.uniforms}};
-}
-
-Result<OrderCosts> OrderCosts::start(DrawOrder order, Backend& backend, int refineEvery, std::ostream& err,
-                                     bool quiet) {
+Result<OrderCosts> OrderCosts::start(Order order, Backend& backend, int refineEvery) {
     OrderCosts costs;
-    if (order == DrawOrder::Submit || order == DrawOrder::Key) return costs;
+    if (order == Order::Submit || order == Order::Key) return costs;
     Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(backend);
     if (!probe) return Error{probe.error()};
     costs.probe_ = std::move(*probe);
     for (int r = 0; r < 5; ++r) costs.running_.add(costs.probe_->round(200, r));
     costs.start_ = costs.costs_ = costs.running_.costsUs();
     costs.refineEvery_ = std::max(refineEvery, 0);
-    if (!quiet) {
-        err << "order " << drawOrderName(order) << ": state costs on " << backend.name() << " (us):";
-        for (std::size_t k = 0; k < costs.costs_.size(); ++k)
-            err << (k ? ", " : " ") << kStateKindNames[k] << " " << fmt(costs.costs_[k]);
-        err << "\n";
-    }
     return costs;
 }
 
@@ -77,10 +58,10 @@ bool OrderCosts::refine(int framesDone) {
     return true;
 }
 
-nlohmann::json OrderCosts::json() const {
-    if (!probe_) return nullptr;
-    return {{"kinds", kStateKindNames}, {"start_us", start_}, {"us", costs_}, {"rounds", running_.rounds()},
-            {"refine_every", refineEvery_}};
+std::optional<StateCosts> OrderCosts::report() const {
+    if (!probe_) return std::nullopt;
+    return StateCosts{std::vector<std::string>(kStateKindNames.begin(), kStateKindNames.end()), start_, costs_,
+                      running_.rounds(), refineEvery_};
 }
 
 }  // namespace frugal

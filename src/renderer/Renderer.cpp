@@ -1,0 +1,261 @@
+#include <chrono>
+#include <optional>
+#include <utility>
+
+#include <frugal/Renderer.h>
+
+#include "cull/Culling.h"
+#include "hsr/Plan.h"
+#include "render/Frame.h"
+#include "render/SceneRenderer.h"
+#include "renderer/Backends.h"
+#include "renderer/Oracle.h"
+#include "renderer/StateOrder.h"
+#include "reuse/Reuse.h"
+#include "software/SoftwareBackend.h"
+
+namespace frugal {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msBetween(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+// Settings that cannot go together, or values out of their range (BadInput, about a setting).
+std::optional<Error> settingsProblem(const Settings& s) {
+    const auto problem = [](std::string message) { return Error{std::move(message), ErrorKind::BadInput, true}; };
+    if (s.width < 1 || s.height < 1) return problem("size " + sizeText(s) + ": width and height must be at least 1");
+    if (s.threads < 0 || s.threads > 256)
+        return problem("threads " + std::to_string(s.threads) + ": 0 (every core) to 256");
+    if (s.cullBinsTheta < 1 || s.cullBinsTheta > 1024 || s.cullBinsPhi < 1 || s.cullBinsPhi > 1024)
+        return problem("cull-bins " + std::to_string(s.cullBinsTheta) + "x" + std::to_string(s.cullBinsPhi) +
+                       ": each 1 to 1024");
+    if (s.refineCosts < 0) return problem("refine-costs " + std::to_string(s.refineCosts) + ": 0 (never) or more");
+    if (s.reuseSettings.grain < 0 || s.reuseSettings.cell < 1 || s.reuseSettings.cell > 4096)
+        return problem("reuse-grain " + std::to_string(s.reuseSettings.grain) + ", reuse-cell " +
+                       std::to_string(s.reuseSettings.cell) + ": a grain of 0 or more, a cell of 1 to 4096 pixels");
+    if (s.reuse && s.cull == Cull::Oracle)
+        return problem("reuse with cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+    if (s.hsr != Hsr::ZBuffer && s.reuse)
+        return problem(std::string("hsr ") + toString(s.hsr) +
+                       " with reuse: reuse redraws what moved with the z-buffer over the static image; use one");
+    if (s.hsr != Hsr::ZBuffer && s.cull == Cull::Oracle)
+        return problem(std::string("hsr ") + toString(s.hsr) + " with cull oracle: the oracle draws its own scene");
+    if (s.interp != DepthInterp::Exact && s.depthFormat == DepthFormat::D32F)
+        return problem(std::string("interp ") + toString(s.interp) +
+                       " with depth-format d32f: the span engine interpolates a 24-bit depth");
+    return std::nullopt;
+}
+
+}  // namespace
+
+// Members in the order they are made; they go in reverse, the backend last.
+struct Renderer::Impl {
+    Settings settings;
+    std::unique_ptr<Scene> scene;  // stable address: the uploads and planners point to it
+    std::optional<SceneCuller> culler;
+    std::optional<Renderer::CullPreparation> cullPreparation;
+    std::optional<hsr::Planner> planner;
+    std::vector<std::string> log;
+    std::unique_ptr<Backend> backend;
+    TargetHandle target = kNoHandle;
+    std::optional<SceneRenderer> renderer;
+    std::optional<OrderCosts> orderCosts;
+    TargetHandle staticTarget = kNoHandle;
+    std::optional<TemporalReuse> reuse;
+    InterpStats interpSeen;  // the software backend's counters after the previous frame
+    int framesDone = 0;
+
+    ~Impl() {
+        renderer.reset();  // releases the uploads while the backend lives
+        if (backend) {
+            if (staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
+            if (target != kNoHandle) backend->destroyTarget(target);
+        }
+    }
+
+    Result<bool> open();
+    void draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats);
+    Result<Frame> render(const Camera& camera, double seconds);
+};
+
+Result<bool> Renderer::Impl::open() {
+    const Settings& s = settings;
+    if (std::optional<Error> problem = settingsProblem(s)) return *problem;
+    if (s.cull != Cull::None) {
+        MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
+        bins.hull = s.cull == Cull::Paper;            // the only method that uses the hull
+        culler = SceneCuller::prepare(*scene, bins);  // reorders the meshes: before the upload
+        const PrepStats totals = culler->totals();
+        cullPreparation = CullPreparation{totals.sphereMs, totals.mapMs,     totals.clusterMs,
+                                          totals.hullMs,   totals.totalMs(), bins.hull};
+    }
+    if (s.hsr != Hsr::ZBuffer) planner.emplace(*scene);
+
+    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
+    if (!opened)
+        return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error(), opened.errorKind(), true};
+    backend = std::move(*opened);
+
+    if (!backend->supportsDepthFormat(s.depthFormat))
+        return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend->name() +
+                         " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs",
+                     ErrorKind::BackendUnavailable, true};
+    // A size the backend takes but this process's memory does not hold: refused before any of it is made.
+    if (std::max(s.width, s.height) <= backend->maxTargetSize())
+        if (const std::optional<std::string> problem = frameMemoryProblem(s.width, s.height))
+            return Error{"size " + sizeText(s) + ": " + *problem, ErrorKind::OutOfMemory, true};
+    target = backend->createTarget(s.width, s.height, s.depthFormat);
+    if (target == kNoHandle)
+        return Error{"size " + sizeText(s) + ": " + backend->name() + " cannot create a target that large (at most " +
+                         std::to_string(backend->maxTargetSize()) + " pixels a side)",
+                     ErrorKind::BadInput, true};
+    Result<SceneRenderer> uploaded = SceneRenderer::create(*backend, *scene);
+    if (!uploaded) return Error{scene->source + ": " + uploaded.error()};
+    renderer.emplace(std::move(*uploaded));
+
+    // paper, greedy and best order by costs measured on this backend, refined between frames.
+    Result<OrderCosts> costs = OrderCosts::start(s.order, *backend, s.refineCosts);
+    if (!costs)
+        return Error{std::string("order ") + toString(s.order) + ": " + costs.error(), ErrorKind::BadInput, true};
+    orderCosts.emplace(std::move(*costs));
+
+    if (s.reuse) {
+        // The pair (a target's bytes; measured 11.8 a pixel at 8192x8192) and what a frame still
+        // allocates after its target (the read-back and the PNG encoding): the first frame comes after it.
+        const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
+        const std::uint64_t needed =
+            pixels * kTargetBytesPerPixel + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
+        if (const std::optional<std::string> problem = memoryProblem(needed))
+            return Error{
+                "reuse: " + sizeText(s) + " needs about " + gigabytes(needed) +
+                    " more (a static pair of 12 bytes a pixel, then the frame's read-back and PNG encoding), " +
+                    *problem,
+                ErrorKind::OutOfMemory, true};
+        staticTarget = backend->createTarget(s.width, s.height, s.depthFormat);
+        if (staticTarget == kNoHandle)
+            return Error{"reuse: " + backend->name() + " could not create the static pair (" + sizeText(s) + ", " +
+                             std::to_string(pixels * kTargetBytesPerPixel) + " bytes)",
+                         ErrorKind::OutOfMemory, true};
+        reuse.emplace(*scene, s.width, s.height, reuseOptionsFrom(s.reuseSettings));
+    }
+    if (const std::optional<InterpStats> counters = softwareInterpStats(*backend)) interpSeen = *counters;
+    return true;
+}
+
+// Draws the frame's list: ordered, then planned in the hidden-surface mode (the plan is timed with
+// the frame), or through temporal reuse.
+void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats) {
+    const Settings& s = settings;
+    if (reuse) {
+        // A culled list, or the whole scene (the planner's own, faster list).
+        const FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, s.background)
+                                      : reuse->plan(setup.params, setup.world, s.background);
+        renderer->execute(plan, target, staticTarget, setup.params, setup.world, s.background);
+        stats.reuse = reuse->stats();
+        return;
+    }
+    const DrawList list = orderFrameDraws(*scene, submitted, s.order, orderCosts->costsUs());
+    if (!planner) {
+        renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, list);
+        return;
+    }
+    HsrStats hsrStats;
+    const DrawList planned = planner->plan(s.hsr, setup.params, setup.world, list, s.width, s.height, &hsrStats);
+    stats.hsr = hsrStats;
+    renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, planned);
+}
+
+Result<Frame> Renderer::Impl::render(const Camera& camera, double seconds) {
+    const Settings& s = settings;
+    Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat);
+    if (!setup) return Error{scene->source + ": " + setup.error()};
+    Frame frame;
+    FrameStats& stats = frame.stats;
+    stats.time = seconds;
+
+    // Between two frames, outside every timing: one more cost round when due; this frame and those
+    // after it are ordered by the refined costs.
+    const auto refineStart = Clock::now();
+    if (framesDone > 0 && orderCosts->refine(framesDone)) {
+        stats.refinedCostsUs = orderCosts->costsUs();
+        stats.refineMs = msBetween(refineStart, Clock::now());
+    }
+
+    const StateChanges changesBefore = backend->stateChanges();
+    auto t0 = Clock::now();
+    if (s.cull == Cull::Oracle) {
+        // The id pass and the oracle's own index buffers come before the clock starts.
+        Result<Oracle> oracle =
+            makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, s.background);
+        if (!oracle) return Error{scene->source + ": " + oracle.error()};
+        stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0};
+        t0 = Clock::now();
+        oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
+    } else if (culler) {
+        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view);
+        const double cullMs = msBetween(t0, Clock::now());
+        std::size_t ranges = 0;
+        for (const DrawCommand& command : list) ranges += command.ranges.size();
+        stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges};
+        draw(*setup, list, stats);
+    } else {
+        draw(*setup, renderer->fullList(), stats);
+    }
+    backend->finish();
+    const auto t1 = Clock::now();
+    Buffers buffers = backend->readBack(target);
+    const auto t2 = Clock::now();
+    stats.renderMs = msBetween(t0, t1);
+    stats.readbackMs = msBetween(t1, t2);
+    stats.stateChanges = backend->stateChanges() - changesBefore;
+    if (s.interp != DepthInterp::Exact)
+        if (const std::optional<InterpStats> counters = softwareInterpStats(*backend)) {
+            // The backend's counters run from its start: per frame, the difference.
+            stats.interp = InterpStats{counters->spans - interpSeen.spans, counters->pixels - interpSeen.pixels,
+                                       counters->overflow - interpSeen.overflow, counters->overflowBits};
+            interpSeen = *counters;
+        }
+    ++framesDone;
+
+    const View& view = setup->view;
+    frame.color = ColorImage{buffers.width, buffers.height, std::move(buffers.rgba)};
+    frame.depth = DepthImage{buffers.width, buffers.height, std::move(buffers.depth), buffers.depthFormat,
+                             view.znear,    view.zfar,      view.perspective};
+    if (s.ids) frame.ids = IdImage{buffers.width, buffers.height, std::move(buffers.ids)};
+    frame.view = view;
+    return frame;
+}
+
+Result<Renderer> Renderer::create(Scene scene, const Settings& settings) {
+    auto impl = std::make_unique<Impl>();
+    impl->settings = settings;
+    impl->scene = std::make_unique<Scene>(std::move(scene));
+    if (Result<bool> opened = impl->open(); !opened) return opened.failure();
+    return Renderer(std::move(impl));
+}
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::Renderer(Renderer&& other) noexcept = default;
+Renderer& Renderer::operator=(Renderer&& other) noexcept = default;
+Renderer::~Renderer() = default;
+
+Result<Frame> Renderer::render(const Camera& camera, double seconds) { return impl_->render(camera, seconds); }
+const Scene& Renderer::scene() const { return *impl_->scene; }
+const Settings& Renderer::settings() const { return impl_->settings; }
+std::string Renderer::backendName() const { return impl_->backend->name(); }
+std::string Renderer::backendRenderer() const { return impl_->backend->renderer(); }
+const std::vector<std::string>& Renderer::backendLog() const { return impl_->log; }
+std::optional<Renderer::CullPreparation> Renderer::cullPreparation() const { return impl_->cullPreparation; }
+std::optional<StateCosts> Renderer::stateCosts() const { return impl_->orderCosts->report(); }
+std::uint64_t Renderer::staticPairBytes() const {
+    return impl_->reuse
+               ? std::uint64_t(impl_->settings.width) * std::uint64_t(impl_->settings.height) * kTargetBytesPerPixel
+               : 0;
+}
+
+}  // namespace frugal

@@ -1,0 +1,71 @@
+#include "renderer/StatsJson.h"
+
+#include <nlohmann/json.hpp>
+
+namespace frugal {
+
+nlohmann::json stateChangesJson(const StateChanges& c) {
+    return {{"draws", c.draws},       {"programs", c.programs}, {"meshes", c.meshes},
+            {"textures", c.textures}, {"toggles", c.toggles},   {"uniforms", c.uniforms}};
+}
+
+nlohmann::json reuseStatsJson(const ReuseStats& s) {
+    return {{"mode", toString(s.mode)},
+            {"reason", s.reason},
+            {"p_dd", s.triangles[kDD]},
+            {"p_ds", s.triangles[kDS]},
+            {"p_sd", s.triangles[kSD]},
+            {"p_ss", s.triangles[kSS]},
+            {"instances",
+             {{"p_dd", s.instances[kDD]},
+              {"p_ds", s.instances[kDS]},
+              {"p_sd", s.instances[kSD]},
+              {"p_ss", s.instances[kSS]}}},
+            {"copied_px", s.copiedPx},
+            {"cleared_px", s.clearedPx},
+            {"redrawn_tris", s.redrawnTris},
+            {"static_redrawn_tris", s.staticRedrawnTris},
+            {"rects", s.rects},
+            {"plan_ms", s.planMs},
+            {"overlap_ms", s.overlapMs},
+            {"extent_ms", s.extentMs}};
+}
+
+nlohmann::json hsrJson(Hsr mode, const HsrStats& stats) {
+    return {{"mode", toString(mode)},
+            {"polygons", stats.polygons},
+            {"zbuffered_polygons", stats.zbuffered(mode)},
+            {"zbuffered_share", stats.zbufferedShare(mode)},
+            {"draws", stats.draws},
+            {"plan_ms", stats.ms}};
+}
+
+nlohmann::json stateCostsJson(const StateCosts& costs) {
+    return {{"kinds", costs.kinds},
+            {"start_us", costs.startUs},
+            {"us", costs.us},
+            {"rounds", costs.rounds},
+            {"refine_every", costs.refineEvery}};
+}
+
+nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings) {
+    nlohmann::json j = {{"time", stats.time}, {"render_ms", stats.renderMs}, {"readback_ms", stats.readbackMs}};
+    if (stats.cull) {
+        j.update({{"tos", stats.cull->tos}, {"pvs", stats.cull->pvs}, {"cull_ms", stats.cull->ms}});
+        if (settings.cull != Cull::Oracle) j["ranges"] = stats.cull->ranges;
+    }
+    if (stats.reuse) j["reuse"] = reuseStatsJson(*stats.reuse);
+    if (stats.hsr) j["hsr"] = hsrJson(settings.hsr, *stats.hsr);
+    j["state_changes"] = stateChangesJson(stats.stateChanges);
+    if (stats.interp)
+        j["interp"] = {
+            {"mode", toString(settings.interp)}, {"spans", stats.interp->spans}, {"overflow", stats.interp->overflow}};
+    return j;
+}
+
+nlohmann::json refinementJson(const FrameStats& next) {
+    if (!next.refinedCostsUs) return nullptr;
+    return {{"refined_state_costs_us", *next.refinedCostsUs}, {"refine_ms", next.refineMs}};
+}
+
+}  // namespace frugal

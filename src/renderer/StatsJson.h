@@ -1,0 +1,32 @@
+// Frame statistics (frugal/Stats.h) as the JSON `frugal render --json` writes, and the same objects
+// for the reports that print some of them (order-bench, reuse-bench).
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <frugal/Settings.h>
+#include <frugal/Stats.h>
+
+namespace frugal {
+
+// {"draws", "programs", "meshes", "textures", "toggles", "uniforms"}.
+nlohmann::json stateChangesJson(const StateChanges& changes);
+
+// {"mode", "reason", "p_dd", "p_ds", "p_sd", "p_ss" (triangles), "instances": {...}, "copied_px",
+//  "cleared_px", "redrawn_tris", "static_redrawn_tris", "rects", "plan_ms", "overlap_ms", "extent_ms"}.
+nlohmann::json reuseStatsJson(const ReuseStats& stats);
+
+// {"mode", "polygons", "zbuffered_polygons", "zbuffered_share", "draws", "plan_ms"}.
+nlohmann::json hsrJson(Hsr mode, const HsrStats& stats);
+
+// {"kinds", "start_us", "us", "rounds", "refine_every"}.
+nlohmann::json stateCostsJson(const StateCosts& costs);
+
+// One frame's record of the render JSON's "frames", without "frame" and "file" (the command's):
+// {"time", "render_ms", "readback_ms", ["tos", "pvs", "cull_ms", "ranges"], ["reuse"], ["hsr"],
+//  "state_changes", ["interp"]}; the cost refinement run after this frame is refinementJson's.
+nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings);
+// {"refined_state_costs_us", "refine_ms"} of `next`, the frame after the refinement.
+nlohmann::json refinementJson(const FrameStats& next);
+
+}  // namespace frugal

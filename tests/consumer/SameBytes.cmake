@@ -1,0 +1,26 @@
+# Runs the consumer (the public API) and the command line with the same settings, then compares
+# every file byte for byte.
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}")
+  endif()
+endfunction()
+run(${CONSUMER} ${OUT})
+run(${FRUGAL} render builtin:dominoes --frames 0:2 --size 160x120 --cull conservative --order key --reuse
+    -o ${OUT}/cli_%d.png --ids ${OUT}/cli_ids_%d.png --depth ${OUT}/cli_depth_%d.pfm -q)
+foreach(i 0 1 2)
+  foreach(pair "api_;cli_;png" "api_ids_;cli_ids_;png" "api_depth_;cli_depth_;pfm")
+    list(GET pair 0 api)
+    list(GET pair 1 cli)
+    list(GET pair 2 ext)
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/${api}${i}.${ext} ${OUT}/${cli}${i}.${ext}
+                    RESULT_VARIABLE differ)
+    if(differ)
+      message(FATAL_ERROR "${api}${i}.${ext} and ${cli}${i}.${ext} differ")
+    endif()
+  endforeach()
+endforeach()
+message(STATUS "3 frames: the library's files equal the command line's")
