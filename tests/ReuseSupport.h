@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "cull/Culling.h"
+#include "lab/ReuseCheck.h"
 #include "render/Frame.h"
 #include "render/SceneRenderer.h"
-#include "report/ReuseCheck.h"
 #include "reuse/Reuse.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"

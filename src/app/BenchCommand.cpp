@@ -23,7 +23,7 @@
 #include "app/Commands.h"
 #include "app/HsrSupport.h"
 #include "base/Stats.h"
-#include "gl/MinimalFrame.h"
+#include "lab/MinimalFrame.h"
 #include "render/SceneRenderer.h"
 #include "renderer/Backends.h"
 #include "renderer/StateOrder.h"

@@ -23,8 +23,8 @@
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
 #include "cull/Views.h"
+#include "lab/CullReport.h"
 #include "renderer/Oracle.h"
-#include "report/CullReport.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {

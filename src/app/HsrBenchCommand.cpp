@@ -15,7 +15,7 @@
 #include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
 #include "io/ImageIO.h"
-#include "report/HsrReport.h"
+#include "lab/HsrReport.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {

@@ -16,10 +16,10 @@
 #include "app/Commands.h"
 #include "app/ReportOutputs.h"
 #include "base/Stats.h"
+#include "lab/ReportText.h"
 #include "renderer/StateOrder.h"
 #include "renderer/StatsJson.h"
 #include "report/ImageCompare.h"
-#include "report/ReportText.h"
 
 namespace frugal {
 

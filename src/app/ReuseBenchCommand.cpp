@@ -29,9 +29,9 @@
 #include "app/ReportOutputs.h"
 #include "app/ReuseSupport.h"
 #include "base/Stats.h"
+#include "lab/ReuseCheck.h"
+#include "lab/ReuseReport.h"
 #include "renderer/Oracle.h"
-#include "report/ReuseCheck.h"
-#include "report/ReuseReport.h"
 #include "reuse/CellGrid.h"
 #include "reuse/Reuse.h"
 

@@ -16,8 +16,8 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/ReportOutputs.h"
-#include "gl/MinimalFrame.h"
-#include "report/SoakReport.h"
+#include "lab/MinimalFrame.h"
+#include "lab/SoakReport.h"
 
 namespace frugal {
 

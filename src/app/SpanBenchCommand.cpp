@@ -18,12 +18,12 @@
 #include "app/Commands.h"
 #include "app/Options.h"
 #include "app/ReportOutputs.h"
+#include "lab/ErrorTable.h"
+#include "lab/Fig11.h"
 #include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "scene/Load.h"
 #include "software/SoftwareBackend.h"
-#include "software/span/ErrorTable.h"
-#include "software/span/Fig11.h"
 
 namespace frugal {
 

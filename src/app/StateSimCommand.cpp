@@ -22,8 +22,8 @@
 #include "app/Commands.h"
 #include "app/Options.h"
 #include "app/ReportOutputs.h"
+#include "lab/Simulation.h"
 #include "order/Order.h"
-#include "order/Simulation.h"
 
 namespace frugal {
 

@@ -3,17 +3,17 @@
 // soak (100,000 frames, 1,000 cycles) is the CTest test Soak.* (label soak, -DFRUGAL_SOAK_TESTS=ON).
 // The runs here allow any memory growth (--max-growth 1000): a few frames are no measure of it, and
 // under AddressSanitizer freed memory stays in quarantine; SoakChecksTest shows the limit biting.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
-#include "report/SoakReport.h"
+#include "lab/SoakReport.h"
 
 namespace frugal {
 namespace {

@@ -1,8 +1,6 @@
 // The draw orders of paper 004 (src/order/): the cost rules on hand-made sets, the paper's sort and its
 // guarantee, every baseline a permutation, Held–Karp against brute force, and best and the bounds
 // against every other order.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,8 +8,10 @@
 #include <random>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "lab/Simulation.h"
 #include "order/Order.h"
-#include "order/Simulation.h"
 
 namespace frugal::order {
 namespace {

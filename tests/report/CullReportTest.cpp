@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
-#include "report/CullReport.h"
+#include "lab/CullReport.h"
 
 namespace frugal {
 namespace {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
-#include "report/ReuseReport.h"
+#include "lab/ReuseReport.h"
 
 namespace frugal {
 namespace {

@@ -2,7 +2,7 @@
 // reproduce it (software/span/Fig11.h).
 #include <gtest/gtest.h>
 
-#include "software/span/Fig11.h"
+#include "lab/Fig11.h"
 
 namespace frugal::span {
 namespace {

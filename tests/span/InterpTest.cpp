@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "software/span/ErrorTable.h"
+#include "lab/ErrorTable.h"
 #include "software/span/Interp.h"
 
 namespace frugal::span {

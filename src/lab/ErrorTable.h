@@ -28,18 +28,18 @@ struct ErrorTableSettings {
     std::vector<int> widths{16, 24};             // bits, 1..28
     int spans = 2000;                            // per (width, length, method)
     std::uint64_t seed = 1;
-    int accumulatorBits = 32;                    // Dda register; > every width
+    int accumulatorBits = 32;  // Dda register; > every width
     std::vector<Method> methods{Method::Span, Method::SpanTruncating, Method::Dda, Method::Exact};
 };
 
 struct ErrorRow {
     int width = 0, length = 0;
     Method method = Method::Span;
-    std::int64_t worstLsb = 0;    // max |model − exact| over every pixel of every span
-    double meanLsb = 0.0;         // mean |model − exact| over the pixels
+    std::int64_t worstLsb = 0;  // max |model − exact| over every pixel of every span
+    double meanLsb = 0.0;       // mean |model − exact| over the pixels
     int spans = 0;
     std::int64_t pixels = 0;
-    int overflowSpans = 0;        // spans whose fill reported overflow (none expected: inputs are legal)
+    int overflowSpans = 0;  // spans whose fill reported overflow (none expected: inputs are legal)
 };
 
 // Rows ordered by width, then length, then method (as in settings).

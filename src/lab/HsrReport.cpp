@@ -1,11 +1,11 @@
-#include "report/HsrReport.h"
+#include "lab/HsrReport.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
 
 #include "base/Stats.h"
-#include "report/ReportText.h"
+#include "lab/ReportText.h"
 
 namespace frugal {
 
@@ -102,8 +102,9 @@ std::string hsrReportJson(const HsrReport& report) {
 std::string hsrReportCsv(const HsrReport& report) {
     using reporttext::csvField;
     using reporttext::csvNumber;
-    std::string csv = "scene,backend,width,height,mode,fps,median_ms,min_ms,max_ms,plan_ms,speedup,paper_fps,"
-                      "paper_speedup,differing_px,worst_frame_px,frames_differing,flagged_share,draws\n";
+    std::string csv =
+        "scene,backend,width,height,mode,fps,median_ms,min_ms,max_ms,plan_ms,speedup,paper_fps,"
+        "paper_speedup,differing_px,worst_frame_px,frames_differing,flagged_share,draws\n";
     for (const HsrModeSummary& s : summarizeHsr(report)) {
         csv += csvField(report.scene) + "," + csvField(report.backend) + "," + std::to_string(report.width) + "," +
                std::to_string(report.height) + "," + s.mode + "," + csvNumber(s.fps) + "," + csvNumber(s.medianMs) +
@@ -121,10 +122,14 @@ std::string hsrReportGnuplot(const std::string& csvPath, const std::string& svgP
     return "# frugal hsr-bench: speed-up over the z-buffer per mode, measured and the paper's (Table 1).\n"
            "# Drawn from the CSV; run gnuplot on this file to draw it again.\n"
            "set terminal svg size 720,420 dynamic background rgb 'white'\n"
-           "set output " + gnuplotQuoted(svgPath) + "\n"
+           "set output " +
+           gnuplotQuoted(svgPath) +
+           "\n"
            "set datafile separator ','\n"
-           "set title " + gnuplotQuoted("hidden-surface modes: " + report.scene + ", " + std::to_string(report.width) +
-                                        "x" + std::to_string(report.height) + ", " + report.backend) + " noenhanced\n"
+           "set title " +
+           gnuplotQuoted("hidden-surface modes: " + report.scene + ", " + std::to_string(report.width) + "x" +
+                         std::to_string(report.height) + ", " + report.backend) +
+           " noenhanced\n"
            "set ylabel 'frames per second / z-buffer'\n"
            "set style data histograms\n"
            "set style histogram clustered gap 1\n"
@@ -133,7 +138,8 @@ std::string hsrReportGnuplot(const std::string& csvPath, const std::string& svgP
            "set yrange [0:*]\n"
            "set grid ytics\n"
            "set key top left\n"
-           "plot " + gnuplotQuoted(csvPath) + " using 11:xtic(5) title 'measured', '' using 13 title 'paper (IPAQ 3660)'\n";
+           "plot " +
+           gnuplotQuoted(csvPath) + " using 11:xtic(5) title 'measured', '' using 13 title 'paper (IPAQ 3660)'\n";
 }
 
 std::string hsrReportText(const HsrReport& report) {
@@ -142,15 +148,15 @@ std::string hsrReportText(const HsrReport& report) {
                        std::to_string(report.firstFrame) + ":" + std::to_string(report.lastFrame) + " x" +
                        std::to_string(report.repeat) + ", " + std::to_string(report.polygons) + " polygons\n";
     char line[256];
-    std::snprintf(line, sizeof line, "  %-15s %9s %10s %8s %9s %10s %13s %12s %11s %7s\n", "mode", "fps", "median ms", "plan ms",
-                  "speed-up", "paper (x)", "differing px", "worst frame", "z-buffered", "draws");
+    std::snprintf(line, sizeof line, "  %-15s %9s %10s %8s %9s %10s %13s %12s %11s %7s\n", "mode", "fps", "median ms",
+                  "plan ms", "speed-up", "paper (x)", "differing px", "worst frame", "z-buffered", "draws");
     text += line;
     for (const HsrModeSummary& s : summarizeHsr(report)) {
         char paper[32] = "-";
         if (s.paperSpeedup > 0) std::snprintf(paper, sizeof paper, "%.2f", s.paperSpeedup);
-        std::snprintf(line, sizeof line, "  %-15s %9.1f %10.3f %8.3f %9.2f %10s %13zu %12zu %10.1f%% %7.0f\n", s.mode.c_str(),
-                      s.fps, s.medianMs, s.planMs, s.speedup, paper, s.differingPx, s.worstFramePx, 100.0 * s.flaggedShare,
-                      s.draws);
+        std::snprintf(line, sizeof line, "  %-15s %9.1f %10.3f %8.3f %9.2f %10s %13zu %12zu %10.1f%% %7.0f\n",
+                      s.mode.c_str(), s.fps, s.medianMs, s.planMs, s.speedup, paper, s.differingPx, s.worstFramePx,
+                      100.0 * s.flaggedShare, s.draws);
         text += line;
     }
     return text;

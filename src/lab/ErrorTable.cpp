@@ -1,4 +1,4 @@
-#include "software/span/ErrorTable.h"
+#include "lab/ErrorTable.h"
 
 #include <algorithm>
 #include <array>
@@ -11,10 +11,14 @@ namespace frugal::span {
 
 const char* methodName(Method method) {
     switch (method) {
-    case Method::Span: return "span";
-    case Method::SpanTruncating: return "span_trunc";
-    case Method::Dda: return "dda";
-    case Method::Exact: return "exact";
+        case Method::Span:
+            return "span";
+        case Method::SpanTruncating:
+            return "span_trunc";
+        case Method::Dda:
+            return "dda";
+        case Method::Exact:
+            return "exact";
     }
     return "?";
 }
@@ -43,10 +47,13 @@ RandomSpan randomSpan(std::mt19937_64& rng, int width, int index) {
 
 Interp interpOf(Method method) {
     switch (method) {
-    case Method::Span:
-    case Method::SpanTruncating: return Interp::Span;
-    case Method::Dda: return Interp::Dda;
-    case Method::Exact: return Interp::Exact;
+        case Method::Span:
+        case Method::SpanTruncating:
+            return Interp::Span;
+        case Method::Dda:
+            return Interp::Dda;
+        case Method::Exact:
+            return Interp::Exact;
     }
     return Interp::Exact;
 }
@@ -79,7 +86,8 @@ std::vector<ErrorRow> errorTable(const ErrorTableSettings& settings) {
                 row.method = method;
                 row.spans = settings.spans;
                 // The same spans for every method of a (width, length).
-                std::mt19937_64 rng(settings.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(width) * 65537u + std::uint64_t(length));
+                std::mt19937_64 rng(settings.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(width) * 65537u +
+                                    std::uint64_t(length));
                 const SpanOptions options = optionsOf(method, settings.accumulatorBits);
                 double sum = 0.0;
                 for (int i = 0; i < settings.spans; ++i) {
@@ -166,7 +174,8 @@ double engineSpansPerSecond(double minSeconds, std::uint64_t seed) {
             const int width = ch == 0 ? 24 : 16;
             const double top = double((std::int64_t(1) << width) - 1);
             const double from = double(rng() % std::uint64_t(top + 1)), to = double(rng() % std::uint64_t(top + 1));
-            if (const std::optional<ChannelLine> line = lineThrough(c.xl, from, c.xr, to, width, 0, overflow)) *lines[ch] = *line;
+            if (const std::optional<ChannelLine> line = lineThrough(c.xl, from, c.xr, to, width, 0, overflow))
+                *lines[ch] = *line;
         }
         commands.push_back(c);
     }

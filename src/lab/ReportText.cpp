@@ -1,4 +1,4 @@
-#include "report/ReportText.h"
+#include "lab/ReportText.h"
 
 #include <charconv>
 #include <cmath>
@@ -17,9 +17,7 @@ Json number(float value) {
     return std::strtod(buf, nullptr);
 }
 
-std::string jsonText(const Json& report) {
-    return report.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
-}
+std::string jsonText(const Json& report) { return report.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
 
 std::string csvField(const std::string& text) {
     if (text.find_first_of(",\"\r\n") == std::string::npos) return text;

@@ -38,7 +38,8 @@ struct InstanceCosts {
 // it and the bound work on the distinct RSSs (DistinctSets). Under EverySet, best and the bound are the
 // one cost every order has.
 // With exactWhenSmall false, best searches even when Held–Karp could give the optimum (to measure the search).
-InstanceCosts runMethods(const Instance& instance, CostRule rule, int hcsSize = 3, int window = 4, bool exactWhenSmall = true);
+InstanceCosts runMethods(const Instance& instance, CostRule rule, int hcsSize = 3, int window = 4,
+                         bool exactWhenSmall = true);
 
 // A sample's mean and the half-width of its 95 % confidence interval, 1.96 · sd / √n (sd with n − 1;
 // 0 for fewer than two values).

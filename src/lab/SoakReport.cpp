@@ -1,10 +1,10 @@
-#include "report/SoakReport.h"
+#include "lab/SoakReport.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "report/ReportText.h"
+#include "lab/ReportText.h"
 
 namespace frugal {
 

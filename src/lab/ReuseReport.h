@@ -16,9 +16,9 @@ struct ReuseBenchFrame {
     std::string mode;    // the planner's: "full", "rebuild" or "reuse"
     std::string reason;  // why that mode
     // Medians over the timed rounds. reuse = plan + execute; plan is also given alone.
-    double fullMs = 0.0;    // clear + draw of the frame's draw list + finish
-    double reuseMs = 0.0;   // the planner's plan + its execution + finish
-    double planMs = 0.0;    // the planner alone (classification, extents, ⊗ tests, rectangles)
+    double fullMs = 0.0;   // clear + draw of the frame's draw list + finish
+    double reuseMs = 0.0;  // the planner's plan + its execution + finish
+    double planMs = 0.0;   // the planner alone (classification, extents, ⊗ tests, rectangles)
     // The two floors, both the frame's static image (made beforehand, untimed) copied and only the
     // dynamic instances drawn on it. The cells oracle copies only what reuse copies (the cells the
     // planner cleared or copied on a reuse frame, the whole image otherwise): the floor at the
@@ -26,17 +26,17 @@ struct ReuseBenchFrame {
     // issue's literal definition, the floor no reuse method can beat.
     double oracleMs = 0.0;       // the cells oracle
     double oracleWholeMs = 0.0;  // the whole oracle (one full-target copy + the dynamic instances)
-    double overlapMs = 0.0; // of the plan: grid marking and the ⊗ tests
+    double overlapMs = 0.0;      // of the plan: grid marking and the ⊗ tests
     // Triangles of the instances in each state (previous frame, this frame): d = dynamic, s = static.
     std::uint64_t pDD = 0, pDS = 0, pSD = 0, pSS = 0;
-    std::uint64_t copiedPx = 0;         // static → render and render → static
-    std::uint64_t clearedPx = 0;        // invalidated (the whole target on full and rebuild frames)
-    std::uint64_t redrawnTris = 0;      // triangles the reuse frame drew
-    std::uint64_t staticRedrawnTris = 0;// of those, static ones drawn again
-    std::uint64_t drawnTris = 0;        // triangles the full render draws
-    std::uint64_t rects = 0;            // clear and copy rectangles
-    std::uint64_t draws = 0;            // draw commands (instances) the reuse frame issued
-    std::uint64_t fullDraws = 0;        // draw commands of the full render
+    std::uint64_t copiedPx = 0;           // static → render and render → static
+    std::uint64_t clearedPx = 0;          // invalidated (the whole target on full and rebuild frames)
+    std::uint64_t redrawnTris = 0;        // triangles the reuse frame drew
+    std::uint64_t staticRedrawnTris = 0;  // of those, static ones drawn again
+    std::uint64_t drawnTris = 0;          // triangles the full render draws
+    std::uint64_t rects = 0;              // clear and copy rectangles
+    std::uint64_t draws = 0;              // draw commands (instances) the reuse frame issued
+    std::uint64_t fullDraws = 0;          // draw commands of the full render
     // Reuse frame against the full render (report/ReuseCheck.h): ties are allowed, errors never.
     std::uint64_t tiePx = 0, errorPx = 0;
 
@@ -49,13 +49,13 @@ struct ReuseBench {
     std::string scene;
     int width = 0, height = 0;
     std::string backend, renderer;
-    int repeat = 0;              // timed rounds (the median is over these)
-    std::string cull = "none";   // the culling method whose list full and reuse frames draw
-    int grain = 0, cell = 0;     // the planner's options
+    int repeat = 0;             // timed rounds (the median is over these)
+    std::string cull = "none";  // the culling method whose list full and reuse frames draw
+    int grain = 0, cell = 0;    // the planner's options
     bool fallback = true;
-    bool ids = false;            // triangle ids written (and compared)
+    bool ids = false;  // triangle ids written (and compared)
     std::uint64_t staticPairBytes = 0;
-    double clearMs = 0.0;        // t_w: median time of a whole-target clear, timed in the same rounds
+    double clearMs = 0.0;  // t_w: median time of a whole-target clear, timed in the same rounds
     std::vector<ReuseBenchFrame> frames;
 };
 
@@ -68,12 +68,12 @@ struct ReuseBench {
 // frame costs whatever it does (the finish, state set-up), and the plan's own time is measured.
 // Frames in full or rebuild mode are predicted by the full model (a rebuild adds t_c for its copy).
 struct CostModel {
-    double twMs = 0.0;          // a whole-target clear (measured)
-    double trNs = 0.0;          // per triangle drawn, full renders (ns)
-    double t0Ms = 0.0;          // per reuse frame (ms)
-    double tcNs = 0.0;          // per pixel copied (ns)
-    double tiNs = 0.0;          // per pixel cleared (ns)
-    double trReuseNs = 0.0;     // per triangle drawn, reuse frames (ns)
+    double twMs = 0.0;               // a whole-target clear (measured)
+    double trNs = 0.0;               // per triangle drawn, full renders (ns)
+    double t0Ms = 0.0;               // per reuse frame (ms)
+    double tcNs = 0.0;               // per pixel copied (ns)
+    double tiNs = 0.0;               // per pixel cleared (ns)
+    double trReuseNs = 0.0;          // per triangle drawn, reuse frames (ns)
     std::size_t fittedFrames = 0;    // frames in reuse mode (the reuse fit's rows)
     std::size_t excludedFrames = 0;  // frames in full or rebuild mode, left out of the reuse fit
     double reuseR2 = 0.0;            // of the reuse fit (NaN with fewer than 2 frames or no spread)
@@ -105,7 +105,8 @@ double fullModelMs(const CostModel& model, const ReuseBenchFrame& frame);
 //    "median_reuse_ms","median_oracle_ms","median_oracle_whole_ms","median_plan_ms","speedup" (median
 //    full ÷ median reuse),"ratio_to_oracle" (median reuse ÷ median cells oracle),
 //    "ratio_to_oracle_whole" (median reuse ÷ median whole oracle),
-//    "static_share" (mean over the frames in reuse mode, over all when there is none),"static_pair_bytes","max_overlap_ms","total_tie_px",
+//    "static_share" (mean over the frames in reuse mode, over all when there is
+//    none),"static_pair_bytes","max_overlap_ms","total_tie_px",
 //    "total_error_px","frames_with_errors","first_error_frame" (null: none),
 //    "model":{"t_w_ms","t_r_ns_per_tri","t_0_ms","t_c_ns_per_px","t_i_ns_per_px","t_r_reuse_ns_per_tri",
 //      "fitted_frames","excluded_frames","r2","median_reuse_error","median_full_error"}}}

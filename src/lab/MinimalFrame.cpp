@@ -1,13 +1,14 @@
 // The bench's minimal frame (gl/MinimalFrame.h). Kept deliberately plain: every call here is one
 // the frame needs, so the bench's ratio frugal ÷ minimal is the backend's overhead on that frame.
-#include "gl/MinimalFrame.h"
+#include "lab/MinimalFrame.h"
 
 #include <cassert>
 #include <cstdint>
 #include <cstring>
+#include <utility>
+
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <utility>
 
 #include "base/Format.h"
 #include "gl/GlApi.h"
@@ -130,7 +131,8 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
     meshes_.resize(scene_->meshes.size());
     for (std::size_t i = 0; i < scene_->meshes.size(); ++i) {
         const Mesh& mesh = scene_->meshes[i];
-        if (!isUploadable(mesh)) return "mesh " + std::to_string(i) + quotedName(mesh.name) + " breaks the upload contract";
+        if (!isUploadable(mesh))
+            return "mesh " + std::to_string(i) + quotedName(mesh.name) + " breaks the upload contract";
         MeshObjects& m = meshes_[i];
         m.indices = GLsizei(mesh.indices.size());
         m.normals = !mesh.normals.empty();

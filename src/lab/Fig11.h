@@ -40,8 +40,8 @@ struct Fig11Channel {
     int from, to;      // f(Xl), f(Xr)
     std::vector<Fig11Printed> printed;
     std::array<std::int64_t, kFig11Xr - kFig11Xl + 1> values{};  // the scheme's values at X = 2..9
-    int mismatches = 0;          // printed values (not doubtful) the scheme misses
-    int doubtfulMismatches = 0;  // doubtful printed values it misses
+    int mismatches = 0;                                          // printed values (not doubtful) the scheme misses
+    int doubtfulMismatches = 0;                                  // doubtful printed values it misses
 };
 
 // A way of computing the figure: the engine with some rounding (config), or the exact line (no
@@ -55,7 +55,7 @@ struct Fig11Scheme {
 
 struct Fig11Result {
     Fig11Scheme scheme;
-    std::array<Fig11Channel, 4> channels;  // z, red, green, blue
+    std::array<Fig11Channel, 4> channels;     // z, red, green, blue
     std::uint64_t mask = 0, writeEnable = 0;  // engine schemes: EPT mask and WE (old z = all ones)
     std::uint8_t overflow = 0;
     int mismatches = 0, doubtfulMismatches = 0;  // over the channels

@@ -1,4 +1,4 @@
-#include "report/CullReport.h"
+#include "lab/CullReport.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/Stats.h"
-#include "report/ReportText.h"
+#include "lab/ReportText.h"
 
 namespace frugal {
 
@@ -134,12 +134,9 @@ std::string cullReportJson(const CullReport& report) {
     }
     Json summary = Json::object();
     for (const MethodRows& rows : byMethod(report)) summary[rows.method] = summaryJson(rows);
-    const Json j = {{"scene", report.scene},
-                    {"size", Json::array({report.width, report.height})},
-                    {"backend", report.backend},
-                    {"timing", report.timing},
-                    {"views", std::move(views)},
-                    {"summary", std::move(summary)},
+    const Json j = {{"scene", report.scene},          {"size", Json::array({report.width, report.height})},
+                    {"backend", report.backend},      {"timing", report.timing},
+                    {"views", std::move(views)},      {"summary", std::move(summary)},
                     {"by_class", byClassJson(report)}};
     return jsonText(j);
 }
@@ -152,10 +149,9 @@ std::string cullReportCsv(const CullReport& report) {
         for (const MethodResult& m : view.methods) {
             csv += std::to_string(view.index) + ',' + csvField(view.viewClass) + ',' + csvField(m.method) + ',' +
                    std::to_string(m.tos) + ',' + std::to_string(m.pvs) + ',' + std::to_string(m.rvs) + ',' +
-                   std::to_string(m.misses) + ',' + std::to_string(m.waste) + ',' +
-                   std::to_string(m.pixelsDiffering) + ',' + csvNumber(m.cullMs) + ',' + csvNumber(m.drawMs) + ',' +
-                   csvNumber(m.ratioToOracle) + ',' + csvNumber(m.ratioToFull) + ',' +
-                   csvNumber(m.ratioToFullCullface) + '\n';
+                   std::to_string(m.misses) + ',' + std::to_string(m.waste) + ',' + std::to_string(m.pixelsDiffering) +
+                   ',' + csvNumber(m.cullMs) + ',' + csvNumber(m.drawMs) + ',' + csvNumber(m.ratioToOracle) + ',' +
+                   csvNumber(m.ratioToFull) + ',' + csvNumber(m.ratioToFullCullface) + '\n';
         }
     return csv;
 }

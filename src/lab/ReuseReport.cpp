@@ -1,4 +1,4 @@
-#include "report/ReuseReport.h"
+#include "lab/ReuseReport.h"
 
 #include <algorithm>
 #include <bit>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/Stats.h"
-#include "report/ReportText.h"
+#include "lab/ReportText.h"
 
 namespace frugal {
 
@@ -78,7 +78,8 @@ double ReuseBenchFrame::staticShare() const {
     return all > 0.0 ? (double(pSS) + double(pDS)) / all : kNaN;
 }
 
-std::vector<double> nonNegativeLeastSquares(const std::vector<std::vector<double>>& rows, const std::vector<double>& y) {
+std::vector<double> nonNegativeLeastSquares(const std::vector<std::vector<double>>& rows,
+                                            const std::vector<double>& y) {
     const std::size_t n = rows.empty() ? 0 : std::min<std::size_t>(rows.front().size(), 8);
     const std::size_t m = std::min(rows.size(), y.size());
     std::vector<double> best(n, 0.0);
@@ -200,8 +201,9 @@ double fullModelMs(const CostModel& model, const ReuseBenchFrame& frame) {
 
 double modelMs(const CostModel& model, const ReuseBenchFrame& frame) {
     if (frame.mode == "reuse")
-        return frame.planMs + model.t0Ms + 1e-6 * (model.tcNs * double(frame.copiedPx) + model.tiNs * double(frame.clearedPx) +
-                                                   model.trReuseNs * double(frame.redrawnTris));
+        return frame.planMs + model.t0Ms +
+               1e-6 * (model.tcNs * double(frame.copiedPx) + model.tiNs * double(frame.clearedPx) +
+                       model.trReuseNs * double(frame.redrawnTris));
     // Full: a clear and every triangle; rebuild: the same, and the whole target copied to the static pair.
     return frame.planMs + model.twMs + 1e-6 * model.trNs * double(frame.redrawnTris) +
            (frame.mode == "rebuild" ? 1e-6 * model.tcNs * double(frame.copiedPx) : 0.0);
@@ -245,9 +247,12 @@ std::string reuseReportJson(const ReuseBench& bench) {
                               {"tie_px", f.tiePx},
                               {"error_px", f.errorPx}});
         all.push_back(&f);
-        if (f.mode == "reuse") reuse.push_back(&f);
-        else if (f.mode == "rebuild") ++rebuild;
-        else ++full;
+        if (f.mode == "reuse")
+            reuse.push_back(&f);
+        else if (f.mode == "rebuild")
+            ++rebuild;
+        else
+            ++full;
         ties += f.tiePx;
         errors += f.errorPx;
         if (f.errorPx > 0) {
@@ -269,9 +274,10 @@ std::string reuseReportJson(const ReuseBench& bench) {
                     {"ratio_to_oracle", reuseMedians["ratio_to_oracle"]},
                     {"ratio_to_oracle_whole", reuseMedians["ratio_to_oracle_whole"]}};
     if (reuse.empty())
-        summary["note"] = bench.frames.size() <= 1
-                              ? "no frame in reuse mode: one frame has no predecessor to reuse (give --frames A:B with B > A)"
-                              : "no frame in reuse mode: every frame was a full render or a rebuild (see each frame's reason)";
+        summary["note"] =
+            bench.frames.size() <= 1
+                ? "no frame in reuse mode: one frame has no predecessor to reuse (give --frames A:B with B > A)"
+                : "no frame in reuse mode: every frame was a full render or a rebuild (see each frame's reason)";
     summary["reuse_frames"] = reuseMedians;
     summary["all_frames"] = mediansJson(all);
     summary["static_share"] = number(shares ? shareSum / double(shares) : kNaN);
@@ -312,16 +318,16 @@ std::string reuseReportCsv(const ReuseBench& bench) {
         "p_dd,p_ds,p_sd,p_ss,copied_px,cleared_px,redrawn_tris,static_redrawn_tris,drawn_tris,rects,draws,full_draws,"
         "overlap_ms,tie_px,error_px,reason\n";
     for (const ReuseBenchFrame& f : bench.frames) {
-        csv += std::to_string(f.frame) + ',' + csvField(f.mode) + ',' + csvNumber(f.fullMs) + ',' + csvNumber(f.reuseMs) +
-               ',' + csvNumber(f.planMs) + ',' + csvNumber(f.oracleMs) + ',' + csvNumber(f.oracleWholeMs) + ',' +
-               csvNumber(modelMs(model, f)) + ',' + csvNumber(fullModelMs(model, f)) + ',' + csvNumber(f.speedup()) +
-               ',' + csvNumber(f.staticShare()) + ',' +
-               std::to_string(f.pDD) + ',' + std::to_string(f.pDS) + ',' + std::to_string(f.pSD) + ',' +
+        csv += std::to_string(f.frame) + ',' + csvField(f.mode) + ',' + csvNumber(f.fullMs) + ',' +
+               csvNumber(f.reuseMs) + ',' + csvNumber(f.planMs) + ',' + csvNumber(f.oracleMs) + ',' +
+               csvNumber(f.oracleWholeMs) + ',' + csvNumber(modelMs(model, f)) + ',' +
+               csvNumber(fullModelMs(model, f)) + ',' + csvNumber(f.speedup()) + ',' + csvNumber(f.staticShare()) +
+               ',' + std::to_string(f.pDD) + ',' + std::to_string(f.pDS) + ',' + std::to_string(f.pSD) + ',' +
                std::to_string(f.pSS) + ',' + std::to_string(f.copiedPx) + ',' + std::to_string(f.clearedPx) + ',' +
                std::to_string(f.redrawnTris) + ',' + std::to_string(f.staticRedrawnTris) + ',' +
                std::to_string(f.drawnTris) + ',' + std::to_string(f.rects) + ',' + std::to_string(f.draws) + ',' +
-               std::to_string(f.fullDraws) + ',' + csvNumber(f.overlapMs) + ',' +
-               std::to_string(f.tiePx) + ',' + std::to_string(f.errorPx) + ',' + csvField(f.reason) + '\n';
+               std::to_string(f.fullDraws) + ',' + csvNumber(f.overlapMs) + ',' + std::to_string(f.tiePx) + ',' +
+               std::to_string(f.errorPx) + ',' + csvField(f.reason) + '\n';
     }
     return csv;
 }

@@ -1,4 +1,4 @@
-#include "software/span/Fig11.h"
+#include "lab/Fig11.h"
 
 #include <cstdio>
 
@@ -15,7 +15,8 @@ std::array<Fig11Channel, 4> printedChannels() {
     }};
 }
 
-EngineConfig withEnds(Rounding ends, Midpoint midpoint, Rounding out, int endFracBits = 0, int slopeFracBits = kSlopeFracBits) {
+EngineConfig withEnds(Rounding ends, Midpoint midpoint, Rounding out, int endFracBits = 0,
+                      int slopeFracBits = kSlopeFracBits) {
     EngineConfig c;
     c.endRounding = ends;
     c.midpoint = midpoint;
@@ -32,21 +33,28 @@ std::vector<Fig11Scheme> fig11Schemes() {
     using M = Midpoint;
     std::vector<Fig11Scheme> s;
     s.push_back({"engine: ends rounded, exact tree, output rounded (the model)", false, R::Nearest, {}});
-    s.push_back({"engine as above, A and B with 5 fraction bits", false, R::Nearest, withEnds(R::Nearest, M::Exact, R::Nearest, 0, 5)});
-    s.push_back({"engine as above, A and B with 4 fraction bits", false, R::Nearest, withEnds(R::Nearest, M::Exact, R::Nearest, 0, 4)});
+    s.push_back({"engine as above, A and B with 5 fraction bits", false, R::Nearest,
+                 withEnds(R::Nearest, M::Exact, R::Nearest, 0, 5)});
+    s.push_back({"engine as above, A and B with 4 fraction bits", false, R::Nearest,
+                 withEnds(R::Nearest, M::Exact, R::Nearest, 0, 4)});
     s.push_back({"exact line, rounded", true, R::Nearest, {}});
     s.push_back({"exact line, truncated", true, R::Floor, {}});
     s.push_back({"engine: ends keep 16 fraction bits, exact tree, output rounded", false, R::Nearest,
                  withEnds(R::Nearest, M::Exact, R::Nearest, kSlopeFracBits)});
     s.push_back({"engine: ends keep 16 fraction bits, exact tree, output truncated", false, R::Nearest,
                  withEnds(R::Nearest, M::Exact, R::Floor, kSlopeFracBits)});
-    s.push_back({"engine: ends rounded, exact tree, output truncated", false, R::Nearest, withEnds(R::Nearest, M::Exact, R::Floor)});
-    s.push_back({"engine: ends truncated, exact tree, output rounded", false, R::Nearest, withEnds(R::Floor, M::Exact, R::Nearest)});
-    s.push_back({"engine: ends truncated, exact tree, output truncated", false, R::Nearest, withEnds(R::Floor, M::Exact, R::Floor)});
+    s.push_back({"engine: ends rounded, exact tree, output truncated", false, R::Nearest,
+                 withEnds(R::Nearest, M::Exact, R::Floor)});
+    s.push_back({"engine: ends truncated, exact tree, output rounded", false, R::Nearest,
+                 withEnds(R::Floor, M::Exact, R::Nearest)});
+    s.push_back({"engine: ends truncated, exact tree, output truncated", false, R::Nearest,
+                 withEnds(R::Floor, M::Exact, R::Floor)});
     s.push_back({"engine: ends rounded, each level truncated (PIPE add-and-shift)", false, R::Nearest,
                  withEnds(R::Nearest, M::TruncateEachLevel, R::Nearest)});
-    s.push_back({"engine: ends truncated, each level truncated", false, R::Nearest, withEnds(R::Floor, M::TruncateEachLevel, R::Floor)});
-    s.push_back({"engine: ends rounded, each level rounded", false, R::Nearest, withEnds(R::Nearest, M::RoundEachLevel, R::Nearest)});
+    s.push_back({"engine: ends truncated, each level truncated", false, R::Nearest,
+                 withEnds(R::Floor, M::TruncateEachLevel, R::Floor)});
+    s.push_back({"engine: ends rounded, each level rounded", false, R::Nearest,
+                 withEnds(R::Nearest, M::RoundEachLevel, R::Nearest)});
     return s;
 }
 
@@ -69,8 +77,8 @@ Fig11Result runFig11(const Fig11Scheme& scheme) {
         ChannelLine* lines[4] = {&command.z, &command.r, &command.g, &command.b};
         for (std::size_t c = 0; c < 4; ++c) {
             const Fig11Channel& ch = result.channels[c];
-            const std::optional<ChannelLine> line = lineThrough(kFig11Xl, ch.from, kFig11Xr, ch.to, ch.width, 0, result.overflow,
-                                                                scheme.config.slopeFracBits);
+            const std::optional<ChannelLine> line = lineThrough(kFig11Xl, ch.from, kFig11Xr, ch.to, ch.width, 0,
+                                                                result.overflow, scheme.config.slopeFracBits);
             if (line) *lines[c] = *line;
         }
         std::array<std::uint32_t, kEnginePixels> oldZ;
@@ -84,12 +92,14 @@ Fig11Result runFig11(const Fig11Scheme& scheme) {
             std::array<std::int64_t, kEnginePixels> values{};
             std::uint8_t ignored = 0;
             interpolateEngine(0, *lines[c], scheme.config, values, ignored);
-            for (int i = 0; i < kPixels; ++i) result.channels[c].values[std::size_t(i)] = values[std::size_t(kFig11Xl + i)];
+            for (int i = 0; i < kPixels; ++i)
+                result.channels[c].values[std::size_t(i)] = values[std::size_t(kFig11Xl + i)];
         }
     }
     for (Fig11Channel& ch : result.channels) {
         for (const Fig11Printed& p : ch.printed)
-            if (ch.values[std::size_t(p.x - kFig11Xl)] != p.value) ++(p.doubtful ? ch.doubtfulMismatches : ch.mismatches);
+            if (ch.values[std::size_t(p.x - kFig11Xl)] != p.value)
+                ++(p.doubtful ? ch.doubtfulMismatches : ch.mismatches);
         result.mismatches += ch.mismatches;
         result.doubtfulMismatches += ch.doubtfulMismatches;
     }
@@ -100,8 +110,10 @@ std::string fig11Hex(const Fig11Channel& channel) {
     std::string text;
     for (std::int64_t v : channel.values) {
         char buf[24];
-        if (v < 0) std::snprintf(buf, sizeof buf, "-%llX", static_cast<unsigned long long>(-v));
-        else std::snprintf(buf, sizeof buf, channel.width == 24 ? "%03llX" : "%llX", static_cast<unsigned long long>(v));
+        if (v < 0)
+            std::snprintf(buf, sizeof buf, "-%llX", static_cast<unsigned long long>(-v));
+        else
+            std::snprintf(buf, sizeof buf, channel.width == 24 ? "%03llX" : "%llX", static_cast<unsigned long long>(v));
         text += (text.empty() ? "" : " ") + std::string(buf);
     }
     return text;

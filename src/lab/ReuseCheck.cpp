@@ -1,4 +1,4 @@
-#include "report/ReuseCheck.h"
+#include "lab/ReuseCheck.h"
 
 #include <cassert>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "order/Simulation.h"
+#include "lab/Simulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,12 +22,18 @@ Instance paperInstance(std::mt19937_64& rng, int rssCount, int states, int costl
 
 const char* methodName(Method method) {
     switch (method) {
-    case Method::Submit: return "submit";
-    case Method::Paper: return "paper";
-    case Method::Key: return "key";
-    case Method::Greedy: return "greedy";
-    case Method::Lookahead: return "lookahead";
-    case Method::Best: return "best";
+        case Method::Submit:
+            return "submit";
+        case Method::Paper:
+            return "paper";
+        case Method::Key:
+            return "key";
+        case Method::Greedy:
+            return "greedy";
+        case Method::Lookahead:
+            return "lookahead";
+        case Method::Best:
+            return "best";
     }
     return "?";
 }
@@ -35,8 +41,8 @@ const char* methodName(Method method) {
 InstanceCosts runMethods(const Instance& instance, CostRule rule, int hcsSize, int window, bool exactWhenSmall) {
     const Transitions t(instance.sets, instance.costs, rule);
     const std::vector<int> hcs = highCostSet(instance.costs, thresholdForSize(instance.costs, hcsSize));
-    const std::vector<std::vector<int>> others{submitOrder(t.size()), paperOrder(instance.sets, hcs), keyOrder(instance.sets),
-                                               greedyOrder(t), lookaheadOrder(t, window)};
+    const std::vector<std::vector<int>> others{submitOrder(t.size()), paperOrder(instance.sets, hcs),
+                                               keyOrder(instance.sets), greedyOrder(t), lookaheadOrder(t, window)};
     InstanceCosts out;
     std::size_t cheapest = 0;
     for (std::size_t m = 0; m < others.size(); ++m) {

@@ -10,20 +10,20 @@
 namespace frugal {
 
 struct HsrModeResult {
-    std::string mode;                        // "zbuffer", "depthsort", "adaptive"
-    std::vector<double> ms;                  // per timed frame: plan + draw + finish
-    std::vector<double> planMs;              // per timed frame: the plan alone (0 for zbuffer)
-    std::vector<std::size_t> differingPx;    // per frame: colour pixels that differ from zbuffer's
-    std::vector<double> zbufferedShare;      // per frame: depth-tested polygons ÷ drawn polygons
-    std::vector<std::size_t> polygons;       // per frame: polygons drawn (0 for zbuffer: not grouped)
-    std::vector<std::size_t> draws;          // per frame: draw commands (backend draw calls)
+    std::string mode;                      // "zbuffer", "depthsort", "adaptive"
+    std::vector<double> ms;                // per timed frame: plan + draw + finish
+    std::vector<double> planMs;            // per timed frame: the plan alone (0 for zbuffer)
+    std::vector<std::size_t> differingPx;  // per frame: colour pixels that differ from zbuffer's
+    std::vector<double> zbufferedShare;    // per frame: depth-tested polygons ÷ drawn polygons
+    std::vector<std::size_t> polygons;     // per frame: polygons drawn (0 for zbuffer: not grouped)
+    std::vector<std::size_t> draws;        // per frame: draw commands (backend draw calls)
 };
 
 struct HsrReport {
     std::string scene, backend, renderer;
     int width = 0, height = 0;
     int firstFrame = 0, lastFrame = 0, repeat = 1;
-    std::size_t polygons = 0;    // the scene's, over all instances
+    std::size_t polygons = 0;  // the scene's, over all instances
     std::size_t triangles = 0;
     std::vector<HsrModeResult> modes;  // zbuffer first
 };
@@ -37,8 +37,8 @@ struct HsrModeSummary {
     double fps = 0.0, medianMs = 0.0, minMs = 0.0, maxMs = 0.0, planMs = 0.0, speedup = 0.0;
     double paperFps = 0.0, paperSpeedup = 0.0;  // 0 when the paper has none
     std::size_t differingPx = 0, worstFramePx = 0, framesDiffering = 0;
-    double flaggedShare = 0.0;                  // mean over frames
-    double draws = 0.0;                         // median over frames
+    double flaggedShare = 0.0;  // mean over frames
+    double draws = 0.0;         // median over frames
 };
 std::vector<HsrModeSummary> summarizeHsr(const HsrReport& report);
 

@@ -11,14 +11,14 @@
 namespace frugal {
 
 struct MethodResult {
-    std::string method;              // none, sphere, backface, cones, paper, conservative, oracle
+    std::string method;  // none, sphere, backface, cones, paper, conservative, oracle
     std::size_t tos = 0, pvs = 0, rvs = 0, misses = 0, waste = 0;
-    std::size_t pixelsDiffering = 0;  // colour, against the full render of the view, tolerance 0
-    double cullMs = 0.0;              // CPU time to make the plan (median of the repeats)
-    double drawMs = 0.0;              // clear + draw + finish (median of the repeats)
-    double ratioToOracle = 0.0;       // (cull + draw) / oracle draw
-    double ratioToFull = 0.0;         // (cull + draw) / full draw
-    double ratioToFullCullface = 0.0; // (cull + draw) / full draw with GL back-face culling on
+    std::size_t pixelsDiffering = 0;   // colour, against the full render of the view, tolerance 0
+    double cullMs = 0.0;               // CPU time to make the plan (median of the repeats)
+    double drawMs = 0.0;               // clear + draw + finish (median of the repeats)
+    double ratioToOracle = 0.0;        // (cull + draw) / oracle draw
+    double ratioToFull = 0.0;          // (cull + draw) / full draw
+    double ratioToFullCullface = 0.0;  // (cull + draw) / full draw with GL back-face culling on
 };
 
 struct ViewResult {
