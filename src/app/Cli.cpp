@@ -29,43 +29,44 @@ usage:
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
 )";
 
-const char* kExitCodes = R"(
+}  // namespace
+
+const char* exitCodesHelp() {
+    return R"(
 exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed output, or
              (compare, diff) images outside tolerance, 2 bad command line,
              3 the requested backend is not available (no EGL display, no OSMesa, ...);
              stopped by SIGINT, SIGTERM or SIGHUP: ends by that signal (130, 143, 129 in a shell)
              after one line, the files already written kept whole and no temporary file left
 )";
+}
+
+namespace {
 
 void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
     out << "with no SCENE, render, bench, diff, cull-report and reuse-bench use builtin:default.\n";
-    out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << kExitCodes;
+    out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << exitCodesHelp();
 }
-
-}  // namespace
-
-namespace {
 
 struct CommandEntry {
     const char* name;
     int (*run)(const std::vector<std::string>&, std::ostream&, std::ostream&);
-    const char* (*help)();
-    bool sharedOptions;  // renders: its help lists the shared options
 };
 
 const CommandEntry kCommands[] = {
-    {"render", runRender, renderHelp, true}, {"info", runInfo, infoHelp, false},
-    {"bench", runBench, benchHelp, true},    {"compare", runCompare, compareHelp, false},
-    {"diff", runDiff, diffHelp, true},       {"cull-report", runCullReport, cullReportHelp, true},
-    {"reuse-bench", runReuseBench, reuseBenchHelp, true},
-    {"hsr-bench", runHsrBench, hsrBenchHelp, true},
-    {"order-bench", runOrderBench, orderBenchHelp, true},
-    {"span-bench", runSpanBench, spanBenchHelp, false},
-    {"state-sim", runStateSim, stateSimHelp, false},
-    {"soak", runSoak, soakHelp, false},
+    {"render", runRender},           {"info", runInfo},         {"bench", runBench},
+    {"compare", runCompare},         {"diff", runDiff},         {"cull-report", runCullReport},
+    {"reuse-bench", runReuseBench},  {"hsr-bench", runHsrBench}, {"order-bench", runOrderBench},
+    {"span-bench", runSpanBench},    {"state-sim", runStateSim}, {"soak", runSoak},
 };
+
+std::string commandNames() {
+    std::string names;
+    for (const CommandEntry& entry : kCommands) names += std::string(entry.name) + ", ";
+    return names + "help";
+}
 
 const CommandEntry* findCommand(const std::string& name) {
     for (const CommandEntry& entry : kCommands)
@@ -83,19 +84,21 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     const std::string& name = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (name == "-h" || name == "--help" || name == "help") {
-        const CommandEntry* entry = rest.empty() ? nullptr : findCommand(rest[0]);
-        if (entry) out << entry->help() << (entry->sharedOptions ? sharedOptionsHelp() : "") << kExitCodes;
-        else printUsage(out);
-        return kExitOk;
+        if (rest.empty()) {
+            printUsage(out);
+            return kExitOk;
+        }
+        // `frugal help COMMAND` is `frugal COMMAND --help`: one help text per command.
+        if (const CommandEntry* entry = findCommand(rest[0])) return entry->run({"--help"}, out, err);
+        err << "error: help " << rest[0] << ": no such command (commands: " << commandNames() << ")\n";
+        return kExitUsage;
     }
     if (name == "--version") {
         out << "frugal 0.1.0\n";
         return kExitOk;
     }
     if (const CommandEntry* entry = findCommand(name)) return entry->run(rest, out, err);
-    std::string names;
-    for (const CommandEntry& entry : kCommands) names += std::string(entry.name) + ", ";
-    err << "error: unknown command '" << name << "' (commands: " << names << "help)\n";
+    err << "error: unknown command '" << name << "' (commands: " << commandNames() << ")\n";
     return kExitUsage;
 }
 

@@ -17,6 +17,9 @@ enum ExitCode : int {
     kExitNoBackend = 3,    // the requested backend is not available on this machine
 };
 
+// The help's closing paragraph: what each exit status means.
+const char* exitCodesHelp();
+
 // The exit status of an error of `kind` (the one place that decides it): backend unavailable 3,
 // every other 1 (an interrupted command then ends by its signal: io/Interrupt.h).
 int exitStatus(ErrorKind kind);

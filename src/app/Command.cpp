@@ -8,18 +8,53 @@
 
 namespace frugal {
 
+namespace {
+
+// The flag of `groups` spelled `spelling`, or nullptr.
+const Flag* findFlag(const std::vector<FlagGroup>& groups, const std::string& spelling) {
+    for (const FlagGroup& group : groups)
+        for (const Flag& f : group.flags)
+            if (f.matches(spelling)) return &f;
+    return nullptr;
+}
+
+// The shared flags `command` takes: renderFlags without those the command defines itself (soak's
+// --frames is a count, not render's range).
+FlagGroup sharedFlags(const CommandLine& command) {
+    FlagGroup shared = renderFlags(*command.shared);
+    std::erase_if(shared.flags, [&](const Flag& f) { return findFlag(command.flags, f.canonical()) != nullptr; });
+    return shared;
+}
+
+}  // namespace
+
+std::string commandHelp(const CommandLine& command) {
+    std::string text = command.help + flagsHelp(command.flags);
+    if (command.shared) text += flagsHelp({sharedFlags(command)});
+    return text + exitCodesHelp();
+}
+
 std::optional<int> parseCommandLine(const CommandLine& command, const std::vector<std::string>& args,
                                     std::ostream& out, std::ostream& err) {
     ArgCursor cursor(args);
+    // The command's own flags come first, then its legacy option parser, then the shared flags.
+    std::vector<FlagGroup> shared;
+    if (command.shared) shared.push_back(sharedFlags(command));
     while (!cursor.done() && cursor.error.empty()) {
         const std::string flag = cursor.next();
         if (flag == "-h" || flag == "--help") {
-            out << command.help;
-            if (command.shared) out << sharedOptionsHelp();
+            out << commandHelp(command);
             return kExitOk;
         }
-        if (command.shared && parseSharedOption(flag, cursor, *command.shared)) continue;
-        if (command.option && command.option(flag, cursor)) continue;
+        const Flag* f = findFlag(command.flags, flag);
+        if (!f && command.option && command.option(flag, cursor)) continue;
+        if (!f) f = findFlag(shared, flag);
+        if (f) {
+            const std::optional<std::string> value = f->value.empty() ? std::optional<std::string>("") : cursor.value(flag);
+            if (!value) continue;
+            if (const std::string why = f->set(*value); !why.empty()) cursor.fail(f->canonical() + ": '" + *value + "' " + why);
+            continue;
+        }
         if (flag.size() > 1 && flag[0] == '-')
             cursor.fail(flag + ": unknown option (see 'frugal help " + command.name + "')");
         else if (command.positional)
@@ -82,7 +117,7 @@ Result<Session> openSession(BackendKind kind, const RenderOptions& options) {
 std::variant<Session, int> startSession(const RenderOptions& options, const Scene& scene, std::ostream& err) {
     Result<Session> opened = openSession(options.backend, options);
     if (!opened) {
-        err << "error: --backend " << options.backendName << ": " << opened.error() << "\n";
+        err << "error: --backend " << toString(options.backend) << ": " << opened.error() << "\n";
         return int(kExitNoBackend);
     }
     Backend& backend = *opened->backend;

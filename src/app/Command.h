@@ -1,13 +1,7 @@
 // The skeleton every command shares: one argument loop, and one way to open a backend with a
 // target and the scene uploaded. A command supplies its own flags, its positional arguments and its
 // work; messages, help and exit codes come out the same everywhere.
-//
-// Why not CLI11 (Debian libcli11-dev): the messages users and tests rely on ("error: --size 0x600:
-// width and height must be 1 to 65536 ...", "--wat: unknown option (see 'frugal help render')")
-// would each need a custom validator and a failure formatter to survive, the help texts are written
-// by hand and would be regenerated, and a ~25k-line header would compile into every command. What
-// frugal needs from a parser (flags with a value inline or next, positionals, one usage error) is
-// ArgCursor plus this loop.
+// The flags themselves are a table (app/Flags.h).
 #pragma once
 
 #include <functional>
@@ -28,12 +22,13 @@
 namespace frugal {
 
 struct CommandLine {
-    CommandLine(std::string name_, const char* help_, RenderOptions* shared_ = nullptr)
-        : name(std::move(name_)), help(help_), shared(shared_) {}
+    CommandLine(std::string name_, std::string help_, RenderOptions* shared_ = nullptr)
+        : name(std::move(name_)), help(std::move(help_)), shared(shared_) {}
 
     std::string name;        // as in "see 'frugal help NAME'"
-    const char* help;        // printed by -h/--help (followed by the shared options' help)
-    RenderOptions* shared;   // the shared render options are parsed into it, when given
+    std::string help;        // usage and description, printed by -h/--help before the flags' help
+    RenderOptions* shared;   // the shared render options (renderFlags) are parsed into it, when given
+    std::vector<FlagGroup> flags;  // the command's own flags
     // The command's own flags: false when `flag` is not one of them. Usage errors go to the cursor.
     std::function<bool(const std::string& flag, ArgCursor& cursor)> option;
     // A positional argument; fail the cursor when there is no room for it.
@@ -41,6 +36,9 @@ struct CommandLine {
     // Checks once every argument is read (missing positionals, flags that conflict).
     std::function<void(ArgCursor& cursor)> finish;
 };
+
+// The help of `command`: its text, its flags', and the shared flags' when it takes them.
+std::string commandHelp(const CommandLine& command);
 
 // The one argument loop. Returns nothing when the command should go on, or the exit status to
 // return: kExitOk after -h/--help printed the help to `out`, kExitUsage after "error: <why>" on `err`.

@@ -52,10 +52,9 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     RenderOptions colors;  // only --background is read into it
     CompareOptions options;
     CommandLine command{"compare", compareHelp()};
+    command.flags = {someFlags(renderFlags(colors), {"--background"})};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--background") {
-            parseSharedOption(flag, cursor, colors);
-        } else if (flag == "--tolerance") {
+        if (flag == "--tolerance") {
             if (std::optional<int> n = wholeNumber(flag, cursor, 0, 255)) options.tolerance = *n;
         } else if (flag == "--ids") {
             const std::optional<std::string> a = cursor.value(flag);

@@ -102,7 +102,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // The GL backend under test, then the software reference.
     Session sessions[2];
     const BackendKind selections[2] = {options.backend, BackendKind::Software};
-    const std::string labels[2] = {"--backend " + options.backendName, "software reference"};
+    const std::string labels[2] = {std::string("--backend ") + toString(options.backend), "software reference"};
     for (int k = 0; k < 2; ++k) {
         Result<Session> opened = openSession(selections[k], options);
         if (!opened) {

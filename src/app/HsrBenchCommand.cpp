@@ -47,8 +47,8 @@ calls a frame makes (draws: the sorted order splits instances into runs).
                         holds every timed frame
   --warmup N            untimed rounds of frame A in every mode first (default 3: llvmpipe
                         compiles its shader variants)
-  --masks DIR           for depthsort, adaptive and adaptive-convex, the mask of the frame with the most
-                        differing pixels: DIR/MODE_mask.png (red where the colour differs from
+  --masks DIR           for depthsort, adaptive and adaptive-convex, the mask of the frame with the
+                        most differing pixels: DIR/MODE_mask.png (red where the colour differs from
                         the z-buffer render, the z-buffer image in grey elsewhere), and the
                         frame's images DIR/MODE.png and DIR/zbuffer.png
   --json FILE           {"scene","size","backend","modes":[{"mode","fps","median_ms","plan_ms",

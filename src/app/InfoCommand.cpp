@@ -113,7 +113,7 @@ void printDepthPrecision(const Scene& scene, std::optional<int> index, double de
 int runStateCosts(const RenderOptions& options, const std::string& jsonPath, std::ostream& out, std::ostream& err) {
     Result<Session> session = openSession(options.backend, options);
     if (!session) {
-        err << "error: --backend " << options.backendName << ": " << session.error() << "\n";
+        err << "error: --backend " << toString(options.backend) << ": " << session.error() << "\n";
         return kExitNoBackend;
     }
     Result<StateCostReport> measured = measureStateCosts(*session->backend);
@@ -160,13 +160,10 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     bool sceneGiven = false, stateCosts = false;
     std::string jsonPath;
     CommandLine command{"info", infoHelp()};
+    command.flags = {someFlags(renderFlags(options), {"--cull-backfaces", "--backend", "--threads"})};
     command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--cull-backfaces") {
-            options.load.objDoubleSided = false;
-        } else if (flag == "--state-costs") {
+        if (flag == "--state-costs") {
             stateCosts = true;
-        } else if (flag == "--backend" || flag == "--threads") {
-            return parseSharedOption(flag, cursor, options);
         } else if (flag == "--json") {
             const std::optional<std::string> path = cursor.value(flag);
             if (path && path->empty()) cursor.fail("--json: empty file name");
@@ -182,7 +179,7 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             cursor.fail("--state-costs measures the backend, not a scene: give one or the other");
         else if (!stateCosts && !sceneGiven)
             cursor.fail("info needs a SCENE (a file or builtin:NAME), or --state-costs");
-        else if (!stateCosts && (!jsonPath.empty() || options.backendName != "auto" || options.threads != 0))
+        else if (!stateCosts && (!jsonPath.empty() || options.backend != BackendKind::Auto || options.threads != 0))
             cursor.fail("--backend, --threads and --json go with --state-costs");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;

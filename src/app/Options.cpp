@@ -58,37 +58,6 @@ bool parseInt(const std::string& text, int& out) {
     return ec == std::errc() && stop == text.data() + text.size();
 }
 
-std::optional<glm::vec3> parseVec3(const std::string& flag, const std::string& text, ArgCursor& cursor) {
-    std::stringstream in(text);
-    std::string part;
-    std::vector<double> values;
-    while (std::getline(in, part, ',')) {
-        double v = 0.0;
-        if (!parseDouble(part, v)) break;
-        values.push_back(v);
-    }
-    if (values.size() != 3 || std::count(text.begin(), text.end(), ',') != 2) {
-        cursor.fail(flag + ": expected x,y,z (three finite numbers), got '" + text + "'");
-        return std::nullopt;
-    }
-    return glm::vec3(float(values[0]), float(values[1]), float(values[2]));
-}
-
-std::optional<double> number(const std::string& flag, ArgCursor& cursor, double lo, double hi) {
-    const std::optional<std::string> text = cursor.value(flag);
-    if (!text) return std::nullopt;
-    double v = 0.0;
-    if (!parseDouble(*text, v)) {
-        cursor.fail(flag + ": expected a number, got '" + *text + "'");
-        return std::nullopt;
-    }
-    if (v < lo || v > hi) {
-        cursor.fail(flag + ": " + *text + " is outside [" + fmt(lo) + ", " + fmt(hi) + "]");
-        return std::nullopt;
-    }
-    return v;
-}
-
 }  // namespace
 
 std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi) {
@@ -103,120 +72,81 @@ std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int l
     return v;
 }
 
-bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& o) {
-    if (flag == "--size") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        int w = 0, h = 0;
-        if (!parseIntPair(*text, w, h)) {
-            cursor.fail("--size: expected WxH such as 800x600, got '" + *text + "'");
-        } else if (w < 1 || h < 1 || w > 65536 || h > 65536) {
-            cursor.fail("--size " + *text + ": width and height must be 1 to 65536 (the backend may allow less)");
-        } else {
-            o.width = w;
-            o.height = h;
-            o.sizeGiven = true;
-        }
-    } else if (flag == "--backend") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        const std::optional<BackendKind> kind = fromString(*text, kBackendKinds);
-        if (!kind) {
-            cursor.fail("--backend: unknown backend '" + *text +
-                        "' (expected auto, egl, egl-device, egl-surfaceless, osmesa or software)");
-        } else {
-            o.backend = *kind;
-            o.backendName = *text;
-        }
-    } else if (flag == "--interp") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        const std::optional<DepthInterp> mode = fromString(*text, kDepthInterps);
-        if (!mode)
-            cursor.fail("--interp " + *text + ": not a mode (exact, span or dda)");
-        else o.interp = *mode;
-    } else if (flag == "--threads") {
-        if (auto v = number(flag, cursor, 1, 256)) {
-            if (*v != std::floor(*v)) cursor.fail("--threads: expected a whole number, got '" + fmt(*v) + "'");
-            else o.threads = int(*v);
-        }
-    } else if (flag == "--camera") {
-        const std::optional<std::string> text = cursor.value(flag);
-        int index = 0;
-        if (text && (!parseInt(*text, index) || index < 0)) cursor.fail("--camera: expected a camera index (0, 1, ...), got '" + *text + "'");
-        else if (text) o.camera.sceneCamera = index;
-    } else if (flag == "--eye" || flag == "--target" || flag == "--up") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        const std::optional<glm::vec3> v = parseVec3(flag, *text, cursor);
-        if (!v) return true;
-        if (flag == "--eye") o.camera.eye = v;
-        else if (flag == "--target") o.camera.target = v;
-        else o.camera.up = *v;
-    } else if (flag == "--fov") {
-        if (auto v = number(flag, cursor, 1e-3, 179.999)) o.camera.yfovDegrees = float(*v);
-    } else if (flag == "--near") {
-        if (auto v = number(flag, cursor, 1e-30, 1e30)) o.camera.znear = float(*v);
-    } else if (flag == "--far") {
-        if (auto v = number(flag, cursor, 0, 1e30)) o.camera.zfar = float(*v);
-    } else if (flag == "--depth-range") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        if (*text == "fit")
-            o.camera.depthRange = DepthRange::Fit;
-        else if (*text == "file")
-            o.camera.depthRange = DepthRange::File;
-        else
-            cursor.fail("--depth-range: '" + *text + "' is not a depth range (fit, file)");
-    } else if (flag == "--depth-format") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        if (const std::optional<DepthFormat> format = parseDepthFormat(*text))
-            o.depthFormat = *format;
-        else
-            cursor.fail("--depth-format: '" + *text + "' is not a depth format (d24, d32f)");
-    } else if (flag == "--time") {
-        if (auto v = number(flag, cursor, -1e9, 1e9)) o.time = *v;
-    } else if (flag == "--fps") {
-        if (auto v = number(flag, cursor, 1e-3, 1e6)) o.fps = *v;
-    } else if (flag == "--frames") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        const std::size_t colon = text->find(':');
-        FrameRange range;
-        range.sequence = true;
-        if (colon == std::string::npos || !parseInt(text->substr(0, colon), range.first) ||
-            !parseInt(text->substr(colon + 1), range.last)) {
-            cursor.fail("--frames: expected A:B (first and last frame, inclusive), got '" + *text + "'");
-        } else if (range.first < 0 || range.last < range.first || range.last - range.first >= 1000000) {
-            cursor.fail("--frames " + *text + ": need 0 <= A <= B and at most 1000000 frames");
-        } else {
-            o.frames = range;
-        }
-    } else if (flag == "--background") {
-        const std::optional<std::string> text = cursor.value(flag);
-        if (!text) return true;
-        std::stringstream in(*text);
-        std::string part;
-        std::vector<double> values;
-        double v = 0.0;
-        while (std::getline(in, part, ',') && parseDouble(part, v) && v >= 0.0 && v <= 1.0) values.push_back(v);
-        if ((values.size() != 3 && values.size() != 4) ||
-            std::count(text->begin(), text->end(), ',') != int(values.size()) - 1) {
-            cursor.fail("--background: expected r,g,b or r,g,b,a in [0,1], got '" + *text + "'");
-        } else {
-            o.background = glm::vec4(float(values[0]), float(values[1]), float(values[2]), values.size() == 4 ? float(values[3]) : 1.0f);
-        }
-    } else if (flag == "--cull-backfaces") {
-        o.load.objDoubleSided = false;
-    } else if (flag == "--file-order") {
-        o.load.optimizeOrder = false;
-    } else if (flag == "-q" || flag == "--quiet") {
-        o.quiet = true;
-    } else {
-        return false;
-    }
-    return true;
+FlagGroup renderFlags(RenderOptions& o) {
+    Camera& c = o.camera;
+    return {"", {
+        flag::size("--size", "WxH", "image size in pixels (default 800x600, or the scene camera's aspect ratio with the "
+                   "longer side 800)", o.width, o.height, 65536, &o.sizeGiven),
+        flag::choice("--backend", "NAME", "a backend",
+                     "auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa), egl, egl-device, "
+                     "egl-surfaceless, osmesa, or software (the CPU reference rasterizer, llvmpipe's rules, no GL)",
+                     o.backend, kBackendKinds),
+        flag::whole("--threads", "N", "rasterizer threads: the software backend's, and llvmpipe's (LP_NUM_THREADS); "
+                    "default every core", o.threads, 1, 256),
+        flag::choice("--interp", "MODE", "an interpolation mode",
+                     "depth along each scan-line span, software backend only: exact (default, llvmpipe's bits), span "
+                     "(paper 001's midpoint-subdivision engine, within 1 LSB of the line through the span's ends) or "
+                     "dda (add-and-shift, 8 fraction bits: the error grows along the span); a slow path. Colour is "
+                     "shaded per fragment in every mode (not Gouraud): it changes only where a depth test flips",
+                     o.interp, kDepthInterps),
+        {"--camera", "N", "use the scene's camera N (default: camera 0 if the scene has one, else a view that fits "
+         "the scene's bounds)", [&c](const std::string& text) -> std::string {
+             int index = 0;
+             if (!parseInt(text, index) || index < 0) return "is not a camera index (0, 1, ...)";
+             c.sceneCamera = index;
+             return {};
+         }},
+        flag::point("--eye", "X,Y,Z", "look from here (with --target, default the bounds' centre, and --up)", c.eye),
+        flag::point("--target", "X,Y,Z", "look at this point", c.target),
+        flag::point("--up", "X,Y,Z", "the image's up (default 0,1,0)", c.up),
+        flag::number("--fov", "DEGREES", "vertical field of view (default: the camera's, or 40)", c.yfovDegrees, 1e-3,
+                     179.999),
+        flag::number("--near", "Z", "near clip plane (default: the camera's, or around the scene)", c.znear, 1e-30, 1e30),
+        flag::number("--far", "Z", "far clip plane (default: the camera's, or around the scene); 0 = infinite", c.zfar,
+                     0, 1e30),
+        flag::choice("--depth-range", "MODE", "a depth range",
+                     "fit (default): near and far moved inward to where the scene is (its bounds over the whole "
+                     "animation, along the view), never past the planes above, so nothing they keep is clipped and "
+                     "depth precision goes to the scene; file: the planes above as they are",
+                     c.depthRange, kDepthRanges),
+        flag::choice("--depth-format", "F", "a depth format",
+                     "d24 (default): 24-bit depth; d32f: 32-bit float with reversed Z (glClipControl zero-to-one, 1 "
+                     "near, 0 far), which separates depths about 1e-7 of their distance apart at any near/far ratio. "
+                     "See 'frugal info SCENE'",
+                     o.depthFormat, kDepthFormats),
+        flag::number("--time", "SECONDS", "animation time of the frame (default 0)", o.time, -1e9, 1e9),
+        flag::frames("--frames", "frames A to B inclusive, at --fps (default the scene's, 30)", o.frames),
+        flag::number("--fps", "N", "frames per second of --frames (default the scene's)", o.fps, 1e-3, 1e6),
+        {"--background", "R,G,B[,A]", "clear colour in [0,1] (default 0.12,0.13,0.15)",
+         [&o](const std::string& text) -> std::string {
+             std::vector<double> v;
+             std::stringstream in(text);
+             std::string part;
+             double x = 0.0;
+             while (std::getline(in, part, ',') && parseDouble(part, x) && x >= 0.0 && x <= 1.0) v.push_back(x);
+             if ((v.size() != 3 && v.size() != 4) || std::count(text.begin(), text.end(), ',') != int(v.size()) - 1)
+                 return "is not a colour (r,g,b or r,g,b,a, each 0 to 1)";
+             o.background = glm::vec4(float(v[0]), float(v[1]), float(v[2]), v.size() == 4 ? float(v[3]) : 1.0f);
+             return {};
+         }},
+        flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
+                 "material's doubleSided)", o.load.objDoubleSided, false),
+        flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",
+                 o.load.optimizeOrder, false),
+        flag::on("-q, --quiet", "no progress lines", o.quiet),
+    }};
+}
+
+std::string sharedOptionsHelp() {
+    RenderOptions options;
+    return flagsHelp({renderFlags(options)});
+}
+
+FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names) {
+    FlagGroup out{group.title, {}};
+    for (const Flag& f : group.flags)
+        if (std::find(names.begin(), names.end(), f.canonical()) != names.end()) out.flags.push_back(f);
+    return out;
 }
 
 void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
@@ -230,44 +160,6 @@ void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
     const std::optional<float>& far = o.camera.zfar;
     if (near && far && *far != 0.0f && !(*far > *near))
         cursor.fail("--far " + fmt(*far) + ": must exceed --near " + fmt(*near));
-}
-
-const char* sharedOptionsHelp() {
-    return R"(  --size WxH            image size in pixels (default 800x600, or the scene camera's aspect ratio
-                        with the longer side 800)
-  --backend NAME        auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa),
-                        egl, egl-device, egl-surfaceless, osmesa, or software (the CPU
-                        reference rasterizer, llvmpipe's rules, no GL)
-  --threads N           rasterizer threads: the software backend's, and llvmpipe's (LP_NUM_THREADS);
-                        default every core
-  --interp MODE         depth along each scan-line span, software backend only: exact (default,
-                        llvmpipe's bits), span (paper 001's midpoint-subdivision engine, within
-                        1 LSB of the line through the span's ends) or dda (add-and-shift, 8 fraction
-                        bits: the error grows along the span); a slow path. Colour is shaded per
-                        fragment in every mode (not Gouraud): it changes only where a depth test flips
-  --camera N            use the scene's camera N (default: camera 0 if the scene has one,
-                        else a view that fits the scene's bounds)
-  --eye X,Y,Z           look from here (with --target, default the bounds' centre, and --up)
-  --target X,Y,Z
-  --up X,Y,Z            default 0,1,0
-  --fov DEGREES         vertical field of view (default: the camera's, or 40)
-  --near Z, --far Z     clip planes (default: the camera's, or around the scene); --far 0 = infinite
-  --depth-range MODE    fit (default): near and far moved inward to where the scene is (its
-                        bounds over the whole animation, along the view), never past the planes
-                        above, so nothing they keep is clipped and depth precision goes to the
-                        scene; file: the planes above as they are
-  --depth-format F      d24 (default): 24-bit depth; d32f: 32-bit float with reversed Z
-                        (glClipControl zero-to-one, 1 near, 0 far), which separates depths about
-                        1e-7 of their distance apart at any near/far ratio. See 'frugal info SCENE'
-  --time SECONDS        animation time of the frame (default 0)
-  --frames A:B          frames A to B inclusive, at --fps (default the scene's, 30)
-  --fps N
-  --background R,G,B[,A]  clear colour in [0,1] (default 0.12,0.13,0.15)
-  --cull-backfaces      draw OBJ files single-sided (OBJ is double-sided by default;
-                        glTF follows each material's doubleSided)
-  --file-order          keep the file's triangle order (default: reordered for the vertex cache)
-  -q, --quiet           no progress lines
-)";
 }
 
 bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, Order& order) {

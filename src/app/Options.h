@@ -16,6 +16,7 @@
 #include "render/Camera.h"
 #include "render/Frame.h"
 #include "render/Plan.h"
+#include "app/Flags.h"
 #include "renderer/Backends.h"
 #include "scene/Load.h"
 
@@ -49,7 +50,6 @@ struct RenderOptions {
     int width = 800, height = 600;
     bool sizeGiven = false;  // --size: else the scene camera's aspect ratio sizes the image (kLongSide)
     BackendKind backend = BackendKind::Auto;
-    std::string backendName = "auto";  // as given, for messages
     int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
     DepthInterp interp = DepthInterp::Exact;  // --interp: the software backend's depth along a span
     Camera camera;
@@ -65,13 +65,15 @@ struct RenderOptions {
     bool quiet = false;
 };
 
-// Parses one shared option at the cursor (the flag already read into `flag`). Returns false if the
-// flag is not a shared one; usage errors go to cursor.error.
-bool parseSharedOption(const std::string& flag, ArgCursor& cursor, RenderOptions& options);
-// Checks between shared options, once all are read: "--far 1: must exceed --near 5".
+// The flags every command that renders takes (size, backend, camera, time, frames, ...), setting
+// `options`; `options` must outlive the group.
+FlagGroup renderFlags(RenderOptions& options);
+// Checks between them, once all are read: "--far 1: must exceed --near 5".
 void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
-// Help text of the shared options.
-const char* sharedOptionsHelp();
+// Their help (flagsHelp of renderFlags).
+std::string sharedOptionsHelp();
+// The flags of `group` named in `names` (a command that takes a few of them).
+FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names);
 
 // --order submit|key|paper|greedy|best (render, diff, bench; render/Plan.h's Order). False when
 // `flag` is not --order.

@@ -38,8 +38,8 @@ outputs (each written to a temporary file and renamed, never left half-written):
   --ids FILE            triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian
                         (R = low byte); 0 = background
   --json FILE           metadata: scene counts, camera (the planes drawn with and the given ones,
-                        the aspect ratios, the depth format), backend, GL renderer, per-frame timings
-                        (with --cull: per-frame tos, pvs and cull_ms too), and per frame the
+                        the aspect ratios, the depth format), backend, GL renderer, per-frame
+                        timings (with --cull: per-frame tos, pvs and cull_ms too), and per frame the
                         state changes the backend issued, by kind ("state_changes": draws,
                         programs, meshes, textures, toggles, uniforms; software: draws only)
 

@@ -9,13 +9,15 @@ const char* reuseOptionsHelp() {
     return R"(temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h):
   --reuse-grain N       triangles per extent: N consecutive triangles of a mesh share one screen
                         rectangle (default 16; 1 = per triangle as in the paper; 0 = per instance)
-  --reuse-cell PX       side of the screen-grid cells that copies and clears are made of (default 16)
+  --reuse-cell PX       side of the screen-grid cells that copies and clears are made of
+                        (default 16)
   --no-fallback         never fall back to a full render while the camera is still (for measuring)
   --exact-static        keep the static pair exactly the static instances' render (clear and
                         redraw around instances that come to rest) instead of paper 000's steps,
                         with which a depth tie lost while moving can outlive its frame
-  --camera-path FILE    a JSON list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov":deg}: entry
-                        i is frame A+i of --frames A:B, the last entry holds (equal entries = still)
+  --camera-path FILE    a JSON list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov":deg}:
+                        entry i is frame A+i of --frames A:B, the last entry holds (equal entries
+                        = still)
 )";
 }
 

@@ -40,37 +40,6 @@ judges what long runs break:
 Prints a table per backend and a verdict; exit status 0 when everything passes, 1 otherwise.
 Progress goes to stderr, a line every few seconds at most.
 
-  --frames N            frames per backend (default 100000; 0: cycles only)
-  --cycles N            create/destroy cycles of each kind per backend (default 1000; 0: none)
-  --period N            frames per loop of the animation (default: the scene's animation length
-                        at --fps, e.g. 300 for builtin:cubes; 1 for a still scene or --time)
-  --warmup N            frames before the memory baseline (default 1 % of --frames, at least
-                        one period: llvmpipe compiles its shader variants in the first frames)
-  --sample-every N      frames between memory samples (default --frames / 1000, at least 1);
-                        cycles are sampled every --cycles / 100
-  --max-growth PCT      the memory growth allowed after warm-up, in percent (default 5)
-  --ids                 also write triangle ids every frame (the id pass)
-  --minimal             on each GL backend, the frames are drawn by the minimal GL program of
-                        'frugal bench render' (one program, glClear, glDrawElements per instance;
-                        gl/MinimalFrame.h) on a context of the same kind instead: what Mesa
-                        alone does with memory over the same frames. No cycles; its rows are
-                        named KIND (minimal).
-  --json FILE           {"scene","size","period","fps","max_growth_pct","passed","frames":[{"backend",
-                        "frames","warmup","rss_warm_kb","rss_end_kb","growth_pct","compared_frames",
-                        "mismatched_frames","blank_frames","passed",...}],"cycles":[{"backend","kind",
-                        "cycles","failures","rss_warm_kb","rss_end_kb","growth_pct","passed",...}],
-                        "skipped":[...]}
-  --csv FILE            every memory sample: run (frames, backend, target, scene), backend, index,
-                        rss_kb, hwm_kb, ms_each
-  --plot FILE.svg|.png  resident memory over frames and over cycles, drawn by gnuplot from the CSV
-                        (--csv, or FILE.csv beside the plot); the script is written as FILE.gp
-  --size WxH            image size (default 64x48)
-  --backend NAME        one backend only: software, egl-device, egl-surfaceless or osmesa (auto, the
-                        default, runs each)
-  --threads N, --interp MODE, --camera N, --eye X,Y,Z, --target X,Y,Z, --up X,Y,Z, --fov DEGREES,
-  --near Z, --far Z, --time SECONDS, --fps N, --background R,G,B[,A], --cull-backfaces,
-  --file-order          as for render (see 'frugal help render')
-  -q, --quiet           no progress lines
 )";
 }
 
@@ -328,33 +297,43 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     SoakSettings settings;
     ReportPaths outputs;
     double maxGrowth = 5.0;
-    CommandLine command{"soak", soakHelp()};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (flag == "--frames") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 1000000000)) settings.frames = *n;
-        } else if (flag == "--cycles") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 1000000000)) settings.cycles = *n;
-        } else if (flag == "--period") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 1000000000)) settings.period = *n;
-        } else if (flag == "--warmup") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 1000000000)) settings.warmup = *n;
-        } else if (flag == "--sample-every") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 1000000000)) settings.sampleEvery = *n;
-        } else if (flag == "--max-growth") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 1000)) maxGrowth = *n;
-        } else if (flag == "--ids") {
-            settings.ids = true;
-        } else if (flag == "--minimal") {
-            settings.minimal = true;
-        } else {
-            return parseSharedOption(flag, cursor, options);
-        }
-        return true;
+    CommandLine command{"soak", soakHelp(), &options};
+    constexpr long long kMany = 1000000000;
+    command.flags = {
+        {"", {
+            flag::whole("--frames", "N", "frames per backend (default 100000; 0: cycles only)", settings.frames, 0, kMany),
+            flag::whole("--cycles", "N", "create/destroy cycles of each kind per backend (default 1000; 0: none)",
+                        settings.cycles, 0, kMany),
+            flag::whole("--period", "N", "frames per loop of the animation (default: the scene's animation length at "
+                        "--fps, e.g. 300 for builtin:cubes; 1 for a still scene or --time)", settings.period, 1, kMany),
+            flag::whole("--warmup", "N", "frames before the memory baseline (default 1 % of --frames, at least one "
+                        "period: llvmpipe compiles its shader variants in the first frames)", settings.warmup, 0, kMany),
+            flag::whole("--sample-every", "N", "frames between memory samples (default --frames / 1000, at least 1); "
+                        "cycles are sampled every --cycles / 100", settings.sampleEvery, 1, kMany),
+            flag::number("--max-growth", "PCT", "the memory growth allowed after warm-up, in percent (default 5)",
+                         maxGrowth, 0, 1000),
+            flag::on("--ids", "also write triangle ids every frame (the id pass)", settings.ids),
+            flag::on("--minimal", "on each GL backend, the frames are drawn by the minimal GL program of 'frugal "
+                     "bench render' (one program, glClear, glDrawElements per instance; gl/MinimalFrame.h) on a "
+                     "context of the same kind instead: what Mesa alone does with memory over the same frames. No "
+                     "cycles; its rows are named KIND (minimal).", settings.minimal),
+            flag::text("--json", "FILE", "{\"scene\",\"size\",\"period\",\"fps\",\"max_growth_pct\",\"passed\","
+                       "\"frames\":[{\"backend\",\"frames\",\"warmup\",\"rss_warm_kb\",\"rss_end_kb\",\"growth_pct\","
+                       "\"compared_frames\",\"mismatched_frames\",\"blank_frames\",\"passed\",...}],\"cycles\":"
+                       "[{\"backend\",\"kind\",\"cycles\",\"failures\",\"rss_warm_kb\",\"rss_end_kb\",\"growth_pct\","
+                       "\"passed\",...}],\"skipped\":[...]}", outputs.json),
+            flag::text("--csv", "FILE", "every memory sample: run (frames, backend, target, scene), backend, index, "
+                       "rss_kb, hwm_kb, ms_each", outputs.csv),
+            flag::text("--plot", "FILE.svg|.png", "resident memory over frames and over cycles, drawn by gnuplot from "
+                       "the CSV (--csv, or FILE.csv beside the plot); the script is written as FILE.gp", outputs.plot),
+            flag::size("--size", "WxH", "image size (default 64x48)", options.width, options.height, 65536,
+                       &options.sizeGiven),
+            flag::choice("--backend", "NAME", "a backend", "one backend only: software, egl-device, egl-surfaceless "
+                         "or osmesa (auto, the default, runs each)", options.backend, kBackendKinds),
+        }},
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {
-        checkSharedOptions(options, cursor);
         // Besides SVG, --plot takes a .png (gnuplot's pngcairo): a picture a README can show.
         if (const std::string problem = plotProblem(outputs, /*pngToo=*/true); !problem.empty())
             cursor.fail(problem);

@@ -63,7 +63,8 @@ options:
                         5, rasterization included) beside exact's, and spans per second (spans per
                         frame / best frame time). Timings are printed, never asserted
   --render-size WxH     image size of every --scene, 1 to 16384 each (default 800x600)
-  --json FILE           {"fig11":{...},"errors":[{width,length,method,worst_lsb,mean_lsb,spans,...}],
+  --json FILE           {"fig11":{...},"errors":[{width,length,method,worst_lsb,mean_lsb,spans,
+                        ...}],
                         "spans_per_second":{...},"render":[{scene,size,mode,colour_px,id_px,
                         worst_lsb,mean_lsb,depth_changed_px,overflow,spans,frame_ms,exact_frame_ms,
                         spans_per_second}]}

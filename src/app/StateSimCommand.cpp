@@ -36,7 +36,8 @@ Paper 004's simulation (Kim 2009, section 4.2): random render-state sets (RSSs),
 the mean total state-change cost over --seeds instances with its 95 % confidence interval
 (1.96 sd / sqrt(n)), beside the paper's sorted and unsorted figures, for the orders:
   submit     the order generated (the paper's "not-sorted")
-  paper      the paper's sort: |HCS| = 3, binary id with the costliest state in the top bit, descending
+  paper      the paper's sort: |HCS| = 3, binary id with the costliest state in the top bit,
+             descending
   key        a fixed key as bgfx sorts: states in index order, lexicographic, blind to costs
   greedy     nearest neighbour on the transition costs, from the empty state
   lookahead  a look-ahead buffer of 4 RSSs in submission order, cheapest transition first
@@ -45,18 +46,20 @@ the mean total state-change cost over --seeds instances with its 95 % confidence
 and a lower bound (the assignment relaxation). A cost C(s) is paid when an RSS sets state s and the
 RSS before did not hold it (set-not-held); the tables under every-set (C(s) for every state set) and
 symmetric-difference (C(s) for every state set or unset) follow. Last, at 16 RSSs, best's local
-search (and the search from greedy alone) against Held-Karp's optimum. Instances come from std::mt19937_64 seeded by the table, the cell
-and the instance's number: the same --seeds gives the same figures.
+search (and the search from greedy alone) against Held-Karp's optimum. Instances come from
+std::mt19937_64 seeded by the table, the cell and the instance's number: the same --seeds gives the
+same figures.
 
 options:
   --seeds N        instances per cell, 1 to 100000 (default 100: about 10 s on one core)
-  --json FILE      {"table6":[{rss_count,states,paper_sorted,paper_unsorted,methods:{submit:{mean,ci95},
-                   paper,key,greedy,lookahead,best}}],"table7":[...],"lower_bound":{...},
-                   "alternatives":{"every-set":{...},"symmetric-difference":{...}},"optimum_check":[...],...}
+  --json FILE      {"table6":[{rss_count,states,paper_sorted,paper_unsorted,methods:{submit:
+                   {mean,ci95},paper,key,greedy,lookahead,best}}],"table7":[...],"lower_bound":
+                   {...},"alternatives":{"every-set":{...},"symmetric-difference":{...}},
+                   "optimum_check":[...],...}
   --csv FILE       one row per cost rule, table, cell and method (and the bound)
-  --plot FILE.svg  cost against RSS count (Table 6) and against states (Table 7) per method, with the
-                   paper's columns, drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot);
-                   the script is written as FILE.gp
+  --plot FILE.svg  cost against RSS count (Table 6) and against states (Table 7) per method, with
+                   the paper's columns, drawn by gnuplot from the CSV (--csv, or FILE.csv beside
+                   the plot); the script is written as FILE.gp
 )";
 }
 

@@ -2,6 +2,8 @@
 // stderr, files left behind), over good scenes and every broken input the issue names.
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -29,6 +31,34 @@ TEST(CliTest, HelpListsCommandsScenesAndExitCodes) {
     EXPECT_EQ(render.status, 0);
     for (const char* text : {"--size", "--backend", "--frames", "--depth", "--ids", "--json", "--camera"})
         EXPECT_NE(render.out.find(text), std::string::npos) << text;
+}
+
+TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {
+    const fs::path dir = test::freshDir("CliHelpEach");
+    for (const char* command : {"render", "info", "bench", "compare", "diff", "cull-report", "reuse-bench", "hsr-bench",
+                                "order-bench", "span-bench", "state-sim", "soak"}) {
+        SCOPED_TRACE(command);
+        const CliRun help = runFrugal(dir, {"help", command});
+        const CliRun flag = runFrugal(dir, {command, "--help"});
+        EXPECT_EQ(help.status, 0);
+        EXPECT_EQ(flag.status, 0);
+        EXPECT_EQ(help.out, flag.out);
+        EXPECT_EQ(help.err, "");
+        EXPECT_NE(help.out.find("usage: frugal "), std::string::npos);
+        EXPECT_NE(help.out.find("exit status: 0 success"), std::string::npos);
+        // Wrapped within 100 columns (characters, not UTF-8 bytes).
+        std::stringstream lines(help.out);
+        for (std::string line; std::getline(lines, line);)
+            EXPECT_LE(std::count_if(line.begin(), line.end(), [](char c) { return (std::uint8_t(c) & 0xC0) != 0x80; }),
+                      100)
+                << line;
+    }
+    const CliRun unknown = runFrugal(dir, {"help", "wat"});
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_EQ(unknown.out, "");
+    EXPECT_EQ(unknown.errLines().size(), 1u);
+    EXPECT_EQ(unknown.err.rfind("error: help wat: no such command (commands: render, info, ", 0), 0u) << unknown.err;
+    EXPECT_TRUE(filesIn(dir).empty());
 }
 
 TEST(CliTest, RendersTheDefaultSceneWithEveryOutput) {
@@ -82,13 +112,13 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
     test::writeFile(dir / "in" / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
     test::writeFile(dir / "in" / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const BadCase cases[] = {
-        {{"render", "--size", "0x600"}, 2, "error: --size 0x600: width and height must be 1 to 65536 (the backend may allow less)"},
-        {{"render", "--size", "800"}, 2, "error: --size: expected WxH such as 800x600, got '800'"},
+        {{"render", "--size", "0x600"}, 2, "error: --size: '0x600' is not a size (WxH, each 1 to 65536)"},
+        {{"render", "--size", "800"}, 2, "error: --size: '800' is not a size (WxH, each 1 to 65536)"},
         {{"render", "--size", "65536x65536", "-q"}, 1, "error: --size 65536x65536: egl-surfaceless cannot create a target that large (at most 16384 pixels a side)"},
-        {{"render", "--backend", "vulkan"}, 2, "error: --backend: unknown backend 'vulkan' (expected auto, egl, egl-device, egl-surfaceless, osmesa or software)"},
-        {{"render", "--frames", "5:2"}, 2, "error: --frames 5:2: need 0 <= A <= B and at most 1000000 frames"},
-        {{"render", "--fov", "nan"}, 2, "error: --fov: expected a number, got 'nan'"},
-        {{"render", "--eye", "1,2"}, 2, "error: --eye: expected x,y,z (three finite numbers), got '1,2'"},
+        {{"render", "--backend", "vulkan"}, 2, "error: --backend: 'vulkan' is not a backend (auto, egl, egl-device, egl-surfaceless, osmesa, software)"},
+        {{"render", "--frames", "5:2"}, 2, "error: --frames: '5:2' is not a frame range (A:B, first and last frame: 0 <= A <= B, at most 1000000 frames)"},
+        {{"render", "--fov", "nan"}, 2, "error: --fov: 'nan' is not a number from 0.001 to 179.999"},
+        {{"render", "--eye", "1,2"}, 2, "error: --eye: '1,2' is not a point (x,y,z: three finite numbers)"},
         {{"render", "-o", "x.jpg"}, 2, "error: -o x.jpg: the colour image is written as PNG; name it .png"},
         {{"render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help render')"},
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},

@@ -23,7 +23,7 @@ TEST(InterpCliTest, UnknownModeIsOneUsageError) {
     const CliRun run = runFrugal(dir, {"render", "builtin:cubes", "--interp", "wat", "--backend", "software"});
     EXPECT_NE(run.status, 0);
     ASSERT_EQ(run.errLines().size(), 1u) << run.err;
-    EXPECT_EQ(run.errLines()[0], "error: --interp wat: not a mode (exact, span or dda)");
+    EXPECT_EQ(run.errLines()[0], "error: --interp: 'wat' is not an interpolation mode (exact, span, dda)");
 }
 
 TEST(InterpCliTest, GlBackendIsRefused) {

@@ -64,15 +64,15 @@ TEST(MisuseCliTest, EveryCommandRefusesABrokenSceneWithOneLine) {
 
 TEST(MisuseCliTest, EveryCommandRefusesAnImpossibleSharedOptionWithOneLine) {
     const std::vector<std::pair<std::vector<std::string>, std::string>> options = {
-        {{"--size", "0x0"}, "error: --size 0x0: width and height must be 1 to 65536 (the backend may allow less)"},
-        {{"--size", "70000x10"}, "error: --size 70000x10: width and height must be 1 to 65536 (the backend may allow less)"},
+        {{"--size", "0x0"}, "error: --size: '0x0' is not a size (WxH, each 1 to 65536)"},
+        {{"--size", "70000x10"}, "error: --size: '70000x10' is not a size (WxH, each 1 to 65536)"},
         {{"--backend", "nope"},
-         "error: --backend: unknown backend 'nope' (expected auto, egl, egl-device, egl-surfaceless, osmesa or software)"},
-        {{"--time", "nan"}, "error: --time: expected a number, got 'nan'"},
-        {{"--threads", "-1"}, "error: --threads: -1 is outside [1, 256]"},
-        {{"--fov", "180"}, "error: --fov: 180 is outside [0.001, 179.999]"},
-        {{"--eye", "0,0,nan"}, "error: --eye: expected x,y,z (three finite numbers), got '0,0,nan'"},
-        {{"--background", "red"}, "error: --background: expected r,g,b or r,g,b,a in [0,1], got 'red'"},
+         "error: --backend: 'nope' is not a backend (auto, egl, egl-device, egl-surfaceless, osmesa, software)"},
+        {{"--time", "nan"}, "error: --time: 'nan' is not a number from -1e+09 to 1e+09"},
+        {{"--threads", "-1"}, "error: --threads: '-1' is not a whole number from 1 to 256"},
+        {{"--fov", "180"}, "error: --fov: '180' is not a number from 0.001 to 179.999"},
+        {{"--eye", "0,0,nan"}, "error: --eye: '0,0,nan' is not a point (x,y,z: three finite numbers)"},
+        {{"--background", "red"}, "error: --background: 'red' is not a colour (r,g,b or r,g,b,a, each 0 to 1)"},
         {{"--bogus"}, ""},  // names the command's help: any one error line
     };
     std::vector<FailingRun> runs;

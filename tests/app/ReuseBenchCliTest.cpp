@@ -156,7 +156,7 @@ TEST(ReuseBenchCliTest, BadCommandLinesGetOneLineAndNoFile) {
          2,
          "error: --frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)"},
         {{"reuse-bench", "--frames", "0:3", "--repeat", "0"}, 2, "error: --repeat: expected a whole number 1 to 10000, got '0'"},
-        {{"reuse-bench", "--frames", "3:1"}, 2, "error: --frames 3:1: need 0 <= A <= B and at most 1000000 frames"},
+        {{"reuse-bench", "--frames", "3:1"}, 2, "error: --frames: '3:1' is not a frame range (A:B, first and last frame: 0 <= A <= B, at most 1000000 frames)"},
         {{"reuse-bench", "--frames", "0:3", "--cull", "oracle"},
          2,
          "error: --cull oracle: the oracle is an id pass of each frame, not a plan to reuse"},

@@ -153,11 +153,11 @@ TEST(SoakCliTest, ImpossibleOptionsGetOneLine) {
     test::expectOneErrorLine(
         dir,
         {
-            {{"soak", "--frames", "-1"}, "error: --frames: expected a whole number 0 to 1000000000, got '-1'"},
-            {{"soak", "--frames", "0:9"}, "error: --frames: expected a whole number 0 to 1000000000, got '0:9'"},
+            {{"soak", "--frames", "-1"}, "error: --frames: '-1' is not a whole number from 0 to 1000000000"},
+            {{"soak", "--frames", "0:9"}, "error: --frames: '0:9' is not a whole number from 0 to 1000000000"},
             {{"soak", "--frames", "0", "--cycles", "0"}, "error: --frames 0 with --cycles 0: nothing to do"},
             {{"soak", "--frames", "10", "--warmup", "10"}, "error: --warmup 10: must be less than --frames 10"},
-            {{"soak", "--period", "0"}, "error: --period: expected a whole number 1 to 1000000000, got '0'"},
+            {{"soak", "--period", "0"}, "error: --period: '0' is not a whole number from 1 to 1000000000"},
             {{"soak", "--plot", "x.pdf"}, "error: --plot x.pdf: gnuplot writes SVG or PNG here; name it .svg or .png"},
             {{"soak", "--minimal", "--ids"}, "error: --minimal with --ids: the minimal GL program draws no ids"},
             {{"soak", "--minimal", "--frames", "0"},
