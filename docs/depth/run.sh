@@ -9,8 +9,8 @@ F=../../build/frugal
 BUNNY=/usr/share/glmark2/models/bunny.obj
 ENGINE=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
 for backend in egl software; do
-  $F bench render "$BUNNY" --backend $backend --runs 40 -q > bench-bunny-$backend.json
-  $F bench render "$ENGINE" --backend $backend --runs 40 -q > bench-engine-$backend.json
+  $F bench render "$BUNNY" --backend $backend --repeat 40 -q > bench-bunny-$backend.json
+  $F bench render "$ENGINE" --backend $backend --repeat 40 -q > bench-engine-$backend.json
 done
 $F info "$ENGINE" | grep -v "^  'Material" > info-engine.txt
 # Z-fighting: d24 front surfaces against d32f's, with the file's planes and fitted.

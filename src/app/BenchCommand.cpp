@@ -48,19 +48,6 @@ minimal, vertex-cache order) and "over_minimal_file_order", and "minimal_pixels_
 images read back once, after timing). Scenes with textures or vertex colours, and --ids, have no
 minimal variant; "skipped" says why.
 
-  --runs N              timed frames per variant (default 30)
-  --warmup N            untimed frames first (default 5)
-  --ids                 also write triangle ids (the id pass)
-  --hsr MODE            zbuffer (default), depthsort or adaptive (see 'frugal help render'); the
-                        plan is timed with the frame; the minimal program stays z-buffered
-  --order ORDER         the draw order: submit (default), key, paper, greedy or best (see 'frugal
-                        help render'); consecutive draws of one mesh are one instanced draw.
-                        In the cache order two more rows: "unbatched" (one draw per instance) and
-                        "premerged" (the floor: the instances pre-transformed into one mesh per
-                        material); "pixels_differing" says where each image differs from frugal's,
-                        and for frugal's own row, where --order changed it from submission order
-                        (exact depth ties); ratios "unbatched_over_batched" and "over_premerged"
-
 The cache order also times the same frame in the other depth format (--depth-format, default d24;
 see 'frugal help render'), into a target of its own, interleaved with frugal's frames: a row with
 "variant": "d32f" (or "d24"), its "pixels_differing" from frugal's image, and the ratio
@@ -155,18 +142,20 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     Order drawOrder = Order::Submit;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
     CommandLine command{"bench", benchHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--runs") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 100000)) runs = *n;
-        } else if (flag == "--warmup") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 100000)) warmup = *n;
-        } else if (flag == "--ids") {
-            ids = true;
-        } else if (!parseHsrOption(flag, cursor, hsrMode) && !parseDrawOrderOption(flag, cursor, drawOrder)) {
-            return false;
-        }
-        return true;
-    };
+    command.flags = {{"", {
+        flag::whole("--repeat", "N", "timed frames per variant (default 30)", runs, 1, 100000),
+        flag::whole("--warmup", "N", "untimed frames first (default 5)", warmup, 0, 100000),
+        flag::on("--ids", "also write triangle ids (the id pass)", ids),
+        hsrFlag(hsrMode, "zbuffer (default), depthsort or adaptive (see 'frugal help render'); the plan is timed with "
+                         "the frame; the minimal program stays z-buffered"),
+        orderFlag(drawOrder, "the draw order: submit (default), key, paper, greedy or best (see 'frugal help render'); "
+                             "consecutive draws of one mesh are one instanced draw. In the cache order two more rows: "
+                             "\"unbatched\" (one draw per instance) and \"premerged\" (the floor: the instances "
+                             "pre-transformed into one mesh per material); \"pixels_differing\" says where each image "
+                             "differs from frugal's, and for frugal's own row, where --order changed it from "
+                             "submission order (exact depth ties); ratios \"unbatched_over_batched\" and "
+                             "\"over_premerged\""),
+    }}};
     command.positional = sceneArgument(options);
     if (std::optional<int> status = parseCommandLine(command, rest, out, err)) return *status;
 

@@ -22,6 +22,7 @@ const Flag* findFlag(const std::vector<FlagGroup>& groups, const std::string& sp
 // --frames is a count, not render's range).
 FlagGroup sharedFlags(const CommandLine& command) {
     FlagGroup shared = renderFlags(*command.shared);
+    shared.title = "image, backend, camera and time (every command that renders)";
     std::erase_if(shared.flags, [&](const Flag& f) { return findFlag(command.flags, f.canonical()) != nullptr; });
     return shared;
 }
@@ -50,9 +51,18 @@ std::optional<int> parseCommandLine(const CommandLine& command, const std::vecto
         if (!f && command.option && command.option(flag, cursor)) continue;
         if (!f) f = findFlag(shared, flag);
         if (f) {
-            const std::optional<std::string> value = f->value.empty() ? std::optional<std::string>("") : cursor.value(flag);
+            std::optional<std::string> value;
+            if (f->value.empty()) {
+                value = "";
+            } else if (f->arity == 1) {
+                value = cursor.value(flag);
+            } else if (const std::optional<std::string> first = cursor.value(flag)) {
+                const std::optional<std::string> second = cursor.done() ? std::string() : cursor.value(flag);
+                if (second) value = *first + '\0' + *second;
+            }
             if (!value) continue;
-            if (const std::string why = f->set(*value); !why.empty()) cursor.fail(f->canonical() + ": '" + *value + "' " + why);
+            if (const std::string why = f->set(*value); !why.empty())
+                cursor.fail(f->canonical() + ": " + (f->arity == 1 ? "'" + *value + "' " : "") + why);
             continue;
         }
         if (flag.size() > 1 && flag[0] == '-')

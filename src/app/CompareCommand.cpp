@@ -22,14 +22,6 @@ differ. A pixel fails when any channel, alpha included, differs by more than N 8
 exit status is 0 when no pixel fails, 1 otherwise. Images are 8-bit PNGs (grey, grey+alpha, RGB or
 RGBA), of the same size.
 
-  --tolerance N         per-channel tolerance in 8-bit steps, 0 to 255 (default 0: identical)
-  --ids A_ids B_ids     frugal triangle-id PNGs of A and B (render --ids): coverage (id 0 is the
-                        background) and triangle-id mismatches are measured from them
-  --background R,G,B[,A]  without --ids, a pixel is background when every channel is within N of
-                        this colour, in [0,1] (default frugal's, 0.12,0.13,0.15)
-  --mask FILE.png       error mask: red where a pixel fails, B in grey elsewhere
-  --json FILE           the metrics as JSON (psnr_db is null when the images are identical)
-
 Reported: pixels beyond tolerance, largest channel difference and where, PSNR (inf when
 identical), coverage mismatches (geometry in one image, background in the other) and, with --ids,
 pixels covered in both whose triangle ids differ.
@@ -52,32 +44,29 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     RenderOptions colors;  // only --background is read into it
     CompareOptions options;
     CommandLine command{"compare", compareHelp()};
-    command.flags = {someFlags(renderFlags(colors), {"--background"})};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--tolerance") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 255)) options.tolerance = *n;
-        } else if (flag == "--ids") {
-            const std::optional<std::string> a = cursor.value(flag);
-            const std::optional<std::string> b = a && !cursor.done() ? cursor.value(flag) : std::nullopt;
-            if (a && (!b || a->empty() || b->empty() || (*b)[0] == '-'))
-                cursor.fail("--ids: expected two id images, A_ids.png B_ids.png");
-            else if (a && b) actualIds = *a, referenceIds = *b;
-        } else if (flag == "--mask" || flag == "--json") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (!path) return true;
-            if (path->empty()) cursor.fail(flag + ": empty file name");
-            else if (flag == "--mask" && !isPng(*path)) cursor.fail("--mask " + *path + ": the mask is written as PNG; name it .png");
-            else (flag == "--mask" ? maskPath : jsonPath) = *path;
-        } else {
-            return false;
-        }
-        return true;
-    };
+    FlagGroup background = someFlags(renderFlags(colors), {"--background"});
+    background.flags[0].help = "without --ids, a pixel is background when every channel is within N of this colour, "
+                               "in [0,1] (default frugal's, 0.12,0.13,0.15)";
+    command.flags = {{"", {
+        flag::whole("--tolerance", "N", "per-channel tolerance in 8-bit steps, 0 to 255 (default 0: identical)",
+                    options.tolerance, 0, 255),
+        flag::two("--ids", "A_ids B_ids", "frugal triangle-id PNGs of A and B (render --ids): coverage (id 0 is the "
+                  "background) and triangle-id mismatches are measured from them", actualIds, referenceIds,
+                  "expected two id images, A_ids.png B_ids.png"),
+        background.flags[0],
+        {"--mask", "FILE.png", "error mask: red where a pixel fails, B in grey elsewhere",
+         [&maskPath](const std::string& path) -> std::string {
+             if (!isPng(path)) return "is not a .png name (the mask is written as PNG)";
+             maskPath = path;
+             return {};
+         }},
+        flag::text("--json", "FILE", "the metrics as JSON (psnr_db is null when the images are identical)", jsonPath),
+    }}};
     command.positional = [&images](const std::string& argument, ArgCursor& cursor) {
         if (images.size() < 2) images.push_back(argument);
         else cursor.fail("unexpected argument '" + argument + "' (two images only: A.png B.png)");
     };
-    command.finish = [&images](ArgCursor& cursor) {
+    command.finish = [&](ArgCursor& cursor) {
         if (images.size() != 2) cursor.fail("compare: expected two images, A.png B.png (see 'frugal help compare')");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;

@@ -39,31 +39,6 @@ differ from the full render, the CPU time to cull and the time to draw, and rati
 draw, to the full draw and to the full draw with GL back-face culling on. Each view is timed cold:
 no method learns from an earlier view. Prints a summary per method; --json/--csv/--plot write the
 whole report.
-
-views (default: --views 32):
-  --views N             N views around the scene's bounding sphere: the two poles of the map
-                        (view axis along +z and -z), then whole-in-view, partial (less than half of
-                        the sphere inside the frustum), grazing, and camera-inside views
-  --camera-path FILE    a JSON list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov":deg}
-                        (up and fov optional), timed in order
-  --camera/--eye/...    the render's camera options: one view
-
-methods and timing:
-  --methods A,B,...     among none, sphere, backface, cones, paper, conservative, oracle
-                        (default all)
-  --repeat K            timed frames per view and method, interleaved; medians (default 5)
-  --hsr MODE            every row draws in this hidden-surface mode (zbuffer, depthsort or
-                        adaptive; 'frugal help render'), its plan timed with the draw; the
-                        reference stays the z-buffered full render
-)"
-           "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
-           R"(
-outputs (each written whole or not at all):
-  --json FILE           the report: views, methods, summary (medians, worst view, total misses,
-                        the share of the draw time culling takes), and medians per view class
-  --csv FILE            one row per view and method
-  --plot FILE.svg       plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot);
-                        the gnuplot script is written beside it as FILE.gp, to restyle and rerun
 )";
 }
 
@@ -89,40 +64,49 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     std::vector<Cull> methods(std::begin(kCulls), std::end(kCulls));
     CommandLine command{"cull-report", cullReportHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseCullOption(flag, cursor, cull, false)) return true;
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (parseHsrOption(flag, cursor, hsrMode)) return true;
-        if (flag == "--views") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) viewCount = *n;
-            viewsGiven = true;
-        } else if (flag == "--repeat") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) repeat = *n;
-        } else if (flag == "--methods") {
-            const std::optional<std::string> list = cursor.value(flag);
-            if (!list) return true;
-            methods.clear();
-            std::stringstream items(*list);
-            std::string item;
-            while (std::getline(items, item, ',')) {
-                const std::optional<Cull> method = fromString(item, kCulls);
-                if (!method) {
-                    cursor.fail("--methods " + *list + ": unknown method '" + item + "' (methods: " + namesOf(kCulls) +
-                                ")");
-                    return true;
-                }
-                if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
-            }
-            if (methods.empty()) cursor.fail("--methods: empty list (methods: " + namesOf(kCulls) + ")");
-        } else if (flag == "--camera-path") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (!path) return true;
-            if (path->empty()) cursor.fail(flag + ": empty file name");
-            else outputs.cameraPath = *path;
-        } else {
-            return false;
-        }
-        return true;
+    command.flags = {
+        {"views (default: --views 32)", {
+            {"--views", "N", "N views around the scene's bounding sphere: the two poles of the map (view axis along +z "
+             "and -z), then whole-in-view, partial (less than half of the sphere inside the frustum), grazing, and "
+             "camera-inside views",
+             [&](const std::string& text) {
+                 viewsGiven = true;
+                 long long n = 0;
+                 std::string why = flag::readWhole(text, 1, 10000, n);
+                 if (why.empty()) viewCount = int(n);
+                 return why;
+             }},
+            flag::text("--camera-path", "FILE", "a JSON list of {\"eye\":[x,y,z],\"target\":[x,y,z],\"up\":[x,y,z],"
+                       "\"fov\":deg} (up and fov optional), timed in order; or the render's camera options "
+                       "(--camera, --eye, ...) for one view", outputs.cameraPath),
+        }},
+        {"methods and timing", {
+            {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, oracle (default all)",
+             [&methods](const std::string& list) -> std::string {
+                 methods.clear();
+                 std::stringstream items(list);
+                 std::string item;
+                 while (std::getline(items, item, ',')) {
+                     const std::optional<Cull> method = fromString(item, kCulls);
+                     if (!method) return "names '" + item + "', not a method (" + namesOf(kCulls) + ")";
+                     if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
+                 }
+                 if (methods.empty()) return "is not a list of methods (" + namesOf(kCulls) + ")";
+                 return {};
+             }},
+            flag::whole("--repeat", "K", "timed frames per view and method, interleaved; medians (default 5)", repeat, 1,
+                        10000),
+            hsrFlag(hsrMode, "every row draws in this hidden-surface mode (zbuffer, depthsort or adaptive; 'frugal help "
+                             "render'), its plan timed with the draw; the reference stays the z-buffered full render"),
+            cullFlags(cull, false)[0],
+        }},
+        {"outputs (each written whole or not at all)",
+         reportFlags(outputs,
+                     "the report: views, methods, summary (medians, worst view, total misses, the share of the draw "
+                     "time culling takes), and medians per view class",
+                     "one row per view and method",
+                     "plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot); the gnuplot script is "
+                     "written beside it as FILE.gp, to restyle and rerun")},
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {

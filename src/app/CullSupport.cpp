@@ -4,27 +4,24 @@
 
 namespace frugal {
 
-bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& options, bool withMethod) {
-    if (withMethod && flag == "--cull") {
-        const std::optional<std::string> value = cursor.value(flag);
-        if (!value) return true;
-        const std::optional<Cull> method = fromString(*value, kCulls);
-        if (!method)
-            cursor.fail("--cull " + *value + ": unknown method (methods: " + namesOf(kCulls) + ")");
-        else options.method = *method;
-        return true;
-    }
-    if (flag == "--cull-bins") {
-        const std::optional<std::string> value = cursor.value(flag);
-        if (!value) return true;
-        int t = 0, p = 0;
-        if (!parseIntPair(*value, t, p) || t < 1 || t > 1024 || p < 1 || p > 1024)
-            cursor.fail("--cull-bins " + *value + ": expected THETAxPHI, each 1 to 1024 (default 16x32)");
-        else
-            options.bins = MapParams{t, p};
-        return true;
-    }
-    return false;
+std::vector<Flag> cullFlags(CullOptions& options, bool withMethod) {
+    std::vector<Flag> flags;
+    if (withMethod)
+        flags.push_back(flag::choice(
+            "--cull", "METHOD", "a method",
+            "none (default), sphere, backface, cones, paper, conservative or oracle. conservative never drops a "
+            "triangle that owns a pixel; paper reproduces paper 002 and misses some; oracle draws exactly the visible "
+            "set found by an id pass (a lower bound, not a shortcut). See 'frugal cull-report'.",
+            options.method, kCulls));
+    flags.push_back({"--cull-bins", "TxP", "bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)",
+                     [&options](const std::string& text) -> std::string {
+                         int t = 0, p = 0;
+                         if (!parseIntPair(text, t, p) || t < 1 || t > 1024 || p < 1 || p > 1024)
+                             return "is not a bin grid (TxP, each 1 to 1024)";
+                         options.bins = MapParams{t, p};
+                         return {};
+                     }});
+    return flags;
 }
 
 std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation& prep) {

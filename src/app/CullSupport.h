@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <frugal/Renderer.h>
 
@@ -20,8 +21,8 @@ struct CullOptions {
     MapParams bins;                    // --cull-bins TxP
 };
 
-// --cull METHOD (when `withMethod`) and --cull-bins TxP. False when `flag` is neither.
-bool parseCullOption(const std::string& flag, ArgCursor& cursor, CullOptions& options, bool withMethod);
+// --cull METHOD (when `withMethod`) and --cull-bins TxP.
+std::vector<Flag> cullFlags(CullOptions& options, bool withMethod);
 
 // "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"
 // (the hull only when it was built); no newline.

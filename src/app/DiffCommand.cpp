@@ -43,19 +43,6 @@ Renders SCENE (default builtin:default) on a GL backend (--backend, default auto
 software reference, and compares them frame by frame: colour (the verdict), coverage, triangle ids
 and depth. Prints a summary per frame; exit status 0 when every frame is within tolerance, 1 when
 one is not.
-
-  --tolerance N         per-channel tolerance in 8-bit steps, 0 to 255 (default 2); a pixel fails
-                        when any channel, alpha included, differs by more
-  --out DIR             write actual (GL), reference (software) and mask PNGs of every frame to DIR
-                        (default: only frames that fail, into ./frugal-diff/). Names: actual.png,
-                        reference.png, mask.png; with --frames actual_0003.png, ...
-                        The mask is red where a pixel fails, the reference in grey elsewhere
-  --json FILE           per-frame metrics as JSON
-  --hsr MODE            both backends draw the frame in this hidden-surface mode: zbuffer
-                        (default), depthsort or adaptive (see 'frugal help render')
-  --order ORDER         both backends draw in this order: submit (default), key, paper, greedy or
-                        best (see 'frugal help render'); consecutive
-                        draws of one mesh are one instanced draw on GL (see 'frugal help render')
 )";
 }
 
@@ -67,19 +54,19 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     Order drawOrder = Order::Submit;
     CommandLine command{"diff", diffHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--tolerance") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 255)) compare.tolerance = *n;
-        } else if (flag == "--out" || flag == "--json") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (!path) return true;
-            if (path->empty()) cursor.fail(flag + ": empty " + (flag == "--out" ? "folder" : "file") + " name");
-            else (flag == "--out" ? outDir : jsonPath) = *path;
-        } else if (!parseHsrOption(flag, cursor, hsrMode) && !parseDrawOrderOption(flag, cursor, drawOrder)) {
-            return false;
-        }
-        return true;
-    };
+    command.flags = {{"", {
+        flag::whole("--tolerance", "N", "per-channel tolerance in 8-bit steps, 0 to 255 (default 2); a pixel fails "
+                    "when any channel, alpha included, differs by more", compare.tolerance, 0, 255),
+        flag::text("--out", "DIR", "write actual (GL), reference (software) and mask PNGs of every frame to DIR "
+                   "(default: only frames that fail, into ./frugal-diff/). Names: actual.png, reference.png, "
+                   "mask.png; with --frames actual_0003.png, ... The mask is red where a pixel fails, the reference "
+                   "in grey elsewhere", outDir, "a folder name"),
+        flag::text("--json", "FILE", "per-frame metrics as JSON", jsonPath),
+        hsrFlag(hsrMode, "both backends draw the frame in this hidden-surface mode: zbuffer (default), depthsort or "
+                         "adaptive (see 'frugal help render')"),
+        orderFlag(drawOrder, "both backends draw in this order: submit (default), key, paper, greedy or best (see "
+                             "'frugal help render'); consecutive draws of one mesh are one instanced draw on GL"),
+    }}};
     command.positional = sceneArgument(options);
     command.finish = [&options](ArgCursor& cursor) {
         if (options.backend == BackendKind::Software)

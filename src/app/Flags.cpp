@@ -69,7 +69,8 @@ std::string flagsHelp(const std::vector<FlagGroup>& groups) {
     constexpr std::size_t kColumn = 24, kWidth = 100;
     std::string out;
     for (const FlagGroup& group : groups) {
-        if (!group.title.empty()) out += "\n" + group.title + ":\n";
+        if (group.flags.empty()) continue;
+        out += "\n" + (group.title.empty() ? "" : group.title + ":\n");
         for (const Flag& f : group.flags) {
             std::string line = "  " + f.name + (f.value.empty() ? "" : " " + f.value);
             // The help's words, wrapped; a name longer than the column puts them on the next line.
@@ -78,6 +79,14 @@ std::string flagsHelp(const std::vector<FlagGroup>& groups) {
                 line.clear();
             }
             line.resize(kColumn, ' ');
+            if (f.help.find('\n') != std::string::npos) {
+                // Laid out by hand (a table of modes): each line as it is, at the column.
+                std::stringstream lines(f.help);
+                std::string text;
+                for (bool first = true; std::getline(lines, text); first = false)
+                    out += (first ? line : std::string(kColumn, ' ')) + text + "\n";
+                continue;
+            }
             std::stringstream words(f.help);
             std::string word;
             bool first = true;
@@ -193,6 +202,52 @@ Flag point(std::string name, std::string value, std::string help, glm::vec3& tar
                 std::vector<double> v;
                 if (!parseNumbers(text, 3, v)) return "is not a point (x,y,z: three finite numbers)";
                 target = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
+                return {};
+            }};
+}
+
+Flag wholeList(std::string name, std::string value, std::string help, std::vector<int>& target, int lo, int hi) {
+    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi](const std::string& text) -> std::string {
+                std::vector<int> values;
+                std::size_t start = 0;
+                while (true) {
+                    const std::size_t comma = text.find(',', start);
+                    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+                    long long v = 0;
+                    if (!readWhole(item, lo, hi, v).empty())
+                        return "is not a list of whole numbers from " + std::to_string(lo) + " to " + std::to_string(hi);
+                    values.push_back(int(v));
+                    if (comma == std::string::npos) break;
+                    start = comma + 1;
+                }
+                target = std::move(values);
+                return {};
+            }};
+}
+
+Flag two(std::string name, std::string value, std::string help, std::string& first, std::string& second,
+         std::string why) {
+    Flag f{std::move(name), std::move(value), std::move(help),
+           [&first, &second, why = std::move(why)](const std::string& text) -> std::string {
+               const std::size_t split = text.find('\0');
+               const std::string a = text.substr(0, split);
+               const std::string b = split == std::string::npos ? std::string() : text.substr(split + 1);
+               if (a.empty() || b.empty() || b[0] == '-') return why;
+               first = a;
+               second = b;
+               return {};
+           }};
+    f.arity = 2;
+    return f;
+}
+
+Flag colour(std::string name, std::string value, std::string help, glm::vec4& target) {
+    return {std::move(name), std::move(value), std::move(help), [&target](const std::string& text) -> std::string {
+                std::vector<double> v;
+                if ((!parseNumbers(text, 3, v) && !parseNumbers(text, 4, v)) ||
+                    std::any_of(v.begin(), v.end(), [](double x) { return x < 0.0 || x > 1.0; }))
+                    return "is not a colour (r,g,b or r,g,b,a, each 0 to 1)";
+                target = glm::vec4(float(v[0]), float(v[1]), float(v[2]), v.size() == 4 ? float(v[3]) : 1.0f);
                 return {};
             }};
 }

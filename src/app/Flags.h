@@ -30,8 +30,11 @@ struct FrameRange;
 struct Flag {
     std::string name;   // "--cull", or "-o, --output" (every spelling, the last the one messages use)
     std::string value;  // what it takes, "METHOD"; empty for a switch
-    std::string help;   // one paragraph, wrapped when printed
+    std::string help;   // one paragraph, wrapped when printed; with '\n' in it, lines laid out by hand
     std::function<std::string(const std::string& value)> set;
+    // Values it takes (--ids A B: 2). With 2, `set` gets both joined by '\0' (no argument holds one)
+    // and a refusal reads "error: <name>: <why>".
+    int arity = 1;
 
     bool matches(const std::string& spelling) const;
     std::string canonical() const;  // the last spelling: "--output"
@@ -107,6 +110,13 @@ Flag size(std::string name, std::string value, std::string help, int& width, int
 // x,y,z of three finite numbers: "'x' is not a point (x,y,z: three finite numbers)".
 Flag point(std::string name, std::string value, std::string help, std::optional<glm::vec3>& target);
 Flag point(std::string name, std::string value, std::string help, glm::vec3& target);
+// Comma-separated whole numbers, each in [lo, hi]: "'x' is not a list of whole numbers from lo to hi".
+Flag wholeList(std::string name, std::string value, std::string help, std::vector<int>& target, int lo, int hi);
+// Two non-empty values into `first` and `second` (arity 2); `why` is the refusal.
+Flag two(std::string name, std::string value, std::string help, std::string& first, std::string& second,
+         std::string why);
+// r,g,b or r,g,b,a, each in [0, 1] (alpha 1 when not given): "'x' is not a colour (...)".
+Flag colour(std::string name, std::string value, std::string help, glm::vec4& target);
 // A:B, 0 ≤ A ≤ B, at most 1,000,000 frames: "'x' is not a frame range (A:B, 0 <= A <= B, ...)".
 Flag frames(std::string name, std::string help, std::optional<FrameRange>& target);
 

@@ -41,21 +41,6 @@ the paper's Table 1 (IPAQ 3660: z-buffer 14.20, depth sort 52.13, adaptive 27.83
 that differ from the z-buffer render (summed over frames, and the worst frame), and the share of
 polygons drawn with the depth test (flagged_share: 1 for zbuffer, 0 for depthsort), and the draw
 calls a frame makes (draws: the sorted order splits instances into runs).
-
-  --frames A:B          the frames (default 0:99, at the scene's fps)
-  --repeat K            times each frame's modes are drawn and timed (default 1); the report
-                        holds every timed frame
-  --warmup N            untimed rounds of frame A in every mode first (default 3: llvmpipe
-                        compiles its shader variants)
-  --masks DIR           for depthsort, adaptive and adaptive-convex, the mask of the frame with the
-                        most differing pixels: DIR/MODE_mask.png (red where the colour differs from
-                        the z-buffer render, the z-buffer image in grey elsewhere), and the
-                        frame's images DIR/MODE.png and DIR/zbuffer.png
-  --json FILE           {"scene","size","backend","modes":[{"mode","fps","median_ms","plan_ms",
-                        "speedup","paper_speedup","differing_px","flagged_share",...}]}
-  --csv FILE            one row per mode
-  --plot FILE.svg       measured and paper speed-up per mode, drawn by gnuplot from the CSV (--csv,
-                        or FILE.csv beside the plot); the script is written as FILE.gp
 )";
 }
 
@@ -68,21 +53,24 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
     std::string masksDir;
     int repeat = 1, warmup = 3;
     CommandLine command{"hsr-bench", hsrBenchHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (flag == "--repeat") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) repeat = *n;
-        } else if (flag == "--warmup") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 10000)) warmup = *n;
-        } else if (flag == "--masks") {
-            const std::optional<std::string> dir = cursor.value(flag);
-            if (dir && dir->empty()) cursor.fail("--masks: empty folder name");
-            else if (dir) masksDir = *dir;
-        } else {
-            return false;
-        }
-        return true;
-    };
+    command.flags = {{"", {
+        flag::frames("--frames", "the frames (default 0:99, at the scene's fps)", options.frames),
+        flag::whole("--repeat", "K", "times each frame's modes are drawn and timed (default 1); the report holds every "
+                    "timed frame", repeat, 1, 10000),
+        flag::whole("--warmup", "N", "untimed rounds of frame A in every mode first (default 3: llvmpipe compiles its "
+                    "shader variants)", warmup, 0, 10000),
+        flag::text("--masks", "DIR", "for depthsort, adaptive and adaptive-convex, the mask of the frame with the most "
+                   "differing pixels: DIR/MODE_mask.png (red where the colour differs from the z-buffer render, the "
+                   "z-buffer image in grey elsewhere), and the frame's images DIR/MODE.png and DIR/zbuffer.png",
+                   masksDir, "a folder name"),
+    }}};
+    for (Flag& f : reportFlags(outputs,
+                               "{\"scene\",\"size\",\"backend\",\"modes\":[{\"mode\",\"fps\",\"median_ms\","
+                               "\"plan_ms\",\"speedup\",\"paper_speedup\",\"differing_px\",\"flagged_share\",...}]}",
+                               "one row per mode",
+                               "measured and paper speed-up per mode, drawn by gnuplot from the CSV (--csv, or FILE.csv "
+                               "beside the plot); the script is written as FILE.gp"))
+        command.flags[0].flags.push_back(std::move(f));
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {
         if (const std::string problem = plotProblem(outputs); !problem.empty())

@@ -1,19 +1,15 @@
 // The command-line side of the hidden-surface modes (paper 003, src/hsr/Plan.h), shared by render,
-// bench and diff: the --hsr option.
+// bench, diff and cull-report: the --hsr flag.
 #pragma once
 
-#include <optional>
 #include <string>
 
-#include "app/Options.h"
+#include "app/Flags.h"
 #include "hsr/Plan.h"
 
 namespace frugal {
 
-// --hsr MODE. False when `flag` is not --hsr; a usage error names the modes.
-bool parseHsrOption(const std::string& flag, ArgCursor& cursor, hsr::Mode& mode);
-
-// The option's help lines.
-const char* hsrOptionHelp();
+// --hsr MODE into `mode`; `help` replaces the table of modes render prints.
+Flag hsrFlag(hsr::Mode& mode, std::string help = {});
 
 }  // namespace frugal

@@ -160,19 +160,11 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     bool sceneGiven = false, stateCosts = false;
     std::string jsonPath;
     CommandLine command{"info", infoHelp()};
-    command.flags = {someFlags(renderFlags(options), {"--cull-backfaces", "--backend", "--threads"})};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--state-costs") {
-            stateCosts = true;
-        } else if (flag == "--json") {
-            const std::optional<std::string> path = cursor.value(flag);
-            if (path && path->empty()) cursor.fail("--json: empty file name");
-            else if (path) jsonPath = *path;
-        } else {
-            return false;
-        }
-        return true;
-    };
+    FlagGroup shared = someFlags(renderFlags(options), {"--cull-backfaces", "--backend", "--threads"});
+    shared.flags.push_back(flag::on("--state-costs", "measure the backend's state-change costs instead of a scene",
+                                    stateCosts));
+    shared.flags.push_back(flag::text("--json", "FILE", "with --state-costs: the figures as JSON", jsonPath));
+    command.flags = {shared};
     command.positional = sceneArgument(options, &sceneGiven);
     command.finish = [&](ArgCursor& cursor) {
         if (stateCosts && sceneGiven)

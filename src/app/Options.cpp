@@ -4,8 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <ostream>
-#include <sstream>
 #include <string_view>
+
+#include "app/CameraPath.h"
 
 namespace frugal {
 
@@ -43,35 +44,6 @@ bool parseIntPair(const std::string& text, int& first, int& second) {
            parse(std::string_view(text).substr(x + 1), second);
 }
 
-namespace {
-
-bool parseDouble(const std::string& text, double& out) {
-    const char* begin = text.data();
-    const char* end = begin + text.size();
-    if (begin != end && *begin == '+') ++begin;
-    auto [stop, ec] = std::from_chars(begin, end, out);
-    return ec == std::errc() && stop == end && std::isfinite(out);
-}
-
-bool parseInt(const std::string& text, int& out) {
-    auto [stop, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
-    return ec == std::errc() && stop == text.data() + text.size();
-}
-
-}  // namespace
-
-std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi) {
-    const std::optional<std::string> text = cursor.value(flag);
-    if (!text) return std::nullopt;
-    int v = 0;
-    if (!parseInt(*text, v) || v < lo || v > hi) {
-        cursor.fail(flag + ": expected a whole number " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" +
-                    *text + "'");
-        return std::nullopt;
-    }
-    return v;
-}
-
 FlagGroup renderFlags(RenderOptions& o) {
     Camera& c = o.camera;
     return {"", {
@@ -91,9 +63,9 @@ FlagGroup renderFlags(RenderOptions& o) {
                      o.interp, kDepthInterps),
         {"--camera", "N", "use the scene's camera N (default: camera 0 if the scene has one, else a view that fits "
          "the scene's bounds)", [&c](const std::string& text) -> std::string {
-             int index = 0;
-             if (!parseInt(text, index) || index < 0) return "is not a camera index (0, 1, ...)";
-             c.sceneCamera = index;
+             long long index = 0;
+             if (!flag::readWhole(text, 0, 1 << 30, index).empty()) return "is not a camera index (0, 1, ...)";
+             c.sceneCamera = int(index);
              return {};
          }},
         flag::point("--eye", "X,Y,Z", "look from here (with --target, default the bounds' centre, and --up)", c.eye),
@@ -117,29 +89,13 @@ FlagGroup renderFlags(RenderOptions& o) {
         flag::number("--time", "SECONDS", "animation time of the frame (default 0)", o.time, -1e9, 1e9),
         flag::frames("--frames", "frames A to B inclusive, at --fps (default the scene's, 30)", o.frames),
         flag::number("--fps", "N", "frames per second of --frames (default the scene's)", o.fps, 1e-3, 1e6),
-        {"--background", "R,G,B[,A]", "clear colour in [0,1] (default 0.12,0.13,0.15)",
-         [&o](const std::string& text) -> std::string {
-             std::vector<double> v;
-             std::stringstream in(text);
-             std::string part;
-             double x = 0.0;
-             while (std::getline(in, part, ',') && parseDouble(part, x) && x >= 0.0 && x <= 1.0) v.push_back(x);
-             if ((v.size() != 3 && v.size() != 4) || std::count(text.begin(), text.end(), ',') != int(v.size()) - 1)
-                 return "is not a colour (r,g,b or r,g,b,a, each 0 to 1)";
-             o.background = glm::vec4(float(v[0]), float(v[1]), float(v[2]), v.size() == 4 ? float(v[3]) : 1.0f);
-             return {};
-         }},
+        flag::colour("--background", "R,G,B[,A]", "clear colour in [0,1] (default 0.12,0.13,0.15)", o.background),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),
         flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",
                  o.load.optimizeOrder, false),
         flag::on("-q, --quiet", "no progress lines", o.quiet),
     }};
-}
-
-std::string sharedOptionsHelp() {
-    RenderOptions options;
-    return flagsHelp({renderFlags(options)});
 }
 
 FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names) {
@@ -149,7 +105,7 @@ FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& name
     return out;
 }
 
-void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
+void checkSharedOptions(RenderOptions& o, ArgCursor& cursor) {
     if (o.backend != BackendKind::Software && o.interp != DepthInterp::Exact)
         cursor.fail(std::string("--interp ") + toString(o.interp) +
                     ": only the software backend models the span interpolator (use --backend software)");
@@ -160,19 +116,22 @@ void checkSharedOptions(const RenderOptions& o, ArgCursor& cursor) {
     const std::optional<float>& far = o.camera.zfar;
     if (near && far && *far != 0.0f && !(*far > *near))
         cursor.fail("--far " + fmt(*far) + ": must exceed --near " + fmt(*near));
+    if (cursor.error.empty() && !o.cameraPathFile.empty()) {
+        Result<std::vector<Camera>> cameras = readCameraPath(o.cameraPathFile);
+        if (!cameras) cursor.fail(cameras.error());
+        else o.cameraPath = std::move(*cameras);
+    }
 }
 
-bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, Order& order) {
-    if (flag != "--order") return false;
-    const std::optional<std::string> value = cursor.value(flag);
-    if (!value) return true;
-    for (Order o : {Order::Submit, Order::Key, Order::Paper, Order::Greedy, Order::Best})
-        if (*value == toString(o)) {
-            order = o;
-            return true;
-        }
-    cursor.fail("--order " + *value + ": not an order (submit, key, paper, greedy or best)");
-    return true;
+Flag orderFlag(Order& order, std::string help) {
+    if (help.empty())
+        help = "the draw order: submit (default), key (texture, program, mesh, as bgfx sorts), or by state-change "
+               "costs measured on the backend at start (about a second; see 'frugal info --state-costs'): paper "
+               "(paper 004's id sort over the 3 costliest kinds), greedy (cheapest next change) or best (the optimum "
+               "over the distinct state sets, Held-Karp up to 16, else local search). Consecutive draws of one mesh go "
+               "out as one instanced draw. Only pixels where two surfaces tie exactly in depth can change (first drawn "
+               "wins)";
+    return flag::choice("--order", "ORDER", "an order", std::move(help), order, kOrders);
 }
 
 void applyDepthOptions(const Camera& options, Camera& view) {

@@ -57,6 +57,7 @@ struct RenderOptions {
     // --camera-path (render, reuse-bench; app/CameraPath.h): entry i is frame first + i, the last
     // one holds; --near/--far still apply. Empty: `camera` for every frame.
     std::vector<Camera> cameraPath;
+    std::string cameraPathFile;   // --camera-path FILE, read into cameraPath by checkSharedOptions
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;
     std::optional<double> fps;    // default: the scene's
@@ -68,22 +69,17 @@ struct RenderOptions {
 // The flags every command that renders takes (size, backend, camera, time, frames, ...), setting
 // `options`; `options` must outlive the group.
 FlagGroup renderFlags(RenderOptions& options);
-// Checks between them, once all are read: "--far 1: must exceed --near 5".
-void checkSharedOptions(const RenderOptions& options, ArgCursor& cursor);
-// Their help (flagsHelp of renderFlags).
-std::string sharedOptionsHelp();
+// Checks between them, once all are read ("--far 1: must exceed --near 5"), and reads
+// --camera-path's file.
+void checkSharedOptions(RenderOptions& options, ArgCursor& cursor);
 // The flags of `group` named in `names` (a command that takes a few of them).
 FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names);
 
-// --order submit|key|paper|greedy|best (render, diff, bench; render/Plan.h's Order). False when
-// `flag` is not --order.
-bool parseDrawOrderOption(const std::string& flag, ArgCursor& cursor, Order& order);
+// --order submit|key|paper|greedy|best into `order` (render, diff, bench); `help` replaces render's.
+Flag orderFlag(Order& order, std::string help = {});
 
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
 bool parseIntPair(const std::string& text, int& first, int& second);
-
-// The value of `flag` as a whole number in [lo, hi]; a usage error otherwise.
-std::optional<int> wholeNumber(const std::string& flag, ArgCursor& cursor, int lo, int hi);
 
 // What --near, --far and --depth-range (in `options`) give every view of a camera path or a report:
 // a view's own planes are replaced by them, given or not.

@@ -33,16 +33,6 @@ finish), the time to compute the order, the state changes the backend issued by 
 programs, meshes, textures, toggles, uniforms) and the pixels that differ from submission order.
 The orders (see 'frugal help render'): submit, key, paper, greedy, best; paper, greedy and best use
 the state-change costs measured on each backend at start (printed).
-
-  --runs N              timed frames per order (default 20)
-  --warmup N            untimed frames per order first (default 3: llvmpipe compiles its variants)
-  --json FILE           {"scene","size","backends":[{"backend","renderer","state_costs_us",
-                        "orders":[{"order","median_ms","min_ms","max_ms","order_ms",
-                        "state_changes":{...},"tie_px"}]}]}
-  --csv FILE            one row per backend and order
-  --plot FILE.svg       median frame time per backend and order (bars from min to max) and the
-                        draws issued, drawn by gnuplot from the CSV (--csv, or FILE.csv beside the
-                        plot); the script is written as FILE.gp
 )";
 }
 
@@ -82,17 +72,20 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     ReportPaths outputs;
     int runs = 20, warmup = 3;
     CommandLine command{"order-bench", orderBenchHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (flag == "--json" || flag == "--csv" || flag == "--plot") return parseReportOption(flag, cursor, outputs);
-        if (flag == "--runs") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 100000)) runs = *n;
-        } else if (flag == "--warmup") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 0, 100000)) warmup = *n;
-        } else {
-            return false;
-        }
-        return true;
-    };
+    command.flags = {{"", {
+        flag::whole("--repeat", "N", "timed frames per order (default 20)", runs, 1, 100000),
+        flag::whole("--warmup", "N", "untimed frames per order first (default 3: llvmpipe compiles its variants)",
+                    warmup, 0, 100000),
+    }}};
+    for (Flag& f : reportFlags(outputs,
+                               "{\"scene\",\"size\",\"backends\":[{\"backend\",\"renderer\",\"state_costs_us\","
+                               "\"orders\":[{\"order\",\"median_ms\",\"min_ms\",\"max_ms\",\"order_ms\","
+                               "\"state_changes\":{...},\"tie_px\"}]}]}",
+                               "one row per backend and order",
+                               "median frame time per backend and order (bars from min to max) and the draws issued, "
+                               "drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot); the script is "
+                               "written as FILE.gp"))
+        command.flags[0].flags.push_back(std::move(f));
     command.positional = sceneArgument(options);
     command.finish = [&outputs](ArgCursor& cursor) {
         if (const std::string problem = plotProblem(outputs); !problem.empty()) cursor.fail(problem);

@@ -23,50 +23,10 @@
 namespace frugal {
 
 const char* renderHelp() {
-    static const std::string text =
-        std::string(
-            R"(usage: frugal render [SCENE] [-o FILE.png] [options]
+    return R"(usage: frugal render [SCENE] [-o FILE.png] [options]
 
 Renders SCENE (default builtin:default) offscreen and writes the colour image.
-
-outputs (each written to a temporary file and renamed, never left half-written):
-  -o, --output FILE     colour PNG (default frame.png). With --frames, FILE may hold a printf
-                        number such as out_%04d.png; otherwise _%04d is put before the extension
-  --depth FILE          depth: .png = 16-bit grey, 0 near, 65535 far (d24: the top 16 of its 24
-                        bits), with the format and planes in its text chunks; .pfm = float32
-                        window z, exact (d32f: reversed, 1 near, 0 far)
-  --ids FILE            triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian
-                        (R = low byte); 0 = background
-  --json FILE           metadata: scene counts, camera (the planes drawn with and the given ones,
-                        the aspect ratios, the depth format), backend, GL renderer, per-frame
-                        timings (with --cull: per-frame tos, pvs and cull_ms too), and per frame the
-                        state changes the backend issued, by kind ("state_changes": draws,
-                        programs, meshes, textures, toggles, uniforms; software: draws only)
-
-culling (only the triangles that may be visible are submitted; src/cull/Culling.h):
-  --cull METHOD         none (default), sphere, backface, cones, paper, conservative or oracle.
-                        conservative never drops a triangle that owns a pixel; paper reproduces
-                        paper 002 and misses some; oracle draws exactly the visible set found by an
-                        id pass (a lower bound, not a shortcut). See 'frugal cull-report'.
-)"
-            "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
-            R"(
-  --order ORDER         the draw order: submit (default), key (texture, program, mesh, as bgfx
-                        sorts), or by state-change costs measured on the backend at start (about
-                        a second; see 'frugal info --state-costs'): paper (paper 004's id sort over
-                        the 3 costliest kinds), greedy (cheapest next change) or best (the optimum
-                        over the distinct state sets, Held-Karp up to 16, else local search).
-                        Consecutive draws of one mesh go out as one instanced draw. Only pixels
-                        where two surfaces tie exactly in depth can change (first drawn wins)
-  --refine-costs N      with paper, greedy or best: every N frames of a sequence, one more round
-                        of the cost measurement between two frames (a few ms), averaged with the
-                        last 32 rounds, so the order follows the backend (default 10; 0 = never)
-  --reuse               temporal reuse: with the camera still, copy what static instances render
-                        from a static pair (one more target) and redraw only what changed; the
-                        images are the same, byte for byte. The JSON gets per-frame state counts.
-)") + reuseOptionsHelp() +
-        "\n" + hsrOptionHelp();
-    return text.c_str();
+)";
 }
 
 namespace {
@@ -123,29 +83,32 @@ struct RenderRequest {
 std::optional<int> parseRender(const std::vector<std::string>& args, RenderRequest& r, std::ostream& out,
                                std::ostream& err) {
     CommandLine command{"render", renderHelp(), &r.options};
-    command.option = [&r](const std::string& flag, ArgCursor& cursor) {
-        if (parseCullOption(flag, cursor, r.cull, true) || parseHsrOption(flag, cursor, r.hsr) ||
-            parseDrawOrderOption(flag, cursor, r.order) || parseReuseOption(flag, cursor, r.reuse, r.options, true))
-            return true;
-        if (flag == "--refine-costs") {
-            if (const std::optional<int> every = wholeNumber(flag, cursor, 0, 1000000)) r.refineCosts = *every;
-            return true;
-        }
-        if (flag != "-o" && flag != "--output" && flag != "--depth" && flag != "--ids" && flag != "--json")
-            return false;
-        const std::optional<std::string> path = cursor.value(flag);
-        if (!path) return true;
-        if (path->empty())
-            cursor.fail(flag + ": empty file name");
-        else if (flag == "--depth")
-            r.outputs.depth = *path;
-        else if (flag == "--ids")
-            r.outputs.ids = *path;
-        else if (flag == "--json")
-            r.outputs.json = *path;
-        else
-            r.outputs.color = *path;
-        return true;
+    Outputs& files = r.outputs;
+    command.flags = {
+        {"outputs (each written to a temporary file and renamed, never left half-written)", {
+            flag::text("-o, --output", "FILE", "colour PNG (default frame.png). With --frames, FILE may hold a printf "
+                       "number such as out_%04d.png; otherwise _%04d is put before the extension", files.color),
+            flag::text("--depth", "FILE", "depth: .png = 16-bit grey, 0 near, 65535 far (d24: the top 16 of its 24 "
+                       "bits), with the format and planes in its text chunks; .pfm = float32 window z, exact (d32f: "
+                       "reversed, 1 near, 0 far)", files.depth),
+            flag::text("--ids", "FILE", "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
+                       "byte); 0 = background", files.ids),
+            flag::text("--json", "FILE", "metadata: scene counts, camera (the planes drawn with and the given ones, the "
+                       "aspect ratios, the depth format), backend, GL renderer, per-frame timings (with --cull: "
+                       "per-frame tos, pvs and cull_ms too), and per frame the state changes the backend issued, by "
+                       "kind (\"state_changes\": draws, programs, meshes, textures, toggles, uniforms; software: draws "
+                       "only)", files.json),
+        }},
+        {"culling (only the triangles that may be visible are submitted; src/cull/Culling.h)", cullFlags(r.cull, true)},
+        {"draw order (costly state changes made rare; src/order/)", {
+            orderFlag(r.order),
+            flag::whole("--refine-costs", "N", "with paper, greedy or best: every N frames of a sequence, one more "
+                        "round of the cost measurement between two frames (a few ms), averaged with the last 32 "
+                        "rounds, so the order follows the backend (default 10; 0 = never)", r.refineCosts, 0, 1000000),
+        }},
+        {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)",
+         reuseFlags(r.reuse, r.options, true)},
+        {"hidden-surface removal (paper 003; src/hsr/Plan.h)", {hsrFlag(r.hsr)}},
     };
     command.positional = sceneArgument(r.options);
     command.finish = [&r](ArgCursor& cursor) {

@@ -11,15 +11,10 @@
 
 namespace frugal {
 
-bool parseReportOption(const std::string& flag, ArgCursor& cursor, ReportPaths& paths) {
-    if (flag != "--json" && flag != "--csv" && flag != "--plot") return false;
-    const std::optional<std::string> path = cursor.value(flag);
-    if (!path) return true;
-    if (path->empty()) cursor.fail(flag + ": empty file name");
-    else if (flag == "--json") paths.json = *path;
-    else if (flag == "--csv") paths.csv = *path;
-    else paths.plot = *path;
-    return true;
+std::vector<Flag> reportFlags(ReportPaths& paths, std::string jsonHelp, std::string csvHelp, std::string plotHelp) {
+    return {flag::text("--json", "FILE", std::move(jsonHelp), paths.json),
+            flag::text("--csv", "FILE", std::move(csvHelp), paths.csv),
+            flag::text("--plot", "FILE.svg", std::move(plotHelp), paths.plot)};
 }
 
 std::string plotProblem(const ReportPaths& paths, bool pngToo) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "app/Options.h"
 
@@ -15,8 +16,8 @@ struct ReportPaths {
     std::string json, csv, plot;
 };
 
-// --json, --csv and --plot (an empty name is a usage error). False when `flag` is none of them.
-bool parseReportOption(const std::string& flag, ArgCursor& cursor, ReportPaths& paths);
+// --json, --csv and --plot into `paths`, each with its help.
+std::vector<Flag> reportFlags(ReportPaths& paths, std::string jsonHelp, std::string csvHelp, std::string plotHelp);
 
 // The usage error of --plot, or "": gnuplot writes SVG here, and gets its path and the CSV's (which
 // its script reads) inside single quotes.

@@ -38,7 +38,7 @@
 namespace frugal {
 
 const char* reuseBenchHelp() {
-    static const std::string text = std::string(R"(usage: frugal reuse-bench [SCENE] --frames A:B [options]
+    return R"(usage: frugal reuse-bench [SCENE] --frames A:B [options]
 
 Measures temporal reuse on frames A to B of SCENE (default builtin:default): per frame the full
 render, the reuse frame (plan + execution) and two oracles, each the frame's static image (made
@@ -55,27 +55,7 @@ model fitted to the measurements, its prediction beside the measured time.
 Every reuse frame is compared with the full render of the same frame: pixels where a static and a
 dynamic triangle tie in depth may differ (tie_px); any other difference is an error (exit status 1).
 Prints a summary; --json/--csv/--plot write the whole report.
-
-frames and timing:
-  --frames A:B          the frames, inclusive (required; A has no predecessor: it is a rebuild)
-  --repeat K            timed rounds over the whole sequence, after one untimed warm-up round
-                        that also checks the frames (default 5); medians over the rounds
-  --ids                 write triangle ids in every render (and compare them); default off, as
-                        'frugal render' without --ids
-  --cull METHOD         full and reuse frames draw that method's list (none, sphere, backface,
-                        cones, paper or conservative; not oracle)
-)" "  --cull-bins TxP       bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)\n"
-R"(
-outputs (each written whole or not at all):
-  --json FILE           the report: frames, summary (medians, speed-up, ratios to both oracles,
-                        the fitted cost model)
-  --csv FILE            one row per frame
-  --plot FILE.svg       plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot):
-                        speed-up against the static share, and the times per frame; the gnuplot
-                        script is written beside it as FILE.gp, to restyle and rerun
-
-)") + reuseOptionsHelp();
-    return text.c_str();
+)";
 }
 
 namespace {
@@ -222,18 +202,28 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     int repeat = 5;
     bool ids = false;
     CommandLine command{"reuse-bench", reuseBenchHelp(), &options};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseCullOption(flag, cursor, cull, true)) return true;
-        if (parseReuseOption(flag, cursor, reuseOptions, options, false)) return true;
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (flag == "--repeat") {
-            if (std::optional<int> n = wholeNumber(flag, cursor, 1, 10000)) repeat = *n;
-        } else if (flag == "--ids") {
-            ids = true;
-        } else {
-            return false;
-        }
-        return true;
+    std::vector<Flag> culling = cullFlags(cull, true);
+    culling[0].help = "full and reuse frames draw that method's list (none, sphere, backface, cones, paper or "
+                      "conservative; not oracle)";
+    command.flags = {
+        {"frames and timing", {
+            flag::frames("--frames", "the frames, inclusive (required; A has no predecessor: it is a rebuild)",
+                         options.frames),
+            flag::whole("--repeat", "K", "timed rounds over the whole sequence, after one untimed warm-up round that "
+                        "also checks the frames (default 5); medians over the rounds", repeat, 1, 10000),
+            flag::on("--ids", "write triangle ids in every render (and compare them); default off, as 'frugal render' "
+                     "without --ids", ids),
+            culling[0],
+            culling[1],
+        }},
+        {"outputs (each written whole or not at all)",
+         reportFlags(outputs, "the report: frames, summary (medians, speed-up, ratios to both oracles, the fitted cost "
+                     "model)", "one row per frame",
+                     "plots drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot): speed-up against the "
+                     "static share, and the times per frame; the gnuplot script is written beside it as FILE.gp, to "
+                     "restyle and rerun")},
+        {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)",
+         reuseFlags(reuseOptions, options, false)},
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {

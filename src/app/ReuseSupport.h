@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "app/Options.h"
 #include "reuse/Reuse.h"
@@ -16,12 +17,9 @@ struct ReuseCliOptions {
     ReuseSettings settings;  // --reuse-grain N, --reuse-cell PX, --no-fallback, --exact-static
 };
 
-// --reuse (when `withSwitch`), --reuse-grain, --reuse-cell, --no-fallback and --exact-static; also --camera-path
-// FILE into `render.cameraPath`. False when `flag` is none of them.
-bool parseReuseOption(const std::string& flag, ArgCursor& cursor, ReuseCliOptions& options, RenderOptions& render,
-                      bool withSwitch);
-// The help lines of those options.
-const char* reuseOptionsHelp();
+// --reuse (when `withSwitch`), --reuse-grain, --reuse-cell, --no-fallback and --exact-static; also
+// --camera-path FILE into `render.cameraPathFile` (read with the shared options' checks).
+std::vector<Flag> reuseFlags(ReuseCliOptions& options, RenderOptions& render, bool withSwitch);
 
 // The static pair's size in bytes for a width × height target (colour RGBA8, depth 24-bit in 32,
 // ids 32-bit: 12 bytes a pixel).

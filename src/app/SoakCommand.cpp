@@ -39,7 +39,6 @@ judges what long runs break:
            backend; "scene" uploads the scene's meshes and textures anew (SceneRenderer)
 Prints a table per backend and a verdict; exit status 0 when everything passes, 1 otherwise.
 Progress goes to stderr, a line every few seconds at most.
-
 )";
 }
 

@@ -42,75 +42,12 @@ and the spans per second of the model on this machine beside the paper's one spa
 With --scene, also renders each scene's frame 0 on the software backend (one thread) with
 --interp exact, span and dda, and reports how span and dda depart from the exact render and how
 fast the slow path runs.
-
-options:
-  --lengths L,L,...     span lengths in pixels, each 2 to 61440 (default 8,64,512,8192)
-  --widths W,W,...      channel widths in bits, each 1 to 28 (default 16,24: colour and z)
-  --spans N             random spans per width, length and method, 1 to 1000000 (default 2000);
-                        a quarter of them the steepest ramp (0 to the top, or back)
-  --seed S              seed of the random spans, 0 to 2147483647 (default 1)
-  --dda-bits N          the DDA's register: N bits, N − width of them fraction bits, 2 to 62;
-                        wider than every width (default 32)
-  --speed-ms N          time each spans-per-second figure for N ms, 0 to 60000; 0 skips the
-                        measurement (default 100)
-  --scene SCENE         a scene as the other commands take it (builtin:cubes, a .obj, .gltf or
-                        .glb file); may be given several times. OBJ files are drawn single-sided
-                        (as with --cull-backfaces). For each, frame 0 at --render-size on the
-                        software backend with one thread, in exact, span and dda; per mode: pixels
-                        whose colour differs from exact, pixels another triangle won (ids differ),
-                        worst and mean depth error in 24-bit LSB over covered pixels, pixels whose
-                        depth changed, overflowing spans, spans per frame, the frame time (best of
-                        5, rasterization included) beside exact's, and spans per second (spans per
-                        frame / best frame time). Timings are printed, never asserted
-  --render-size WxH     image size of every --scene, 1 to 16384 each (default 800x600)
-  --json FILE           {"fig11":{...},"errors":[{width,length,method,worst_lsb,mean_lsb,spans,
-                        ...}],
-                        "spans_per_second":{...},"render":[{scene,size,mode,colour_px,id_px,
-                        worst_lsb,mean_lsb,depth_changed_px,overflow,spans,frame_ms,exact_frame_ms,
-                        spans_per_second}]}
-  --csv FILE            the error table, one row per width, length and method
-  --plot FILE.svg       worst and mean error against span length, drawn by gnuplot from the CSV
-                        (--csv, or FILE.csv beside the plot); the script is written as FILE.gp
 )";
 }
 
 namespace {
 
 using namespace span;
-
-// "8,64,512" into numbers in [lo, hi]; a usage error naming the flag otherwise.
-std::optional<std::vector<int>> numberList(const std::string& flag, ArgCursor& cursor, int lo, int hi, const char* what) {
-    const std::optional<std::string> text = cursor.value(flag);
-    if (!text) return std::nullopt;
-    std::vector<int> values;
-    std::stringstream stream(*text);
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-        int v = 0;
-        std::size_t used = 0;
-        bool parsed = !item.empty();
-        try {
-            v = std::stoi(item, &used);
-        } catch (...) {
-            parsed = false;
-        }
-        if (!parsed || used != item.size()) {
-            cursor.fail(flag + " " + *text + ": '" + item + "' is not a whole number");
-            return std::nullopt;
-        }
-        if (v < lo || v > hi) {
-            cursor.fail(flag + " " + *text + ": " + what + " " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
-                        std::to_string(v));
-            return std::nullopt;
-        }
-        values.push_back(v);
-    }
-    if (values.empty() || text->back() == ',') {
-        cursor.fail(flag + " " + *text + ": expected a comma-separated list of whole numbers");
-        return std::nullopt;
-    }
-    return values;
-}
 
 struct SpeedRow {
     Method method;
@@ -450,42 +387,41 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
     std::vector<std::string> scenes;
     int renderWidth = 800, renderHeight = 600;
     CommandLine command{"span-bench", spanBenchHelp()};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (flag == "--lengths") {
-            if (auto v = numberList(flag, cursor, 2, kMaxColumn + 1 - 4096, "span lengths are")) settings.lengths = *v;
-        } else if (flag == "--widths") {
-            if (auto v = numberList(flag, cursor, 1, kMaxWidth, "widths are")) settings.widths = *v;
-        } else if (flag == "--spans") {
-            if (auto n = wholeNumber(flag, cursor, 1, 1000000)) settings.spans = *n;
-        } else if (flag == "--seed") {
-            if (auto n = wholeNumber(flag, cursor, 0, 2147483647)) settings.seed = std::uint64_t(*n);
-        } else if (flag == "--dda-bits") {
-            if (auto n = wholeNumber(flag, cursor, 2, 62)) settings.accumulatorBits = *n;
-        } else if (flag == "--speed-ms") {
-            if (auto n = wholeNumber(flag, cursor, 0, 60000)) speedMs = *n;
-        } else if (flag == "--scene") {
-            if (const std::optional<std::string> text = cursor.value(flag)) {
-                if (text->empty()) cursor.fail("--scene: expected a scene (builtin:NAME or a file), got ''");
-                else scenes.push_back(*text);
-            }
-        } else if (flag == "--render-size") {
-            const std::optional<std::string> text = cursor.value(flag);
-            if (!text) return true;
-            int w = 0, h = 0;
-            if (!parseIntPair(*text, w, h))
-                cursor.fail("--render-size: expected WxH such as 800x600, got '" + *text + "'");
-            else if (w < 1 || h < 1 || w > kMaxRenderSize || h > kMaxRenderSize)
-                cursor.fail("--render-size " + *text + ": width and height must be 1 to " + std::to_string(kMaxRenderSize));
-            else {
-                renderWidth = w;
-                renderHeight = h;
-            }
-        } else {
-            return false;
-        }
-        return true;
-    };
+    command.flags = {{"", {
+        flag::wholeList("--lengths", "L,L,...", "span lengths in pixels (default 8,64,512,8192)", settings.lengths, 2,
+                        kMaxColumn + 1 - 4096),
+        flag::wholeList("--widths", "W,W,...", "channel widths in bits (default 16,24: colour and z)", settings.widths,
+                        1, kMaxWidth),
+        flag::whole("--spans", "N", "random spans per width, length and method (default 2000); a quarter of them the "
+                    "steepest ramp (0 to the top, or back)", settings.spans, 1, 1000000),
+        flag::whole("--seed", "S", "seed of the random spans (default 1)", settings.seed, 0, 2147483647),
+        flag::whole("--dda-bits", "N", "the DDA's register: N bits, N − width of them fraction bits; wider than every "
+                    "width (default 32)", settings.accumulatorBits, 2, 62),
+        flag::whole("--speed-ms", "N", "time each spans-per-second figure for N ms; 0 skips the measurement (default "
+                    "100)", speedMs, 0, 60000),
+        {"--scene", "SCENE", "a scene as the other commands take it (builtin:cubes, a .obj, .gltf or .glb file); may be "
+         "given several times. OBJ files are drawn single-sided (as with --cull-backfaces). For each, frame 0 at "
+         "--render-size on the software backend with one thread, in exact, span and dda; per mode: pixels whose colour "
+         "differs from exact, pixels another triangle won (ids differ), worst and mean depth error in 24-bit LSB over "
+         "covered pixels, pixels whose depth changed, overflowing spans, spans per frame, the frame time (best of 5, "
+         "rasterization included) beside exact's, and spans per second (spans per frame / best frame time). Timings "
+         "are printed, never asserted",
+         [&scenes](const std::string& text) -> std::string {
+             if (text.empty()) return "is not a scene (builtin:NAME or a file)";
+             scenes.push_back(text);
+             return {};
+         }},
+        flag::size("--render-size", "WxH", "image size of every --scene (default 800x600)", renderWidth, renderHeight,
+                   kMaxRenderSize),
+    }}};
+    for (Flag& f : reportFlags(outputs,
+                               "{\"fig11\":{...},\"errors\":[{width,length,method,worst_lsb,mean_lsb,spans,...}],"
+                               "\"spans_per_second\":{...},\"render\":[{scene,size,mode,colour_px,id_px,worst_lsb,"
+                               "mean_lsb,depth_changed_px,overflow,spans,frame_ms,exact_frame_ms,spans_per_second}]}",
+                               "the error table, one row per width, length and method",
+                               "worst and mean error against span length, drawn by gnuplot from the CSV (--csv, or "
+                               "FILE.csv beside the plot); the script is written as FILE.gp"))
+        command.flags[0].flags.push_back(std::move(f));
     command.finish = [&](ArgCursor& cursor) {
         int widest = 0;
         for (int w : settings.widths) widest = std::max(widest, w);

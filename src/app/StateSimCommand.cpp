@@ -49,17 +49,6 @@ symmetric-difference (C(s) for every state set or unset) follow. Last, at 16 RSS
 search (and the search from greedy alone) against Held-Karp's optimum. Instances come from
 std::mt19937_64 seeded by the table, the cell and the instance's number: the same --seeds gives the
 same figures.
-
-options:
-  --seeds N        instances per cell, 1 to 100000 (default 100: about 10 s on one core)
-  --json FILE      {"table6":[{rss_count,states,paper_sorted,paper_unsorted,methods:{submit:
-                   {mean,ci95},paper,key,greedy,lookahead,best}}],"table7":[...],"lower_bound":
-                   {...},"alternatives":{"every-set":{...},"symmetric-difference":{...}},
-                   "optimum_check":[...],...}
-  --csv FILE       one row per cost rule, table, cell and method (and the bound)
-  --plot FILE.svg  cost against RSS count (Table 6) and against states (Table 7) per method, with
-                   the paper's columns, drawn by gnuplot from the CSV (--csv, or FILE.csv beside
-                   the plot); the script is written as FILE.gp
 )";
 }
 
@@ -362,12 +351,19 @@ int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::os
     Report report;
     ReportPaths outputs;
     CommandLine command{"state-sim", stateSimHelp()};
-    command.option = [&](const std::string& flag, ArgCursor& cursor) {
-        if (parseReportOption(flag, cursor, outputs)) return true;
-        if (flag != "--seeds") return false;
-        if (auto n = wholeNumber(flag, cursor, 1, 100000)) report.seeds = *n;
-        return true;
-    };
+    command.flags = {{"", {
+        flag::whole("--seeds", "N", "instances per cell (default 100: about 10 s on one core)", report.seeds, 1, 100000),
+    }}};
+    for (Flag& f : reportFlags(outputs,
+                               "{\"table6\":[{rss_count,states,paper_sorted,paper_unsorted,methods:{submit:{mean,ci95},"
+                               "paper,key,greedy,lookahead,best}}],\"table7\":[...],\"lower_bound\":{...},"
+                               "\"alternatives\":{\"every-set\":{...},\"symmetric-difference\":{...}},"
+                               "\"optimum_check\":[...],...}",
+                               "one row per cost rule, table, cell and method (and the bound)",
+                               "cost against RSS count (Table 6) and against states (Table 7) per method, with the "
+                               "paper's columns, drawn by gnuplot from the CSV (--csv, or FILE.csv beside the plot); the "
+                               "script is written as FILE.gp"))
+        command.flags[0].flags.push_back(std::move(f));
     command.finish = [&](ArgCursor& cursor) {
         if (const std::string problem = plotProblem(outputs); !problem.empty()) cursor.fail(problem);
     };

@@ -129,8 +129,8 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         // Only --near given: the library names the values, and which one it fitted.
         {{"render", "in/tri.obj", "--near", "1000"}, 1,
          "error: in/tri.obj: camera: far plane 2.88661 (fitted to the scene) must exceed the near plane 1000"},
-        {{"bench", "render", "--runs", "5x"}, 2, "error: --runs: expected a whole number 1 to 100000, got '5x'"},
-        {{"bench", "render", "--warmup", "-1"}, 2, "error: --warmup: expected a whole number 0 to 100000, got '-1'"},
+        {{"bench", "render", "--repeat", "5x"}, 2, "error: --repeat: '5x' is not a whole number from 1 to 100000"},
+        {{"bench", "render", "--warmup", "-1"}, 2, "error: --warmup: '-1' is not a whole number from 0 to 100000"},
         {{"bench", "render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help bench')"},
         {{"diff", "a", "b"}, 2, "error: unexpected argument 'b' (one SCENE only)"},
         {{"compare", "a.png"}, 2, "error: compare: expected two images, A.png B.png (see 'frugal help compare')"},

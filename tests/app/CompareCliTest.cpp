@@ -132,15 +132,15 @@ TEST(CompareCliTest, BadFilesAndCommandLinesGetOneLineAndNoFile) {
          "error: in/small.png: id image is 2x2 but its colour image is 4x3"},
         {{"compare", "in/a.png"}, 2, "error: compare: expected two images, A.png B.png (see 'frugal help compare')"},
         {{"compare", "in/a.png", "in/a.png", "in/a.png"}, 2, "error: unexpected argument 'in/a.png' (two images only: A.png B.png)"},
-        {{"compare", "in/a.png", "in/a.png", "--tolerance", "256"}, 2, "error: --tolerance: expected a whole number 0 to 255, got '256'"},
-        {{"compare", "in/a.png", "in/a.png", "--tolerance", "x"}, 2, "error: --tolerance: expected a whole number 0 to 255, got 'x'"},
-        {{"compare", "in/a.png", "in/a.png", "--mask", "m.jpg"}, 2, "error: --mask m.jpg: the mask is written as PNG; name it .png"},
+        {{"compare", "in/a.png", "in/a.png", "--tolerance", "256"}, 2, "error: --tolerance: '256' is not a whole number from 0 to 255"},
+        {{"compare", "in/a.png", "in/a.png", "--tolerance", "x"}, 2, "error: --tolerance: 'x' is not a whole number from 0 to 255"},
+        {{"compare", "in/a.png", "in/a.png", "--mask", "m.jpg"}, 2, "error: --mask: 'm.jpg' is not a .png name (the mask is written as PNG)"},
         {{"compare", "in/a.png", "in/a.png", "--ids", "in/a.png"}, 2, "error: --ids: expected two id images, A_ids.png B_ids.png"},
         {{"compare", "in/a.png", "in/a.png", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help compare')"},
         {{"diff", "--backend", "software"}, 2,
          "error: --backend software: diff compares a GL backend with the software reference; choose auto, egl, "
          "egl-device, egl-surfaceless or osmesa"},
-        {{"diff", "--tolerance", "-1"}, 2, "error: --tolerance: expected a whole number 0 to 255, got '-1'"},
+        {{"diff", "--tolerance", "-1"}, 2, "error: --tolerance: '-1' is not a whole number from 0 to 255"},
         {{"diff", "missing.glb"}, 1, "error: missing.glb: no such file"},
     };
     for (const BadCase& c : cases) {

@@ -258,33 +258,33 @@ TEST(CullCliTest, BadCullOptionsGetOneLineAndNoFile) {
                     "[{\"eye\": [0, 0, 5], \"target\": [0, 0, 1]}, {\"eye\": [0, 0, 5], \"target\": [0, 0, 5]}]\n");
     test::writeFile(dir / "in" / "fareye.json", "[{\"eye\": [3e38, 0, 0], \"target\": [-3e38, 0, 0]}]\n");
     test::writeFile(dir / "in" / "parallelup.json", "[{\"eye\": [0, 4, 0], \"target\": [0, 0, 0]}]\n");
-    const std::string methods = std::string("(methods: ") + kMethodList + ")";
-    const std::string bins = ": expected THETAxPHI, each 1 to 1024 (default 16x32)";
+    const std::string methods = std::string("(") + kMethodList + ")";
+    const std::string bins = "' is not a bin grid (TxP, each 1 to 1024)";
     const BadCase cases[] = {
         // render
-        {{"render", "--cull", "bogus"}, 2, "error: --cull bogus: unknown method " + methods},
-        {{"render", "--cull", "Conservative"}, 2, "error: --cull Conservative: unknown method " + methods},
+        {{"render", "--cull", "bogus"}, 2, "error: --cull: 'bogus' is not a method " + methods},
+        {{"render", "--cull", "Conservative"}, 2, "error: --cull: 'Conservative' is not a method " + methods},
         {{"render", "--cull"}, 2, "error: --cull: missing value"},
-        {{"render", "--cull-bins", "0x4"}, 2, "error: --cull-bins 0x4" + bins},
-        {{"render", "--cull-bins", "4x0"}, 2, "error: --cull-bins 4x0" + bins},
-        {{"render", "--cull-bins", "16"}, 2, "error: --cull-bins 16" + bins},
-        {{"render", "--cull-bins", "16x"}, 2, "error: --cull-bins 16x" + bins},
-        {{"render", "--cull-bins", "x16"}, 2, "error: --cull-bins x16" + bins},
-        {{"render", "--cull-bins", "2000x3"}, 2, "error: --cull-bins 2000x3" + bins},
-        {{"render", "--cull-bins", "16x32x2"}, 2, "error: --cull-bins 16x32x2" + bins},
-        {{"render", "--cull-bins", "-4x4"}, 2, "error: --cull-bins -4x4" + bins},
+        {{"render", "--cull-bins", "0x4"}, 2, "error: --cull-bins: '0x4" + bins},
+        {{"render", "--cull-bins", "4x0"}, 2, "error: --cull-bins: '4x0" + bins},
+        {{"render", "--cull-bins", "16"}, 2, "error: --cull-bins: '16" + bins},
+        {{"render", "--cull-bins", "16x"}, 2, "error: --cull-bins: '16x" + bins},
+        {{"render", "--cull-bins", "x16"}, 2, "error: --cull-bins: 'x16" + bins},
+        {{"render", "--cull-bins", "2000x3"}, 2, "error: --cull-bins: '2000x3" + bins},
+        {{"render", "--cull-bins", "16x32x2"}, 2, "error: --cull-bins: '16x32x2" + bins},
+        {{"render", "--cull-bins", "-4x4"}, 2, "error: --cull-bins: '-4x4" + bins},
         // cull-report: the command line
         {{"cull-report", "--cull", "conservative"}, 2, "error: --cull: unknown option (see 'frugal help cull-report')"},
-        {{"cull-report", "--methods", "a,b"}, 2, "error: --methods a,b: unknown method 'a' " + methods},
+        {{"cull-report", "--methods", "a,b"}, 2, "error: --methods: 'a,b' names 'a', not a method " + methods},
         {{"cull-report", "--methods", "none,bogus"},
          2,
-         "error: --methods none,bogus: unknown method 'bogus' " + methods},
-        {{"cull-report", "--methods", ","}, 2, "error: --methods ,: unknown method '' " + methods},
-        {{"cull-report", "--methods", ""}, 2, "error: --methods: empty list " + methods},
-        {{"cull-report", "--views", "0"}, 2, "error: --views: expected a whole number 1 to 10000, got '0'"},
-        {{"cull-report", "--views", "3x"}, 2, "error: --views: expected a whole number 1 to 10000, got '3x'"},
-        {{"cull-report", "--repeat", "0"}, 2, "error: --repeat: expected a whole number 1 to 10000, got '0'"},
-        {{"cull-report", "--cull-bins", "16"}, 2, "error: --cull-bins 16" + bins},
+         "error: --methods: 'none,bogus' names 'bogus', not a method " + methods},
+        {{"cull-report", "--methods", ","}, 2, "error: --methods: ',' names '', not a method " + methods},
+        {{"cull-report", "--methods", ""}, 2, "error: --methods: '' is not a list of methods " + methods},
+        {{"cull-report", "--views", "0"}, 2, "error: --views: '0' is not a whole number from 1 to 10000"},
+        {{"cull-report", "--views", "3x"}, 2, "error: --views: '3x' is not a whole number from 1 to 10000"},
+        {{"cull-report", "--repeat", "0"}, 2, "error: --repeat: '0' is not a whole number from 1 to 10000"},
+        {{"cull-report", "--cull-bins", "16"}, 2, "error: --cull-bins: '16" + bins},
         {{"cull-report", "--plot", "out.png"}, 2, "error: --plot out.png: gnuplot writes SVG here; name it .svg"},
         {{"cull-report", "--plot", "it's.svg"},
          2,

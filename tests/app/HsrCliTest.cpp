@@ -99,7 +99,7 @@ TEST(HsrCliTest, RenderDiffAndBenchTakeTheMode) {
         EXPECT_EQ(run.status, 0) << run.out << run.err;
         EXPECT_EQ(test::readJson(dir / "d.json")["hsr"], "depthsort");
     }
-    run = runFrugal(dir, {"bench", "render", "builtin:cubes", "--size", "32x24", "--backend", "software", "--runs", "2",
+    run = runFrugal(dir, {"bench", "render", "builtin:cubes", "--size", "32x24", "--backend", "software", "--repeat", "2",
                           "--warmup", "0", "--hsr", "depthsort", "-q"});
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("\"hsr\": \"depthsort\""), std::string::npos) << run.out;
@@ -130,14 +130,14 @@ TEST(HsrCliTest, CullReportDrawsEveryRowInTheMode) {
 TEST(HsrCliTest, ImpossibleOptionsGetOneLine) {
     const fs::path dir = test::freshDir("HsrErrors");
     test::expectOneErrorLine(dir, {
-        {{"render", "--hsr", "wat"}, "error: --hsr wat: not a mode (zbuffer, depthsort, adaptive or adaptive-convex)"},
+        {{"render", "--hsr", "wat"}, "error: --hsr: 'wat' is not a mode (zbuffer, depthsort, adaptive, adaptive-convex)"},
         {{"render", "--hsr"}, "error: --hsr: missing value"},
         {{"render", "--hsr", "adaptive", "--reuse"},
          "error: --hsr adaptive with --reuse: reuse redraws what moved with the z-buffer over the static image; use one"},
         {{"render", "--hsr", "depthsort", "--cull", "oracle"},
          "error: --hsr depthsort with --cull oracle: the oracle draws its own scene; use --cull with a method"},
-        {{"hsr-bench", "--repeat", "0"}, "error: --repeat: expected a whole number 1 to 10000, got '0'"},
-        {{"hsr-bench", "--masks", ""}, "error: --masks: empty folder name"},
+        {{"hsr-bench", "--repeat", "0"}, "error: --repeat: '0' is not a whole number from 1 to 10000"},
+        {{"hsr-bench", "--masks", ""}, "error: --masks: '' is not a folder name"},
         {{"hsr-bench", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
         {{"hsr-bench", "builtin:nope"}, "", 1},
     });

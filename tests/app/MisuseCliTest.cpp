@@ -24,12 +24,12 @@ struct SceneCommand {
 };
 const SceneCommand kCommands[] = {
     {{"render", "-o", "out.png", "--json", "r.json"}},
-    {{"bench", "render", "--runs", "1"}},
+    {{"bench", "render", "--repeat", "1"}},
     {{"diff", "--out", "d"}},
     {{"cull-report", "--json", "r.json", "--csv", "r.csv"}},
     {{"reuse-bench", "--frames", "0:1", "--json", "r.json", "--csv", "r.csv"}},
     {{"hsr-bench", "--frames", "0:1", "--json", "r.json", "--csv", "r.csv"}},
-    {{"order-bench", "--runs", "1", "--json", "r.json", "--csv", "r.csv"}},
+    {{"order-bench", "--repeat", "1", "--json", "r.json", "--csv", "r.csv"}},
 };
 
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {

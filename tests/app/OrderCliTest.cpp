@@ -102,14 +102,14 @@ TEST(OrderCliTest, CostsAreRefinedBetweenFramesOfASequence) {
     test::expectOneErrorLine(
         test::freshDir("OrderRefineErrors"),
         {{{"render", "--order", "best", "--refine-costs", "-1", "-o", "x.png"},
-          "error: --refine-costs: expected a whole number 0 to 1000000, got '-1'"},
+          "error: --refine-costs: '-1' is not a whole number from 0 to 1000000"},
          {{"render", "--order", "best", "--refine-costs", "often", "-o", "x.png"},
-          "error: --refine-costs: expected a whole number 0 to 1000000, got 'often'"}});
+          "error: --refine-costs: 'often' is not a whole number from 0 to 1000000"}});
 }
 
 TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
     const fs::path dir = test::freshDir("OrderBench");
-    const CliRun run = runFrugal(dir, {"bench", "render", kDominoes, "--size", "64x48", "--backend", "software", "--runs",
+    const CliRun run = runFrugal(dir, {"bench", "render", kDominoes, "--size", "64x48", "--backend", "software", "--repeat",
                                        "2", "--warmup", "0", "--order", "key", "-q"});
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json j = nlohmann::json::parse(run.out, nullptr, false);
@@ -134,7 +134,7 @@ TEST(OrderCliTest, BenchTimesBatchedUnbatchedAndPremerged) {
 TEST(OrderCliTest, OrderBenchTimesEveryOrderWithItsStateChanges) {
     const fs::path dir = test::freshDir("OrderBenchCommand");
     const CliRun run = runFrugal(dir, {"order-bench", "builtin:materials?draws=200", "--size", "64x48", "--backend",
-                                       "egl", "--runs", "2", "--warmup", "0", "-q", "--json", "o.json", "--csv", "o.csv",
+                                       "egl", "--repeat", "2", "--warmup", "0", "-q", "--json", "o.json", "--csv", "o.csv",
                                        "--plot", "o.svg"});
     if (run.status == 2) GTEST_SKIP() << "no GL here";
     ASSERT_EQ(run.status, 0) << run.err;
@@ -161,7 +161,7 @@ TEST(OrderCliTest, OrderBenchTimesEveryOrderWithItsStateChanges) {
 
 TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
     const fs::path dir = test::freshDir("OrderErrors");
-    const std::string line = "error: --order random: not an order (submit, key, paper, greedy or best)";
+    const std::string line = "error: --order: 'random' is not an order (submit, key, paper, greedy, best)";
     test::expectOneErrorLine(dir, {{{"render", "--order", "random"}, line},
                                    {{"bench", "render", "--order", "random"}, line},
                                    {{"diff", "--order", "random"}, line},
@@ -169,8 +169,8 @@ TEST(OrderCliTest, AnUnknownOrderIsOneLine) {
                                     "error: builtin:materials?textures=30&materials=4: textures=30 exceeds materials=4 "
                                     "(one texture a material at most)",
                                     1},
-                                   {{"order-bench", "--runs", "0"},
-                                    "error: --runs: expected a whole number 1 to 100000, got '0'"},
+                                   {{"order-bench", "--repeat", "0"},
+                                    "error: --repeat: '0' is not a whole number from 1 to 100000"},
                                    {{"order-bench", "--plot", "o.png"},
                                     "error: --plot o.png: gnuplot writes SVG here; name it .svg"}});
 }

@@ -155,7 +155,7 @@ TEST(ReuseBenchCliTest, BadCommandLinesGetOneLineAndNoFile) {
         {{"reuse-bench", kDominoes, "--json", "x.json"},
          2,
          "error: --frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)"},
-        {{"reuse-bench", "--frames", "0:3", "--repeat", "0"}, 2, "error: --repeat: expected a whole number 1 to 10000, got '0'"},
+        {{"reuse-bench", "--frames", "0:3", "--repeat", "0"}, 2, "error: --repeat: '0' is not a whole number from 1 to 10000"},
         {{"reuse-bench", "--frames", "3:1"}, 2, "error: --frames: '3:1' is not a frame range (A:B, first and last frame: 0 <= A <= B, at most 1000000 frames)"},
         {{"reuse-bench", "--frames", "0:3", "--cull", "oracle"},
          2,
@@ -164,7 +164,7 @@ TEST(ReuseBenchCliTest, BadCommandLinesGetOneLineAndNoFile) {
         {{"reuse-bench", "--frames", "0:3", "--reuse"}, 2, "error: --reuse: unknown option (see 'frugal help reuse-bench')"},
         {{"reuse-bench", "--frames", "0:3", "--reuse-cell", "0"},
          2,
-         "error: --reuse-cell: expected a whole number 1 to 4096, got '0'"},
+         "error: --reuse-cell: '0' is not a whole number from 1 to 4096"},
         {{"reuse-bench", "--frames", "0:1", "missing.glb", "--json", "x.json"}, 1, "error: missing.glb: no such file"},
     };
     for (const BadCase& c : cases) {

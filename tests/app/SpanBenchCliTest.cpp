@@ -141,17 +141,17 @@ TEST(SpanBenchCliTest, ABadSceneIsOneLineAndNoFile) {
 TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
     const fs::path dir = test::freshDir("SpanBenchBad");
     const std::vector<test::FailingRun> cases = {
-        {{"span-bench", "--lengths", "8,1", "--json", "x.json"}, "error: --lengths 8,1: span lengths are 2 to 61440, got 1"},
-        {{"span-bench", "--lengths", "8,x"}, "error: --lengths 8,x: 'x' is not a whole number"},
-        {{"span-bench", "--lengths", "8,"}, "error: --lengths 8,: expected a comma-separated list of whole numbers"},
-        {{"span-bench", "--widths", "16,30"}, "error: --widths 16,30: widths are 1 to 28, got 30"},
-        {{"span-bench", "--spans", "0"}, "error: --spans: expected a whole number 1 to 1000000, got '0'"},
+        {{"span-bench", "--lengths", "8,1", "--json", "x.json"}, "error: --lengths: '8,1' is not a list of whole numbers from 2 to 61440"},
+        {{"span-bench", "--lengths", "8,x"}, "error: --lengths: '8,x' is not a list of whole numbers from 2 to 61440"},
+        {{"span-bench", "--lengths", "8,"}, "error: --lengths: '8,' is not a list of whole numbers from 2 to 61440"},
+        {{"span-bench", "--widths", "16,30"}, "error: --widths: '16,30' is not a list of whole numbers from 1 to 28"},
+        {{"span-bench", "--spans", "0"}, "error: --spans: '0' is not a whole number from 1 to 1000000"},
         {{"span-bench", "--dda-bits", "24"},
          "error: --dda-bits 24: the DDA register must be wider than every width (24 bits) to hold a fraction"},
         {{"span-bench", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
         {{"span-bench", "--render-size", "240", "--json", "x.json"},
-         "error: --render-size: expected WxH such as 800x600, got '240'"},
-        {{"span-bench", "--render-size", "0x320"}, "error: --render-size 0x320: width and height must be 1 to 16384"},
+         "error: --render-size: '240' is not a size (WxH, each 1 to 16384)"},
+        {{"span-bench", "--render-size", "0x320"}, "error: --render-size: '0x320' is not a size (WxH, each 1 to 16384)"},
         {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal help span-bench')"},
         {{"span-bench", "extra"}, "error: unexpected argument 'extra'"},
     };

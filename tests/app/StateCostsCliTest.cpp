@@ -49,7 +49,7 @@ TEST(StateCostsCliTest, MisuseGetsOneLine) {
         {{"info", "builtin:cubes", "--json", "x.json"}, "error: --backend, --threads and --json go with --state-costs"},
         {{"info"}, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"info", "--state-costs", "--backend", "wat"}, ""},
-        {{"info", "--state-costs", "--json", ""}, "error: --json: empty file name"},
+        {{"info", "--state-costs", "--json", ""}, "error: --json: '' is not a file name"},
     });
 }
 

@@ -129,9 +129,9 @@ TEST(StateSimCliTest, PlotWithoutGnuplotIsOneLineAndKeepsTheData) {
 TEST(StateSimCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
     const fs::path dir = test::freshDir("StateSimBad");
     const std::vector<test::FailingRun> cases = {
-        {{"state-sim", "--seeds", "0", "--json", "x.json"}, "error: --seeds: expected a whole number 1 to 100000, got '0'"},
-        {{"state-sim", "--seeds", "x"}, "error: --seeds: expected a whole number 1 to 100000, got 'x'"},
-        {{"state-sim", "--json", "", "--seeds", "1"}, "error: --json: empty file name"},
+        {{"state-sim", "--seeds", "0", "--json", "x.json"}, "error: --seeds: '0' is not a whole number from 1 to 100000"},
+        {{"state-sim", "--seeds", "x"}, "error: --seeds: 'x' is not a whole number from 1 to 100000"},
+        {{"state-sim", "--json", "", "--seeds", "1"}, "error: --json: '' is not a file name"},
         {{"state-sim", "--seeds", "1", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
         {{"state-sim", "--wat"}, "error: --wat: unknown option (see 'frugal help state-sim')"},
         {{"state-sim", "extra"}, "error: unexpected argument 'extra'"},
