@@ -69,6 +69,18 @@ std::string shellQuoted(const std::string& text) {
     return quoted + "'";
 }
 
+bool strictSkips() {
+    const char* strict = std::getenv("FRUGAL_TEST_STRICT");
+    return strict != nullptr && std::string(strict) == "1";
+}
+
+void skipOrFail(const char* what, const std::string& message) {
+    if (strictSkips())
+        GTEST_FAIL() << what << ", and FRUGAL_TEST_STRICT=1 forbids skipping: " << message;
+    else
+        GTEST_SKIP() << what << ": " << message;
+}
+
 bool haveGnuplot() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
 int runGnuplot(const fs::path& script, std::string& messages) {

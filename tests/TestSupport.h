@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <frugal/Scene.h>
 
 namespace frugal::test {
@@ -31,6 +33,20 @@ std::string joined(const std::vector<std::string>& args);
 std::string shellQuoted(const std::string& text);
 // Whether gnuplot is on PATH.
 bool haveGnuplot();
+
+// Skipping. A test skips only for what it cannot change: no GL backend on this machine (frugal's
+// exit status 3, ErrorKind::BackendUnavailable), or a dependency that is not installed (gnuplot,
+// glmark2-data's bunny, assimp-testmodels). Under FRUGAL_TEST_STRICT=1, which scripts/test sets
+// (CI always has llvmpipe and installs every dependency), such a skip is a failure instead, so a
+// regression cannot hide behind one. A skip for anything else (not built, a sanitizer, no cgroup)
+// is GTEST_SKIP.
+bool strictSkips();
+// Skips the test (GTEST_SKIP) with "<what>: <message>", or under strictness fails it (GTEST_FAIL).
+void skipOrFail(const char* what, const std::string& message);
+#define FRUGAL_SKIP_IF_NO_GL(message) \
+    return ::frugal::test::skipOrFail("no GL backend", (::testing::Message() << message).GetString())
+#define FRUGAL_SKIP_IF_MISSING(message) \
+    return ::frugal::test::skipOrFail("not installed", (::testing::Message() << message).GetString())
 // Runs gnuplot on `script`; returns its exit status, with its messages in `messages`.
 int runGnuplot(const std::filesystem::path& script, std::string& messages);
 

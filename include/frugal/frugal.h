@@ -17,3 +17,4 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 #include <frugal/Stats.h>
+#include <frugal/Version.h>

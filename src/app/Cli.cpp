@@ -2,6 +2,8 @@
 
 #include <ostream>
 
+#include <frugal/Version.h>
+
 #include "app/Commands.h"
 #include "app/Options.h"
 
@@ -94,7 +96,7 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
         return kExitUsage;
     }
     if (name == "--version") {
-        out << "frugal 0.1.0\n";
+        out << "frugal " << version() << "\n";
         return kExitOk;
     }
     if (const CommandEntry* entry = findCommand(name)) return entry->run(rest, out, err);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <frugal/Version.h>
+
 #include "TestSupport.h"
 #include "io/ImageIO.h"
 
@@ -31,6 +33,15 @@ TEST(CliTest, HelpListsCommandsScenesAndExitCodes) {
     EXPECT_EQ(render.status, 0);
     for (const char* text : {"--size", "--backend", "--frames", "--depth", "--ids", "--json", "--camera"})
         EXPECT_NE(render.out.find(text), std::string::npos) << text;
+}
+
+// The version printed is the CMake project's, and the library reports the same.
+TEST(CliTest, VersionIsTheProjectVersion) {
+    const fs::path dir = test::freshDir("CliVersion");
+    const CliRun run = runFrugal(dir, {"--version"});
+    EXPECT_EQ(run.status, 0);
+    EXPECT_EQ(run.out, std::string("frugal ") + FRUGAL_PROJECT_VERSION + "\n");
+    EXPECT_EQ(std::string(version()), FRUGAL_PROJECT_VERSION);
 }
 
 TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {

@@ -253,7 +253,7 @@ std::pair<std::size_t, std::size_t> judge(const std::string& name, const std::ve
 }
 
 void skipWithoutGl() {
-    if (!glAvailable()) GTEST_SKIP() << "no GL backend (status 3): judged on the software reference only";
+    if (!glAvailable()) FRUGAL_SKIP_IF_NO_GL("status 3: judged on the software reference only");
 }
 
 // --- the scenes ---------------------------------------------------------------------------------
@@ -408,7 +408,7 @@ TEST(CullReportGLTest, CsvAndPlotFollowTheReport) {
         }
 
     if (!test::haveGnuplot())
-        GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox): plots not checked";
+        FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox): plots not checked");
     // --plot alone: the CSV goes beside the plot.
     const fs::path plotDir = test::freshDir("CullReportGLPlot");
     Report plotted = cullReport(plotDir, {"builtin:default"}, "", {"--views", "2", "--plot", "p.svg"});

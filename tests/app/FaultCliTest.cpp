@@ -527,7 +527,7 @@ bool backendWorks(const std::string& name) {
 // frugal names its EGL platform (surfaceless, device) itself, so EGL_PLATFORM, which only picks
 // what eglGetDisplay(EGL_DEFAULT_DISPLAY) means, and a missing X or Wayland display change nothing.
 TEST(FaultCliTest, EglPlatformAndNoDisplayChangeNothing) {
-    if (!backendWorks("egl")) GTEST_SKIP() << "no EGL here";
+    if (!backendWorks("egl")) FRUGAL_SKIP_IF_NO_GL("EGL");
     const fs::path dir = test::freshDir("FaultEglPlatform");
     for (const char* platform : {"bogus", "x11", "wayland", "gbm", "surfaceless"}) {
         SCOPED_TRACE(platform);
@@ -550,7 +550,7 @@ TEST(FaultCliTest, NoEglAtAllIsOneLineAndAutoFallsBackToOsMesa) {
               "library answered (libglvnd reads /usr/share/glvnd/egl_vendor.d; Debian: libegl-mesa0) "
               "(__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json is set)\n");
     EXPECT_TRUE(filesIn(dir).empty());
-    if (!backendWorks("osmesa")) GTEST_SKIP() << "no OSMesa here to fall back to";
+    if (!backendWorks("osmesa")) FRUGAL_SKIP_IF_NO_GL("OSMesa, to fall back to");
     run = runFrugal(dir, {"render", "--size", "32x24", "--backend", "auto", "--json", "m.json", "-q"}, noVendor);
     EXPECT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(run.err, "");
@@ -560,7 +560,7 @@ TEST(FaultCliTest, NoEglAtAllIsOneLineAndAutoFallsBackToOsMesa) {
 // Mesa without its driver files: Mesa's own warnings ("libEGL warning: MESA-LOADER: failed to open
 // swrast ...") are silenced, so the error is the one line; EGL_LOG_LEVEL set by the user is kept.
 TEST(FaultCliTest, AMissingMesaDriverIsOneLineUnlessMesasLogIsAskedFor) {
-    if (!backendWorks("egl")) GTEST_SKIP() << "no EGL here";
+    if (!backendWorks("egl")) FRUGAL_SKIP_IF_NO_GL("EGL");
     const fs::path dir = test::freshDir("FaultNoDriver");
     const CliRun run = runFrugal(dir, {"render", "--size", "32x24", "--backend", "egl-surfaceless", "-q"},
                                  "LIBGL_DRIVERS_PATH=/nonexistent");
@@ -578,7 +578,7 @@ TEST(FaultCliTest, AMissingMesaDriverIsOneLineUnlessMesasLogIsAskedFor) {
 // OSMesa dereferences a null screen for any GALLIUM_DRIVER but llvmpipe and softpipe (Mesa 22.3:
 // a segfault); frugal refuses the others before it calls OSMesa.
 TEST(FaultCliTest, AGalliumDriverOsMesaCannotServeIsRefusedBeforeTheCall) {
-    if (!backendWorks("osmesa")) GTEST_SKIP() << "no OSMesa here";
+    if (!backendWorks("osmesa")) FRUGAL_SKIP_IF_NO_GL("OSMesa");
     const fs::path dir = test::freshDir("FaultOsMesaDriver");
     for (const char* driver : {"bogus", "i915", "swrast", "virpipe", "zink", "llvmpipe "}) {
         SCOPED_TRACE(driver);
@@ -602,7 +602,7 @@ TEST(FaultCliTest, AGalliumDriverOsMesaCannotServeIsRefusedBeforeTheCall) {
 // virpipe on EGL with no virgl test server: Mesa 22 aborts the process inside eglInitialize; frugal
 // refuses it first. Every other unknown driver makes EGL fail cleanly.
 TEST(FaultCliTest, VirpipeWithNoServerIsRefusedBeforeEglAborts) {
-    if (!backendWorks("egl")) GTEST_SKIP() << "no EGL here";
+    if (!backendWorks("egl")) FRUGAL_SKIP_IF_NO_GL("EGL");
     struct stat status {};
     if (::stat("/tmp/.virgl_test", &status) == 0) GTEST_SKIP() << "a virgl test server may be listening here";
     const fs::path dir = test::freshDir("FaultVirpipe");

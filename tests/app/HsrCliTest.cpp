@@ -67,7 +67,7 @@ TEST(HsrCliTest, HsrBenchReportsEveryModeAgainstTheZBuffer) {
 }
 
 TEST(HsrCliTest, HsrBenchPlotIsDrawnFromTheCsv) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("HsrBenchPlot");
     const CliRun run = runFrugal(dir, {"hsr-bench", "--backend", "software", "--frames", "0:1", "-q", "--plot", "hsr.svg"});
     ASSERT_EQ(run.status, 0) << run.err;

@@ -132,7 +132,7 @@ TEST(ReuseBenchCliTest, CulledListsAndReuseOptionsAreTakenAndChecked) {
 
 TEST(ReuseBenchCliTest, PlotWritesTheSvgTheScriptAndTheCsv) {
     if (!test::haveGnuplot())
-        GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+        FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("ReuseBenchPlot");
     std::vector<std::string> args = base("0:4");
     args.insert(args.end(), {"--plot", "bench.svg", "-q"});

@@ -108,7 +108,7 @@ TEST(SoakCliTest, GlBackendSurvivesCyclesWhenNamesAreReused) {
                                  {"soak", "builtin:materials?draws=20", "--backend", "egl-surfaceless", "--frames", "3",
                                   "--cycles", "3", "-q", "--max-growth", "1000", "--json", "s.json"},
                                  "force_gl_names_reuse=true");
-    if (run.status == 3) GTEST_SKIP() << "no EGL here: " << run.err;
+    if (run.status == 3) FRUGAL_SKIP_IF_NO_GL(run.err);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     const nlohmann::json j = test::readJson(dir / "s.json");
     EXPECT_EQ(j["period"], 1);  // a still scene: every frame is compared with the first
@@ -124,7 +124,7 @@ TEST(SoakCliTest, MinimalDrawsTheFramesWithTheMinimalGlProgram) {
     const fs::path dir = test::freshDir("SoakMinimal");
     const CliRun run = runFrugal(dir, {"soak", "--minimal", "--backend", "egl-surfaceless", "--frames", "8", "--period",
                                        "4", "-q", "--max-growth", "1000", "--json", "s.json"});
-    if (run.status == 3) GTEST_SKIP() << "no EGL here: " << run.err;
+    if (run.status == 3) FRUGAL_SKIP_IF_NO_GL(run.err);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     const nlohmann::json j = test::readJson(dir / "s.json");
     ASSERT_EQ(j["frames"].size(), 1u);
@@ -136,7 +136,7 @@ TEST(SoakCliTest, MinimalDrawsTheFramesWithTheMinimalGlProgram) {
 }
 
 TEST(SoakCliTest, PlotIsDrawnFromTheCsv) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot not installed";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("SoakPlot");
     for (const char* plot : {"s.svg", "s.png"}) {
         const CliRun run = runFrugal(dir, {"soak", "--backend", "software", "--frames", "4", "--period", "2",

@@ -76,7 +76,7 @@ TEST(SpanBenchCliTest, TheSameSeedPrintsTheSameTable) {
 }
 
 TEST(SpanBenchCliTest, PlotWritesTheScriptBesideTheSvg) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot not installed (Debian: gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("SpanBenchPlot");
     const CliRun run = runFrugal(dir, {"span-bench", "--lengths", "8,512", "--spans", "20", "--speed-ms", "0", "--plot", "e.svg"});
     ASSERT_EQ(run.status, 0) << run.err;

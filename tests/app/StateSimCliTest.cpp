@@ -106,7 +106,7 @@ TEST(StateSimCliTest, TheSameSeedsPrintTheSameTables) {
 }
 
 TEST(StateSimCliTest, PlotWritesTheScriptBesideTheSvg) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot not installed (Debian: gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("StateSimPlot");
     const CliRun run = runFrugal(dir, {"state-sim", "--seeds", "2", "--plot", "s.svg"});
     ASSERT_EQ(run.status, 0) << run.err;

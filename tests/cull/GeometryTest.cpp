@@ -16,6 +16,7 @@
 #include <tuple>
 #include <vector>
 
+#include "TestSupport.h"
 #include "cull/Geometry.h"
 
 namespace frugal {
@@ -492,7 +493,7 @@ Points bunnyVertices() {
 
 TEST(GeometryTest, StanfordBunny) {
     const Points points = bunnyVertices();
-    if (points.empty()) GTEST_SKIP() << FRUGAL_BUNNY_OBJ << " not found (Debian glmark2-data)";
+    if (points.empty()) FRUGAL_SKIP_IF_MISSING(FRUGAL_BUNNY_OBJ << " (glmark2-data)");
     ASSERT_EQ(points.size(), 34835u);
 
     using Clock = std::chrono::steady_clock;

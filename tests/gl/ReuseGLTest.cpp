@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "ReuseSupport.h"
+#include "TestSupport.h"
 #include "gl/GlBackend.h"
 
 namespace frugal::test {
@@ -18,7 +19,7 @@ class ReuseGLTest : public ::testing::Test {
 protected:
     void SetUp() override {
         Result<std::unique_ptr<Backend>> created = createGlBackend(BackendChoice::Auto);
-        if (!created) GTEST_SKIP() << "no GL backend: " << created.error();
+        if (!created) FRUGAL_SKIP_IF_NO_GL(created.error());
         backend = std::move(*created);
     }
 

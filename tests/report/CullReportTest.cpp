@@ -206,7 +206,7 @@ TEST(CullReportTest, CsvQuotesFieldsWithCommasAndQuotes) {
 }
 
 TEST(CullReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("CullReportTest.Gnuplot");
     // A quote in the paths: gnuplot's single-quoted strings must double it.
     const fs::path csv = dir / "view's report.csv", svg = dir / "it's plot.svg", script = dir / "plot.gp";
@@ -221,7 +221,7 @@ TEST(CullReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
 }
 
 TEST(CullReportTest, GnuplotDrawsAnEmptyReport) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("CullReportTest.GnuplotEmpty");
     CullReport empty = fakeReport();
     empty.views.clear();

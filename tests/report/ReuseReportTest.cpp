@@ -284,7 +284,7 @@ TEST(ReuseReportTest, CsvHasTheHeaderAndOneRowPerFrame) {
 }
 
 TEST(ReuseReportTest, GnuplotDrawsTheCsvIntoAnSvg) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("ReuseReportTest.Gnuplot");
     const fs::path csv = dir / "bench's frames.csv", svg = dir / "it's plot.svg", script = dir / "plot.gp";
     test::writeFile(csv, reuseReportCsv(fakeBench()));
@@ -326,7 +326,7 @@ TEST(ReuseReportTest, GnuplotColumnsAreTheCsvColumns) {
 }
 
 TEST(ReuseReportTest, GnuplotDrawsAnEmptyBench) {
-    if (!test::haveGnuplot()) GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("ReuseReportTest.GnuplotEmpty");
     ReuseBench empty = fakeBench();
     empty.frames.clear();

@@ -322,7 +322,7 @@ TEST(ReuseSequence, WithoutIdsAndThroughTheWholeSceneOverload) {
 TEST(ReuseSequence, LargeMeshesMoving) {
     // Two bunnies (69,666 triangles each, in meshoptimizer's order): the second one slides. Groups
     // of 16 triangles make the redraws partial index ranges of a large mesh.
-    if (!fs::exists(FRUGAL_BUNNY_OBJ)) GTEST_SKIP() << FRUGAL_BUNNY_OBJ << " not installed (glmark2-data)";
+    if (!fs::exists(FRUGAL_BUNNY_OBJ)) FRUGAL_SKIP_IF_MISSING(FRUGAL_BUNNY_OBJ << " (glmark2-data)");
     Scene scene = loadOrFail(std::string("builtin:copies?count=2&of=") + FRUGAL_BUNNY_OBJ);
     ASSERT_GE(scene.roots.size(), 2u);
     const int second = scene.roots[1];
@@ -595,7 +595,7 @@ TEST(ReuseSequence, InstalledGltfFilesWithAnimations) {
         expectExactEveryWay(scene, 128, 96, 16, frames);
         ++ran;
     }
-    if (ran == 0) GTEST_SKIP() << "no animated glTF file of assimp-testmodels installed under " << root;
+    if (ran == 0) FRUGAL_SKIP_IF_MISSING("no animated glTF file of assimp-testmodels under " << root);
 }
 
 // ---------------------------------------------------------------------------------------------
