@@ -4,10 +4,10 @@
 //
 //   error: --cull: 'x' is not a method (none, sphere, backface, cones, paper, conservative, oracle)
 //
-// and lists its flags the same way. Why not CLI11 (Debian libcli11-dev): measured here, a parser of
-// 15 flags compiles in 10.9 s with it against 0.6 s without (g++ 12 -O2), its object is 636 KB
-// against 9 KB, and its messages ("--cull: wat not in {none,sphere,...}" and a second line) would
-// each need a validator and a formatter of our own to get this shape.
+// and lists its flags the same way. Why not CLI11 (Debian libcli11-dev): a parser made with it
+// compiles many times slower and its object is many times larger (docs/gl/README.md, "Outside the GL
+// backend"), and its messages ("--cull: wat not in {none,sphere,...}" and a second line) would each
+// need a validator and a formatter of our own to get this shape.
 #pragma once
 
 #include <array>

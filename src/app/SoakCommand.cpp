@@ -1,7 +1,8 @@
 // `frugal soak` (issue 11): many frames and many create/destroy cycles in one process, on every
 // backend, with resident memory sampled and every image checked (report/SoakReport.h says what is
-// judged). Backends, targets and uploads go through the same code as every other command
-// (openSession, prepareSession, SceneRenderer), so the soak measures what `frugal render` runs.
+// judged). The frames are rendered by frugal::Renderer, the library's entry point that `frugal
+// render` runs, so whatever it keeps per frame the soak sees; the create/destroy cycles open
+// backends (openBackend), targets and uploads (SceneRenderer) as the renderer does.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -141,7 +142,13 @@ ContextKind contextKindNamed(const std::string& name) {
     return ContextKind::EglSurfaceless;
 }
 
-// The frames of one run: `draw(time)` renders the frame of scene time `time` and reads it back.
+// A frame as the soak judges it: the hash of its images and whether it is background only.
+struct FrameDigest {
+    std::uint64_t hash = 0;
+    bool blank = false;
+};
+
+// The frames of one run: `draw(time)` renders the frame of scene time `time` and gives its digest.
 // Nothing on success, else the exit status after the error line.
 template <class Draw>
 std::optional<int> soakFrames(const SoakContext& c, SoakFrames& run, Progress& progress, std::ostream& err,
@@ -157,12 +164,9 @@ std::optional<int> soakFrames(const SoakContext& c, SoakFrames& run, Progress& p
     reserveSamples(run.samples, std::size_t(s.frames / every) + 3);
     run.samples.push_back(sampleNow(0, 0.0));
     for (std::int64_t f = 0; f < s.frames; ++f) {
-        Result<Buffers> image = draw(timeOfFrame(c, f));
-        if (!image) {
-            err << "error: " << image.error() << "\n";
-            return int(kExitError);
-        }
-        run.images.add(f, imageHash(*image), isBlank(*image, c.background));
+        Result<FrameDigest> image = draw(timeOfFrame(c, f));
+        if (!image) return fail(err, image.failure());
+        run.images.add(f, image->hash, image->blank);
         const std::int64_t done = f + 1;
         if (done % every == 0 || done == run.warmup || done == s.frames) {
             run.samples.push_back(sampleNow(done, 1000.0 * secondsSince(since) / double(done - sinceFrame)));
@@ -404,18 +408,28 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             }
             run.backend += " (minimal)";
             MinimalFrame& frame = **minimal;
-            const auto draw = [&](double time) -> Result<Buffers> {
+            const auto draw = [&](double time) -> Result<FrameDigest> {
                 Result<FrameSetup> setup =
                     setUpFrame(scene, options.camera, time, options.width, options.height, false, options.depthFormat);
                 if (!setup) return Error{options.scene + ": " + setup.error()};
                 frame.render(setup->params, setup->world, options.background);
-                return frame.readBack();
+                const Buffers image = frame.readBack();
+                return FrameDigest{imageHash(image), isBlank(image, context.background)};
             };
             if (std::optional<int> failed = soakFrames(context, run, progress, err, draw)) return *failed;
         } else {
-            if (int prepared = prepareSession(*session, options, scene, err); prepared != kExitOk) return prepared;
-            const auto draw = [&](double time) {
-                return drawFrame(context, *session->backend, *session->renderer, session->target, time);
+            // The frames go through the library's entry point, frugal::Renderer, as `frugal render`'s
+            // do: whatever it keeps per frame, the soak sees. Only its backend is alive while it draws.
+            session->backend.reset();
+            Settings rendering = rendererSettings(options);
+            rendering.backend = choice;
+            rendering.ids = settings.ids;
+            Result<Renderer> renderer = Renderer::create(scene, rendering);
+            if (!renderer) return fail(err, renderer.failure());
+            const auto draw = [&](double time) -> Result<FrameDigest> {
+                Result<Frame> frame = renderer->render(options.camera, time);
+                if (!frame) return frame.failure();
+                return FrameDigest{imageHash(*frame), isBlank(frame->color, context.background)};
             };
             if (std::optional<int> failed = soakFrames(context, run, progress, err, draw)) return *failed;
         }

@@ -1,4 +1,5 @@
-// `frugal state-sim`: the simulation of paper 004 (Kim 2009, section 4.2), Tables 6 and 7 reproduced
+// `frugal state-sim`: the simulation of paper 004 (Kim, "Rendering States Changing Costs Reducing
+// Technique for Real-time 3D Graphics", 2009, section 4.2), Tables 6 and 7 reproduced
 // with every draw order of src/order/ on the same random instances, each cell a mean with its 95 %
 // confidence interval beside the paper's single figures. The paper does not say when a state's cost is
 // paid: the tables use set-not-held (the rule whose unsorted figures match the paper's), and the other
@@ -67,7 +68,9 @@ constexpr int kCheckRss = 16;                      // Held–Karp's optimum is a
 constexpr std::array<int, 2> kCheckStates{5, 25};  // the ends of Table 7
 constexpr std::array<CostRule, 3> kRules{CostRule::SetNotHeld, CostRule::EverySet, CostRule::SymmetricDifference};
 
-// A cell of the paper's tables (../shared/paper-tables/004_*.csv).
+// A cell of the paper's Table 6 (5 states, by RSS count) or Table 7 (50 RSSs, by state count), as
+// the paper prints it: the total state-change cost of its sorted order and of the not-sorted one,
+// in the simulation's units (cheap states cost 1–10, the 3 costly ones 21–30).
 struct PaperCell {
     int rssCount, states;
     double sorted, unsorted;

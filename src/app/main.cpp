@@ -10,9 +10,8 @@
 int main(int argc, char** argv) {
     frugal::installInterruptHandler();  // before any file is written or any thread started
     // llvmpipe frees and reallocates large scratch memory every frame; glibc's default trim threshold
-    // hands it back to the kernel each time. Keeping it halves frame time: bunny 800×600 on
-    // egl-surfaceless 29.4 → 13.1 ms here (`frugal bench render`). A larger M_MMAP_THRESHOLD
-    // measured no further gain.
+    // hands it back to the kernel each time. Keeping it cuts llvmpipe's frame time sharply, and a
+    // larger M_MMAP_THRESHOLD gained nothing more (docs/gl/README.md).
     mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
     std::vector<std::string> args(argv + 1, argv + argc);
     int status = frugal::kExitError;

@@ -46,8 +46,8 @@ struct CleanPoints {
 };
 
 // Duplicates are removed with a small open-addressing hash set rather than sort + unique: the hull
-// is cheaper on points in their original (mesh) order than on sorted ones (bunny: 14.5 ms against
-// 16.5 ms for convex_hull_3, plus 2.5 ms for the sort itself).
+// is cheaper on points in their original (mesh) order than on sorted ones, and the sort costs time of
+// its own (figures on the bunny: docs/gl/README.md, "Outside the GL backend").
 CleanPoints cleanPoints(std::span<const glm::vec3> input) {
     CleanPoints clean;
     clean.points.reserve(input.size());

@@ -123,8 +123,8 @@ std::string noVendorReason(const char* clientExtensionList) {
 //   one display; eglTerminate is not reference counted (EGL_KHR_display_reference, which would make
 //   it so, is not in Mesa 22) and invalidates every context on the display at once;
 // - a reference count of frugal's own contexts fixes that, but then each new backend after the
-//   last one went re-initialises the display: measured here 13–35 ms per backend (the DRI driver
-//   and LLVM come back) against 2.5 ms with the display kept;
+//   last one went re-initialises the display, which loads the DRI driver and LLVM again: several
+//   times what a new backend costs with the display kept (docs/gl/README.md);
 // - Mesa 22 unloads its DRI driver on the last eglTerminate, which turns the driver's own small
 //   leaks into reports from an "<unknown module>" that no LSan suppression can name.
 // eglInitialize on an initialised display is a no-op that succeeds (EGL 1.5 §3.2), so no

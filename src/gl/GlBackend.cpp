@@ -29,45 +29,46 @@
 // the vertex stage in 32-bit unsigned arithmetic.
 //
 // Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — a
-// texture, vertex colours, ids — compiled on first use (at most 8). A variant leaves out what the
-// draw does not use instead of feeding it white: measured on llvmpipe, bunny frame at 800×600
-// (vertex-cache order / file order), sampling a 1×1 white texture cost +0.64 / +1.56 ms, a white
-// colour varying +0.49 / +1.09 ms, an unused flat id varying +0.24 / +0.86 ms. The white texel is
-// 1.0 exactly, so leaving it out changes no bit. The interpolated white colour was not always 1.0:
-// llvmpipe interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about
-// 15 % of floats p; so "no vertex colours" is now exactly white, and a few pixels changed by one
-// step against the old program (1 of 2073600 on the bunny at 1920×1080, none at 800×600).
+// texture, vertex colours, ids — compiled on first use (at most 8, each also in an instanced form
+// for drawInstances: 16 in all). A variant leaves out what the draw does not use instead of feeding
+// it white (a 1×1 white texture, a white colour varying, an unused flat id varying), because each of
+// those costs llvmpipe time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so
+// leaving it out changes no bit. The interpolated white colour was not always 1.0: llvmpipe
+// interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about 15 % of
+// floats p; so "no vertex colours" is now exactly white, and a few pixels changed by one step
+// against the program that fed white (docs/gl/README.md).
 // Uniform values are per-program state in GL, so each variant keeps its own uniform cache.
 //
-// Triangle ids: gl_PrimitiveID cost ≈3.5 ms more per bunny frame on llvmpipe (measured, Mesa 22.3),
-// so a frame that writes ids draws each mesh unindexed from an "expanded" vertex buffer: 3 vertices
-// per triangle, in the mesh's triangle order, each carrying the flat attribute triangleSource[t]. It
-// is built on the first draw of the mesh with ids, from the mesh's own GL buffers (read back once,
-// so no CPU copy of every mesh is kept for a pass that may never run). Ranges become
-// glMultiDrawArrays over [3·first, 3·count). Without ids the mesh is drawn indexed
-// (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps what it holds.
-// Both paths run the same arithmetic on the same vertex values, so colour and depth are identical.
+// Triangle ids: reading gl_PrimitiveID in the fragment stage is slower on llvmpipe than a flat
+// vertex attribute (docs/gl/README.md), so a frame that writes ids draws each mesh unindexed from an
+// "expanded" vertex buffer: 3 vertices per triangle, in the mesh's triangle order, each carrying the
+// flat attribute triangleSource[t]. It is built on the first draw of the mesh with ids, from the
+// mesh's own GL buffers (read back once, so no CPU copy of every mesh is kept for a pass that may
+// never run). Ranges become glMultiDrawArrays over [3·first, 3·count). Without ids the mesh is drawn
+// indexed (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps what it
+// holds. Both paths run the same arithmetic on the same vertex values, so colour and depth are
+// identical.
 //
-// Many short ranges (a culled plan: ~1000–2000 runs of ~15–30 triangles on the bunny) are gathered
-// into one index buffer streamed for the draw (glBufferData, GL_STREAM_DRAW) and drawn with one
-// glDrawElements: the same triangles in the same order, so the same pixels. llvmpipe runs each
-// range of a glMultiDrawElements as a draw of its own; measured on the bunny at 800×600, a
-// conservative plan of ~31k triangles in ~1200 ranges drew in 5.4 ms, the same triangles from one
-// index buffer in 5.1 ms (5–10 % less over 12 views). The mesh's indices are read back from its
-// buffer once, on the first gathered draw (no CPU copy is kept for meshes never culled).
+// Many short ranges (a culled plan: a thousand runs or more, of a few tens of triangles each) are
+// gathered into one index buffer streamed for the draw (glBufferData, GL_STREAM_DRAW) and drawn with
+// one glDrawElements: the same triangles in the same order, so the same pixels. llvmpipe runs each
+// range of a glMultiDrawElements as a draw of its own, and one index buffer draws a culled plan's
+// ranges faster (docs/gl/README.md); kGatherMinRuns and kGatherMaxAverageRun say when a draw is
+// gathered. The mesh's indices are read back from its buffer once, on the first gathered draw (no
+// CPU copy is kept for meshes never culled).
 //
 // Clears and the id attachment: llvmpipe flushes its scene when the draw-buffer set changes, so a
 // clear with draw buffers {colour, ids} followed by draws with {colour} became a full pass of its
-// own (+0.38 / +0.64 ms on the bunny frame). Each target therefore records whether its ids may be
-// non-zero (a draw with ids or a copy of such ids into it; a clear of the whole target makes them
-// zero again). While they are known to be zero a clear leaves the id attachment alone and uses the
-// draw-buffer set already bound, which is the one the next draws of a repeated frame use. The
-// contract of Backend::clear (ids to 0) holds either way.
+// own (docs/gl/README.md). Each target therefore records whether its ids may be non-zero (a draw
+// with ids or a copy of such ids into it; a clear of the whole target makes them zero again). While
+// they are known to be zero a clear leaves the id attachment alone and uses the draw-buffer set
+// already bound, which is the one the next draws of a repeated frame use. The contract of
+// Backend::clear (ids to 0) holds either way.
 //
 // GL state is cached (program, VAO, framebuffers, draw/read buffers per FBO, culling, scissor,
-// viewport, texture, uniforms per program) so a call that would not change anything is not made.
-// Measured per draw on llvmpipe: a program switch costs ≈1.8 µs, a texture bind ≈1.0 µs, a
-// fragment-stage uniform ≈0.7 µs, a vertex-stage uniform ≈0.2 µs.
+// viewport, texture, uniforms per program) so a call that would not change anything is not made:
+// on llvmpipe each such call has a cost per draw, a program switch the largest (docs/gl/README.md;
+// `frugal info --state-costs` measures the kinds on the backend that runs).
 #include "gl/GlBackend.h"
 
 #include <algorithm>

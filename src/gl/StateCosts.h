@@ -22,11 +22,11 @@
 // variant per new combination) against the same draw repeated.
 //
 // Refined while frames render (StateCostProbe, RunningStateCosts): the probe keeps its target,
-// meshes and textures, so one more round between two frames costs 8 × `draws` draws (a few ms on
-// llvmpipe at 100 draws). The running average over the last rounds follows a backend whose costs
-// drift (a warming cache, a loaded machine); it is the interquartile mean, because a round the
-// scheduler preempted reads 10-100× too high for one kind, and a plain mean would let that one
-// round reorder frames.
+// meshes and textures, so one more round between two frames costs 8 × `draws` draws (their time on
+// llvmpipe: docs/orders/README.md). The running average over the last rounds follows a backend whose
+// costs drift (a warming cache, a loaded machine); it is the interquartile mean, because a round the
+// scheduler preempted reads many times too high for one kind (docs/orders/README.md), and a plain
+// mean would let that one round reorder frames.
 #pragma once
 
 #include <array>

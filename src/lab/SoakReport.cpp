@@ -16,24 +16,46 @@ double growthPercent(std::uint64_t from, std::uint64_t to) {
     return 100.0 * (double(to) - double(from)) / double(from);
 }
 
-std::uint64_t imageHash(const Buffers& image) {
+namespace {
+
+// FNV-1a over a frame's size and planes.
+std::uint64_t planesHash(int width, int height, const std::vector<std::uint8_t>& rgba,
+                         const std::vector<std::uint32_t>& depth, const std::vector<std::uint32_t>& ids) {
     std::uint64_t h = 0xcbf29ce484222325ull;
     const auto mix = [&h](const void* data, std::size_t bytes) {
         const auto* p = static_cast<const std::uint8_t*>(data);
         for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
     };
-    const std::int32_t size[2] = {image.width, image.height};
+    const std::int32_t size[2] = {width, height};
     mix(size, sizeof size);
-    mix(image.rgba.data(), image.rgba.size());
-    mix(image.depth.data(), image.depth.size() * sizeof(std::uint32_t));
-    mix(image.ids.data(), image.ids.size() * sizeof(std::uint32_t));
+    mix(rgba.data(), rgba.size());
+    mix(depth.data(), depth.size() * sizeof(std::uint32_t));
+    mix(ids.data(), ids.size() * sizeof(std::uint32_t));
     return h;
 }
 
-bool isBlank(const Buffers& image, const std::array<std::uint8_t, 4>& background) {
-    for (std::size_t i = 0; i + 4 <= image.rgba.size(); i += 4)
-        if (!std::equal(background.begin(), background.end(), image.rgba.begin() + std::ptrdiff_t(i))) return false;
+}  // namespace
+
+std::uint64_t imageHash(const Buffers& image) {
+    return planesHash(image.width, image.height, image.rgba, image.depth, image.ids);
+}
+std::uint64_t imageHash(const Frame& frame) {
+    return planesHash(frame.color.width, frame.color.height, frame.color.rgba, frame.depth.values, frame.ids.ids);
+}
+
+namespace {
+bool allBackground(const std::vector<std::uint8_t>& rgba, const std::array<std::uint8_t, 4>& background) {
+    for (std::size_t i = 0; i + 4 <= rgba.size(); i += 4)
+        if (!std::equal(background.begin(), background.end(), rgba.begin() + std::ptrdiff_t(i))) return false;
     return true;
+}
+}  // namespace
+
+bool isBlank(const Buffers& image, const std::array<std::uint8_t, 4>& background) {
+    return allBackground(image.rgba, background);
+}
+bool isBlank(const ColorImage& color, const std::array<std::uint8_t, 4>& background) {
+    return allBackground(color.rgba, background);
 }
 
 void EqualTimeImages::add(std::int64_t frame, std::uint64_t hash, bool isBlankFrame) {

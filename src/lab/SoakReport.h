@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <frugal/Image.h>
+#include <frugal/Renderer.h>
 
 namespace frugal {
 
@@ -32,9 +33,11 @@ double growthPercent(std::uint64_t from, std::uint64_t to);
 // FNV-1a (64 bits) of the colour, depth and id buffers: equal images, equal hashes; a different
 // image gives another hash but for a chance of 2⁻⁶⁴.
 std::uint64_t imageHash(const Buffers& image);
+std::uint64_t imageHash(const Frame& frame);  // colour, depth and ids as the renderer gave them
 
 // True when every colour pixel is `background` (8-bit RGBA as the target holds it): nothing drawn.
 bool isBlank(const Buffers& image, const std::array<std::uint8_t, 4>& background);
+bool isBlank(const ColorImage& color, const std::array<std::uint8_t, 4>& background);
 
 // Frame by frame, the check "images at equal times are identical": frame f has time f mod period;
 // the first frame of each time is its reference, and every later one is compared with it.

@@ -31,8 +31,8 @@ Result<std::unique_ptr<Backend>> openBackend(BackendKind kind, std::vector<std::
 //
 // A frame holds its target (colour RGBA8, depth, ids: 12 bytes a pixel on either backend), the
 // read-back (12) and, while its colour PNG is encoded, the flipped rows, the filtered rows and
-// zlib's output (12). Measured peak resident memory of `frugal render --size 16384x16384`: 9.50 GB
-// on the software backend, 9.60 GB on egl-surfaceless (35.4 and 35.8 bytes a pixel).
+// zlib's output (12). The peak resident memory of a large render, measured on both backends, stays
+// just under the 36 bytes a pixel (docs/gl/README.md, "Outside the GL backend").
 inline constexpr std::uint64_t kTargetBytesPerPixel = 12;  // a target alone: colour, depth, ids
 inline constexpr std::uint64_t kFrameBytesPerPixel = 36;
 

@@ -125,8 +125,9 @@ Result<bool> Renderer::Impl::open() {
     orderCosts.emplace(std::move(*costs));
 
     if (s.reuse) {
-        // The pair (a target's bytes; measured 11.8 a pixel at 8192x8192) and what a frame still
-        // allocates after its target (the read-back and the PNG encoding): the first frame comes after it.
+        // The pair (a target's bytes, kTargetBytesPerPixel; the measured figure is in docs/gl/README.md)
+        // and what a frame still allocates after its target (the read-back and the PNG encoding): the
+        // first frame comes after it.
         const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
         const std::uint64_t needed =
             pixels * kTargetBytesPerPixel + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);

@@ -1,7 +1,8 @@
-// Temporal reuse (paper 000, digest in DESIGN.md): with the camera still, a frame redraws only
-// what changed, reusing the colour, depth and ids of static instances from a static pair (a second
-// target that holds what the static instances alone render to). Plans only: this module never
-// touches a backend; SceneRenderer::execute runs the FramePlan it makes on either one.
+// Temporal reuse (paper 000, the temporal-coherence z-buffer: its steps, Fig. 5, and its cost model,
+// eq. 1 and 2, are restated below): with the camera still, a frame redraws only what changed,
+// reusing the colour, depth and ids of static instances from a static pair (a second target that
+// holds what the static instances alone render to). Plans only: this module never touches a
+// backend; SceneRenderer::execute runs the FramePlan it makes on either one.
 //
 // Dynamic: an instance whose world matrix, material (base colour factor, texture, sidedness) or
 // drawn ranges differ from the previous frame, compared exactly: bit for bit (so -0 and +0 differ,
@@ -38,7 +39,7 @@
 //   d. draw P_sd ∪ P_dd (step 6).
 // The static pair is then exactly what the static instances render to after every frame, so no tie
 // outlives its frame; it costs the redraw of the static instances around each one that comes to
-// rest (measured: 5–10 % slower on the dominoes, docs/reuse/README.md).
+// rest (slower on the dominoes; the figures are in docs/reuse/README.md).
 //
 // Other frames: the camera (or light, background) changed → a full render, static pair invalid;
 // the first frame with the camera still → rebuild: render the static instances, copy the whole
@@ -66,9 +67,9 @@
 namespace frugal {
 
 // The fallback's cost model, in units of one triangle drawn. The defaults are rough fits to
-// llvmpipe and the software backend on a 2-core machine (docs/reuse/README.md): a draw call costs
-// ~5 µs on both before any triangle (0.13–0.5 µs each); a pixel cleared ~0.2–0.5 ns, a pixel copied
-// (read one target, write another) about four times that; each rectangle is a blit on llvmpipe.
+// llvmpipe and the software backend (the timings they come from: docs/gl/README.md, "Outside the GL
+// backend"): a draw call costs tens of triangles before any of its own, a pixel copied (read one
+// target, write another) about four times a pixel cleared, and each rectangle is a blit on llvmpipe.
 struct ReuseCosts {
     double draw = 24.0;
     double pixelCleared = 1.0 / 256.0;

@@ -50,9 +50,10 @@ using Params = std::map<std::string, std::string>;
 // characters can ask for more memory than a machine has, or for minutes of work; the counts are
 // checked before anything is built.
 // - 2^26 animation keys (20 bytes each, 1.3 GB): 1.5x the 44.6 million of
-//   builtin:dominoes?polygons=60000, the largest scene the docs use (6 s to build);
-// - 2^17 nodes and meshes (a cube is one of each: 65,535 cubes take 1.5 s to build, and are as many
-//   draws): 13x the 10,000 dominoes of that scene.
+//   builtin:dominoes?polygons=60000, the largest scene the docs use;
+// - 2^17 nodes and meshes (a cube is one of each, and as many draws): 13x the 10,000 dominoes of
+//   that scene.
+// (What such scenes take to build: docs/gl/README.md, "Outside the GL backend".)
 constexpr double kMaxKeys = 67108864.0;
 constexpr double kMaxObjects = 131072.0;
 

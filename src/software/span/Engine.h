@@ -1,6 +1,7 @@
 // Bit-level model of the shading engine of paper 001 (Bang, Bae, Kyung, "A Graphics Accelerator for
-// Hidden Surface Removal and Color Shading", KAIST 1990; DESIGN.md "001"), one block per class or
-// function so that each can be tested alone. Section and figure numbers are the paper's.
+// Hidden Surface Removal and Color Shading", KAIST 1990; the model is described block by block in
+// docs/span/README.md), one block per class or function so that each can be tested alone. Section
+// and figure numbers are the paper's.
 //
 // Conventions
 //  - Pixel columns are integers >= 0; a value belongs to the column (no half-pixel offsets here: the

@@ -1,4 +1,5 @@
-// Fixed-point vocabulary of the span engine model (paper 001, Bang/Bae/Kyung 1990; DESIGN.md "001").
+// Fixed-point vocabulary of the span engine model (paper 001: Bang, Bae, Kyung, "A Graphics
+// Accelerator for Hidden Surface Removal and Color Shading", KAIST 1990; see span/Engine.h).
 //
 // A value is an integer `raw` read as raw / 2^fracBits. A Format names its integer bits and fraction
 // bits explicitly, and whether it carries a two's-complement sign bit on top of them:
