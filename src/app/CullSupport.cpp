@@ -24,17 +24,6 @@ std::vector<Flag> cullFlags(CullOptions& options, bool withMethod) {
     return flags;
 }
 
-std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation& prep) {
-    std::size_t triangles = 0;
-    for (const Mesh& mesh : scene.meshes) triangles += mesh.triangleCount();
-    std::string line = "cull: " + std::to_string(scene.meshes.size()) +
-                       (scene.meshes.size() == 1 ? " mesh, " : " meshes, ") + std::to_string(triangles) +
-                       " triangles prepared in " + fmt(prep.totalMs) + " ms (sphere " + fmt(prep.sphereMs) + ", map " +
-                       fmt(prep.mapMs) + ", clusters " + fmt(prep.clusterMs);
-    if (prep.hull) line += ", hull " + fmt(prep.hullMs);
-    return line + ")";
-}
-
 SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet) {
     SceneCuller culler = SceneCuller::prepare(scene, bins);
     if (!quiet) {

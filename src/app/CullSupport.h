@@ -12,6 +12,7 @@
 
 #include "app/Options.h"
 #include "cull/Culling.h"
+#include "lab/CullMeasure.h"
 #include "render/SceneRenderer.h"
 
 namespace frugal {
@@ -23,10 +24,6 @@ struct CullOptions {
 
 // --cull METHOD (when `withMethod`) and --cull-bins TxP.
 std::vector<Flag> cullFlags(CullOptions& options, bool withMethod);
-
-// "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"
-// (the hull only when it was built); no newline.
-std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation& prep);
 
 // Builds the maps and reorders the scene's meshes (before upload); prints one line unless quiet:
 // "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"

@@ -10,6 +10,7 @@
 #include "render/SceneRenderer.h"
 #include "renderer/Backends.h"
 #include "renderer/Oracle.h"
+#include "renderer/Stage.h"
 #include "renderer/StateOrder.h"
 #include "reuse/Reuse.h"
 #include "software/SoftwareBackend.h"
@@ -60,10 +61,10 @@ struct Renderer::Impl {
     std::optional<SceneCuller> culler;
     std::optional<Renderer::CullPreparation> cullPreparation;
     std::optional<hsr::Planner> planner;
-    std::vector<std::string> log;
-    std::unique_ptr<Backend> backend;
+    std::optional<Stage> stage;  // the backend, the target and the uploads
+    Backend* backend = nullptr;  // the stage's, for short
     TargetHandle target = kNoHandle;
-    std::optional<SceneRenderer> renderer;
+    SceneRenderer* renderer = nullptr;
     std::optional<OrderCosts> orderCosts;
     TargetHandle staticTarget = kNoHandle;
     std::optional<TemporalReuse> reuse;
@@ -71,11 +72,7 @@ struct Renderer::Impl {
     int framesDone = 0;
 
     ~Impl() {
-        renderer.reset();  // releases the uploads while the backend lives
-        if (backend) {
-            if (staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
-            if (target != kNoHandle) backend->destroyTarget(target);
-        }
+        if (backend && staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
     }
 
     Result<bool> open();
@@ -96,27 +93,13 @@ Result<bool> Renderer::Impl::open() {
     }
     if (s.hsr != Hsr::ZBuffer) planner.emplace(*scene);
 
-    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
-    if (!opened)
-        return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error(), opened.errorKind(), true};
-    backend = std::move(*opened);
-
-    if (!backend->supportsDepthFormat(s.depthFormat))
-        return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend->name() +
-                         " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs",
-                     ErrorKind::BackendUnavailable, true};
-    // A size the backend takes but this process's memory does not hold: refused before any of it is made.
-    if (std::max(s.width, s.height) <= backend->maxTargetSize())
-        if (const std::optional<std::string> problem = frameMemoryProblem(s.width, s.height))
-            return Error{"size " + sizeText(s) + ": " + *problem, ErrorKind::OutOfMemory, true};
-    target = backend->createTarget(s.width, s.height, s.depthFormat);
-    if (target == kNoHandle)
-        return Error{"size " + sizeText(s) + ": " + backend->name() + " cannot create a target that large (at most " +
-                         std::to_string(backend->maxTargetSize()) + " pixels a side)",
-                     ErrorKind::BadInput, true};
-    Result<SceneRenderer> uploaded = SceneRenderer::create(*backend, *scene);
-    if (!uploaded) return Error{scene->source + ": " + uploaded.error()};
-    renderer.emplace(std::move(*uploaded));
+    Result<Stage> opened = Stage::open(s);
+    if (!opened) return opened.failure();
+    stage.emplace(std::move(*opened));
+    backend = &stage->backend();
+    target = stage->target();
+    if (Result<bool> uploaded = stage->upload(*scene); !uploaded) return uploaded.failure();
+    renderer = &stage->renderer();
 
     // paper, greedy and best order by costs measured on this backend, refined between frames.
     Result<OrderCosts> costs = OrderCosts::start(s.order, *backend, s.refineCosts);
@@ -250,7 +233,7 @@ const Scene& Renderer::scene() const { return *impl_->scene; }
 const Settings& Renderer::settings() const { return impl_->settings; }
 std::string Renderer::backendName() const { return impl_->backend->name(); }
 std::string Renderer::backendRenderer() const { return impl_->backend->renderer(); }
-const std::vector<std::string>& Renderer::backendLog() const { return impl_->log; }
+const std::vector<std::string>& Renderer::backendLog() const { return impl_->stage->log(); }
 std::optional<Renderer::CullPreparation> Renderer::cullPreparation() const { return impl_->cullPreparation; }
 std::optional<StateCosts> Renderer::stateCosts() const { return impl_->orderCosts->report(); }
 std::uint64_t Renderer::staticPairBytes() const {

@@ -1,0 +1,47 @@
+#include "renderer/Stage.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "renderer/Backends.h"
+
+namespace frugal {
+
+Stage::Parts::~Parts() {
+    renderer.reset();  // the uploads, while the backend lives
+    if (backend && target != kNoHandle) backend->destroyTarget(target);
+}
+
+Result<Stage> Stage::open(const Settings& s) {
+    const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+    auto parts = std::make_unique<Parts>();
+    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &parts->log, s.threads, s.interp);
+    if (!opened)
+        return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error(), opened.errorKind(), true};
+    parts->backend = std::move(*opened);
+    Backend& backend = *parts->backend;
+    if (!backend.supportsDepthFormat(s.depthFormat))
+        return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend.name() +
+                         " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs",
+                     ErrorKind::BackendUnavailable, true};
+    // A size the backend takes but this process's memory does not hold: refused before any of it is made.
+    if (std::max(s.width, s.height) <= backend.maxTargetSize())
+        if (const std::optional<std::string> problem = frameMemoryProblem(s.width, s.height))
+            return Error{"size " + size + ": " + *problem, ErrorKind::OutOfMemory, true};
+    parts->target = backend.createTarget(s.width, s.height, s.depthFormat);
+    if (parts->target == kNoHandle)
+        return Error{"size " + size + ": " + backend.name() + " cannot create a target that large (at most " +
+                         std::to_string(backend.maxTargetSize()) + " pixels a side)",
+                     ErrorKind::BadInput, true};
+    return Stage(std::move(parts));
+}
+
+Result<bool> Stage::upload(const Scene& scene) {
+    parts_->renderer.reset();  // released before the next are made (a backend may reuse the names)
+    Result<SceneRenderer> uploaded = SceneRenderer::create(*parts_->backend, scene);
+    if (!uploaded) return Error{scene.source + ": " + uploaded.error()};
+    parts_->renderer.emplace(std::move(*uploaded));
+    return true;
+}
+
+}  // namespace frugal

@@ -1,0 +1,56 @@
+// A stage: a backend, one target of a frame's size and a scene uploaded into it. It is what a
+// Renderer draws into, and what the research harnesses (src/lab/) time directly when they need the
+// lower-level calls (SceneRenderer, Backend) that a Renderer hides. Move-only; it releases the
+// uploads, then the target, then the backend.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <frugal/Result.h>
+#include <frugal/Settings.h>
+
+#include "render/Backend.h"
+#include "render/SceneRenderer.h"
+
+namespace frugal {
+
+class Stage {
+public:
+    // Opens settings.backend (with settings.threads and settings.interp) and makes its target
+    // (settings.width × settings.height, settings.depthFormat), the memory checked before. Errors
+    // start with the setting they are about (Error::aboutSetting):
+    //   "backend auto: no usable GL context: ..."                                 BackendUnavailable
+    //   "depth-format d32f: osmesa has no glClipControl (...), which reversed Z needs"   BackendUnavailable
+    //   "size 16384x16384: needs about 9.7 GB (...), more than the 3.5 GB left (ulimit -v)"  OutOfMemory
+    //   "size 20000x10: egl-surfaceless cannot create a target that large (at most 16384 pixels a side)"
+    static Result<Stage> open(const Settings& settings);
+
+    // Uploads `scene`, replacing what was uploaded before; the scene must outlive the uploads (the
+    // stage, or the next upload). Error: "<scene.source>: <why the backend refused a mesh>".
+    Result<bool> upload(const Scene& scene);
+
+    Backend& backend() const { return *parts_->backend; }
+    TargetHandle target() const { return parts_->target; }
+    SceneRenderer& renderer() const { return *parts_->renderer; }  // after upload()
+    bool uploaded() const { return parts_->renderer.has_value(); }
+    // One line per GL context tried ("egl-surfaceless: ok (...)"), or "software: ok".
+    const std::vector<std::string>& log() const { return parts_->log; }
+
+private:
+    struct Parts {
+        std::vector<std::string> log;
+        std::unique_ptr<Backend> backend;
+        TargetHandle target = kNoHandle;
+        std::optional<SceneRenderer> renderer;
+        Parts() = default;
+        Parts(const Parts&) = delete;
+        Parts& operator=(const Parts&) = delete;
+        ~Parts();
+    };
+    explicit Stage(std::unique_ptr<Parts> parts) : parts_(std::move(parts)) {}
+    std::unique_ptr<Parts> parts_;
+};
+
+}  // namespace frugal
