@@ -89,13 +89,6 @@ void printRendererStart(const Renderer& renderer, std::ostream& err) {
         err << stateCostsLine(renderer.settings().order, renderer.backendName(), *costs) << "\n";
 }
 
-std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs) {
-    std::string line = std::string("order ") + toString(order) + ": state costs on " + backendName + " (us):";
-    for (std::size_t k = 0; k < costs.us.size(); ++k)
-        line += (k ? ", " : " ") + costs.kinds[k] + " " + fmt(costs.us[k]);
-    return line;
-}
-
 Result<OrderCosts> startOrderCosts(Order order, Backend& backend, int refineEvery, std::ostream& err, bool quiet) {
     Result<OrderCosts> costs = OrderCosts::start(order, backend, refineEvery);
     if (costs && !quiet)

@@ -83,9 +83,6 @@ private:
 // cost-driven order).
 void printRendererStart(const Renderer& renderer, std::ostream& err);
 
-// "order best: state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ..." (no newline).
-std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs);
-
 // OrderCosts::start, with stateCostsLine on `err` unless quiet (for paper, greedy and best).
 Result<OrderCosts> startOrderCosts(Order order, Backend& backend, int refineEvery, std::ostream& err, bool quiet);
 

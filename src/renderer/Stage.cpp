@@ -13,12 +13,18 @@ Stage::Parts::~Parts() {
 }
 
 Result<Stage> Stage::open(const Settings& s) {
-    const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
-    auto parts = std::make_unique<Parts>();
-    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &parts->log, s.threads, s.interp);
+    std::vector<std::string> log;
+    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
     if (!opened)
         return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error(), opened.errorKind(), true};
-    parts->backend = std::move(*opened);
+    return on(std::move(*opened), s, std::move(log));
+}
+
+Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std::vector<std::string> log) {
+    const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+    auto parts = std::make_unique<Parts>();
+    parts->log = std::move(log);
+    parts->backend = std::move(opened);
     Backend& backend = *parts->backend;
     if (!backend.supportsDepthFormat(s.depthFormat))
         return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend.name() +

@@ -26,6 +26,10 @@ public:
     //   "size 16384x16384: needs about 9.7 GB (...), more than the 3.5 GB left (ulimit -v)"  OutOfMemory
     //   "size 20000x10: egl-surfaceless cannot create a target that large (at most 16384 pixels a side)"
     static Result<Stage> open(const Settings& settings);
+    // The same on a backend already open (openBackend; settings.backend is not read): the errors
+    // but the first.
+    static Result<Stage> on(std::unique_ptr<Backend> backend, const Settings& settings,
+                            std::vector<std::string> log = {});
 
     // Uploads `scene`, replacing what was uploaded before; the scene must outlive the uploads (the
     // stage, or the next upload). Error: "<scene.source>: <why the backend refused a mesh>".

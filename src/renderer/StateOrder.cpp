@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "base/Format.h"
+
 namespace frugal {
 
 std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, bool cullAllBackFaces) {
@@ -62,6 +64,13 @@ std::optional<StateCosts> OrderCosts::report() const {
     if (!probe_) return std::nullopt;
     return StateCosts{std::vector<std::string>(kStateKindNames.begin(), kStateKindNames.end()), start_, costs_,
                       running_.rounds(), refineEvery_};
+}
+
+std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs) {
+    std::string line = std::string("order ") + toString(order) + ": state costs on " + backendName + " (us):";
+    for (std::size_t k = 0; k < costs.us.size(); ++k)
+        line += (k ? ", " : " ") + costs.kinds[k] + " " + fmt(costs.us[k]);
+    return line;
 }
 
 }  // namespace frugal
