@@ -1,6 +1,7 @@
 // `frugal diff SCENE`: the same frames rendered on a GL backend and on the software reference,
 // compared colour, ids and depth (report/ImageCompare.h). The GL image is the "actual", the
 // software image the "reference".
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
@@ -14,10 +15,7 @@
 #include "app/HsrSupport.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
-#include "render/SceneRenderer.h"
-#include "renderer/Backends.h"
-#include "renderer/StateOrder.h"
-#include "renderer/StatsJson.h"
+#include "lab/BackendPair.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {
@@ -33,6 +31,41 @@ namespace {
 constexpr int kDefaultTolerance = 2;
 
 constexpr const char* kDefaultFailureDir = "frugal-diff";
+
+// actual, reference and mask PNGs of `frame` into `imageDir` (made when missing), all or none;
+// gives their names as the JSON's "files".
+Result<nlohmann::ordered_json> writeFrameImages(const std::string& imageDir, const FrameRange& range, int frame,
+                                                const std::array<Buffers, 2>& images, const ImageComparison& c) {
+    std::error_code ec;
+    std::filesystem::create_directories(imageDir, ec);
+    if (ec) return Error{imageDir + ": cannot create the folder: " + ec.message(), ErrorKind::Io};
+    char suffix[32] = "";
+    if (range.sequence) std::snprintf(suffix, sizeof suffix, "_%04d", frame);
+    const std::filesystem::path dir(imageDir);
+    const std::string names[3] = {(dir / ("actual" + std::string(suffix) + ".png")).string(),
+                                  (dir / ("reference" + std::string(suffix) + ".png")).string(),
+                                  (dir / ("mask" + std::string(suffix) + ".png")).string()};
+    OutputSet set;
+    set.add(names[0], encodeColorPng(images[0]));
+    set.add(names[1], encodeColorPng(images[1]));
+    set.add(names[2], encodeMaskPng(c));
+    if (Result<bool> written = set.commit(); !written) return written.failure();
+    return nlohmann::ordered_json{{"actual", names[0]}, {"reference", names[1]}, {"mask", names[2]}};
+}
+
+// "frame 3 (t=0.1 s): PASS, egl-surfaceless vs software, 320x240", the comparison's lines, and the
+// files written.
+std::string frameSummary(const BackendPair& pair, int frame, double time, const ImageComparison& c,
+                         const nlohmann::ordered_json& files) {
+    const std::string actual = pair.actual().backend().name(), reference = pair.reference().backend().name();
+    std::string text = "frame " + std::to_string(frame) + " (t=" + fmt(time) + " s): " + (c.passed() ? "PASS" : "FAIL") +
+                       ", " + actual + " vs " + reference + ", " + std::to_string(c.width) + "x" +
+                       std::to_string(c.height) + "\n" + comparisonSummary(c, actual, reference);
+    if (!files.is_null())
+        text += "  wrote " + files["actual"].get<std::string>() + ", " + files["reference"].get<std::string>() + ", " +
+                files["mask"].get<std::string>() + "\n";
+    return text;
+}
 
 }  // namespace
 
@@ -77,113 +110,41 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     compare.background = colorBytes(options.background);
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) {
-        err << "error: " << loaded.error() << "\n";
-        return kExitError;
-    }
-    const Scene& scene = *loaded;
+    if (!loaded) return fail(err, loaded.failure());
+    Settings settings = rendererSettings(options);
+    settings.hsr = hsrMode;
+    settings.order = drawOrder;
+    Result<BackendPair> pair = BackendPair::open(*loaded, settings, [&](const std::string& line) {
+        if (!options.quiet) err << line << "\n";
+    });
+    if (!pair) return fail(err, pair.failure());
+
     const FrameRange range = options.frames.value_or(FrameRange{});
-    std::optional<hsr::Planner> planner;  // --hsr: both backends draw the same plan
-    if (hsrMode != hsr::Mode::ZBuffer) planner.emplace(scene);
-
-    // The GL backend under test, then the software reference.
-    Session sessions[2];
-    const BackendKind selections[2] = {options.backend, BackendKind::Software};
-    const std::string labels[2] = {std::string("--backend ") + toString(options.backend), "software reference"};
-    for (int k = 0; k < 2; ++k) {
-        Result<Session> opened = openSession(selections[k], options);
-        if (!opened) {
-            err << "error: " << labels[k] << ": " << opened.error() << "\n";
-            return kExitNoBackend;
-        }
-        sessions[k] = std::move(*opened);
-    }
-    Backend* backends[2] = {sessions[0].backend.get(), sessions[1].backend.get()};
-    if (!options.quiet) {
-        err << "backend: " << backends[0]->name() << " (" << backends[0]->renderer() << ")\n";
-        err << "reference: " << backends[1]->name() << " (" << backends[1]->renderer() << ")\n";
-    }
-    for (Session& session : sessions)
-        if (int prepared = prepareSession(session, options, scene, err); prepared != kExitOk) return prepared;
-    const TargetHandle targets[2] = {sessions[0].target, sessions[1].target};
-    // paper, greedy and best order by the GL backend's measured costs; both backends draw that list.
-    Result<OrderCosts> orderCosts = startOrderCosts(drawOrder, *sessions[0].backend, 0, err, options.quiet);
-    if (!orderCosts) {
-        err << "error: --order " << toString(drawOrder) << ": " << orderCosts.error() << "\n";
-        return kExitError;
-    }
-    SceneRenderer* renderers[2] = {&*sessions[0].renderer, &*sessions[1].renderer};
-    const std::vector<std::string>& log = sessions[0].log;
-
-    const std::string actualName = backends[0]->name(), referenceName = backends[1]->name();
-    const bool writeAll = !outDir.empty();
-    const std::string imageDir = writeAll ? outDir : kDefaultFailureDir;
+    const std::string imageDir = outDir.empty() ? kDefaultFailureDir : outDir;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     int failedFrames = 0;
     // SIGINT, SIGTERM and SIGHUP stop between frames: the images written stay (io/Interrupt.h).
     InterruptPoints interrupts;
     for (int frame = range.first; frame <= range.last; ++frame) {
-        if (const int caught = interrupts.arrived()) {
-            err << "error: " << interruptedAfter(caught, frame - range.first, range.last - range.first + 1) << "\n";
-            return kExitError;
-        }
-        Result<FrameSetup> setup = setUpFrame(options, scene, frame, true);
-        if (!setup) {
-            err << "error: " << setup.error() << "\n";
-            return kExitError;
-        }
-        const double time = setup->time;
-        Buffers images[2];
-        const DrawList ordered = orderFrameDraws(scene, renderers[0]->fullList(), drawOrder, orderCosts->costsUs());
-        const DrawList list =
-            planner ? planner->plan(hsrMode, setup->params, setup->world, ordered, options.width, options.height) : ordered;
-        for (int k = 0; k < 2; ++k) {
-            renderers[k]->renderFrame(targets[k], options.width, options.height, setup->params, setup->world,
-                                      options.background, list);
-            images[k] = backends[k]->readBack(targets[k]);
-        }
+        if (const int caught = interrupts.arrived())
+            return fail(err, Error{interruptedAfter(caught, frame - range.first, range.last - range.first + 1),
+                                   ErrorKind::Interrupted});
+        Result<FrameSetup> setup = setUpFrame(options, *loaded, frame, true);
+        if (!setup) return fail(err, setup.failure());
+        const std::array<Buffers, 2> images = pair->render(*setup);
         Result<ImageComparison> compared = compareBuffers(images[0], images[1], compare);
-        if (!compared) {  // both targets were created at the same size: a backend broke its contract
-            err << "error: frame " << frame << ": " << compared.error() << "\n";
-            return kExitError;
-        }
+        if (!compared)  // both targets were created at the same size: a backend broke its contract
+            return fail(err, Error{"frame " + std::to_string(frame) + ": " + compared.error()});
         const ImageComparison& c = *compared;
         if (!c.passed()) ++failedFrames;
-
         nlohmann::ordered_json files = nullptr;
-        if (writeAll || !c.passed()) {
-            std::error_code ec;
-            std::filesystem::create_directories(imageDir, ec);
-            if (ec) {
-                err << "error: " << imageDir << ": cannot create the folder: " << ec.message() << "\n";
-                return kExitError;
-            }
-            char suffix[32] = "";
-            if (range.sequence) std::snprintf(suffix, sizeof suffix, "_%04d", frame);
-            const std::filesystem::path dir(imageDir);
-            const std::string names[3] = {(dir / ("actual" + std::string(suffix) + ".png")).string(),
-                                          (dir / ("reference" + std::string(suffix) + ".png")).string(),
-                                          (dir / ("mask" + std::string(suffix) + ".png")).string()};
-            OutputSet set;
-            set.add(names[0], encodeColorPng(images[0]));
-            set.add(names[1], encodeColorPng(images[1]));
-            set.add(names[2], encodeMaskPng(c));
-            Result<bool> written = set.commit();
-            if (!written) {
-                err << "error: " << written.error() << "\n";
-                return kExitError;
-            }
-            files = {{"actual", names[0]}, {"reference", names[1]}, {"mask", names[2]}};
+        if (!outDir.empty() || !c.passed()) {
+            Result<nlohmann::ordered_json> written = writeFrameImages(imageDir, range, frame, images, c);
+            if (!written) return fail(err, written.failure());
+            files = std::move(*written);
         }
-
-        out << "frame " << frame << " (t=" << fmt(time) << " s): " << (c.passed() ? "PASS" : "FAIL") << ", "
-            << actualName << " vs " << referenceName << ", " << c.width << "x" << c.height << "\n"
-            << comparisonSummary(c, actualName, referenceName);
-        if (!files.is_null())
-            out << "  wrote " << files["actual"].get<std::string>() << ", " << files["reference"].get<std::string>()
-                << ", " << files["mask"].get<std::string>() << "\n";
-
-        nlohmann::ordered_json entry = {{"frame", frame}, {"time", time}};
+        out << frameSummary(*pair, frame, setup->time, c, files);
+        nlohmann::ordered_json entry = {{"frame", frame}, {"time", setup->time}};
         entry.update(nlohmann::ordered_json::parse(comparisonJson(c)));
         entry["files"] = files;
         frames.push_back(std::move(entry));
@@ -192,7 +153,6 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     const int frameCount = range.last - range.first + 1;
     out << "diff " << options.scene << ": " << (frameCount - failedFrames) << " of " << frameCount
         << (frameCount == 1 ? " frame" : " frames") << " within tolerance " << compare.tolerance << "\n";
-
     if (!jsonPath.empty()) {
         const nlohmann::ordered_json report = {
             {"command", "diff"},
@@ -203,16 +163,17 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             {"draw_order", toString(drawOrder)},
             {"passed", failedFrames == 0},
             {"failed_frames", failedFrames},
-            {"actual", {{"backend", actualName}, {"renderer", backends[0]->renderer()}, {"backend_log", log}}},
-            {"reference", {{"backend", referenceName}, {"renderer", backends[1]->renderer()}}},
+            {"actual",
+             {{"backend", pair->actual().backend().name()},
+              {"renderer", pair->actual().backend().renderer()},
+              {"backend_log", pair->actual().log()}}},
+            {"reference",
+             {{"backend", pair->reference().backend().name()}, {"renderer", pair->reference().backend().renderer()}}},
             {"frames", frames},
         };
         const std::string text = report.dump(2) + "\n";
-        Result<bool> written = writeFileAtomic(jsonPath, Bytes(text.begin(), text.end()));
-        if (!written) {
-            err << "error: " << written.error() << "\n";
-            return kExitError;
-        }
+        if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(text.begin(), text.end())); !written)
+            return fail(err, written.failure());
     }
     return failedFrames == 0 ? kExitOk : kExitError;
 }
