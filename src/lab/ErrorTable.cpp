@@ -78,7 +78,7 @@ std::vector<ErrorRow> errorTable(const ErrorTableSettings& settings) {
     std::vector<std::uint32_t> out(std::size_t(std::max(longest, 1)));
     for (int width : settings.widths)
         for (int length : settings.lengths) {
-            assert(width >= 1 && width <= kMaxWidth && length >= 2 && length <= kMaxColumn + 1 - 4096);
+            assert(width >= 1 && width <= kMaxWidth && length >= 2 && length <= kMaxTableLength);
             for (Method method : settings.methods) {
                 ErrorRow row;
                 row.width = width;

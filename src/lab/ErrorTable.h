@@ -23,9 +23,12 @@ enum class Method : std::uint8_t {
 };
 const char* methodName(Method method);  // "span", "span_trunc", "dda", "exact"
 
+// The longest span of a table: a span starts anywhere in columns 0..4095.
+constexpr int kMaxTableLength = kMaxColumn + 1 - 4096;
+
 struct ErrorTableSettings {
-    std::vector<int> lengths{8, 64, 512, 8192};  // pixels, 2..65536 − 4096
-    std::vector<int> widths{16, 24};             // bits, 1..28
+    std::vector<int> lengths{8, 64, 512, 8192};  // pixels, 2..kMaxTableLength
+    std::vector<int> widths{16, 24};             // bits, 1..kMaxWidth
     int spans = 2000;                            // per (width, length, method)
     std::uint64_t seed = 1;
     int accumulatorBits = 32;  // Dda register; > every width
