@@ -130,7 +130,7 @@ Flag orderFlag(Order& order, std::string help) {
                "(paper 004's id sort over the 3 costliest kinds), greedy (cheapest next change) or best (the optimum "
                "over the distinct state sets, Held-Karp up to 16, else local search). Consecutive draws of one mesh go "
                "out as one instanced draw. Only pixels where two surfaces tie exactly in depth can change (first drawn "
-               "wins)";
+               "wins). Not applied with --reuse, which draws in its own order (the static pair, then what changed)";
     return flag::choice("--order", "ORDER", "an order", std::move(help), order, kOrders);
 }
 

@@ -15,7 +15,7 @@
 //                 box is outside the frustum or their cone faces away, kept whole when inside and
 //                 facing, and tested triangle by triangle otherwise (the same exact tests as backface).
 //   oracle        exactly the frame's really visible set; it needs the frame's id image, so it is not
-//                 a plan made here (report/VisibleSet.h: oracleScene). cull() gives the full list.
+//                 a plan made here (renderer/Oracle.h: makeOracle). cull() gives the full list.
 // Facing follows GL: a triangle of a single-sided material is drawn when counter-clockwise in window
 // space; a mirroring transform (negative determinant) swaps the sides. Every "drop" decision has a
 // margin of float rounding on its side, so an undecided triangle (edge-on, zero area, not a number) is

@@ -1,7 +1,7 @@
 // Built-in procedural scenes. They use the same model as loaded files (nodes, TRS animation,
 // materials), so every later module treats them exactly like a glTF scene.
 //
-//   builtin:dominoes?polygons=804&static=0.5544&floor=0&seed=1
+//   builtin:dominoes?polygons=804&static=0.5544&floor=0
 //       A serpentine field of dominoes that fall one after another. One domino is a box of 6 quads
 //       (12 triangles), so polygons/6 dominoes. At every frame after the first, exactly
 //       k = round((1 − static) · dominoes) dominoes change pose (each falls over k frames and the next
