@@ -66,7 +66,6 @@ std::string checkPattern(const std::string& flag, const std::string& path) {
     return {};
 }
 
-nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
 // Everything `render` reads from its command line.
 struct RenderRequest {
@@ -242,57 +241,6 @@ std::string progressLine(const Settings& s, std::size_t triangles, const FrameSt
     return line + " -> " + file;
 }
 
-// The document's fields besides "frames".
-nlohmann::json renderMeta(const RenderRequest& r, const Renderer& renderer, const nlohmann::json& camera) {
-    const Scene& scene = renderer.scene();
-    const Settings& s = renderer.settings();
-    const std::optional<StateCosts> costs = renderer.stateCosts();
-    const ReuseSettings& reuse = s.reuseSettings;
-    return {
-        {"scene", r.options.scene},
-        {"counts",
-         {{"nodes", scene.nodes.size()},
-          {"meshes", scene.meshes.size()},
-          {"instances", scene.instances.size()},
-          {"triangles", scene.triangleCount()},
-          {"materials", scene.materials.size()},
-          {"textures", scene.textures.size()},
-          {"animations", scene.animations.size()}}},
-        {"unsupported", scene.unsupported},
-        {"size", {s.width, s.height}},
-        {"backend", renderer.backendName()},
-        {"renderer", renderer.backendRenderer()},
-        {"backend_log", renderer.backendLog()},
-        {"camera", camera},
-        {"cull", toString(s.cull)},
-        {"hsr", toString(s.hsr)},
-        {"draw_order", toString(s.order)},
-        {"state_costs", costs ? stateCostsJson(*costs) : nlohmann::json(nullptr)},
-        {"reuse", s.reuse ? nlohmann::json{{"grain", reuse.grain},
-                                           {"cell", reuse.cell},
-                                           {"fallback", reuse.fallback},
-                                           {"static_pair_bytes", renderer.staticPairBytes()}}
-                          : nlohmann::json(nullptr)},
-    };
-}
-
-nlohmann::json cameraJson(const View& view, const Settings& s) {
-    return {{"source", view.source},
-            {"eye", vec(view.eye)},
-            {"forward", vec(view.forward)},
-            {"perspective", view.perspective},
-            {"yfov_degrees", glm::degrees(view.yfov)},
-            {"znear", view.znear},
-            {"zfar", view.zfar},
-            {"depth_range", depthRangeName(view.depthRange)},
-            {"given_znear", view.givenNear},
-            {"given_zfar", view.givenFar},
-            {"depth_format", depthFormatName(view.depthFormat)},
-            {"aspect_ratio", view.aspect},
-            {"file_aspect_ratio", view.fileAspect > 0.0f ? nlohmann::json(view.fileAspect) : nlohmann::json(nullptr)},
-            {"aspect_ratio_differs", aspectDiffers(view.fileAspect, s.width, s.height)}};
-}
-
 }  // namespace
 
 int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -327,7 +275,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         const double writeMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
         const std::string file = framePath(r.outputs.color, index, range.sequence);
-        if (index == range.first) camera = cameraJson(frame->view, s);
+        if (index == range.first) camera = viewJson(frame->view, s);
         nlohmann::json record = frameStatsJson(frame->stats, s);
         record.update({{"frame", index}, {"write_ms", writeMs}, {"file", file}});
         if (Result<bool> kept = json.add(std::move(record), frame->stats); !kept) return fail(err, kept.failure());
@@ -340,7 +288,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (overflow > 0)
         err << "warning: --interp " << toString(s.interp) << ": " << overflow
             << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";
-    if (Result<bool> written = json.finish(renderMeta(r, renderer, camera)); !written)
+    if (Result<bool> written = json.finish(renderJsonMeta(renderer, r.options.scene, camera)); !written)
         return fail(err, written.failure());
     if (!options.quiet && !range.sequence) out << "wrote " << r.outputs.color << "\n";
     return kExitOk;

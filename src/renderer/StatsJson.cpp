@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/Camera.h"
+
 namespace frugal {
 
 nlohmann::json stateChangesJson(const StateChanges& c) {
@@ -66,6 +68,56 @@ nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings)
 nlohmann::json refinementJson(const FrameStats& next) {
     if (!next.refinedCostsUs) return nullptr;
     return {{"refined_state_costs_us", *next.refinedCostsUs}, {"refine_ms", next.refineMs}};
+}
+
+nlohmann::json renderJsonMeta(const Renderer& renderer, const std::string& sceneName, const nlohmann::json& camera) {
+    const Scene& scene = renderer.scene();
+    const Settings& s = renderer.settings();
+    const std::optional<StateCosts> costs = renderer.stateCosts();
+    const ReuseSettings& reuse = s.reuseSettings;
+    return {
+        {"scene", sceneName},
+        {"counts",
+         {{"nodes", scene.nodes.size()},
+          {"meshes", scene.meshes.size()},
+          {"instances", scene.instances.size()},
+          {"triangles", scene.triangleCount()},
+          {"materials", scene.materials.size()},
+          {"textures", scene.textures.size()},
+          {"animations", scene.animations.size()}}},
+        {"unsupported", scene.unsupported},
+        {"size", {s.width, s.height}},
+        {"backend", renderer.backendName()},
+        {"renderer", renderer.backendRenderer()},
+        {"backend_log", renderer.backendLog()},
+        {"camera", camera},
+        {"cull", toString(s.cull)},
+        {"hsr", toString(s.hsr)},
+        {"draw_order", toString(s.order)},
+        {"state_costs", costs ? stateCostsJson(*costs) : nlohmann::json(nullptr)},
+        {"reuse", s.reuse ? nlohmann::json{{"grain", reuse.grain},
+                                           {"cell", reuse.cell},
+                                           {"fallback", reuse.fallback},
+                                           {"static_pair_bytes", renderer.staticPairBytes()}}
+                          : nlohmann::json(nullptr)},
+    };
+}
+
+nlohmann::json viewJson(const View& view, const Settings& s) {
+    return {{"source", view.source},
+            {"eye", nlohmann::json{view.eye.x, view.eye.y, view.eye.z}},
+            {"forward", nlohmann::json{view.forward.x, view.forward.y, view.forward.z}},
+            {"perspective", view.perspective},
+            {"yfov_degrees", glm::degrees(view.yfov)},
+            {"znear", view.znear},
+            {"zfar", view.zfar},
+            {"depth_range", depthRangeName(view.depthRange)},
+            {"given_znear", view.givenNear},
+            {"given_zfar", view.givenFar},
+            {"depth_format", depthFormatName(view.depthFormat)},
+            {"aspect_ratio", view.aspect},
+            {"file_aspect_ratio", view.fileAspect > 0.0f ? nlohmann::json(view.fileAspect) : nlohmann::json(nullptr)},
+            {"aspect_ratio_differs", aspectDiffers(view.fileAspect, s.width, s.height)}};
 }
 
 }  // namespace frugal

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <string>
+
+#include <frugal/Renderer.h>
 #include <frugal/Settings.h>
 #include <frugal/Stats.h>
 
@@ -28,5 +31,15 @@ nlohmann::json stateCostsJson(const StateCosts& costs);
 nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings);
 // {"refined_state_costs_us", "refine_ms"} of `next`, the frame after the refinement.
 nlohmann::json refinementJson(const FrameStats& next);
+
+// The render JSON's "camera": the view a frame was drawn with, {"source", "eye", "forward",
+// "perspective", "yfov_degrees", "znear", "zfar", "depth_range", "given_znear", "given_zfar",
+// "depth_format", "aspect_ratio", "file_aspect_ratio", "aspect_ratio_differs"}.
+nlohmann::json viewJson(const View& view, const Settings& settings);
+
+// The render JSON's fields besides "frames": {"scene" (`sceneName`), "counts", "unsupported",
+// "size", "backend", "renderer", "backend_log", "camera", "cull", "hsr", "draw_order",
+// "state_costs", "reuse"}.
+nlohmann::json renderJsonMeta(const Renderer& renderer, const std::string& sceneName, const nlohmann::json& camera);
 
 }  // namespace frugal
