@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "base/Format.h"
 #include "base/Stats.h"
 #include "lab/ReportText.h"
 
@@ -209,7 +212,10 @@ double modelMs(const CostModel& model, const ReuseBenchFrame& frame) {
            (frame.mode == "rebuild" ? 1e-6 * model.tcNs * double(frame.copiedPx) : 0.0);
 }
 
-std::string reuseReportJson(const ReuseBench& bench) {
+namespace {
+
+// The report as one document (reuseReportJson's text, reuseReportSummary's numbers).
+Json reportDocument(const ReuseBench& bench) {
     const CostModel model = fitCostModel(bench);
     Json frames = Json::array();
     std::vector<const ReuseBenchFrame*> all, reuse;
@@ -298,17 +304,74 @@ std::string reuseReportJson(const ReuseBench& bench) {
                             {"r2", number(model.reuseR2)},
                             {"median_reuse_error", number(model.medianReuseError)},
                             {"median_full_error", number(model.medianFullError)}};
-    const Json j = {{"scene", bench.scene},
-                    {"size", Json::array({bench.width, bench.height})},
-                    {"backend", bench.backend},
-                    {"renderer", bench.renderer},
-                    {"repeat", bench.repeat},
-                    {"cull", bench.cull},
-                    {"reuse", {{"grain", bench.grain}, {"cell", bench.cell}, {"fallback", bench.fallback}}},
-                    {"ids", bench.ids},
-                    {"frames", std::move(frames)},
-                    {"summary", std::move(summary)}};
-    return jsonText(j);
+    Json j = {{"scene", bench.scene},
+              {"size", Json::array({bench.width, bench.height})},
+              {"backend", bench.backend},
+              {"renderer", bench.renderer},
+              {"repeat", bench.repeat},
+              {"cull", bench.cull},
+              {"reuse", {{"grain", bench.grain}, {"cell", bench.cell}, {"fallback", bench.fallback}}},
+              {"ids", bench.ids},
+              {"frames", std::move(frames)},
+              {"summary", std::move(summary)}};
+    return j;
+}
+
+double numberOr(const Json& value, double fallback) { return value.is_number() ? value.get<double>() : fallback; }
+
+std::string percent(double share) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f %%", 100.0 * share);
+    return buf;
+}
+
+}  // namespace
+
+std::string reuseReportJson(const ReuseBench& bench) { return jsonText(reportDocument(bench)); }
+
+std::string reuseReportSummary(const ReuseBench& bench) {
+    const Json document = reportDocument(bench);
+    const Json& summary = document["summary"];
+    const Json& modes = summary["modes"];
+    const int first = bench.frames.empty() ? 0 : bench.frames.front().frame;
+    const int last = bench.frames.empty() ? 0 : bench.frames.back().frame;
+    std::ostringstream out;
+    out << "reuse-bench " << bench.scene << ", " << bench.width << "x" << bench.height << ", " << bench.backend
+        << ", frames " << first << ".." << last << ", " << bench.repeat << (bench.repeat == 1 ? " round" : " rounds")
+        << (bench.cull != "none" ? ", cull " + bench.cull : std::string()) << "\n";
+    out << "frames " << bench.frames.size() << ": reuse " << modes["reuse"].get<std::size_t>() << ", rebuild "
+        << modes["rebuild"].get<std::size_t>() << ", full " << modes["full"].get<std::size_t>() << "; static share "
+        << percent(numberOr(summary["static_share"], 0.0)) << " of the triangles (mean over reuse frames)\n";
+    // oracle ms: the cells oracle (copies what reuse copies); whole ms: the whole oracle (copies the whole image).
+    out << "                frames   full ms  reuse ms  oracle ms  whole ms  plan ms  speed-up  reuse/oracle  "
+           "reuse/whole\n";
+    for (const char* set : {"reuse_frames", "all_frames"}) {
+        const Json& s = summary[set];
+        char line[256];
+        std::snprintf(line, sizeof line, "%-14s %7zu %9.3f %9.3f %10.3f %9.3f %8.3f %9.3f %13.3f %12.3f\n",
+                      set == std::string("reuse_frames") ? "reuse frames" : "all frames",
+                      s["frames"].get<std::size_t>(), numberOr(s["median_full_ms"], kNaN),
+                      numberOr(s["median_reuse_ms"], kNaN), numberOr(s["median_oracle_ms"], kNaN),
+                      numberOr(s["median_oracle_whole_ms"], kNaN), numberOr(s["median_plan_ms"], kNaN),
+                      numberOr(s["speedup"], kNaN), numberOr(s["ratio_to_oracle"], kNaN),
+                      numberOr(s["ratio_to_oracle_whole"], kNaN));
+        out << line;
+    }
+    const Json& m = summary["model"];
+    out << "cost model: full = t_w " << fmt(numberOr(m["t_w_ms"], kNaN)) << " ms + t_r "
+        << fmt(numberOr(m["t_r_ns_per_tri"], kNaN)) << " ns/triangle (median error "
+        << percent(numberOr(m["median_full_error"], kNaN)) << ")\n";
+    out << "            reuse = plan + t_0 " << fmt(numberOr(m["t_0_ms"], kNaN)) << " ms + t_c "
+        << fmt(numberOr(m["t_c_ns_per_px"], kNaN)) << " ns/px copied + t_i " << fmt(numberOr(m["t_i_ns_per_px"], kNaN))
+        << " ns/px cleared + t_r' " << fmt(numberOr(m["t_r_reuse_ns_per_tri"], kNaN)) << " ns/triangle (fitted on "
+        << m["fitted_frames"].get<std::size_t>() << " reuse frames, " << m["excluded_frames"].get<std::size_t>()
+        << " full/rebuild left out; R² " << fmt(numberOr(m["r2"], kNaN)) << ", median error "
+        << percent(numberOr(m["median_reuse_error"], kNaN)) << ")\n";
+    out << "static pair " << summary["static_pair_bytes"].get<std::uint64_t>() << " bytes, max overlap "
+        << fmt(numberOr(summary["max_overlap_ms"], 0.0)) << " ms, ties " << summary["total_tie_px"].get<std::uint64_t>()
+        << " px, errors " << summary["total_error_px"].get<std::uint64_t>() << " px\n";
+    if (summary.contains("note")) out << "note: " << summary["note"].get<std::string>() << "\n";
+    return out.str();
 }
 
 std::string reuseReportCsv(const ReuseBench& bench) {

@@ -113,6 +113,12 @@ double fullModelMs(const CostModel& model, const ReuseBenchFrame& frame);
 // Medians of an even count are the mean of the two middle values; NaN and infinities are null.
 std::string reuseReportJson(const ReuseBench& bench);
 
+// The summary `frugal reuse-bench` prints: the run (scene, size, backend, frames, rounds, culling),
+// the modes and the static share, the medians of the reuse frames and of all frames side by side
+// (full, reuse, both oracles, plan, speed-up, ratios), the fitted cost model, the static pair's
+// bytes, ties and errors, and the summary's note when it has one. Lines end in '\n'.
+std::string reuseReportSummary(const ReuseBench& bench);
+
 // One header line, then one row per frame:
 // frame,mode,full_ms,reuse_ms,plan_ms,oracle_ms,oracle_whole_ms,model_ms,full_model_ms,speedup,
 // static_share,p_dd,p_ds,p_sd,p_ss,copied_px,cleared_px,redrawn_tris,static_redrawn_tris,drawn_tris,rects,draws,
