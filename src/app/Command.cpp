@@ -5,6 +5,7 @@
 
 #include "app/Cli.h"
 #include "app/CullSupport.h"
+#include "renderer/StateOrder.h"
 
 namespace frugal {
 
@@ -89,14 +90,6 @@ void printRendererStart(const Renderer& renderer, std::ostream& err) {
         err << stateCostsLine(renderer.settings().order, renderer.backendName(), *costs) << "\n";
 }
 
-Result<OrderCosts> startOrderCosts(Order order, Backend& backend, int refineEvery, std::ostream& err, bool quiet) {
-    Result<OrderCosts> costs = OrderCosts::start(order, backend, refineEvery);
-    if (costs && !quiet)
-        if (const std::optional<StateCosts> report = costs->report())
-            err << stateCostsLine(order, backend.name(), *report) << "\n";
-    return costs;
-}
-
 std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions& options, bool* given) {
     return [&options, given, seen = false](const std::string& argument, ArgCursor& cursor) mutable {
         if (seen) {
@@ -107,58 +100,6 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
         seen = true;
         if (given) *given = true;
     };
-}
-
-Result<Session> openSession(BackendKind kind, const RenderOptions& options) {
-    Session session;
-    Result<std::unique_ptr<Backend>> backend = openBackend(kind, &session.log, options.threads, options.interp);
-    if (!backend) return Error{backend.error()};
-    session.backend = std::move(*backend);
-    return session;
-}
-
-std::variant<Session, int> startSession(const RenderOptions& options, const Scene& scene, std::ostream& err) {
-    Result<Session> opened = openSession(options.backend, options);
-    if (!opened) {
-        err << "error: --backend " << toString(options.backend) << ": " << opened.error() << "\n";
-        return int(kExitNoBackend);
-    }
-    Backend& backend = *opened->backend;
-    if (!options.quiet) err << "backend: " << backend.name() << " (" << backend.renderer() << ")\n";
-    if (int prepared = prepareSession(*opened, options, scene, err); prepared != kExitOk) return prepared;
-    return std::move(*opened);
-}
-
-int prepareSession(Session& session, const RenderOptions& options, const Scene& scene, std::ostream& err) {
-    Backend& backend = *session.backend;
-    const DepthFormat format = options.depthFormat;
-    if (!backend.supportsDepthFormat(format)) {
-        err << "error: --depth-format " << depthFormatName(format) << ": " << backend.name()
-            << " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs\n";
-        return kExitNoBackend;
-    }
-    if (session.target == kNoHandle) {
-        // A size the backend takes but this process's memory does not hold: refused before any of it is made.
-        if (std::max(options.width, options.height) <= backend.maxTargetSize()) {
-            if (const std::optional<std::string> problem = frameMemoryProblem(options.width, options.height)) {
-                err << "error: --size " << options.width << "x" << options.height << ": " << *problem << "\n";
-                return kExitError;
-            }
-        }
-        session.target = backend.createTarget(options.width, options.height, format);
-    }
-    if (session.target == kNoHandle) {
-        err << "error: --size " << options.width << "x" << options.height << ": " << backend.name()
-            << " cannot create a target that large (at most " << backend.maxTargetSize() << " pixels a side)\n";
-        return kExitError;
-    }
-    Result<SceneRenderer> renderer = SceneRenderer::create(*session.backend, scene);
-    if (!renderer) {
-        err << "error: " << options.scene << ": " << renderer.error() << "\n";
-        return kExitError;
-    }
-    session.renderer.emplace(std::move(*renderer));
-    return kExitOk;
 }
 
 }  // namespace frugal

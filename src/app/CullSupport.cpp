@@ -24,23 +24,4 @@ std::vector<Flag> cullFlags(CullOptions& options, bool withMethod) {
     return flags;
 }
 
-SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet) {
-    SceneCuller culler = SceneCuller::prepare(scene, bins);
-    if (!quiet) {
-        const PrepStats stats = culler.totals();
-        err << cullPreparedLine(
-                   scene, {stats.sphereMs, stats.mapMs, stats.clusterMs, stats.hullMs, stats.totalMs(), bins.hull})
-            << "\n";
-    }
-    return culler;
-}
-
-std::optional<SceneCuller> prepareCullOption(Scene& scene, const CullOptions& options, std::ostream& err, bool quiet) {
-    const Cull method = options.method.value_or(Cull::None);
-    if (method == Cull::None) return std::nullopt;
-    MapParams bins = options.bins;
-    bins.hull = method == Cull::Paper;
-    return prepareCulling(scene, bins, err, quiet);
-}
-
 }  // namespace frugal

@@ -25,14 +25,4 @@ struct CullOptions {
 // --cull METHOD (when `withMethod`) and --cull-bins TxP.
 std::vector<Flag> cullFlags(CullOptions& options, bool withMethod);
 
-// Builds the maps and reorders the scene's meshes (before upload); prints one line unless quiet:
-// "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"
-// (the hull only when bins.hull asks for it).
-SceneCuller prepareCulling(Scene& scene, const MapParams& bins, std::ostream& err, bool quiet);
-
-// What render and reuse-bench prepare for their --cull: nothing for none (or no --cull), else
-// prepareCulling with the hull built for paper alone (the only method that uses it). Call it
-// before the upload: the map's triangle order must be in place by then.
-std::optional<SceneCuller> prepareCullOption(Scene& scene, const CullOptions& options, std::ostream& err, bool quiet);
-
 }  // namespace frugal

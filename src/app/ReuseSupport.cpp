@@ -28,8 +28,4 @@ std::vector<Flag> reuseFlags(ReuseCliOptions& options, RenderOptions& render, bo
     return flags;
 }
 
-std::uint64_t staticPairBytes(int width, int height) {
-    return std::uint64_t(width) * std::uint64_t(height) * kTargetBytesPerPixel;
-}
-
 }  // namespace frugal

@@ -21,8 +21,4 @@ struct ReuseCliOptions {
 // --camera-path FILE into `render.cameraPathFile` (read with the shared options' checks).
 std::vector<Flag> reuseFlags(ReuseCliOptions& options, RenderOptions& render, bool withSwitch);
 
-// The static pair's size in bytes for a width × height target (colour RGBA8, depth 24-bit in 32,
-// ids 32-bit: 12 bytes a pixel).
-std::uint64_t staticPairBytes(int width, int height);
-
 }  // namespace frugal

@@ -29,9 +29,6 @@ struct HsrBenchSettings {
     bool worstImages = false;    // keep the worst frame's images of depthsort, adaptive, adaptive-convex
 };
 
-// The frame `frame`'s camera and time resolved (render/Frame.h setUpFrame); errors as one line.
-using FrameSetupOf = std::function<Result<FrameSetup>(int frame)>;
-
 // A mode's frame with the most pixels differing from the z-buffer's, drawn again and compared.
 struct HsrWorstImages {
     std::string mode;            // depthsort, adaptive, adaptive-convex

@@ -10,7 +10,6 @@
 
 #include "base/Stats.h"
 #include "lab/ReportText.h"
-#include "renderer/Backends.h"
 #include "renderer/Stage.h"
 #include "renderer/StateOrder.h"
 #include "renderer/StatsJson.h"
@@ -61,16 +60,19 @@ Result<OrderBenchResult> measureOrders(const Scene& scene, const FrameSetup& set
     std::ostringstream csv, text;
     csv << "backend,order,median_ms,min_ms,max_ms,order_ms,draws,programs,meshes,textures,toggles,uniforms,tie_px\n";
     for (const BackendKind choice : choices) {
-        Result<std::unique_ptr<Backend>> backendOpened = openBackend(choice, nullptr, r.threads, r.interp);
-        if (!backendOpened) {
-            progress(std::string("skipped ") + toString(choice) + ": " + backendOpened.error());
+        Settings stageSettings = r;
+        stageSettings.backend = choice;
+        std::string unavailable;
+        Result<std::optional<Stage>> opened = Stage::openIfAvailable(stageSettings, unavailable);
+        if (!opened) return opened.failure();
+        if (!*opened) {
+            progress(std::string("skipped ") + toString(choice) + ": " + unavailable);
             continue;
         }
-        Result<Stage> opened = Stage::on(std::move(*backendOpened), r);
-        if (!opened) return opened.failure();
-        if (Result<bool> uploaded = opened->upload(scene); !uploaded) return uploaded.failure();
-        Backend& backend = opened->backend();
-        SceneRenderer& renderer = opened->renderer();
+        Stage& stage = **opened;
+        if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.failure();
+        Backend& backend = stage.backend();
+        SceneRenderer& renderer = stage.renderer();
         Result<OrderCosts> costs = OrderCosts::start(Order::Best, backend, 0);
         if (!costs) return costs.failure();
         if (const std::optional<StateCosts> measured = costs->report())
@@ -88,7 +90,7 @@ Result<OrderBenchResult> measureOrders(const Scene& scene, const FrameSetup& set
             backend.finish();
             const StateChanges before = backend.stateChanges();
             const auto t0 = Clock::now();
-            renderer.renderFrame(opened->target(), r.width, r.height, setup.params, setup.world, r.background,
+            renderer.renderFrame(stage.target(), r.width, r.height, setup.params, setup.world, r.background,
                                  lists[o]);
             backend.finish();
             changes[o] = backend.stateChanges() - before;
@@ -103,11 +105,11 @@ Result<OrderBenchResult> measureOrders(const Scene& scene, const FrameSetup& set
             }
         // Images, untimed: each order against submission order.
         frame(0);
-        const Buffers submitted = backend.readBack(opened->target());
+        const Buffers submitted = backend.readBack(stage.target());
         nlohmann::json orders = nlohmann::json::array();
         for (int o = 0; o < kOrderCount; ++o) {
             frame(o);
-            const Buffers image = backend.readBack(opened->target());
+            const Buffers image = backend.readBack(stage.target());
             const std::size_t tie = differingColorPixels(image, submitted);
             const double med = median(ms[o]);
             const auto [lo, hi] = std::minmax_element(ms[o].begin(), ms[o].end());

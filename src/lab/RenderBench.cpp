@@ -14,7 +14,7 @@
 #include "base/Stats.h"
 #include "hsr/Plan.h"
 #include "lab/MinimalFrame.h"
-#include "lab/Stages.h"
+#include "renderer/Stage.h"
 #include "render/Frame.h"
 #include "render/SceneRenderer.h"
 #include "renderer/StateOrder.h"
@@ -297,7 +297,7 @@ Result<bool> measureBackend(BackendKind kind, const Scene& cacheOrder, const Sce
     Settings stageSettings = s.render;
     stageSettings.backend = kind;
     std::string unavailable;
-    Result<std::optional<Stage>> stage = openStageIfAvailable(stageSettings, unavailable);
+    Result<std::optional<Stage>> stage = Stage::openIfAvailable(stageSettings, unavailable);
     if (stage && !*stage) {
         bench.skipped.push_back(unavailable);
         return true;

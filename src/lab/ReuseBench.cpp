@@ -11,7 +11,7 @@
 #include "cull/Culling.h"
 #include "lab/CullMeasure.h"
 #include "lab/ReuseCheck.h"
-#include "lab/Stages.h"
+#include "renderer/Stage.h"
 #include "renderer/Backends.h"
 #include "reuse/CellGrid.h"
 #include "reuse/Reuse.h"

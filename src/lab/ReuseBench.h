@@ -38,10 +38,6 @@ struct ReuseBenchSettings {
     int repeat = 5;                     // timed rounds, after the warm-up round
 };
 
-// Frame `frame` set up (render/Frame.h): its camera and scene time resolved for the settings' size,
-// depth format and ids. Errors as one line ("<scene>: camera 3: ...").
-using FrameSetupOf = std::function<Result<FrameSetup>(int frame)>;
-
 struct ReuseMeasurement {
     ReuseBench report;
     // The first frame whose cells oracle or whole oracle differs from the full render other than by

@@ -3,6 +3,8 @@
 // culling, reuse and tests, so that all of them set up a frame the same way.
 #pragma once
 
+#include <functional>
+
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -31,6 +33,10 @@ struct FrameSetup {
 // buffer has `format`. Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
                               bool writeIds, DepthFormat format = DepthFormat::D24);
+
+// A sequence's frame `frame` with its camera and time resolved (setUpFrame): how a harness asks for
+// the frames it measures. Errors as one line.
+using FrameSetupOf = std::function<Result<FrameSetup>(int frame)>;
 
 // A clear colour as the 8-bit target holds it (GL's unorm conversion: clamp to [0,1], ×255, round
 // to nearest).

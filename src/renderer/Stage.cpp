@@ -20,6 +20,18 @@ Result<Stage> Stage::open(const Settings& s) {
     return on(std::move(*opened), s, std::move(log));
 }
 
+Result<std::optional<Stage>> Stage::openIfAvailable(const Settings& s, std::string& unavailable) {
+    std::vector<std::string> log;
+    Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
+    if (!opened) {
+        unavailable = opened.error();
+        return std::optional<Stage>();
+    }
+    Result<Stage> stage = on(std::move(*opened), s, std::move(log));
+    if (!stage) return stage.failure();
+    return std::optional<Stage>(std::move(*stage));
+}
+
 Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std::vector<std::string> log) {
     const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
     auto parts = std::make_unique<Parts>();

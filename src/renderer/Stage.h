@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ public:
     // but the first.
     static Result<Stage> on(std::unique_ptr<Backend> backend, const Settings& settings,
                             std::vector<std::string> log = {});
+    // open() where a backend that does not open here is no error (a harness going over several
+    // kinds skips it): the result is then empty and `unavailable` gets openBackend's reason ("no
+    // usable GL context: ..."). Every other failure is the error, as open() gives it.
+    static Result<std::optional<Stage>> openIfAvailable(const Settings& settings, std::string& unavailable);
 
     // Uploads `scene`, replacing what was uploaded before; the scene must outlive the uploads (the
     // stage, or the next upload). Error: "<scene.source>: <why the backend refused a mesh>".
@@ -55,6 +60,26 @@ private:
     };
     explicit Stage(std::unique_ptr<Parts> parts) : parts_(std::move(parts)) {}
     std::unique_ptr<Parts> parts_;
+};
+
+// A target of `backend` (kNoHandle: none), destroyed when this goes or is reset. It must go before
+// the backend: declare it after the stage that owns the backend.
+class OwnedTarget {
+public:
+    explicit OwnedTarget(Backend& backend, TargetHandle handle = kNoHandle) : backend_(backend), handle_(handle) {}
+    ~OwnedTarget() { reset(kNoHandle); }
+    OwnedTarget(const OwnedTarget&) = delete;
+    OwnedTarget& operator=(const OwnedTarget&) = delete;
+
+    TargetHandle get() const { return handle_; }
+    void reset(TargetHandle handle) {
+        if (handle_ != kNoHandle) backend_.destroyTarget(handle_);
+        handle_ = handle;
+    }
+
+private:
+    Backend& backend_;
+    TargetHandle handle_;
 };
 
 }  // namespace frugal
