@@ -91,9 +91,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     settings.render.ids = ids;
     settings.render.hsr = hsrMode;
     settings.render.order = drawOrder;
-    Result<RenderBench> bench = measureRenderBench(*optimized, *original, settings, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<RenderBench> bench = measureRenderBench(*optimized, *original, settings, progressTo(err, options.quiet));
     if (!bench) return fail(err, bench.failure());
     out << renderBenchJson(*bench);
     return kExitOk;

@@ -102,4 +102,10 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
     };
 }
 
+std::function<void(const std::string&)> progressTo(std::ostream& err, bool quiet) {
+    return [&err, quiet](const std::string& line) {
+        if (!quiet) err << line << "\n";
+    };
+}
+
 }  // namespace frugal

@@ -48,4 +48,7 @@ std::function<void(const std::string&, ArgCursor&)> sceneArgument(RenderOptions&
 // cost-driven order).
 void printRendererStart(const Renderer& renderer, std::ostream& err);
 
+// Where a command's progress lines go (the lab's `progress` callbacks): `err`, one a line, unless quiet.
+std::function<void(const std::string&)> progressTo(std::ostream& err, bool quiet);
+
 }  // namespace frugal

@@ -30,10 +30,21 @@ pixels covered in both whose triangle ids differ.
 
 namespace {
 
-bool isPng(const std::string& path) {
-    std::string e = std::filesystem::path(path).extension().string();
-    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e == ".png";
+// The two renders read (colour PNGs, with their id PNGs when given) and compared; errors name the file.
+Result<ImageComparison> compareFiles(const std::string& actualPath, const std::string& actualIds,
+                                     const std::string& referencePath, const std::string& referenceIds,
+                                     const CompareOptions& options) {
+    Result<Buffers> actual = readRenderPngs(actualPath, actualIds);
+    if (!actual) return actual.failure();
+    Result<Buffers> reference = readRenderPngs(referencePath, referenceIds);
+    if (!reference) return reference.failure();
+    if (actual->width != reference->width || actual->height != reference->height)
+        return Error{referencePath + ": " + std::to_string(reference->width) + "x" + std::to_string(reference->height) +
+                     ", but " + actualPath + " is " + std::to_string(actual->width) + "x" +
+                     std::to_string(actual->height)};
+    Result<ImageComparison> compared = compareBuffers(*actual, *reference, options);
+    if (!compared) return Error{referencePath + ": " + compared.error()};
+    return compared;
 }
 
 }  // namespace
@@ -56,7 +67,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
         background.flags[0],
         {"--mask", "FILE.png", "error mask: red where a pixel fails, B in grey elsewhere",
          [&maskPath](const std::string& path) -> std::string {
-             if (!isPng(path)) return "is not a .png name (the mask is written as PNG)";
+             if (!hasExtension(path, ".png")) return "is not a .png name (the mask is written as PNG)";
              maskPath = path;
              return {};
          }},
@@ -74,26 +85,8 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     const std::string& actualPath = images[0];
     const std::string& referencePath = images[1];
 
-    Result<Buffers> actual = readRenderPngs(actualPath, actualIds);
-    if (!actual) {
-        err << "error: " << actual.error() << "\n";
-        return kExitError;
-    }
-    Result<Buffers> reference = readRenderPngs(referencePath, referenceIds);
-    if (!reference) {
-        err << "error: " << reference.error() << "\n";
-        return kExitError;
-    }
-    if (actual->width != reference->width || actual->height != reference->height) {
-        err << "error: " << referencePath << ": " << reference->width << "x" << reference->height << ", but "
-            << actualPath << " is " << actual->width << "x" << actual->height << "\n";
-        return kExitError;
-    }
-    Result<ImageComparison> compared = compareBuffers(*actual, *reference, options);
-    if (!compared) {
-        err << "error: " << referencePath << ": " << compared.error() << "\n";
-        return kExitError;
-    }
+    Result<ImageComparison> compared = compareFiles(actualPath, actualIds, referencePath, referenceIds, options);
+    if (!compared) return fail(err, compared.failure());
     const ImageComparison& c = *compared;
 
     // The mask and the JSON appear together or not at all.
@@ -108,11 +101,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
         const std::string text = j.dump(2) + "\n";
         files.add(jsonPath, Bytes(text.begin(), text.end()));
     }
-    Result<bool> written = files.commit();
-    if (!written) {
-        err << "error: " << written.error() << "\n";
-        return kExitError;
-    }
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
 
     out << actualPath << " vs " << referencePath << " (reference), " << c.width << "x" << c.height << ": "
         << (c.passed() ? "PASS" : "FAIL") << "\n"

@@ -35,6 +35,23 @@ struct Outputs : ReportPaths {
     std::string cameraPath;
 };
 
+// --methods A,B,...: the methods, each once, in the order given.
+Flag methodsFlag(std::vector<Cull>& methods) {
+    return {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, oracle (default all)",
+            [&methods](const std::string& list) -> std::string {
+                methods.clear();
+                std::stringstream items(list);
+                std::string item;
+                while (std::getline(items, item, ',')) {
+                    const std::optional<Cull> method = fromString(item, kCulls);
+                    if (!method) return "names '" + item + "', not a method (" + namesOf(kCulls) + ")";
+                    if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
+                }
+                if (methods.empty()) return "is not a list of methods (" + namesOf(kCulls) + ")";
+                return {};
+            }};
+}
+
 // The views: a camera path (timed in order), the one camera the options give, or `count` views
 // around the scene's bounding sphere. The render's --near/--far and depth settings apply to each.
 Result<std::vector<ReportView>> viewsOf(const RenderOptions& options, const std::string& cameraPath, int count,
@@ -86,19 +103,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                        "(--camera, --eye, ...) for one view", outputs.cameraPath),
         }},
         {"methods and timing", {
-            {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, oracle (default all)",
-             [&methods](const std::string& list) -> std::string {
-                 methods.clear();
-                 std::stringstream items(list);
-                 std::string item;
-                 while (std::getline(items, item, ',')) {
-                     const std::optional<Cull> method = fromString(item, kCulls);
-                     if (!method) return "names '" + item + "', not a method (" + namesOf(kCulls) + ")";
-                     if (std::find(methods.begin(), methods.end(), *method) == methods.end()) methods.push_back(*method);
-                 }
-                 if (methods.empty()) return "is not a list of methods (" + namesOf(kCulls) + ")";
-                 return {};
-             }},
+            methodsFlag(methods),
             flag::whole("--repeat", "K", "timed frames per view and method, interleaved; medians (default 5)", repeat, 1,
                         10000),
             hsrFlag(hsrMode, "every row draws in this hidden-surface mode (zbuffer, depthsort or adaptive; 'frugal help "
@@ -137,9 +142,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     Result<std::vector<ReportView>> views = viewsOf(options, outputs.cameraPath, viewCount, *loaded, settings);
     if (!views) return fail(err, views.failure());
 
-    Result<CullMeasurement> measured = measureCulling(*loaded, *views, settings, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<CullMeasurement> measured = measureCulling(*loaded, *views, settings, progressTo(err, options.quiet));
     if (!measured) return fail(err, measured.failure());
     const ReportTexts texts{[&measured] { return measured->json; },
                             [&measured] { return cullReportCsv(measured->report); }, cullReportGnuplot};

@@ -67,6 +67,29 @@ std::string frameSummary(const BackendPair& pair, int frame, double time, const 
     return text;
 }
 
+// The --json document: the settings, the verdict, both backends and the frames' records.
+std::string diffJson(const RenderOptions& options, const Settings& settings, int tolerance, int failedFrames,
+                     const BackendPair& pair, const nlohmann::ordered_json& frames) {
+    const nlohmann::ordered_json report = {
+        {"command", "diff"},
+        {"scene", options.scene},
+        {"size", {options.width, options.height}},
+        {"tolerance", tolerance},
+        {"hsr", toString(settings.hsr)},
+        {"draw_order", toString(settings.order)},
+        {"passed", failedFrames == 0},
+        {"failed_frames", failedFrames},
+        {"actual",
+         {{"backend", pair.actual().backend().name()},
+          {"renderer", pair.actual().backend().renderer()},
+          {"backend_log", pair.actual().log()}}},
+        {"reference",
+         {{"backend", pair.reference().backend().name()}, {"renderer", pair.reference().backend().renderer()}}},
+        {"frames", frames},
+    };
+    return report.dump(2) + "\n";
+}
+
 }  // namespace
 
 const char* diffHelp() {
@@ -114,9 +137,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     Settings settings = rendererSettings(options);
     settings.hsr = hsrMode;
     settings.order = drawOrder;
-    Result<BackendPair> pair = BackendPair::open(*loaded, settings, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<BackendPair> pair = BackendPair::open(*loaded, settings, progressTo(err, options.quiet));
     if (!pair) return fail(err, pair.failure());
 
     const FrameRange range = options.frames.value_or(FrameRange{});
@@ -154,24 +175,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     out << "diff " << options.scene << ": " << (frameCount - failedFrames) << " of " << frameCount
         << (frameCount == 1 ? " frame" : " frames") << " within tolerance " << compare.tolerance << "\n";
     if (!jsonPath.empty()) {
-        const nlohmann::ordered_json report = {
-            {"command", "diff"},
-            {"scene", options.scene},
-            {"size", {options.width, options.height}},
-            {"tolerance", compare.tolerance},
-            {"hsr", toString(hsrMode)},
-            {"draw_order", toString(drawOrder)},
-            {"passed", failedFrames == 0},
-            {"failed_frames", failedFrames},
-            {"actual",
-             {{"backend", pair->actual().backend().name()},
-              {"renderer", pair->actual().backend().renderer()},
-              {"backend_log", pair->actual().log()}}},
-            {"reference",
-             {{"backend", pair->reference().backend().name()}, {"renderer", pair->reference().backend().renderer()}}},
-            {"frames", frames},
-        };
-        const std::string text = report.dump(2) + "\n";
+        const std::string text = diffJson(options, settings, compare.tolerance, failedFrames, *pair, frames);
         if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(text.begin(), text.end())); !written)
             return fail(err, written.failure());
     }

@@ -100,9 +100,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
                                     options.frames->last, repeat,                    warmup,
                                     !masksDir.empty()};
     const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(options, *loaded, frame, false); };
-    Result<HsrBenchResult> measured = measureHsr(*loaded, settings, setupOf, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<HsrBenchResult> measured = measureHsr(*loaded, settings, setupOf, progressTo(err, options.quiet));
     if (!measured) return fail(err, measured.failure());
     if (!masksDir.empty())
         if (Result<bool> written = writeMasks(masksDir, measured->worst); !written) return fail(err, written.failure());

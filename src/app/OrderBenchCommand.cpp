@@ -53,9 +53,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     Result<FrameSetup> setup = setUpFrame(options, *loaded, options.frames ? options.frames->first : 0, false);
     if (!setup) return fail(err, setup.failure());
     const OrderBenchSettings settings{options.scene, rendererSettings(options), runs, warmup};
-    Result<OrderBenchResult> measured = measureOrders(*loaded, *setup, settings, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<OrderBenchResult> measured = measureOrders(*loaded, *setup, settings, progressTo(err, options.quiet));
     if (!measured) return fail(err, measured.failure());
     out << measured->text;
     const ReportTexts texts{[&measured] { return measured->json; }, [&measured] { return measured->csv; },

@@ -36,12 +36,6 @@ struct Outputs {
     std::string depth, ids, json;
 };
 
-bool hasExtension(const std::string& path, const std::string& ext) {
-    std::string e = std::filesystem::path(path).extension().string();
-    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e == ext;
-}
-
 // The file name of frame `frame`: the pattern's single %d/%0Nd, or "_%04d" before the extension.
 std::string framePath(const std::string& pattern, int frame, bool sequence) {
     if (!sequence) return pattern;

@@ -36,6 +36,26 @@ Progress goes to stderr, a line every few seconds at most.
 )";
 }
 
+namespace {
+
+// A combination of flags soak cannot run, or "".
+std::string usageProblem(const SoakSettings& settings, const RenderOptions& options, const ReportPaths& outputs) {
+    // Besides SVG, --plot takes a .png (gnuplot's pngcairo): a picture a README can show.
+    if (std::string problem = plotProblem(outputs, /*pngToo=*/true); !problem.empty()) return problem;
+    if (settings.frames == 0 && (settings.cycles == 0 || settings.minimal))
+        return settings.minimal ? "--minimal with --frames 0: the minimal GL program only draws frames"
+                                : "--frames 0 with --cycles 0: nothing to do";
+    if (settings.minimal && settings.ids) return "--minimal with --ids: the minimal GL program draws no ids";
+    if (settings.minimal && options.backend == BackendKind::Software)
+        return "--minimal with --backend software: the minimal program is a GL program; pick a GL backend";
+    if (settings.warmup && settings.frames > 0 && *settings.warmup >= settings.frames)
+        return "--warmup " + std::to_string(*settings.warmup) + ": must be less than --frames " +
+               std::to_string(settings.frames);
+    return {};
+}
+
+}  // namespace
+
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     options.scene = "builtin:cubes";
@@ -82,19 +102,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {
-        // Besides SVG, --plot takes a .png (gnuplot's pngcairo): a picture a README can show.
-        if (const std::string problem = plotProblem(outputs, /*pngToo=*/true); !problem.empty())
-            cursor.fail(problem);
-        else if (settings.frames == 0 && (settings.cycles == 0 || settings.minimal))
-            cursor.fail(settings.minimal ? "--minimal with --frames 0: the minimal GL program only draws frames"
-                                         : "--frames 0 with --cycles 0: nothing to do");
-        else if (settings.minimal && settings.ids)
-            cursor.fail("--minimal with --ids: the minimal GL program draws no ids");
-        else if (settings.minimal && options.backend == BackendKind::Software)
-            cursor.fail("--minimal with --backend software: the minimal program is a GL program; pick a GL backend");
-        else if (settings.warmup && settings.frames > 0 && *settings.warmup >= settings.frames)
-            cursor.fail("--warmup " + std::to_string(*settings.warmup) + ": must be less than --frames " +
-                        std::to_string(settings.frames));
+        if (const std::string problem = usageProblem(settings, options, outputs); !problem.empty()) cursor.fail(problem);
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
@@ -107,9 +115,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     settings.fps = options.fps.value_or(loaded->fps);
     settings.period = period.value_or(options.time ? 1 : std::max(1, int(std::lround(loaded->duration() * settings.fps))));
     settings.maxGrowthPct = maxGrowth;
-    Result<SoakReport> report = frugal::runSoak(*loaded, settings, [&](const std::string& line) {
-        if (!options.quiet) err << line << "\n";
-    });
+    Result<SoakReport> report = frugal::runSoak(*loaded, settings, progressTo(err, options.quiet));
     if (!report) return fail(err, report.failure());
 
     out << soakReportText(*report);
