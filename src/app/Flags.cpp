@@ -141,29 +141,28 @@ std::string readNumber(const std::string& text, double lo, double hi, double& v)
 }
 }  // namespace
 
-Flag number(std::string name, std::string value, std::string help, double& target, double lo, double hi) {
-    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi](const std::string& text) {
+namespace {
+// A number in [lo, hi], handed to `set` when it is one.
+Flag numberInto(std::string name, std::string value, std::string help, double lo, double hi,
+                std::function<void(double)> set) {
+    return {std::move(name), std::move(value), std::move(help), [set = std::move(set), lo, hi](const std::string& text) {
                 double v = 0.0;
                 std::string why = readNumber(text, lo, hi, v);
-                if (why.empty()) target = v;
+                if (why.empty()) set(v);
                 return why;
             }};
+}
+}  // namespace
+
+Flag number(std::string name, std::string value, std::string help, double& target, double lo, double hi) {
+    return numberInto(std::move(name), std::move(value), std::move(help), lo, hi, [&target](double v) { target = v; });
 }
 Flag number(std::string name, std::string value, std::string help, std::optional<double>& target, double lo, double hi) {
-    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi](const std::string& text) {
-                double v = 0.0;
-                std::string why = readNumber(text, lo, hi, v);
-                if (why.empty()) target = v;
-                return why;
-            }};
+    return numberInto(std::move(name), std::move(value), std::move(help), lo, hi, [&target](double v) { target = v; });
 }
 Flag number(std::string name, std::string value, std::string help, std::optional<float>& target, double lo, double hi) {
-    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi](const std::string& text) {
-                double v = 0.0;
-                std::string why = readNumber(text, lo, hi, v);
-                if (why.empty()) target = float(v);
-                return why;
-            }};
+    return numberInto(std::move(name), std::move(value), std::move(help), lo, hi,
+                      [&target](double v) { target = float(v); });
 }
 
 Flag text(std::string name, std::string value, std::string help, std::string& target, std::string noun) {

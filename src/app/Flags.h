@@ -55,22 +55,10 @@ namespace flag {
 // A switch: sets `target` to `value`.
 Flag on(std::string name, std::string help, bool& target, bool value = true);
 
-// One of `values` by its name (toString): "'x' is not a <noun> (a, b, c)".
-template <class T, std::size_t N>
-Flag choice(std::string name, std::string value, std::string noun, std::string help, T& target,
-            const std::array<T, N>& values) {
-    return {std::move(name), std::move(value), std::move(help),
-            [&target, &values, noun = std::move(noun)](const std::string& text) -> std::string {
-                if (const std::optional<T> v = fromString(text, values)) {
-                    target = *v;
-                    return {};
-                }
-                return "is not " + noun + " (" + namesOf(values) + ")";
-            }};
-}
-// The same into an optional.
-template <class T, std::size_t N>
-Flag choice(std::string name, std::string value, std::string noun, std::string help, std::optional<T>& target,
+// One of `values` by its name (toString), into `target` (a T or an optional<T>): "'x' is not a
+// <noun> (a, b, c)".
+template <class Target, class T, std::size_t N>
+Flag choice(std::string name, std::string value, std::string noun, std::string help, Target& target,
             const std::array<T, N>& values) {
     return {std::move(name), std::move(value), std::move(help),
             [&target, &values, noun = std::move(noun)](const std::string& text) -> std::string {

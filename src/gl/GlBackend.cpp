@@ -408,9 +408,9 @@ private:
     } cache_;
     StateChanges changes_;
 
-    HandleTable<GlTarget> targets_;
-    HandleTable<GlMesh> meshes_;
-    HandleTable<GLuint> textures_;
+    HandleTable<GlTarget, TargetHandle> targets_;
+    HandleTable<GlMesh, MeshHandle> meshes_;
+    HandleTable<GLuint, TextureHandle> textures_;
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;

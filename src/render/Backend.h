@@ -23,10 +23,31 @@
 
 namespace frugal {
 
-using TargetHandle = std::uint32_t;
-using MeshHandle = std::uint32_t;
-using TextureHandle = std::uint32_t;
-inline constexpr std::uint32_t kNoHandle = 0;
+// A backend object's handle: its slot + 1, 0 for none (render/Handles.h). Each kind of object has a
+// type of its own, so a mesh's handle does not compile where a target's is expected.
+template <class Kind>
+struct Handle {
+    std::uint32_t id = 0;
+    constexpr Handle() = default;
+    constexpr explicit Handle(std::uint32_t value) : id(value) {}
+    friend constexpr bool operator==(Handle, Handle) = default;
+};
+using TargetHandle = Handle<struct TargetKind>;
+using MeshHandle = Handle<struct MeshKind>;
+using TextureHandle = Handle<struct TextureKind>;
+
+// No handle: what a failed create or upload gives, of whichever kind (`target == kNoHandle`).
+struct NoHandle {
+    template <class Kind>
+    constexpr operator Handle<Kind>() const {  // NOLINT: implicit by design
+        return Handle<Kind>{};
+    }
+};
+inline constexpr NoHandle kNoHandle{};
+template <class Kind>
+constexpr bool operator==(Handle<Kind> handle, NoHandle) {
+    return handle.id == 0;
+}
 
 // A run of triangles of one mesh, in units of triangles of its (reordered) index buffer.
 struct IndexRange {

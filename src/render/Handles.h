@@ -11,29 +11,30 @@
 
 namespace frugal {
 
-template <class T>
+// `H` is the handle type (render/Backend.h: TargetHandle, MeshHandle, TextureHandle).
+template <class T, class H>
 class HandleTable {
 public:
-    std::uint32_t add(T value) {
+    H add(T value) {
         auto item = std::make_unique<T>(std::move(value));
         if (!free_.empty()) {
             const std::uint32_t index = free_.back();
             free_.pop_back();
             items_[index] = std::move(item);
-            return index + 1;
+            return H{index + 1};
         }
         items_.push_back(std::move(item));
-        return std::uint32_t(items_.size());
+        return H{std::uint32_t(items_.size())};
     }
     // nullptr for kNoHandle, a handle never handed out, or one removed.
-    T* find(std::uint32_t handle) const {
-        if (handle == 0 || handle > items_.size()) return nullptr;
-        return items_[handle - 1].get();
+    T* find(H handle) const {
+        if (handle.id == 0 || handle.id > items_.size()) return nullptr;
+        return items_[handle.id - 1].get();
     }
-    void remove(std::uint32_t handle) {
+    void remove(H handle) {
         if (find(handle) == nullptr) return;
-        items_[handle - 1].reset();
-        free_.push_back(handle - 1);
+        items_[handle.id - 1].reset();
+        free_.push_back(handle.id - 1);
     }
     template <class F>
     void forEach(F&& f) {

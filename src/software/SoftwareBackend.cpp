@@ -87,9 +87,9 @@ private:
     }
 
     sw::Pipeline pipeline_;
-    HandleTable<SwTarget> targets_;
-    HandleTable<SwMesh> meshes_;
-    HandleTable<sw::SoftwareTexture> textures_;
+    HandleTable<SwTarget, TargetHandle> targets_;
+    HandleTable<SwMesh, MeshHandle> meshes_;
+    HandleTable<sw::SoftwareTexture, TextureHandle> textures_;
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;

@@ -1,5 +1,7 @@
 // The plan vocabulary both backends and future planners (culling, reuse) share: the full draw list,
 // index-range normalisation, handle tables, rectangle clipping and frame set-up.
+#include <type_traits>
+
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
@@ -75,13 +77,20 @@ TEST(PlanTest, TriangleSourcesDefaultToTheTriangleIndex) {
     EXPECT_EQ(triangleSources(mesh), mesh.triangleSource);
 }
 
+// Handles are typed: a mesh's does not pass as a target's, nor does a bare number; kNoHandle is
+// every kind's "none".
+static_assert(!std::is_convertible_v<MeshHandle, TargetHandle>);
+static_assert(!std::is_convertible_v<TextureHandle, MeshHandle>);
+static_assert(!std::is_convertible_v<std::uint32_t, TargetHandle>);
+static_assert(TargetHandle(kNoHandle) == TargetHandle{} && MeshHandle{} == kNoHandle && !(MeshHandle{1} == kNoHandle));
+
 TEST(PlanTest, HandleTableNeverHandsOutZeroAndReusesFreedSlots) {
-    HandleTable<int> table;
-    const std::uint32_t a = table.add(10), b = table.add(20);
-    EXPECT_EQ(a, 1u);
-    EXPECT_EQ(b, 2u);
-    EXPECT_EQ(table.find(0), nullptr);
-    EXPECT_EQ(table.find(3), nullptr);
+    HandleTable<int, MeshHandle> table;
+    const MeshHandle a = table.add(10), b = table.add(20);
+    EXPECT_EQ(a.id, 1u);
+    EXPECT_EQ(b.id, 2u);
+    EXPECT_EQ(table.find(kNoHandle), nullptr);
+    EXPECT_EQ(table.find(MeshHandle{3}), nullptr);
     int* address = table.find(b);
     table.remove(a);
     EXPECT_EQ(table.find(a), nullptr);

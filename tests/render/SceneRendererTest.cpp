@@ -22,10 +22,10 @@ public:
     int maxTargetSize() const override { return 64; }
     int maxTextureSize() const override { return 32; }
     bool supportsDepthFormat(DepthFormat) const override { return true; }
-    TargetHandle createTarget(int, int, DepthFormat) override { return 1; }
+    TargetHandle createTarget(int, int, DepthFormat) override { return TargetHandle{1}; }
     void destroyTarget(TargetHandle) override {}
-    void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh)); }
-    void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture)); }
+    void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh.id)); }
+    void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture.id)); }
     MeshHandle uploadMesh(const Mesh& mesh) override {
         return mesh.name == "refuse" ? kNoHandle : MeshHandle(10 + meshes_++);
     }
@@ -97,17 +97,17 @@ TEST(SceneRendererTest, AFrameIsClearBeginThenEveryInstanceInOrderWithItsMateria
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
     ASSERT_TRUE(renderer) << renderer.error();
     const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
-    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
     EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw"}));
     ASSERT_EQ(backend.draws.size(), 2u);
     const DrawParams& first = backend.draws[0].params;  // instance 0: node 0, mesh 1
-    EXPECT_EQ(first.mesh, 11u);
-    EXPECT_EQ(first.texture, 20u);
+    EXPECT_EQ(first.mesh.id, 11u);
+    EXPECT_EQ(first.texture.id, 20u);
     EXPECT_TRUE(first.doubleSided);
     EXPECT_EQ(first.firstId, scene.instances[0].firstId);
     const DrawParams& second = backend.draws[1].params;  // instance 1: node 1, mesh 0
-    EXPECT_EQ(second.mesh, 10u);
-    EXPECT_EQ(second.texture, kNoHandle);
+    EXPECT_EQ(second.mesh.id, 10u);
+    EXPECT_TRUE(second.texture == kNoHandle);
     EXPECT_FALSE(second.doubleSided);
     EXPECT_EQ(second.baseColorFactor, scene.materials[0].baseColorFactor);
     EXPECT_EQ(second.model, world[1]);
@@ -158,9 +158,9 @@ TEST(SceneRendererTest, CullAllBackFacesOverridesDoubleSidedMaterialsAndDrawsThe
     ASSERT_TRUE(renderer) << renderer.error();
     renderer->setCullAllBackFaces(true);
     const DrawList list{DrawCommand{0, {IndexRange{0, 1}}}};
-    renderer->renderFrame(1, 8, 8, FrameParams{}, scene.worldTransforms(0.0), glm::vec4(0.0f), list);
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, scene.worldTransforms(0.0), glm::vec4(0.0f), list);
     ASSERT_EQ(backend.draws.size(), 1u);
-    EXPECT_EQ(backend.draws[0].params.mesh, 11u);
+    EXPECT_EQ(backend.draws[0].params.mesh.id, 11u);
     EXPECT_FALSE(backend.draws[0].params.doubleSided);
 }
 
@@ -181,7 +181,7 @@ TEST(SceneRendererTest, ConsecutiveDrawsOfOneMeshAndRangeAreOneBatchInOrder) {
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
     ASSERT_TRUE(renderer.ok());
     const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
-    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
     EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "instances 2", "draw", "draw"}));
     ASSERT_EQ(backend.draws.size(), 4u);
     for (std::size_t i = 0; i < 4; ++i) {
@@ -191,12 +191,12 @@ TEST(SceneRendererTest, ConsecutiveDrawsOfOneMeshAndRangeAreOneBatchInOrder) {
     // Batching off, or different ranges: one draw each.
     backend.calls.clear();
     renderer->setBatching(false);
-    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
     EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw", "draw", "draw"}));
     backend.calls.clear();
     renderer->setBatching(true);
     const DrawList split{{0, {{0, 1}}}, {1, {{0, 0}, {0, 1}}}};
-    renderer->renderFrame(1, 8, 8, FrameParams{}, world, glm::vec4(0.0f), split);
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f), split);
     EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw"}));
 }
 
