@@ -40,10 +40,8 @@ see 'frugal help render'), into a target of its own, interleaved with frugal's f
 }
 
 int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    if (args.empty() || (args[0] != "render" && args[0] != "-h" && args[0] != "--help")) {
-        err << "error: bench: expected 'bench render [SCENE] [options]'\n";
-        return kExitUsage;
-    }
+    if (args.empty() || (args[0] != "render" && args[0] != "-h" && args[0] != "--help"))
+        return usageError(err, "bench: expected 'bench render [SCENE] [options]'");
     RenderOptions options;
     bool ids = false;
     int runs = 30, warmup = 5;

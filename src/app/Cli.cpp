@@ -92,19 +92,22 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
         }
         // `frugal help COMMAND` is `frugal COMMAND --help`: one help text per command.
         if (const CommandEntry* entry = findCommand(rest[0])) return entry->run({"--help"}, out, err);
-        err << "error: help " << rest[0] << ": no such command (commands: " << commandNames() << ")\n";
-        return kExitUsage;
+        return usageError(err, "help " + rest[0] + ": no such command (commands: " + commandNames() + ")");
     }
     if (name == "--version") {
         out << "frugal " << version() << "\n";
         return kExitOk;
     }
     if (const CommandEntry* entry = findCommand(name)) return entry->run(rest, out, err);
-    err << "error: unknown command '" << name << "' (commands: " << commandNames() << ")\n";
-    return kExitUsage;
+    return usageError(err, "unknown command '" + name + "' (commands: " + commandNames() + ")");
 }
 
 int exitStatus(ErrorKind kind) { return kind == ErrorKind::BackendUnavailable ? kExitNoBackend : kExitError; }
+
+int usageError(std::ostream& err, const std::string& message) {
+    err << "error: " << message << "\n";
+    return kExitUsage;
+}
 
 int fail(std::ostream& err, const Error& error) {
     err << "error: " << (error.aboutSetting ? "--" : "") << error.message << "\n";

@@ -28,6 +28,9 @@ int exitStatus(ErrorKind kind);
 // with a setting's name: Error::aboutSetting), and gives exitStatus(error.kind).
 int fail(std::ostream& err, const Error& error);
 
+// Prints a bad command line's one line, "error: <message>", and gives kExitUsage.
+int usageError(std::ostream& err, const std::string& message);
+
 // Runs `frugal args...` (args without the program name). Normal output goes to `out`, progress,
 // warnings and errors (one line each, "error: <what>: <why>") to `err`.
 int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

@@ -76,8 +76,7 @@ std::optional<int> parseCommandLine(const CommandLine& command, const std::vecto
     if (cursor.error.empty() && command.shared) checkSharedOptions(*command.shared, cursor);
     if (cursor.error.empty() && command.finish) command.finish(cursor);
     if (!cursor.error.empty()) {
-        err << "error: " << cursor.error << "\n";
-        return kExitUsage;
+        return usageError(err, cursor.error);
     }
     return std::nullopt;
 }

@@ -41,10 +41,9 @@ int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::os
         scriptPath = std::filesystem::path(paths.plot).replace_extension(".gp").string();
         // The script names the CSV inside single quotes (plotProblem refuses such a path first, as a
         // usage error; this holds for a command that did not ask it).
-        if (hasSingleQuote(csvPath)) {
-            err << "error: --csv " << csvPath << ": a path with a single quote cannot be passed to gnuplot\n";
-            return kExitError;
-        }
+        if (hasSingleQuote(csvPath))
+            return fail(err, Error{"csv " + csvPath + ": a path with a single quote cannot be passed to gnuplot",
+                                   ErrorKind::BadInput, true});
         const std::string script = texts.gnuplot(csvPath, paths.plot);
         files.add(scriptPath, Bytes(script.begin(), script.end()));
     }
@@ -52,18 +51,12 @@ int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::os
         const std::string text = texts.csv();
         files.add(csvPath, Bytes(text.begin(), text.end()));
     }
-    if (Result<bool> written = files.commit(); !written) {
-        err << "error: " << written.error() << "\n";
-        return kExitError;
-    }
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
     if (!paths.plot.empty()) {
         // gnuplot writes the plot itself: it inherits the block, so a signal waits for a whole file.
         const SignalsHeld held;
         const std::string problem = runGnuplot(scriptPath);
-        if (!problem.empty()) {
-            err << "error: --plot " << paths.plot << ": " << problem << "\n";
-            return kExitError;
-        }
+        if (!problem.empty()) return fail(err, Error{"plot " + paths.plot + ": " + problem, ErrorKind::Io, true});
     }
     return kExitOk;
 }
