@@ -17,10 +17,12 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include <frugal/Image.h>
+#include <frugal/Result.h>
 
 namespace frugal {
 
@@ -87,5 +89,13 @@ struct View {
     DepthFormat depthFormat = DepthFormat::D24;
     std::string source;  // "scene camera 0 'name'", "eye/target", "auto (fit bounds)"
 };
+
+// A camera path: the JSON file at `path`, a list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],
+// "fov":degrees} ("up" and "fov" optional; {"views": [...]} is taken too), one Camera an entry
+// (eye, target, up, yfovDegrees). An entry that makes no view whatever the scene is refused with
+// its number. Errors start with the setting (Error::aboutSetting): "camera-path F: cannot read the
+// file" (Io), "camera-path F: entry 3: eye: expected 3 numbers", "... eye and target coincide at
+// (0, 0, 0)", "... up (0, 1, 0) is parallel to the view direction" (BadInput).
+Result<std::vector<Camera>> readCameraPath(const std::string& path);
 
 }  // namespace frugal

@@ -4,7 +4,6 @@
 #include <ostream>
 #include <sstream>
 
-#include "app/CameraPath.h"
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"

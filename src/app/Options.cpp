@@ -7,7 +7,6 @@
 #include <ostream>
 #include <string_view>
 
-#include "app/CameraPath.h"
 
 namespace frugal {
 
@@ -119,7 +118,7 @@ void checkSharedOptions(RenderOptions& o, ArgCursor& cursor) {
         cursor.fail("--far " + fmt(*far) + ": must exceed --near " + fmt(*near));
     if (cursor.error.empty() && !o.cameraPathFile.empty()) {
         Result<std::vector<Camera>> cameras = readCameraPath(o.cameraPathFile);
-        if (!cameras) cursor.fail(cameras.error());
+        if (!cameras) cursor.fail("--" + cameras.error());
         else o.cameraPath = std::move(*cameras);
     }
 }

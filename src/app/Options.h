@@ -54,7 +54,7 @@ struct RenderOptions {
     DepthInterp interp = DepthInterp::Exact;  // --interp: the software backend's depth along a span
     Camera camera;
     DepthFormat depthFormat = DepthFormat::D24;  // --depth-format
-    // --camera-path (render, reuse-bench; app/CameraPath.h): entry i is frame first + i, the last
+    // --camera-path (render, reuse-bench; frugal/Camera.h readCameraPath): entry i is frame first + i, the last
     // one holds; --near/--far still apply. Empty: `camera` for every frame.
     std::vector<Camera> cameraPath;
     std::string cameraPathFile;   // --camera-path FILE, read into cameraPath by checkSharedOptions

@@ -1,0 +1,310 @@
+// The GL backend's draws: beginFrame, draw and drawInstances, the id pass's expanded vertex
+// buffers, and many short ranges gathered into one index buffer (the class: GlBackendImpl.h).
+//
+// Vertex arithmetic (the software reference repeats it exactly, in float, with glm):
+//   u_mvp = (projection * view) * model       (projection * view computed once per frame)
+//   u_normalMatrix = transpose(inverse(mat3(model)))
+//   gl_Position = u_mvp * vec4(position, 1)
+//
+// Triangle ids: reading gl_PrimitiveID in the fragment stage is slower on llvmpipe than a flat
+// vertex attribute (docs/gl/README.md), so a frame that writes ids draws each mesh unindexed from an
+// "expanded" vertex buffer: 3 vertices per triangle, in the mesh's triangle order, each carrying the
+// flat attribute triangleSource[t]. It is built on the first draw of the mesh with ids, from the
+// mesh's own GL buffers (read back once, so no CPU copy of every mesh is kept for a pass that may
+// never run). Ranges become glMultiDrawArrays over [3·first, 3·count). Without ids the mesh is drawn
+// indexed (glMultiDrawElements) into colour attachment 0 only, and the id attachment keeps what it
+// holds. Both paths run the same arithmetic on the same vertex values, so colour and depth are
+// identical.
+//
+// Many short ranges (a culled plan: a thousand runs or more, of a few tens of triangles each) are
+// gathered into one index buffer streamed for the draw (glBufferData, GL_STREAM_DRAW) and drawn with
+// one glDrawElements: the same triangles in the same order, so the same pixels. llvmpipe runs each
+// range of a glMultiDrawElements as a draw of its own, and one index buffer draws a culled plan's
+// ranges faster (docs/gl/README.md); kGatherMinRuns and kGatherMaxAverageRun say when a draw is
+// gathered. The mesh's indices are read back from its buffer once, on the first gathered draw (no
+// CPU copy is kept for meshes never culled).
+#include <algorithm>
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/GlApi.h"
+#include "gl/GlBackendImpl.h"
+#include "render/IndexRanges.h"
+
+namespace frugal::gl {
+
+namespace {
+
+// A draw's ranges are gathered into one streamed index buffer when there are at least this many and
+// they are this short on average (triangles); otherwise glMultiDrawElements takes them as they are.
+constexpr std::size_t kGatherMinRuns = 64;
+constexpr std::size_t kGatherMaxAverageRun = 256;
+
+}  // namespace
+
+void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
+    assert(targets_.find(target) != nullptr && "beginFrame: no such target");
+    if (targets_.find(target) == nullptr) return;
+    assert(targets_.find(target)->depthFormat == frame.depthFormat &&
+           "beginFrame: the projection is for another depth format");
+    frameTarget_ = target;
+    frame_ = frame;
+    // The lighting goes to each program on its first draw of the frame (uniforms are per program).
+    viewProjection_ = frame.projection * frame.view;
+}
+
+GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
+    const bool writeIds = frame_.writeIds;
+    // The variant: a texture, vertex colours and ids only when the draw uses them.
+    unsigned variant = (writeIds ? kIdsBit : 0u) | extraBits;
+    GLuint texture = 0;
+    if (params.texture != kNoHandle) {
+        const GLuint* t = textures_.find(params.texture);
+        assert(t != nullptr && "draw: no such texture");
+        if (t) {
+            texture = *t;
+            variant |= kTextureBit;
+        }
+    }
+    if (mesh.layout.color >= 0) variant |= kColorsBit;
+    GlProgram* p = program(variant);
+    if (p == nullptr) return nullptr;
+
+    state_.drawInto(target, writeIds ? DrawSet::ColorAndIds : DrawSet::Color);
+    state_.setViewport(target.width, target.height);
+    state_.setScissor(false);
+    state_.setCull(!params.doubleSided);
+    state_.setDepthTest(params.depth == DepthMode::Test);
+    state_.setDepthConvention(target.depthFormat);
+    if (texture) state_.bindTexture(texture);
+
+    const Lighting& light = frame_.lighting;
+    if (state_.uniformChanged(p->toLightValue, light.toLight))
+        gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
+    if (state_.uniformChanged(p->ambientValue, light.ambient)) gl_.Uniform1f(p->ambient, light.ambient);
+    if (state_.uniformChanged(p->diffuseValue, light.diffuse)) gl_.Uniform1f(p->diffuse, light.diffuse);
+
+    // Attributes the mesh lacks read the current generic value. That value is context state, and
+    // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
+    // set before every draw that needs it: normal +z, uv (0,0). (Colours and ids are only in the
+    // variants of meshes that have them.)
+    if (mesh.layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
+    if ((variant & kTextureBit) && mesh.layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
+    return p;
+}
+
+void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
+    GlTarget* target = targets_.find(frameTarget_);
+    GlMesh* mesh = meshes_.find(params.mesh);
+    assert(target != nullptr && "draw: no beginFrame, or its target was destroyed");
+    assert(mesh != nullptr && "draw: no such mesh");
+    if (target == nullptr || mesh == nullptr) return;
+
+    const std::uint64_t triangles = normalizeRanges(ranges, mesh->triangles, runs_);
+    if (triangles == 0) return;
+    counts_.clear();
+    firsts_.clear();
+    for (const IndexRange& run : runs_) {
+        firsts_.push_back(GLint(run.firstTriangle));
+        counts_.push_back(GLsizei(run.triangleCount));
+    }
+
+    activate();
+    const bool writeIds = frame_.writeIds;
+    GlProgram* p = prepareDraw(params, *target, *mesh, 0u);
+    if (p == nullptr) return;
+    const glm::mat4 mvp = viewProjection_ * params.model;
+    const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
+    if (state_.uniformChanged(p->mvpValue, mvp)) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    if (state_.uniformChanged(p->normalMatrixValue, normalMatrix))
+        gl_.UniformMatrix3fv(p->normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
+        gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
+    if (writeIds && state_.uniformChanged(p->firstIdValue, params.firstId)) gl_.Uniform1ui(p->firstId, params.firstId);
+    state_.countDraw();
+
+    if (writeIds) {
+        target->idsDirty = true;
+        if (mesh->idVao == 0 && !buildIdPass(*mesh)) {
+            assert(false && "draw: could not build the id pass (out of memory?)");
+            return;
+        }
+        for (std::size_t i = 0; i < counts_.size(); ++i) {
+            firsts_[i] *= 3;
+            counts_[i] *= 3;
+        }
+        state_.bindVao(mesh->idVao);
+        gl_.MultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
+    } else if (runs_.size() >= kGatherMinRuns &&
+               triangles / runs_.size() < kGatherMaxAverageRun) {
+        drawGathered(*mesh, triangles);
+    } else {
+        offsets_.resize(counts_.size());
+        for (std::size_t i = 0; i < counts_.size(); ++i) {
+            offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 * sizeof(std::uint32_t));
+            counts_[i] *= 3;
+        }
+        state_.bindVao(mesh->vao);
+        gl_.MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(), GLsizei(counts_.size()));
+    }
+    check("draw");
+}
+
+void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
+    if (m.indices.empty()) {
+        m.indices.resize(std::size_t(m.triangles) * 3);
+        readBuffer(m.ibo, m.indices.data(), GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)));
+    }
+    gathered_.resize(std::size_t(triangles) * 3);
+    std::uint32_t* out = gathered_.data();
+    for (const IndexRange& run : runs_) {
+        const std::uint32_t* from = m.indices.data() + std::size_t(run.firstTriangle) * 3;
+        out = std::copy(from, from + std::size_t(run.triangleCount) * 3, out);
+    }
+    if (streamIbo_ == 0) gl_.GenBuffers(1, &streamIbo_);
+    // The element binding is VAO state: the stream buffer goes into the mesh's VAO for this draw and
+    // the mesh's own index buffer comes back after it.
+    state_.bindVao(m.vao);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, streamIbo_);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(gathered_.size() * sizeof(std::uint32_t)), gathered_.data(),
+                   GL_STREAM_DRAW);
+    gl_.DrawElements(GL_TRIANGLES, GLsizei(gathered_.size()), GL_UNSIGNED_INT, nullptr);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
+}
+
+bool GlBackend::buildIdPass(GlMesh& m) {
+    std::vector<std::uint8_t> vertexData(static_cast<std::size_t>(m.layout.size));
+    std::vector<std::uint32_t> indices(std::size_t(m.triangles) * 3);
+    readBuffer(m.vbo, vertexData.data(), m.layout.size);
+    readBuffer(m.ibo, indices.data(), GLsizeiptr(indices.size() * sizeof(std::uint32_t)));
+
+    // Same sections as the indexed buffer, 3 vertices per triangle, plus the id section.
+    const std::size_t n = indices.size();
+    VertexLayout expanded;
+    GLsizeiptr size = GLsizeiptr(n * sizeof(glm::vec3));
+    const auto section = [&size, n](GLintptr source, std::size_t elementSize) -> GLintptr {
+        if (source < 0) return -1;
+        const GLintptr at = size;
+        size += GLsizeiptr(n * elementSize);
+        return at;
+    };
+    expanded.normal = section(m.layout.normal, sizeof(glm::vec3));
+    expanded.color = section(m.layout.color, sizeof(glm::vec4));
+    expanded.uv = section(m.layout.uv, sizeof(glm::vec2));
+    expanded.id = section(0, sizeof(std::uint32_t));
+    expanded.size = size;
+    std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
+    const auto gather = [&](GLintptr from, GLintptr to, std::size_t elementSize) {
+        if (from < 0) return;
+        for (std::size_t k = 0; k < n; ++k)
+            std::memcpy(data.data() + to + k * elementSize, vertexData.data() + from + indices[k] * elementSize,
+                        elementSize);
+    };
+    gather(0, 0, sizeof(glm::vec3));
+    gather(m.layout.normal, expanded.normal, sizeof(glm::vec3));
+    gather(m.layout.color, expanded.color, sizeof(glm::vec4));
+    gather(m.layout.uv, expanded.uv, sizeof(glm::vec2));
+    for (std::size_t k = 0; k < n; ++k)
+        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t), &m.triangleSource[k / 3],
+                    sizeof(std::uint32_t));
+
+    gl_.GenVertexArrays(1, &m.idVao);
+    gl_.GenBuffers(1, &m.idVbo);
+    state_.bindVao(m.idVao);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, m.idVbo);
+    gl_.BufferData(GL_ARRAY_BUFFER, size, data.data(), GL_STATIC_DRAW);
+    setVertexLayout(m.idVao, m.idVbo, 0, expanded);
+    return gl_.GetError() == GL_NO_ERROR;
+}
+
+void GlBackend::readBuffer(GLuint buffer, void* data, GLsizeiptr size) {
+    if (size <= 0) return;
+    // Through GL_COPY_READ_BUFFER: binding GL_ELEMENT_ARRAY_BUFFER would change the bound VAO.
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, buffer);
+    gl_.GetBufferSubData(GL_COPY_READ_BUFFER, 0, size, data);
+    gl_.BindBuffer(GL_COPY_READ_BUFFER, 0);
+}
+
+void GlBackend::drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) {
+    GlTarget* target = targets_.find(frameTarget_);
+    GlMesh* mesh = meshes_.find(params.mesh);
+    assert(target != nullptr && "drawInstances: no beginFrame, or its target was destroyed");
+    assert(mesh != nullptr && "drawInstances: no such mesh");
+    if (target == nullptr || mesh == nullptr || instances.empty()) return;
+    const std::uint64_t triangles = normalizeRanges({&range, 1}, mesh->triangles, runs_);
+    if (triangles == 0) return;
+    const IndexRange run = runs_[0];
+
+    activate();
+    const bool writeIds = frame_.writeIds;
+    GlProgram* p = prepareDraw(params, *target, *mesh, kInstancedBit);
+    if (p == nullptr) return;
+    // The records: what draw() would put in its uniforms, computed the same way (glm, float).
+    instanceData_.resize(instances.size());
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        const InstanceParams& in = instances[i];
+        InstanceRecord& out = instanceData_[i];
+        const glm::mat4 mvp = viewProjection_ * in.model;
+        const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(in.model));
+        std::memcpy(out.mvp, glm::value_ptr(mvp), sizeof out.mvp);
+        std::memcpy(out.normalMatrix, glm::value_ptr(normalMatrix), sizeof out.normalMatrix);
+        std::memcpy(out.baseColorFactor, glm::value_ptr(in.baseColorFactor), sizeof out.baseColorFactor);
+        out.firstId = in.firstId;
+    }
+    if (instanceVbo_ == 0) gl_.GenBuffers(1, &instanceVbo_);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, instanceVbo_);
+    gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(instanceData_.size() * sizeof(InstanceRecord)), instanceData_.data(),
+                   GL_STREAM_DRAW);
+    const GLsizei count = GLsizei(instances.size());
+    if (writeIds) {
+        target->idsDirty = true;
+        if (mesh->idVao == 0 && !buildIdPass(*mesh)) {
+            assert(false && "drawInstances: could not build the id pass (out of memory?)");
+            return;
+        }
+        attachInstances(mesh->idVao, mesh->idVaoInstanced);
+        gl_.DrawArraysInstanced(GL_TRIANGLES, GLint(run.firstTriangle) * 3, GLsizei(run.triangleCount) * 3, count);
+    } else {
+        attachInstances(mesh->vao, mesh->vaoInstanced);
+        gl_.DrawElementsInstanced(GL_TRIANGLES, GLsizei(run.triangleCount) * 3, GL_UNSIGNED_INT,
+                                  reinterpret_cast<const void*>(std::uintptr_t(run.firstTriangle) * 3 * sizeof(std::uint32_t)),
+                                  count);
+    }
+    state_.countDraw();
+    check("drawInstances");
+}
+
+void GlBackend::attachInstances(GLuint vao, bool& attached) {
+    state_.bindVao(vao);
+    if (attached) return;
+    gl_.BindBuffer(GL_ARRAY_BUFFER, instanceVbo_);
+    constexpr GLsizei stride = sizeof(InstanceRecord);
+    const auto at = [](std::size_t bytes) { return reinterpret_cast<const void*>(bytes); };
+    for (GLuint column = 0; column < 4; ++column) {
+        gl_.EnableVertexAttribArray(kInstanceMvp + column);
+        gl_.VertexAttribPointer(kInstanceMvp + column, 4, GL_FLOAT, GL_FALSE, stride,
+                                at(offsetof(InstanceRecord, mvp) + 16 * column));
+        gl_.VertexAttribDivisor(kInstanceMvp + column, 1);
+    }
+    for (GLuint column = 0; column < 3; ++column) {
+        gl_.EnableVertexAttribArray(kInstanceNormalMatrix + column);
+        gl_.VertexAttribPointer(kInstanceNormalMatrix + column, 3, GL_FLOAT, GL_FALSE, stride,
+                                at(offsetof(InstanceRecord, normalMatrix) + 12 * column));
+        gl_.VertexAttribDivisor(kInstanceNormalMatrix + column, 1);
+    }
+    gl_.EnableVertexAttribArray(kInstanceColor);
+    gl_.VertexAttribPointer(kInstanceColor, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, baseColorFactor)));
+    gl_.VertexAttribDivisor(kInstanceColor, 1);
+    gl_.EnableVertexAttribArray(kInstanceFirstId);
+    gl_.VertexAttribIPointer(kInstanceFirstId, 1, GL_UNSIGNED_INT, stride, at(offsetof(InstanceRecord, firstId)));
+    gl_.VertexAttribDivisor(kInstanceFirstId, 1);
+    attached = true;
+}
+
+}  // namespace frugal::gl
