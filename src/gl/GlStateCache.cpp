@@ -79,25 +79,23 @@ void GlStateCache::setDepthConvention(DepthFormat format) {
     depthFormat_ = int(format);
 }
 
+bool GlStateCache::rebinds(GLuint& bound, GLuint name, std::uint64_t& counter) {
+    if (bound == name) return false;
+    bound = name;
+    ++counter;
+    return true;
+}
+
 void GlStateCache::bindVao(GLuint vao) {
-    if (vao_ == vao) return;
-    gl_.BindVertexArray(vao);
-    vao_ = vao;
-    ++changes_.meshes;
+    if (rebinds(vao_, vao, changes_.meshes)) gl_.BindVertexArray(vao);
 }
 
 void GlStateCache::bindTexture(GLuint texture) {
-    if (texture_ == texture) return;
-    gl_.BindTexture(GL_TEXTURE_2D, texture);
-    texture_ = texture;
-    ++changes_.textures;
+    if (rebinds(texture_, texture, changes_.textures)) gl_.BindTexture(GL_TEXTURE_2D, texture);
 }
 
 void GlStateCache::useProgram(GLuint program) {
-    if (program_ == program) return;
-    gl_.UseProgram(program);
-    program_ = program;
-    ++changes_.programs;
+    if (rebinds(program_, program, changes_.programs)) gl_.UseProgram(program);
 }
 
 void GlStateCache::forgetFramebuffer(GLuint fbo) {

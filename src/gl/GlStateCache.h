@@ -93,6 +93,9 @@ public:
 private:
     // glEnable/glDisable of `capability` unless `cached` (−1 unknown, 0 off, 1 on) says it is so.
     void setEnabled(GLenum capability, int& cached, bool on);
+    // True when `name` is not the one `bound` holds: it is then recorded there and counted in
+    // `counter` (a kind of StateChanges), and the caller makes the GL call.
+    static bool rebinds(GLuint& bound, GLuint name, std::uint64_t& counter);
 
     const GlApi& gl_;
     GLuint drawFbo_ = 0, readFbo_ = 0, vao_ = 0, texture_ = 0, program_ = 0;

@@ -1,4 +1,4 @@
-#include "app/Gnuplot.h"
+#include "lab/Gnuplot.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
