@@ -10,6 +10,6 @@
 set -eu
 frugal=${FRUGAL:-../../build/frugal}
 nice -n 10 "$frugal" soak -q --json soak.json --csv soak.csv --plot soak.png > soak.txt
-nice -n 10 "$frugal" soak --backend egl-surfaceless --ids --frames 200000 --cycles 0 -q \
+nice -n 10 "$frugal" soak --backend egl-surfaceless --ids --frames 0:199999 --cycles 0 -q \
     --json long-egl-ids.json --csv long-egl-ids.csv --plot long-egl-ids.png > long-egl-ids.txt
 nice -n 10 "$frugal" soak --minimal -q --json minimal.json --csv minimal.csv --plot minimal.png > minimal.txt

@@ -38,19 +38,42 @@ Progress goes to stderr, a line every few seconds at most.
 
 namespace {
 
+// --frames A:B (frames A to B, each at scene time (f mod period) / fps), or none (cycles only): a
+// range, as every command's --frames is.
+Flag framesFlag(SoakSettings& settings) {
+    constexpr long long kMany = 1000000000;
+    return {"--frames", "A:B|none",
+            "the frames each backend renders, A to B (default 0:99999, 100,000 frames), frame f at scene time "
+            "(f mod --period) / --fps; none: cycles only",
+            [&settings](const std::string& text) -> std::string {
+                if (text == "none") {
+                    settings.firstFrame = settings.frames = 0;
+                    return {};
+                }
+                const std::size_t colon = text.find(':');
+                long long first = 0, last = 0;
+                if (colon == std::string::npos || !flag::readWhole(text.substr(0, colon), 0, kMany, first).empty() ||
+                    !flag::readWhole(text.substr(colon + 1), 0, kMany, last).empty() || last < first)
+                    return "is not a frame range (A:B, 0 <= A <= B <= 1000000000) or none";
+                settings.firstFrame = first;
+                settings.frames = last - first + 1;
+                return {};
+            }};
+}
+
 // A combination of flags soak cannot run, or "".
 std::string usageProblem(const SoakSettings& settings, const RenderOptions& options, const ReportPaths& outputs) {
     // Besides SVG, --plot takes a .png (gnuplot's pngcairo): a picture a README can show.
     if (std::string problem = plotProblem(outputs, /*pngToo=*/true); !problem.empty()) return problem;
     if (settings.frames == 0 && (settings.cycles == 0 || settings.minimal))
-        return settings.minimal ? "--minimal with --frames 0: the minimal GL program only draws frames"
-                                : "--frames 0 with --cycles 0: nothing to do";
+        return settings.minimal ? "--minimal with --frames none: the minimal GL program only draws frames"
+                                : "--frames none with --cycles 0: nothing to do";
     if (settings.minimal && settings.ids) return "--minimal with --ids: the minimal GL program draws no ids";
     if (settings.minimal && options.backend == BackendKind::Software)
         return "--minimal with --backend software: the minimal program is a GL program; pick a GL backend";
     if (settings.warmup && settings.frames > 0 && *settings.warmup >= settings.frames)
-        return "--warmup " + std::to_string(*settings.warmup) + ": must be less than --frames " +
-               std::to_string(settings.frames);
+        return "--warmup " + std::to_string(*settings.warmup) + ": must be less than the " +
+               std::to_string(settings.frames) + " frames of --frames";
     return {};
 }
 
@@ -69,7 +92,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     constexpr long long kMany = 1000000000;
     command.flags = {
         {"", {
-            flag::whole("--frames", "N", "frames per backend (default 100000; 0: cycles only)", settings.frames, 0, kMany),
+            framesFlag(settings),
             flag::whole("--cycles", "N", "create/destroy cycles of each kind per backend (default 1000; 0: none)",
                         settings.cycles, 0, kMany),
             flag::whole("--period", "N", "frames per loop of the animation (default: the scene's animation length at "

@@ -146,7 +146,7 @@ Result<bool> Soak::frames(SoakFrames& run, Draw&& draw) {
     reserveSamples(run.samples, std::size_t(s_.frames / every) + 3);
     run.samples.push_back(sampleNow(0, 0.0));
     for (std::int64_t f = 0; f < s_.frames; ++f) {
-        Result<FrameDigest> image = draw(timeOfFrame(f));
+        Result<FrameDigest> image = draw(timeOfFrame(s_.firstFrame + f));
         if (!image) return image.failure();
         run.images.add(f, image->hash, image->blank);
         const std::int64_t done = f + 1;
@@ -242,7 +242,7 @@ Result<bool> Soak::framesOn(BackendKind kind, SoakFrames run, SoakReport& report
 // itself).
 Result<bool> Soak::allCycles(BackendKind kind, const std::string& name, SoakReport& report) {
     const Settings rendering = settingsFor(kind);
-    const double time = timeOfFrame(0);
+    const double time = timeOfFrame(s_.firstFrame);
     const auto cyclesOf = [&name](const char* cycleKind) {
         SoakCycles run;
         run.backend = name;

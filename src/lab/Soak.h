@@ -28,7 +28,8 @@ struct SoakSettings {
     std::optional<double> time;  // every frame at this scene time, else frames loop over `period`
     double fps = 30.0;           // scene time of frame f: (f mod period) / fps
     int period = 1;              // frames per loop of the animation
-    std::int64_t frames = 100000, cycles = 1000;
+    std::int64_t firstFrame = 0;              // frame f (f = firstFrame, ...) is drawn at scene time
+    std::int64_t frames = 100000, cycles = 1000;  // (f mod period) / fps; frames per backend
     std::optional<std::int64_t> warmup;       // default 1 % of frames, at least one period
     std::optional<std::int64_t> sampleEvery;  // default frames / 1000, at least 1
     bool ids = false;

@@ -34,11 +34,26 @@ Buffers image(int width, int height, std::uint8_t value) {
     return b;
 }
 
+// --frames is a range, as in every command: frames 4..11 at period 4 are 8 frames, the last 4
+// compared with the first 4 (frame f at time (f mod 4) / fps).
+TEST(SoakCliTest, FramesAreARange) {
+    const fs::path dir = test::freshDir("SoakRange");
+    const CliRun run = runFrugal(dir, {"soak", "--backend", "software", "--frames", "4:11", "--period", "4",
+                                       "--warmup", "4", "--cycles", "0", "-q", "--max-growth", "1000", "--json", "s.json"});
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const nlohmann::json j = test::readJson(dir / "s.json");
+    ASSERT_EQ(j["frames"].size(), 1u);
+    EXPECT_EQ(j["frames"][0]["frames"], 8);
+    EXPECT_EQ(j["frames"][0]["compared_frames"], 4);
+    EXPECT_EQ(j["frames"][0]["mismatched_frames"], 0);
+    EXPECT_TRUE(j["cycles"].empty());
+}
+
 TEST(SoakCliTest, SoftwareRunReportsMemoryImagesAndCycles) {
     const fs::path dir = test::freshDir("Soak");
     // 24 frames looped every 6: frames 6..23 are compared with frames 0..5.
     const CliRun run =
-        runFrugal(dir, {"soak", "--backend", "software", "--frames", "24", "--period", "6", "--warmup", "6", "--cycles",
+        runFrugal(dir, {"soak", "--backend", "software", "--frames", "0:23", "--period", "6", "--warmup", "6", "--cycles",
                         "3", "-q", "--max-growth", "1000", "--json", "s.json", "--csv", "s.csv"});
     ASSERT_EQ(run.status, 0) << run.out << run.err;
     EXPECT_EQ(run.err, "");
@@ -105,7 +120,7 @@ TEST(SoakCliTest, GlBackendSurvivesCyclesWhenNamesAreReused) {
     // on which texture the last draw bound, so not every scene shows it).
     const fs::path dir = test::freshDir("SoakGl");
     const CliRun run = runFrugal(dir,
-                                 {"soak", "builtin:materials?draws=20", "--backend", "egl-surfaceless", "--frames", "3",
+                                 {"soak", "builtin:materials?draws=20", "--backend", "egl-surfaceless", "--frames", "0:2",
                                   "--cycles", "3", "-q", "--max-growth", "1000", "--json", "s.json"},
                                  "force_gl_names_reuse=true");
     if (run.status == 3) FRUGAL_SKIP_IF_NO_GL(run.err);
@@ -122,7 +137,7 @@ TEST(SoakCliTest, GlBackendSurvivesCyclesWhenNamesAreReused) {
 TEST(SoakCliTest, MinimalDrawsTheFramesWithTheMinimalGlProgram) {
     // What Mesa alone does with memory over the same frames: the yardstick beside frugal's rows.
     const fs::path dir = test::freshDir("SoakMinimal");
-    const CliRun run = runFrugal(dir, {"soak", "--minimal", "--backend", "egl-surfaceless", "--frames", "8", "--period",
+    const CliRun run = runFrugal(dir, {"soak", "--minimal", "--backend", "egl-surfaceless", "--frames", "0:7", "--period",
                                        "4", "-q", "--max-growth", "1000", "--json", "s.json"});
     if (run.status == 3) FRUGAL_SKIP_IF_NO_GL(run.err);
     ASSERT_EQ(run.status, 0) << run.out << run.err;
@@ -139,7 +154,7 @@ TEST(SoakCliTest, PlotIsDrawnFromTheCsv) {
     if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox)");
     const fs::path dir = test::freshDir("SoakPlot");
     for (const char* plot : {"s.svg", "s.png"}) {
-        const CliRun run = runFrugal(dir, {"soak", "--backend", "software", "--frames", "4", "--period", "2",
+        const CliRun run = runFrugal(dir, {"soak", "--backend", "software", "--frames", "0:3", "--period", "2",
                                            "--cycles", "2", "-q", "--max-growth", "1000", "--plot", plot});
         ASSERT_EQ(run.status, 0) << run.err;
     }
@@ -153,15 +168,16 @@ TEST(SoakCliTest, ImpossibleOptionsGetOneLine) {
     test::expectOneErrorLine(
         dir,
         {
-            {{"soak", "--frames", "-1"}, "error: --frames: '-1' is not a whole number from 0 to 1000000000"},
-            {{"soak", "--frames", "0:9"}, "error: --frames: '0:9' is not a whole number from 0 to 1000000000"},
-            {{"soak", "--frames", "0", "--cycles", "0"}, "error: --frames 0 with --cycles 0: nothing to do"},
-            {{"soak", "--frames", "10", "--warmup", "10"}, "error: --warmup 10: must be less than --frames 10"},
+            {{"soak", "--frames", "-1"}, "error: --frames: '-1' is not a frame range (A:B, 0 <= A <= B <= 1000000000) or none"},
+            {{"soak", "--frames", "9:0"}, "error: --frames: '9:0' is not a frame range (A:B, 0 <= A <= B <= 1000000000) or none"},
+            {{"soak", "--frames", "100"}, "error: --frames: '100' is not a frame range (A:B, 0 <= A <= B <= 1000000000) or none"},
+            {{"soak", "--frames", "none", "--cycles", "0"}, "error: --frames none with --cycles 0: nothing to do"},
+            {{"soak", "--frames", "5:14", "--warmup", "10"}, "error: --warmup 10: must be less than the 10 frames of --frames"},
             {{"soak", "--period", "0"}, "error: --period: '0' is not a whole number from 1 to 1000000000"},
             {{"soak", "--plot", "x.pdf"}, "error: --plot x.pdf: gnuplot writes SVG or PNG here; name it .svg or .png"},
             {{"soak", "--minimal", "--ids"}, "error: --minimal with --ids: the minimal GL program draws no ids"},
-            {{"soak", "--minimal", "--frames", "0"},
-             "error: --minimal with --frames 0: the minimal GL program only draws frames"},
+            {{"soak", "--minimal", "--frames", "none"},
+             "error: --minimal with --frames none: the minimal GL program only draws frames"},
             {{"soak", "--minimal", "--backend", "software"},
              "error: --minimal with --backend software: the minimal program is a GL program; pick a GL backend"},
             {{"soak", "--backend", "wat"}, "", 2},
