@@ -5,8 +5,8 @@
 //   error: --cull: 'x' is not a method (none, sphere, backface, cones, paper, conservative, oracle)
 //
 // and lists its flags the same way. Why not CLI11 (Debian libcli11-dev): a parser made with it
-// compiles many times slower and its object is many times larger (docs/gl/README.md, "Outside the GL
-// backend"), and its messages ("--cull: wat not in {none,sphere,...}" and a second line) would each
+// compiles many times slower and its object is many times larger (docs/architecture.md), and its
+// messages ("--cull: wat not in {none,sphere,...}" and a second line) would each
 // need a validator and a formatter of our own to get this shape.
 #pragma once
 
