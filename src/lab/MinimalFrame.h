@@ -6,7 +6,7 @@
 // vertex colours, no state cache beyond culling: whatever the backend spends beyond this is its
 // overhead, and the bench reports frugal ÷ minimal.
 //
-// Vertex arithmetic is the backend's (GlBackend.cpp): mvp = (projection · view) · model and
+// Vertex arithmetic is the backend's (gl/GlDraw.cpp): mvp = (projection · view) · model and
 // normalMatrix = inverseTranspose(mat3(model)) in float with glm on the CPU; the shaders are the
 // backend's own variant without colour, texture and id. So on the scenes it supports the colour and depth
 // images equal the backend's bit for bit (tests/gl/MinimalFrameGLTest.cpp).

@@ -334,7 +334,7 @@ TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
     backend_->destroyTarget(target);
 }
 
-// Many short ranges are drawn from one streamed index buffer (GlBackend.cpp): the same triangles in
+// Many short ranges are drawn from one streamed index buffer (gl/GlDraw.cpp): the same triangles in
 // the same order as drawing them range by range, so the same colour and depth, ties included; and the
 // mesh's own index buffer is back in its VAO afterwards.
 TEST_P(GlBackendGLTest, ManyShortRangesDrawTheSameAsOneRangeAtATime) {
