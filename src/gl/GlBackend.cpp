@@ -196,12 +196,9 @@ void GlBackend::clear(TargetHandle target, const Rect& rect, const glm::vec4& co
 void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) {
     GlTarget* source = targets_.find(from);
     GlTarget* dest = targets_.find(to);
-    assert(source != nullptr && dest != nullptr && "copy: no such target");
-    if (source == nullptr || dest == nullptr || from == to) return;
-    assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
-    assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
-    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
-    if (r.empty() || !(color || depth || ids)) return;
+    const std::optional<Rect> region = copyRegion(source, dest, from == to, rect, color || depth || ids);
+    if (!region) return;
+    const Rect& r = *region;
     activate();
     // Blits obey the scissor test; the rectangle is the blit's own.
     state_.setScissor(false);

@@ -10,8 +10,10 @@
 // triangle drawn keeps the pixel).
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -156,5 +158,20 @@ public:
     // Counted since the backend was made (StateChanges above).
     virtual StateChanges stateChanges() const = 0;
 };
+
+// copy()'s contract as every backend checks it, on its own target records (width, height,
+// depthFormat): both targets exist (asserted), they are two, of one size and one depth format
+// (asserted); the region is `rect` clipped to them. Nothing when there is nothing to copy.
+template <class Target>
+std::optional<Rect> copyRegion(const Target* source, const Target* dest, bool sameTarget, const Rect& rect,
+                               bool anyPlane) {
+    assert(source != nullptr && dest != nullptr && "copy: no such target");
+    if (source == nullptr || dest == nullptr || sameTarget) return std::nullopt;
+    assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
+    assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
+    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
+    if (r.empty() || !anyPlane) return std::nullopt;
+    return r;
+}
 
 }  // namespace frugal

@@ -250,12 +250,9 @@ void SoftwareBackend::clear(TargetHandle target, const Rect& rect, const glm::ve
 void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) {
     SwTarget* source = targets_.find(from);
     SwTarget* dest = targets_.find(to);
-    assert(source != nullptr && dest != nullptr && "copy: no such target");
-    if (source == nullptr || dest == nullptr || from == to) return;
-    assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
-    assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
-    const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
-    if (r.empty() || !(color || depth || ids)) return;
+    const std::optional<Rect> region = copyRegion(source, dest, from == to, rect, color || depth || ids);
+    if (!region) return;
+    const Rect& r = *region;
     flush();
     const auto rows = [&](const std::vector<std::uint32_t>& a, std::vector<std::uint32_t>& b) {
         for (int y = r.y; y < r.y + r.height; ++y)
