@@ -19,8 +19,8 @@ Result<BackendPair> BackendPair::open(const Scene& scene, const Settings& settin
         if (!stage) return stage.failure();
         stages.push_back(std::move(*stage));
     }
-    progress("backend: " + stages[0].backend().name() + " (" + stages[0].backend().renderer() + ")");
-    progress("reference: " + stages[1].backend().name() + " (" + stages[1].backend().renderer() + ")");
+    progress("backend: " + describe(stages[0].backend()));
+    progress("reference: " + describe(stages[1].backend()));
     for (Stage& stage : stages)
         if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.failure();
     Result<OrderCosts> costs = OrderCosts::start(settings.order, stages[0].backend(), 0);

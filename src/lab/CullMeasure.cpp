@@ -14,7 +14,6 @@
 #include "cull/Culling.h"
 #include "hsr/Plan.h"
 #include "render/Frame.h"
-#include "render/Plan.h"
 #include "renderer/Oracle.h"
 #include "renderer/Stage.h"
 #include "report/ImageCompare.h"
@@ -141,7 +140,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         Timing& t = timings[m];
         if (methods[m] == Cull::None) {
             t = fullTiming;
-            t.list = fullDrawList(scene_);
+            t.list = renderer.fullList();
         } else if (methods[m] == Cull::Oracle) {
             t = oracleTiming;
         }
@@ -214,20 +213,25 @@ std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation
     return line + ")";
 }
 
+SceneCuller prepareCulling(Scene& scene, const MapParams& bins,
+                           const std::function<void(const std::string&)>& progress) {
+    SceneCuller culler = SceneCuller::prepare(scene, bins);
+    const PrepStats t = culler.totals();
+    progress(cullPreparedLine(scene, {t.sphereMs, t.mapMs, t.clusterMs, t.hullMs, t.totalMs(), bins.hull}));
+    return culler;
+}
+
 Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportView>& views,
                                        const CullMeasureSettings& settings,
                                        const std::function<void(const std::string&)>& progress) {
     const Settings& s = settings.render;
     MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
     bins.hull = std::find(settings.methods.begin(), settings.methods.end(), Cull::Paper) != settings.methods.end();
-    const SceneCuller culler = SceneCuller::prepare(scene, bins);  // reorders the meshes: before the upload
-    const PrepStats totals = culler.totals();
-    progress(cullPreparedLine(
-        scene, {totals.sphereMs, totals.mapMs, totals.clusterMs, totals.hullMs, totals.totalMs(), bins.hull}));
+    const SceneCuller culler = prepareCulling(scene, bins, progress);
 
     Result<Stage> stage = Stage::open(s);
     if (!stage) return stage.failure();
-    progress("backend: " + stage->backend().name() + " (" + stage->backend().renderer() + ")");
+    progress("backend: " + describe(stage->backend()));
     if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
     std::optional<hsr::Planner> planner;
     if (s.hsr != Hsr::ZBuffer) planner.emplace(scene);

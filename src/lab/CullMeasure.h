@@ -15,6 +15,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
+#include "cull/Culling.h"
 #include "cull/Views.h"
 #include "lab/CullReport.h"
 
@@ -50,6 +51,11 @@ Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportVie
 // "cull: 1 mesh, 69666 triangles prepared in 31.2 ms (sphere 2.1, map 9.8, clusters 5.3, hull 14)"
 // (the hull only when it was built); no newline.
 std::string cullPreparedLine(const Scene& scene, const Renderer::CullPreparation& prep);
+
+// Builds the culling maps of `scene` (reordering its meshes' triangles: before the upload) and
+// gives `progress` the preparation line (cullPreparedLine).
+SceneCuller prepareCulling(Scene& scene, const MapParams& bins,
+                           const std::function<void(const std::string&)>& progress);
 
 // The summary `frugal cull-report` prints: a line per method, then per view class and method.
 std::string cullReportSummary(const CullMeasurement& measured, const std::vector<Cull>& methods);

@@ -122,7 +122,7 @@ Result<HsrBenchResult> measureHsr(const Scene& scene, const HsrBenchSettings& se
                                   const std::function<void(const std::string&)>& progress) {
     Result<Stage> stage = Stage::open(settings.render);
     if (!stage) return stage.failure();
-    progress("backend: " + stage->backend().name() + " (" + stage->backend().renderer() + ")");
+    progress("backend: " + describe(stage->backend()));
     if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
     const Bench bench(scene, settings, *stage);
 

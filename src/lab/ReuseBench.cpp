@@ -11,8 +11,8 @@
 #include "cull/Culling.h"
 #include "lab/CullMeasure.h"
 #include "lab/ReuseCheck.h"
-#include "renderer/Stage.h"
 #include "renderer/Backends.h"
+#include "renderer/Stage.h"
 #include "reuse/CellGrid.h"
 #include "reuse/Reuse.h"
 
@@ -27,16 +27,13 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 
 std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
-// The culling of s.cull prepared, its line to `progress`; nothing for none. Before the upload: the
-// maps reorder the meshes' triangles. The hull is built for paper alone (the only method using it).
-std::optional<SceneCuller> prepareCulling(Scene& scene, const Settings& s, const Progress& progress) {
+// The culling of s.cull prepared (prepareCulling); nothing for none. The hull is built for paper
+// alone (the only method using it).
+std::optional<SceneCuller> cullingOf(Scene& scene, const Settings& s, const Progress& progress) {
     if (s.cull == Cull::None) return std::nullopt;
     MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
     bins.hull = s.cull == Cull::Paper;
-    SceneCuller culler = SceneCuller::prepare(scene, bins);
-    const PrepStats t = culler.totals();
-    progress(cullPreparedLine(scene, {t.sphereMs, t.mapMs, t.clusterMs, t.hullMs, t.totalMs(), bins.hull}));
-    return culler;
+    return prepareCulling(scene, bins, progress);
 }
 
 // The targets besides the stage's (which the full render uses). Declared after the stage, so they
@@ -366,11 +363,11 @@ private:
 
 Result<ReuseMeasurement> measureReuse(Scene& scene, const ReuseBenchSettings& settings, const FrameSetupOf& setupOf,
                                       const Progress& progress) {
-    std::optional<SceneCuller> culler = prepareCulling(scene, settings.render, progress);
+    std::optional<SceneCuller> culler = cullingOf(scene, settings.render, progress);
     Result<Stage> stage = Stage::open(settings.render);
     if (!stage) return stage.failure();
     Backend& backend = stage->backend();
-    progress("backend: " + backend.name() + " (" + backend.renderer() + ")");
+    progress("backend: " + describe(backend));
     if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
     Targets targets(backend);
     if (Result<bool> made = targets.make(backend, settings.render); !made) return made.failure();

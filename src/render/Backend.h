@@ -159,6 +159,10 @@ public:
     virtual StateChanges stateChanges() const = 0;
 };
 
+// "egl-surfaceless (llvmpipe (...); 4.5 (Core Profile) Mesa 22.3.6)": which backend runs, as
+// progress lines name it.
+inline std::string describe(const Backend& backend) { return backend.name() + " (" + backend.renderer() + ")"; }
+
 // copy()'s contract as every backend checks it, on its own target records (width, height,
 // depthFormat): both targets exist (asserted), they are two, of one size and one depth format
 // (asserted); the region is `rect` clipped to them. Nothing when there is nothing to copy.
