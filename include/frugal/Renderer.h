@@ -15,7 +15,8 @@
 // resolved. Nothing is thrown, nothing aborts on bad input.
 //
 // Threads: a Renderer is used from one thread at a time; two Renderers on two threads run in
-// parallel (each has its own backend and context).
+// parallel (each has its own backend and context). To hand one to another thread, call
+// releaseThread() on the thread that used it last.
 #pragma once
 
 #include <memory>
@@ -66,6 +67,18 @@ public:
     // "<scene>: camera 3: the scene has 1 camera", and the like (BadInput); "<scene>: <why>" when the
     // oracle's visible set cannot be built.
     Result<Frame> render(const Camera& camera, double seconds);
+
+    // Moves node `node` for the frames that follow: its local transform becomes `transform`
+    // (Scene::setTransform, whose errors it returns). Temporal reuse sees the instances it places
+    // as moved in the next frame, and only them. The scene's envelope grows to hold them where
+    // they leave it (the depth range is fitted to it, so a frame after such a move may have other
+    // planes, and reuse then renders it in full); it never shrinks.
+    Result<bool> setTransform(int node, const glm::mat4& transform);
+
+    // Lets another thread render next. A GL context is current on one thread at a time: call it on
+    // the thread that rendered (or created the renderer) before another thread renders or destroys
+    // it. Costs one context switch; nothing on the software backend.
+    void releaseThread();
 
     const Scene& scene() const;
     const Settings& settings() const;

@@ -160,6 +160,27 @@ struct Scene {
     Bounds bounds(double time) const;
     // The envelope as defined above, computed from the meshes, nodes and animations.
     Bounds computeEnvelope() const;
+
+    // Building a scene in memory, as the loaders build one from a file. Each checks what it is
+    // given and returns the new element's index, or one line naming the value (BadInput):
+    //   "mesh: index 120 (triangle 7) is past the 100 vertices"
+    //   "mesh: position 17 is (nan, 0, 1), not finite"
+    //   "texture: 12288 bytes for 64x64 RGBA (16384 expected)"
+    // A texture: RGBA8, rows in file order (Texture). A material: its texture (-1 = none) must
+    // exist. A mesh: indices 3 a triangle, each below the vertex count; normals, colours and uvs
+    // empty or one a vertex; every value finite; material -1 (the default) or one that exists. It
+    // is finished as the loaders finish theirs (triangleSource filled, missing normals computed,
+    // and with `optimizeOrder` triangles reordered for the vertex cache, ids kept), so a mesh
+    // added here draws exactly as the same mesh read from a glTF file.
+    Result<int> addTexture(Texture texture);
+    Result<int> addMaterial(Material material);
+    Result<int> addMesh(Mesh mesh, bool optimizeOrder = true);
+    // An instance of `mesh`: a new root node with `transform` (a finite matrix) as its local
+    // matrix. Returns the node's index, which setTransform and Renderer::setTransform take.
+    // Instances and ids are numbered by buildInstances(): call it once the scene is built.
+    Result<int> addInstance(int mesh, const glm::mat4& transform, std::string name = {});
+    // Node `node`'s local transform becomes `transform` (a finite matrix), at every time.
+    Result<bool> setTransform(int node, const glm::mat4& transform);
 };
 
 // Samples one channel at `time` (clamped to its key range). Rotations are slerped (Linear) or

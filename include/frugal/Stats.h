@@ -117,4 +117,12 @@ struct StateCosts {
     int refineEvery = 0;
 };
 
+struct View;
+
+// The render JSON's objects (docs/cli.md), as JSON text: a frame's record without "frame" and
+// "file" ({"time", "render_ms", "readback_ms", ...}, with "refined_state_costs_us" and "refine_ms"
+// when a cost round ran before it), and the camera it was drawn with ({"source", "eye", ...}).
+std::string frameStatsJsonText(const FrameStats& stats, const Settings& settings);
+std::string viewJsonText(const View& view, const Settings& settings);
+
 }  // namespace frugal

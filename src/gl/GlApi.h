@@ -139,5 +139,8 @@ void noteCurrentContext(GlContext* context, ReleaseContext release);
 void releaseOtherContext(const GlContext* next);
 void forgetCurrentContext(const GlContext* context);  // clears the record if it is `context`
 const GlContext* currentContext();
+// Releases `context` from the calling thread if it is the one current here (through its platform),
+// so that another thread can make it current.
+void releaseCurrentContext(const GlContext* context);
 
 }  // namespace frugal

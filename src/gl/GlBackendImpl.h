@@ -123,6 +123,7 @@ public:
         gl_.Finish();
     }
     StateChanges stateChanges() const override { return state_.changes(); }
+    void releaseThread() override { releaseCurrentContext(context_.get()); }
 
 private:
     // Makes our context current unless it is the frugal context this thread made current last

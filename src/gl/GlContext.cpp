@@ -26,6 +26,12 @@ void forgetCurrentContext(const GlContext* context) {
 
 const GlContext* currentContext() { return tCurrent.context; }
 
+void releaseCurrentContext(const GlContext* context) {
+    if (tCurrent.context == nullptr || tCurrent.context != context) return;
+    tCurrent.release(tCurrent.context);
+    tCurrent = {};
+}
+
 const char* contextKindName(ContextKind kind) {
     switch (kind) {
         case ContextKind::EglDevice:

@@ -157,6 +157,10 @@ public:
     virtual void finish() = 0;
     // Counted since the backend was made (StateChanges above).
     virtual StateChanges stateChanges() const = 0;
+    // Lets another thread use the backend next: a GL backend releases its context from the calling
+    // thread (a context is current on one thread at a time; the next call on any thread makes it
+    // current there). Nothing for a backend without a context.
+    virtual void releaseThread() {}
 };
 
 // "egl-surfaceless (llvmpipe (...); 4.5 (Core Profile) Mesa 22.3.6)": which backend runs, as

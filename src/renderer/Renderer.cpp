@@ -70,6 +70,7 @@ struct Renderer::Impl {
     std::optional<TemporalReuse> reuse;
     InterpStats interpSeen;  // the software backend's counters after the previous frame
     int framesDone = 0;
+    bool moved = false;  // setTransform since the last frame: the envelope may have to grow
 
     ~Impl() {
         if (backend && staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
@@ -78,6 +79,7 @@ struct Renderer::Impl {
     Result<bool> open();
     void draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats);
     Result<Frame> render(const Camera& camera, double seconds);
+    void growEnvelope();
 };
 
 Result<bool> Renderer::Impl::open() {
@@ -154,8 +156,24 @@ void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, Fr
     renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, planned);
 }
 
+// After setTransform: the envelope grows to hold where the moved instances are now (and can go,
+// for animated ones below a moved node); unchanged while they stay inside it, so the fitted depth
+// range, and with it reuse's static pair, stays valid.
+void Renderer::Impl::growEnvelope() {
+    moved = false;
+    const Bounds now = scene->computeEnvelope();
+    if (now.empty()) return;
+    Bounds& envelope = scene->envelope;
+    if (!envelope.empty() && glm::all(glm::greaterThanEqual(now.min, envelope.min)) &&
+        glm::all(glm::lessThanEqual(now.max, envelope.max)))
+        return;
+    envelope.add(now.min);
+    envelope.add(now.max);
+}
+
 Result<Frame> Renderer::Impl::render(const Camera& camera, double seconds) {
     const Settings& s = settings;
+    if (moved) growEnvelope();
     Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat);
     if (!setup) return Error{scene->source + ": " + setup.error()};
     Frame frame;
@@ -229,6 +247,12 @@ Renderer& Renderer::operator=(Renderer&& other) noexcept = default;
 Renderer::~Renderer() = default;
 
 Result<Frame> Renderer::render(const Camera& camera, double seconds) { return impl_->render(camera, seconds); }
+Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {
+    Result<bool> set = impl_->scene->setTransform(node, transform);
+    if (set) impl_->moved = true;
+    return set;
+}
+void Renderer::releaseThread() { impl_->backend->releaseThread(); }
 const Scene& Renderer::scene() const { return *impl_->scene; }
 const Settings& Renderer::settings() const { return impl_->settings; }
 std::string Renderer::backendName() const { return impl_->backend->name(); }

@@ -120,4 +120,12 @@ nlohmann::json viewJson(const View& view, const Settings& s) {
             {"aspect_ratio_differs", aspectDiffers(view.fileAspect, s.width, s.height)}};
 }
 
+std::string frameStatsJsonText(const FrameStats& stats, const Settings& settings) {
+    nlohmann::json record = frameStatsJson(stats, settings);
+    if (stats.refinedCostsUs) record.update(refinementJson(stats));
+    return record.dump();
+}
+
+std::string viewJsonText(const View& view, const Settings& settings) { return viewJson(view, settings).dump(); }
+
 }  // namespace frugal

@@ -1,0 +1,32 @@
+"""frugal: an offscreen OpenGL renderer that does only the work a scene requires.
+
+    import frugal
+    scene = frugal.load("robot.glb")
+    r = frugal.Renderer(scene, size=(800, 600), cull="conservative")
+    f = r.render(camera=frugal.Camera.look_at(eye=(0, 2, 5), target=(0, 0, 0), fov=45))
+    f.color  # (600, 800, 4) uint8, top row first
+
+See docs/python.md in frugal's repository.
+"""
+
+from ._frugal import (  # noqa: F401
+    BackendUnavailable,
+    Camera,
+    Error,
+    Frame,
+    InputError,
+    Interrupted,
+    IoError,
+    OutOfMemory,
+    Renderer,
+    Scene,
+    __version__,
+    default_settings,
+    load,
+    settings_names,
+)
+
+__all__ = [
+    "BackendUnavailable", "Camera", "Error", "Frame", "InputError", "Interrupted", "IoError", "OutOfMemory",
+    "Renderer", "Scene", "__version__", "default_settings", "load", "settings_names",
+]

@@ -1,0 +1,178 @@
+"""Scenes built in memory: equal to the same scene read from a glTF file (colour, depth and ids),
+and moving an instance between frames (temporal reuse redraws it alone, the image stays exact)."""
+import base64
+import json
+import struct
+import zlib
+
+import numpy as np
+
+import frugal
+
+
+def box_arrays(size=1.0):
+    """A cube's 8 corners and 12 counter-clockwise triangles (outward)."""
+    s = size / 2
+    positions = np.array([[x, y, z] for x in (-s, s) for y in (-s, s) for z in (-s, s)], dtype=np.float32)
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    indices = np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))], dtype=np.uint32)
+    return positions, indices
+
+
+def grid_arrays(n=6):
+    """A wavy n x n grid in the xy plane with colours and texture coordinates."""
+    u, v = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    positions = np.stack([u * 2 - 1, v * 2 - 1, 0.15 * np.sin(6 * u) * np.cos(5 * v)], -1).reshape(-1, 3)
+    colors = np.stack([u, v, 1 - u, np.ones_like(u)], -1).reshape(-1, 4)
+    uvs = np.stack([u * 2, v * 2], -1).reshape(-1, 2)
+    i = np.arange(n)[:, None] * (n + 1) + np.arange(n)[None, :]
+    quads = np.stack([i, i + 1, i + n + 2, i + n + 1], -1).reshape(-1, 4)
+    indices = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+    return positions.astype(np.float32), indices.astype(np.uint32), colors.astype(np.float32), uvs.astype(np.float32)
+
+
+def checker(size=8):
+    y, x = np.mgrid[0:size, 0:size]
+    on = ((x + y) % 2).astype(bool)
+    image = np.zeros((size, size, 4), dtype=np.uint8)
+    image[on], image[~on] = (230, 180, 40, 255), (30, 60, 200, 255)
+    return image
+
+
+def png_bytes(rgba):
+    height, width, _ = rgba.shape
+    raw = b"".join(b"\0" + rgba[y].tobytes() for y in range(height))
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def write_gltf(path, meshes, instances, texture=None, camera=None):
+    """A glTF file of `meshes` [(positions, indices, colors, uvs)], each with its own material (the
+    second textured when `texture` is given), `instances` [(mesh, 4x4 matrix)], and optionally a
+    camera ((eye), yfov radians) looking down -z."""
+    blob, views, accessors, gltf_meshes = b"", [], [], []
+
+    def add(array, target, kind, component):
+        nonlocal blob
+        data = np.ascontiguousarray(array).tobytes()
+        views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
+        entry = {"bufferView": len(views) - 1, "componentType": component, "count": len(array), "type": kind}
+        if kind == "VEC3" and component == 5126:
+            entry["min"], entry["max"] = array.min(0).tolist(), array.max(0).tolist()
+        accessors.append(entry)
+        blob += data + b"\0" * (-len(data) % 4)
+        return len(accessors) - 1
+
+    materials = []
+    for m, (positions, indices, colors, uvs) in enumerate(meshes):
+        attributes = {"POSITION": add(positions, 34962, "VEC3", 5126)}
+        if colors is not None:
+            attributes["COLOR_0"] = add(colors, 34962, "VEC4", 5126)
+        if uvs is not None:
+            attributes["TEXCOORD_0"] = add(uvs, 34962, "VEC2", 5126)
+        primitive = {"attributes": attributes, "indices": add(indices.reshape(-1), 34963, "SCALAR", 5125),
+                     "material": m}
+        gltf_meshes.append({"primitives": [primitive]})
+        material = {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8 - 0.3 * m, 0.7, 1.0]},
+                    "doubleSided": m == 1}
+        if texture is not None and m == 1:
+            material["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+        materials.append(material)
+    nodes = [{"mesh": mesh, "matrix": np.asarray(matrix, dtype=float).T.reshape(-1).tolist()}
+             for mesh, matrix in instances]
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "meshes": gltf_meshes, "materials": materials,
+            "accessors": accessors, "bufferViews": views, "nodes": nodes,
+            "buffers": [{"byteLength": len(blob),
+                         "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}]}
+    if texture is not None:
+        gltf["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_bytes(texture)).decode()}]
+        gltf["textures"] = [{"source": 0}]
+    if camera is not None:
+        eye, yfov = camera
+        nodes.append({"camera": 0, "translation": list(eye)})
+        gltf["cameras"] = [{"type": "perspective", "perspective": {"yfov": yfov, "znear": 0.1}}]
+    gltf["scenes"] = [{"nodes": list(range(len(nodes)))}]
+    path.write_text(json.dumps(gltf))
+    return path
+
+
+def translation(x, y, z, turn=0.0):
+    m = np.eye(4)
+    c, s = np.cos(turn), np.sin(turn)
+    m[:3, :3] = [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+    m[:3, 3] = (x, y, z)
+    return m
+
+
+INSTANCES = [(0, translation(-1.2, 0, 0, 0.5)), (1, translation(0.8, 0.2, -0.5, -0.4)), (0, translation(0.3, -0.9, 0.4))]
+
+
+def memory_scene():
+    scene = frugal.Scene()
+    texture = scene.add_texture(checker())
+    box, (grid, grid_indices, colors, uvs) = box_arrays(), grid_arrays()
+    plain = scene.add_material((0.9, 0.8, 0.7, 1.0))
+    textured = scene.add_material((0.9, 0.5, 0.7, 1.0), texture=texture, double_sided=True)
+    meshes = [scene.add_mesh(*box, material=plain),
+              scene.add_mesh(grid, grid_indices, colors=colors, uvs=uvs, material=textured)]
+    nodes = [scene.add_instance(meshes[mesh], matrix) for mesh, matrix in INSTANCES]
+    return scene, nodes
+
+
+def test_memory_scene_equals_the_gltf_file(tmp_path):
+    scene, nodes = memory_scene()
+    assert nodes == [0, 1, 2] and scene.instance_count == 3
+    grid, grid_indices, colors, uvs = grid_arrays()
+    path = write_gltf(tmp_path / "same.gltf", [(*box_arrays(), None, None), (grid, grid_indices, colors, uvs)],
+                      INSTANCES, texture=checker())
+    loaded = frugal.load(str(path))
+    assert loaded.triangle_count == scene.triangle_count == 2 * 12 + len(grid_indices)
+    camera = frugal.Camera.look_at((0.5, 1.5, 4.0), (0, 0, 0), fov=50)
+    for backend in ("auto", "software"):
+        a = frugal.Renderer(scene, size=(160, 120), ids=True, backend=backend).render(camera)
+        b = frugal.Renderer(loaded, size=(160, 120), ids=True, backend=backend).render(camera)
+        np.testing.assert_array_equal(a.color, b.color)
+        np.testing.assert_array_equal(a.depth, b.depth)
+        np.testing.assert_array_equal(a.ids, b.ids)
+        assert len(np.unique(a.ids)) > 20, "every instance is in view"
+
+
+def test_mesh_arrays_round_trip():
+    """mesh(i) gives back what add_mesh keeps: the triangles (reordered for the cache, ids kept)."""
+    scene = frugal.Scene()
+    grid, indices, colors, uvs = grid_arrays()
+    mesh = scene.mesh(scene.add_mesh(grid, indices, colors=colors, uvs=uvs))
+    np.testing.assert_array_equal(mesh["positions"], grid)
+    np.testing.assert_array_equal(np.sort(mesh["triangle_source"]), np.arange(len(indices)))
+    np.testing.assert_array_equal(mesh["indices"], indices[mesh["triangle_source"]])
+    assert mesh["normals"].shape == grid.shape and mesh["uvs"].shape == uvs.shape
+
+
+def test_moving_an_instance_with_reuse_stays_exact():
+    """An instance moved between frames through set_transform: reuse redraws what moved, and each
+    frame equals a renderer without reuse given the same moves."""
+    scene, nodes = memory_scene()
+    camera = frugal.Camera.look_at((0.5, 1.5, 6.0), (0, 0, 0), fov=50)
+    reuse = frugal.Renderer(scene, size=(160, 120), reuse=True, no_fallback=True, ids=True)
+    plain = frugal.Renderer(scene, size=(160, 120), ids=True)
+    modes, moved = [], []
+    for i in range(6):
+        if i >= 2:
+            matrix = translation(0.3 - 0.1 * i, -0.9, 0.4)  # within the scene's envelope
+            if i == 5:  # far outside it: the envelope grows, the depth range with it (a full frame)
+                matrix = translation(0.3, -0.9, -12.0)
+            reuse.set_transform(nodes[2], matrix)
+            plain.set_transform(nodes[2], matrix)
+        a, b = reuse.render(camera), plain.render(camera)
+        np.testing.assert_array_equal(a.color, b.color)
+        np.testing.assert_array_equal(a.ids, b.ids)
+        stats = a.stats["reuse"]
+        modes.append(stats["mode"])
+        moved.append(stats["instances"]["p_dd"] + stats["instances"]["p_sd"])
+    assert modes[2:5] == ["reuse"] * 3, modes
+    assert moved[2:5] == [1, 1, 1], moved
+    assert modes[5] == "full" and a.camera["zfar"] > 12.0

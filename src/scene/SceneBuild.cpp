@@ -1,0 +1,141 @@
+// Scene::add* and setTransform: a scene built in memory, checked as a loader checks a file.
+#include <cmath>
+#include <string>
+
+#include <frugal/Scene.h>
+
+#include "base/Format.h"
+#include "scene/ImageCheck.h"
+#include "scene/MeshBuild.h"
+
+namespace frugal {
+
+namespace {
+
+Error bad(std::string message) { return Error{std::move(message), ErrorKind::BadInput}; }
+
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+    for (int k = 0; k < N; ++k)
+        if (!std::isfinite(v[k])) return false;
+    return true;
+}
+
+template <int N>
+std::string text(const glm::vec<N, float>& v) {
+    std::string out = "(";
+    for (int k = 0; k < N; ++k) out += (k ? ", " : "") + fmt(double(v[k]));
+    return out + ")";
+}
+
+// "<what> <i> is (nan, 0, 1), not finite" for the first value that is not, else "".
+template <int N>
+std::string firstNotFinite(const char* what, const std::vector<glm::vec<N, float>>& values) {
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if (!finite(values[i])) return std::string(what) + " " + std::to_string(i) + " is " + text(values[i]) + ", not finite";
+    return {};
+}
+
+std::string matrixProblem(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r]))
+                return "row " + std::to_string(r) + ", column " + std::to_string(c) + " is " + fmt(double(m[c][r])) +
+                       ", not finite";
+    return {};
+}
+
+std::string meshProblem(const Mesh& mesh, std::size_t materials) {
+    const std::size_t vertices = mesh.positions.size();
+    if (mesh.indices.size() % 3 != 0)
+        return std::to_string(mesh.indices.size()) + " indices are not whole triangles (3 a triangle)";
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= vertices)
+            return "index " + std::to_string(mesh.indices[i]) + " (triangle " + std::to_string(i / 3) +
+                   ") is past the " + std::to_string(vertices) + " vertices";
+    const auto count = [&](const char* what, std::size_t n) -> std::string {
+        if (n == 0 || n == vertices) return {};
+        return std::to_string(n) + " " + what + " for " + std::to_string(vertices) + " vertices (one a vertex, or none)";
+    };
+    for (const std::string& problem : {count("normals", mesh.normals.size()), count("colours", mesh.colors.size()),
+                                       count("uvs", mesh.uvs.size()), firstNotFinite("position", mesh.positions),
+                                       firstNotFinite("normal", mesh.normals), firstNotFinite("colour", mesh.colors),
+                                       firstNotFinite("uv", mesh.uvs)})
+        if (!problem.empty()) return problem;
+    if (mesh.material < -1 || mesh.material >= int(materials))
+        return "material " + std::to_string(mesh.material) + " does not exist (the scene has " +
+               std::to_string(materials) + ")";
+    if (!mesh.triangleSource.empty() && mesh.triangleSource.size() != mesh.triangleCount())
+        return std::to_string(mesh.triangleSource.size()) + " triangle sources for " +
+               std::to_string(mesh.triangleCount()) + " triangles";
+    return {};
+}
+
+}  // namespace
+
+Result<int> Scene::addTexture(Texture texture) {
+    const std::uint64_t pixels = std::uint64_t(std::max(texture.width, 0)) * std::uint64_t(std::max(texture.height, 0));
+    const std::string size = std::to_string(texture.width) + "x" + std::to_string(texture.height);
+    if (texture.width < 1 || texture.height < 1) return bad("texture: " + size + ": width and height must be at least 1");
+    if (pixels > kMaxImagePixels)
+        return bad("texture: " + size + " is more than the " + std::to_string(kMaxImagePixels) + " pixels frugal reads");
+    if (texture.rgba.size() != pixels * 4)
+        return bad("texture: " + std::to_string(texture.rgba.size()) + " bytes for " + size + " RGBA (" +
+                   std::to_string(pixels * 4) + " expected)");
+    textures.push_back(std::move(texture));
+    return int(textures.size()) - 1;
+}
+
+Result<int> Scene::addMaterial(Material material) {
+    if (!finite(material.baseColorFactor))
+        return bad("material: base colour " + text(material.baseColorFactor) + " is not finite");
+    if (material.baseColorTexture < -1 || material.baseColorTexture >= int(textures.size()))
+        return bad("material: texture " + std::to_string(material.baseColorTexture) + " does not exist (the scene has " +
+                   std::to_string(textures.size()) + ")");
+    materials.push_back(std::move(material));
+    return int(materials.size()) - 1;
+}
+
+Result<int> Scene::addMesh(Mesh mesh, bool optimizeOrder) {
+    if (const std::string problem = meshProblem(mesh, materials.size()); !problem.empty())
+        return bad("mesh" + quotedName(mesh.name) + ": " + problem);
+    finalizeMesh(mesh, optimizeOrder);  // nothing to drop: every position is finite
+    meshes.push_back(std::move(mesh));
+    return int(meshes.size()) - 1;
+}
+
+Result<int> Scene::addInstance(int mesh, const glm::mat4& transform, std::string name) {
+    if (mesh < 0 || mesh >= int(meshes.size()))
+        return bad("instance: mesh " + std::to_string(mesh) + " does not exist (the scene has " +
+                   std::to_string(meshes.size()) + ")");
+    if (const std::string problem = matrixProblem(transform); !problem.empty())
+        return bad("instance: transform: " + problem);
+    Node node;
+    node.name = std::move(name);
+    node.hasMatrix = true;
+    node.matrix = transform;
+    node.meshes = {mesh};
+    nodes.push_back(std::move(node));
+    roots.push_back(int(nodes.size()) - 1);
+    return int(nodes.size()) - 1;
+}
+
+Result<bool> Scene::setTransform(int node, const glm::mat4& transform) {
+    if (node < 0 || node >= int(nodes.size()))
+        return bad("node " + std::to_string(node) + " does not exist (the scene has " + std::to_string(nodes.size()) +
+                   ")");
+    if (const std::string problem = matrixProblem(transform); !problem.empty())
+        return bad("node " + std::to_string(node) + ": transform: " + problem);
+    for (const Animation& animation : animations)
+        for (const AnimChannel& channel : animation.channels)
+            if (channel.node == node)
+                return bad("node " + std::to_string(node) + quotedName(nodes[std::size_t(node)].name) +
+                           " is animated (animation" + quotedName(animation.name) +
+                           "): its transform is the animation's");
+    Node& n = nodes[std::size_t(node)];
+    n.hasMatrix = true;
+    n.matrix = transform;
+    return true;
+}
+
+}  // namespace frugal
