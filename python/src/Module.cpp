@@ -352,10 +352,39 @@ void bindCamera(py::module_& m) {
 
 // --- frames ------------------------------------------------------------------------------------
 
+// Frames whose Python objects are gone, kept for the next render() to fill (Renderer::render into a
+// Frame: no allocation, no page faults a frame). A frame goes back only when nothing views it: its
+// arrays keep the Python frame, and so the memory they show, alive.
+struct FramePool {
+    static constexpr std::size_t kKept = 2;
+    std::mutex lock;
+    std::vector<Frame> frames;
+
+    Frame take() {
+        std::lock_guard<std::mutex> held(lock);
+        if (frames.empty()) return {};
+        Frame frame = std::move(frames.back());
+        frames.pop_back();
+        return frame;
+    }
+    void give(Frame&& frame) {
+        std::lock_guard<std::mutex> held(lock);
+        if (frames.size() < kKept) frames.push_back(std::move(frame));
+    }
+};
+
 struct PyFrame {
     Frame frame;
     Settings settings;
-    py::object depth, stats;  // made on first use
+    py::object depth, stats;           // made on first use
+    std::shared_ptr<FramePool> pool;  // where the frame's memory goes when this object does
+
+    PyFrame() = default;
+    PyFrame(PyFrame&&) noexcept = default;
+    PyFrame& operator=(PyFrame&&) noexcept = default;
+    ~PyFrame() {
+        if (pool) pool->give(std::move(frame));
+    }
 };
 
 py::array depthArray(py::object self) {
@@ -461,10 +490,12 @@ void bindFrame(py::module_& m) {
 // --- the renderer ------------------------------------------------------------------------------
 
 // One frugal::Renderer, used by one thread at a time (the lock), with its context released after
-// every call so that the next may come from another thread.
+// every call so that the next may come from another thread. close() frees it before the garbage
+// collector would.
 struct PyRenderer {
     std::optional<Renderer> renderer;
     std::mutex lock;
+    std::shared_ptr<FramePool> pool = std::make_shared<FramePool>();
 
     PyRenderer(PyScene& scene, const py::kwargs& kwargs) {
         const Settings settings = settingsFrom(kwargs);
@@ -474,10 +505,18 @@ struct PyRenderer {
         if (made) made->releaseThread();
         renderer.emplace(take(std::move(made)));
     }
-    ~PyRenderer() {
+    ~PyRenderer() { close(); }
+
+    void close() {
         py::gil_scoped_release unlocked;  // a GL context's teardown may wait for its threads
         std::lock_guard<std::mutex> held(lock);
         renderer.reset();
+    }
+
+    // The renderer, or InputError once closed. Callers hold the lock where it renders.
+    Renderer& live() {
+        if (!renderer) throw InputError{"the renderer is closed"};
+        return *renderer;
     }
 
     PyFrame render(const std::optional<Camera>& camera, double time) {
@@ -486,56 +525,101 @@ struct PyRenderer {
         {
             py::gil_scoped_release unlocked;
             std::lock_guard<std::mutex> held(lock);
-            Result<Frame> frame = renderer->render(camera.value_or(Camera{}), time);
-            renderer->releaseThread();
-            out.frame = take(std::move(frame));
+            Renderer& r = live();
+            out.frame = pool->take();
+            Result<bool> rendered = r.render(camera.value_or(Camera{}), time, out.frame);
+            r.releaseThread();
+            take(std::move(rendered));
+            out.settings = r.settings();
         }
-        out.settings = renderer->settings();
+        out.pool = pool;
         return out;
     }
 
     void setTransform(int node, const py::handle& transform) {
         const glm::mat4 m = matrixFrom(transform, "transform");
         std::lock_guard<std::mutex> held(lock);
-        take(renderer->setTransform(node, m));
+        take(live().setTransform(node, m));
     }
 };
 
-// The C++ loop a benchmark compares Python's with: `frames` renders through the same renderer,
-// without Python between them; the wall time of each, in milliseconds.
+// The C++ loop a benchmark compares Python's with: `frames` renders through the same renderer into
+// one Frame (as a C++ program does best), without Python between them; the wall time of each, in
+// milliseconds, with the context released after each as render() does.
 std::vector<double> cppLoop(PyRenderer& r, const std::optional<Camera>& camera, double time, int frames) {
     std::vector<double> ms;
     py::gil_scoped_release unlocked;
     std::lock_guard<std::mutex> held(r.lock);
-    for (int i = 0; i < frames; ++i) {
+    Renderer& renderer = r.live();
+    std::optional<Error> failed;
+    Frame frame;
+    for (int i = 0; i < frames && !failed; ++i) {
         const auto t0 = std::chrono::steady_clock::now();
-        Result<Frame> frame = r.renderer->render(camera.value_or(Camera{}), time);
-        if (!frame) throw Failure{frame.failure()};
+        Result<bool> rendered = renderer.render(camera.value_or(Camera{}), time, frame);
+        renderer.releaseThread();
+        if (!rendered) failed = rendered.failure();
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    r.renderer->releaseThread();
+    if (failed) throw Failure{*failed};
     return ms;
+}
+
+py::object cullPreparationDict(const Renderer& r) {
+    const std::optional<Renderer::CullPreparation> p = r.cullPreparation();
+    if (!p) return py::none();
+    py::dict d;
+    d["sphere_ms"] = p->sphereMs;
+    d["map_ms"] = p->mapMs;
+    d["cluster_ms"] = p->clusterMs;
+    d["hull_ms"] = p->hullMs;
+    d["total_ms"] = p->totalMs;
+    d["hull"] = p->hull;
+    return d;
+}
+
+py::object stateCostsDict(const Renderer& r) {
+    const std::optional<StateCosts> costs = r.stateCosts();
+    if (!costs) return py::none();
+    py::dict d;
+    d["kinds"] = costs->kinds;
+    d["start_us"] = costs->startUs;
+    d["us"] = costs->us;
+    d["rounds"] = costs->rounds;
+    d["refine_every"] = costs->refineEvery;
+    return d;
 }
 
 void bindRenderer(py::module_& m) {
     py::class_<PyRenderer>(m, "Renderer",
                            "Renderer(scene, **settings): frugal's renderer on a copy of `scene`. The settings are the\n"
                            "command line's options (size=(800, 600), backend='auto', cull='conservative', reuse=True,\n"
-                           "order='key', hsr=..., depth_format='d32f', ids=True, ...; frugal.settings_help()).")
+                           "order='key', hsr=..., depth_format='d32f', ids=True, ...; frugal.default_settings()).\n"
+                           "Usable as a context manager: leaving the block closes it.")
         .def(py::init<PyScene&, const py::kwargs&>(), py::arg("scene"))
         .def("render", &PyRenderer::render, py::arg("camera") = py::none(), py::arg("time") = 0.0,
              "The frame at scene time `time` (seconds) through `camera` (default: the scene's first camera,\n"
              "else a view that fits the scene). The GIL is released while it renders.")
         .def("set_transform", &PyRenderer::setTransform, py::arg("node"), py::arg("transform"),
              "Moves node `node` (an add_instance result) for the frames that follow; reuse redraws only it.")
-        .def_property_readonly("backend", [](PyRenderer& r) { return r.renderer->backendName(); },
+        .def("close", &PyRenderer::close, "Frees the backend, its context and uploads now; later calls raise InputError.")
+        .def("__enter__", [](py::object self) { return self; })
+        .def("__exit__", [](PyRenderer& r, const py::args&) { r.close(); })
+        .def_property_readonly("backend", [](PyRenderer& r) { return r.live().backendName(); },
                                "The backend chosen: egl-surfaceless, egl-device, osmesa or software.")
-        .def_property_readonly("backend_renderer", [](PyRenderer& r) { return r.renderer->backendRenderer(); })
-        .def_property_readonly("backend_log", [](PyRenderer& r) { return r.renderer->backendLog(); },
+        .def_property_readonly("backend_renderer", [](PyRenderer& r) { return r.live().backendRenderer(); },
+                               "GL_RENDERER and GL_VERSION, or the software backend's description.")
+        .def_property_readonly("backend_log", [](PyRenderer& r) { return r.live().backendLog(); },
                                "One line per GL context tried.")
-        .def_property_readonly("settings", [](PyRenderer& r) { return settingsDict(r.renderer->settings()); })
-        .def_property_readonly("triangle_count", [](PyRenderer& r) { return r.renderer->scene().triangleCount(); })
+        .def_property_readonly("settings", [](PyRenderer& r) { return settingsDict(r.live().settings()); })
+        .def_property_readonly("triangle_count", [](PyRenderer& r) { return r.live().scene().triangleCount(); })
+        .def_property_readonly("cull_preparation", [](PyRenderer& r) { return cullPreparationDict(r.live()); },
+                               "With culling: what preparing it took (ms: sphere, map, cluster, hull, total); else None.")
+        .def_property_readonly("state_costs", [](PyRenderer& r) { return stateCostsDict(r.live()); },
+                               "With order paper, greedy or best: the state costs measured (us a change, by kind).")
+        .def_property_readonly("static_pair_bytes", [](PyRenderer& r) { return r.live().staticPairBytes(); },
+                               "With reuse: the bytes of the static pair (one more target); else 0.")
         .def("__repr__", [](PyRenderer& r) {
+            if (!r.renderer) return std::string("<frugal.Renderer (closed)>");
             const Settings& s = r.renderer->settings();
             return "<frugal.Renderer " + std::to_string(s.width) + "x" + std::to_string(s.height) + " on " +
                    r.renderer->backendName() + ">";

@@ -80,3 +80,19 @@ def test_a_thousand_frames_without_memory_growth():
         one(i)
     grown = resident_kb() - before
     assert grown < 4096, f"resident size grew by {grown} KB over 1,000 frames"
+
+
+def test_frames_kept_keep_their_images():
+    """A renderer fills the memory of frames no longer referenced; a frame still held, or an array
+    of it, is never written again."""
+    scene = frugal.load("builtin:cubes?count=12")
+    renderer = frugal.Renderer(scene, size=SIZE, ids=True)
+    first = renderer.render(time=0.0)
+    color, ids = first.color, first.ids
+    expected = color.copy(), ids.copy()
+    del first  # the arrays still hold the frame
+    for i in range(1, 6):
+        later = renderer.render(time=i * 0.4)
+        assert not np.array_equal(later.color, expected[0])
+    np.testing.assert_array_equal(color, expected[0])
+    np.testing.assert_array_equal(ids, expected[1])

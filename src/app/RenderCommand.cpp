@@ -258,24 +258,26 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     // SIGINT, SIGTERM and SIGHUP stop the sequence between frames: the frames written stay, the
     // JSON is not written (io/Interrupt.h).
     InterruptPoints interrupts;
+    Frame frame;  // one for the whole sequence: its images' memory is used again every frame
     for (int index = range.first; index <= range.last; ++index) {
         if (const int caught = interrupts.arrived())
             return fail(err, Error{interruptedAfter(caught, index - range.first, frameCount), ErrorKind::Interrupted});
-        Result<Frame> frame = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index));
-        if (!frame) return fail(err, frame.failure());
+        Result<bool> rendered =
+            renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index), frame);
+        if (!rendered) return fail(err, rendered.failure());
         const auto writeStart = std::chrono::steady_clock::now();
-        if (Result<bool> written = writeFrameFiles(r.outputs, *frame, index, range.sequence); !written)
+        if (Result<bool> written = writeFrameFiles(r.outputs, frame, index, range.sequence); !written)
             return fail(err, written.failure());
         const double writeMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
         const std::string file = framePath(r.outputs.color, index, range.sequence);
-        if (index == range.first) camera = viewJson(frame->view, s);
-        nlohmann::json record = frameStatsJson(frame->stats, s);
+        if (index == range.first) camera = viewJson(frame.view, s);
+        nlohmann::json record = frameStatsJson(frame.stats, s);
         record.update({{"frame", index}, {"write_ms", writeMs}, {"file", file}});
-        if (Result<bool> kept = json.add(std::move(record), frame->stats); !kept) return fail(err, kept.failure());
-        if (frame->stats.interp) overflow += frame->stats.interp->overflow;
+        if (Result<bool> kept = json.add(std::move(record), frame.stats); !kept) return fail(err, kept.failure());
+        if (frame.stats.interp) overflow += frame.stats.interp->overflow;
         if (!options.quiet)
-            err << progressLine(s, renderer.scene().triangleCount(), frame->stats, index, index - range.first + 1,
+            err << progressLine(s, renderer.scene().triangleCount(), frame.stats, index, index - range.first + 1,
                                 frameCount, file)
                 << "\n";
     }

@@ -228,22 +228,26 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     check("copy");
 }
 
-Buffers GlBackend::readBack(TargetHandle target) {
-    Buffers out;
+void GlBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) {
     GlTarget* t = targets_.find(target);
     assert(t != nullptr && "readBack: no such target");
-    if (t == nullptr) return out;
+    if (t == nullptr) {
+        out = Buffers{};
+        return;
+    }
     activate();
     out.width = t->width;
     out.height = t->height;
     out.rgba.resize(out.pixelCount() * 4);
-    out.ids.resize(out.pixelCount());
+    out.ids.resize(ids ? out.pixelCount() : 0);
     out.depth.resize(out.pixelCount());
     // Rows come bottom-up (window origin bottom-left), as Buffers wants. Pack alignment is 1.
     state_.readFrom(*t, GL_COLOR_ATTACHMENT0);
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
-    state_.readFrom(*t, GL_COLOR_ATTACHMENT1);
-    gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
+    if (ids) {
+        state_.readFrom(*t, GL_COLOR_ATTACHMENT1);
+        gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
+    }
     out.depthFormat = t->depthFormat;
     if (t->depthFormat == DepthFormat::D32F) {
         gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());  // the floats' bits
@@ -253,7 +257,6 @@ Buffers GlBackend::readBack(TargetHandle target) {
         for (std::uint32_t& d : out.depth) d >>= 8;
     }
     check("readBack");
-    return out;
 }
 
 }  // namespace frugal::gl

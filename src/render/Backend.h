@@ -151,8 +151,16 @@ public:
     // Copies a rectangle (same position) from one target to another of the same size and depth format.
     virtual void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
                       bool depth, bool ids) = 0;
-    // Reads the whole target back. Waits for the rendering to finish.
-    virtual Buffers readBack(TargetHandle target) = 0;
+    // Reads the whole target back into `out`, in the memory its vectors already hold when they are
+    // large enough (a frame loop that passes the same Buffers allocates, and faults in, nothing);
+    // `ids` false leaves out.ids empty and reads no ids. Waits for the rendering to finish.
+    virtual void readBackInto(TargetHandle target, Buffers& out, bool ids) = 0;
+    // Every plane into new buffers.
+    Buffers readBack(TargetHandle target) {
+        Buffers out;
+        readBackInto(target, out, true);
+        return out;
+    }
     // Waits until all submitted work is done (for timing).
     virtual void finish() = 0;
     // Counted since the backend was made (StateChanges above).

@@ -159,7 +159,10 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
         return finish(v, scene.envelope, spec.depthRange, format);
     }
 
-    const Bounds bounds = scene.bounds(time);
+    // The scene's bounds at this time: every vertex transformed, so only when something needs them
+    // (the automatic view, a default target, a scene without an envelope).
+    const bool needsBounds = !spec.eye || !spec.target || scene.envelope.empty();
+    const Bounds bounds = needsBounds ? scene.bounds(time) : Bounds{};
     const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
     const float radius = std::max(bounds.radius(), 1e-6f);
     v.yfov = glm::radians(spec.yfovDegrees.value_or(40.0f));

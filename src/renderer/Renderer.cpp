@@ -78,7 +78,7 @@ struct Renderer::Impl {
 
     Result<bool> open();
     void draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats);
-    Result<Frame> render(const Camera& camera, double seconds);
+    Result<bool> render(const Camera& camera, double seconds, Frame& frame);
     void growEnvelope();
 };
 
@@ -171,12 +171,12 @@ void Renderer::Impl::growEnvelope() {
     envelope.add(now.max);
 }
 
-Result<Frame> Renderer::Impl::render(const Camera& camera, double seconds) {
+Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame) {
     const Settings& s = settings;
     if (moved) growEnvelope();
     Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat);
     if (!setup) return Error{scene->source + ": " + setup.error()};
-    Frame frame;
+    frame.stats = FrameStats{};
     FrameStats& stats = frame.stats;
     stats.time = seconds;
 
@@ -210,7 +210,12 @@ Result<Frame> Renderer::Impl::render(const Camera& camera, double seconds) {
     }
     backend->finish();
     const auto t1 = Clock::now();
-    Buffers buffers = backend->readBack(target);
+    // The frame's own vectors, read into and given back (their memory used again).
+    Buffers buffers;
+    buffers.rgba = std::move(frame.color.rgba);
+    buffers.depth = std::move(frame.depth.values);
+    buffers.ids = std::move(frame.ids.ids);
+    backend->readBackInto(target, buffers, s.ids);
     const auto t2 = Clock::now();
     stats.renderMs = msBetween(t0, t1);
     stats.readbackMs = msBetween(t1, t2);
@@ -228,9 +233,9 @@ Result<Frame> Renderer::Impl::render(const Camera& camera, double seconds) {
     frame.color = ColorImage{buffers.width, buffers.height, std::move(buffers.rgba)};
     frame.depth = DepthImage{buffers.width, buffers.height, std::move(buffers.depth), buffers.depthFormat,
                              view.znear,    view.zfar,      view.perspective};
-    if (s.ids) frame.ids = IdImage{buffers.width, buffers.height, std::move(buffers.ids)};
+    frame.ids = s.ids ? IdImage{buffers.width, buffers.height, std::move(buffers.ids)} : IdImage{};
     frame.view = view;
-    return frame;
+    return true;
 }
 
 Result<Renderer> Renderer::create(Scene scene, const Settings& settings) {
@@ -246,7 +251,14 @@ Renderer::Renderer(Renderer&& other) noexcept = default;
 Renderer& Renderer::operator=(Renderer&& other) noexcept = default;
 Renderer::~Renderer() = default;
 
-Result<Frame> Renderer::render(const Camera& camera, double seconds) { return impl_->render(camera, seconds); }
+Result<Frame> Renderer::render(const Camera& camera, double seconds) {
+    Frame frame;
+    if (Result<bool> rendered = impl_->render(camera, seconds, frame); !rendered) return rendered.failure();
+    return frame;
+}
+Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame) {
+    return impl_->render(camera, seconds, frame);
+}
 Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {
     Result<bool> set = impl_->scene->setTransform(node, transform);
     if (set) impl_->moved = true;

@@ -71,7 +71,7 @@ public:
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
     void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
     void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
-    Buffers readBack(TargetHandle target) override;
+    void readBackInto(TargetHandle target, Buffers& out, bool ids) override;
     void finish() override { flush(); }
     StateChanges stateChanges() const override { return changes_; }
 
@@ -264,25 +264,26 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
     if (ids) rows(source->ids, dest->ids);
 }
 
-Buffers SoftwareBackend::readBack(TargetHandle target) {
-    Buffers out;
+void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) {
     SwTarget* t = targets_.find(target);
     assert(t != nullptr && "readBack: no such target");
-    if (t == nullptr) return out;
+    if (t == nullptr) {
+        out = Buffers{};
+        return;
+    }
     flush();
     out.width = t->width;
     out.height = t->height;
     out.depthFormat = t->depthFormat;
     out.rgba.resize(out.pixelCount() * 4);
     out.depth.resize(out.pixelCount());
-    out.ids.resize(out.pixelCount());
+    out.ids.resize(ids ? out.pixelCount() : 0);
     for (int y = 0; y < t->height; ++y) {
         const std::size_t from = std::size_t(y) * std::size_t(t->stride), to = std::size_t(y) * std::size_t(t->width);
         std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
         std::memcpy(out.depth.data() + to, t->depth.data() + from, std::size_t(t->width) * 4);
-        std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
+        if (ids) std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
     }
-    return out;
 }
 
 }  // namespace
