@@ -115,7 +115,7 @@ double depthResolution(DepthFormat format, bool perspective, double n, double f,
 }
 
 Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& world, double time, const Camera& spec,
-                           int width, int height, DepthFormat format) {
+                           int width, int height, DepthFormat format, const Bounds* knownBounds) {
     const float viewportAspect = float(width) / float(std::max(height, 1));
     View v;
     v.aspect = viewportAspect;
@@ -162,7 +162,7 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
     // The scene's bounds at this time: every vertex transformed, so only when something needs them
     // (the automatic view, a default target, a scene without an envelope).
     const bool needsBounds = !spec.eye || !spec.target || scene.envelope.empty();
-    const Bounds bounds = needsBounds ? scene.bounds(time) : Bounds{};
+    const Bounds bounds = !needsBounds ? Bounds{} : knownBounds ? *knownBounds : scene.bounds(time);
     const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
     const float radius = std::max(bounds.radius(), 1e-6f);
     v.yfov = glm::radians(spec.yfovDegrees.value_or(40.0f));

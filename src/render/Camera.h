@@ -22,9 +22,12 @@ namespace frugal {
 
 // `camera` at scene time `time` (node transforms `world`) on a width × height image whose depth
 // buffer has `format`. Errors: "camera N: the scene has M cameras", degenerate eye == target, up
-// parallel to the view, near ≤ 0, far ≤ near, fov outside (0, 180).
+// parallel to the view, near ≤ 0, far ≤ near, fov outside (0, 180). `knownBounds`, when given, is
+// scene.bounds(time), which the caller keeps (it transforms every vertex: a still scene's are
+// worth keeping across frames).
 Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& world, double time, const Camera& camera,
-                           int width, int height, DepthFormat format = DepthFormat::D24);
+                           int width, int height, DepthFormat format = DepthFormat::D24,
+                           const Bounds* knownBounds = nullptr);
 
 // The distances along the view direction between which `bounds` lies (depth = −z in view space),
 // in double; {0, 0} for empty bounds.

@@ -8,11 +8,11 @@ namespace frugal {
 double frameTime(int frame, double fps) { return double(frame) / fps; }
 
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
-                              bool writeIds, DepthFormat format) {
+                              bool writeIds, DepthFormat format, const Bounds* knownBounds) {
     FrameSetup setup;
     setup.time = time;
     setup.world = scene.worldTransforms(time);
-    Result<View> view = resolveCamera(scene, setup.world, time, camera, width, height, format);
+    Result<View> view = resolveCamera(scene, setup.world, time, camera, width, height, format, knownBounds);
     if (!view) return Error{view.error()};
     setup.view = *view;
     setup.params.view = view->view;

@@ -31,8 +31,9 @@ struct FrameSetup {
 
 // The frame at scene time `time`, seen through `camera` on a width × height target whose depth
 // buffer has `format`. Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
+// `knownBounds`: scene.bounds(time) when the caller keeps it (resolveCamera).
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
-                              bool writeIds, DepthFormat format = DepthFormat::D24);
+                              bool writeIds, DepthFormat format = DepthFormat::D24, const Bounds* knownBounds = nullptr);
 
 // A sequence's frame `frame` with its camera and time resolved (setUpFrame): how a harness asks for
 // the frames it measures. Errors as one line.

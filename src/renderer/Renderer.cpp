@@ -71,6 +71,9 @@ struct Renderer::Impl {
     InterpStats interpSeen;  // the software backend's counters after the previous frame
     int framesDone = 0;
     bool moved = false;  // setTransform since the last frame: the envelope may have to grow
+    // A scene without animations has the same bounds at every time: kept from the first frame that
+    // needs them (automatic views, default targets) until a node moves.
+    std::optional<Bounds> stillBounds;
 
     ~Impl() {
         if (backend && staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
@@ -174,7 +177,10 @@ void Renderer::Impl::growEnvelope() {
 Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame) {
     const Settings& s = settings;
     if (moved) growEnvelope();
-    Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat);
+    if (!stillBounds && scene->animations.empty() && (!camera.eye || !camera.target))
+        stillBounds = scene->bounds(0.0);
+    Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat,
+                                          stillBounds ? &*stillBounds : nullptr);
     if (!setup) return Error{scene->source + ": " + setup.error()};
     frame.stats = FrameStats{};
     FrameStats& stats = frame.stats;
@@ -261,7 +267,10 @@ Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame
 }
 Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {
     Result<bool> set = impl_->scene->setTransform(node, transform);
-    if (set) impl_->moved = true;
+    if (set) {
+        impl_->moved = true;
+        impl_->stillBounds.reset();
+    }
     return set;
 }
 void Renderer::releaseThread() { impl_->backend->releaseThread(); }
