@@ -51,9 +51,11 @@ inline Rect clipRect(const Rect& rect, int width, int height) {
 }
 
 // Window z in [0, 1] of a stored depth value (D24: exactly value / 16777215, rounded to float;
-// D32F: the float whose bits `value` holds, 1 near, 0 far).
+// D32F: the float whose bits `value` holds, 1 near, 0 far). Both operands of the D24 quotient are
+// floats exactly, so the float division is the correctly rounded quotient (the same bits as
+// dividing in double and rounding, for every 24-bit value: tested), and vectorises.
 inline float windowDepth(DepthFormat format, std::uint32_t value) {
-    return format == DepthFormat::D32F ? std::bit_cast<float>(value) : float(double(value) / double(kDepthMax));
+    return format == DepthFormat::D32F ? std::bit_cast<float>(value) : float(value) / float(kDepthMax);
 }
 
 struct ColorImage {

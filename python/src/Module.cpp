@@ -400,7 +400,8 @@ py::array depthArray(py::object self) {
         for (int y = 0; y < d.height; ++y) {
             const std::uint32_t* row = d.values.data() + std::size_t(d.height - 1 - y) * std::size_t(d.width);
             float* to = data + std::size_t(y) * std::size_t(d.width);
-            for (int x = 0; x < d.width; ++x) to[x] = windowDepth(DepthFormat::D24, row[x]);
+            // windowDepth(D24, v), with v (below 2^24) converted as a signed integer: it vectorises.
+            for (int x = 0; x < d.width; ++x) to[x] = float(std::int32_t(row[x])) / float(kDepthMax);
         }
     }
     return out;
