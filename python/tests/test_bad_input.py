@@ -4,6 +4,7 @@ import os
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -156,3 +157,35 @@ def test_bad_cameras_and_frames():
     refused(frugal.InputError, r"time: nan is not finite", renderer.render, time=float("nan"))
     refused(frugal.InputError, r"ids: the frame has no ids", renderer.render().write, ids="x.png")
     refused(frugal.IoError, r"/nonexistent/c\.png", renderer.render().write, color="/nonexistent/c.png")
+
+
+def test_without_osmesa_the_module_starts_and_renders_with_egl(tmp_path):
+    """Mesa 25.1 and later have no OSMesa: frugal loads it only when asked for. With libOSMesa
+    hidden (a private mount namespace binds /dev/null over it), the module imports, auto renders
+    with EGL, and asking for osmesa is BackendUnavailable with the reason."""
+    from conftest import require
+    library = Path("/usr/lib/x86_64-linux-gnu/libOSMesa.so.8")
+    require(library.exists(), f"{library} (Debian libosmesa6), to hide")
+    probe = subprocess.run(["unshare", "-m", "true"], capture_output=True)
+    require(probe.returncode == 0, "a private mount namespace (unshare -m: root)")
+    script = tmp_path / "no_osmesa.py"
+    script.write_text(textwrap.dedent("""
+        import frugal
+        scene = frugal.load("builtin:cubes?count=2")
+        print("auto:", frugal.Renderer(scene, size=(32, 24)).backend)
+        try:
+            frugal.Renderer(scene, size=(32, 24), backend="osmesa")
+        except frugal.BackendUnavailable as e:
+            print("osmesa:", e)
+    """))
+    environment = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    hidden = library.resolve()
+    result = subprocess.run(["unshare", "-m", "sh", "-c", f"mount --bind /dev/null {hidden} && "
+                             f"exec {sys.executable} {script}"], capture_output=True, text=True, env=environment,
+                            timeout=120)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == "auto: egl-surfaceless", result.stdout
+    assert lines[1].startswith("osmesa: backend osmesa: no usable GL context: osmesa: cannot load libOSMesa.so.8 ("), \
+        result.stdout
+    assert lines[1].endswith("Mesa 25.1 and later have no OSMesa; Debian 12: apt-get install libosmesa6"), result.stdout

@@ -79,7 +79,7 @@ Result<std::unique_ptr<GlContext>> createEglSurfacelessContext() {
 #endif
 #if !FRUGAL_HAVE_OSMESA
 Result<std::unique_ptr<GlContext>> createOsMesaContext() {
-    return Error{"osmesa: not built (GL/osmesa.h or libOSMesa not found, or FRUGAL_WITH_OSMESA=OFF)"};
+    return Error{"osmesa: not built (GL/osmesa.h not found, or FRUGAL_WITH_OSMESA=OFF)"};
 }
 #endif
 

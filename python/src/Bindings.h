@@ -1,0 +1,45 @@
+// What the binding's files share: frugal errors on their way to Python, the scene object, and the
+// functions that bind each part of the module (Module.cpp calls them in turn).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <frugal/Result.h>
+#include <frugal/Scene.h>
+
+namespace frugal::python {
+
+namespace py = pybind11;
+
+// A frugal::Error on its way to Python (defineErrors' translator picks the class by its kind).
+struct Failure {
+    Error error;
+};
+
+template <class T>
+T take(Result<T>&& result) {
+    if (!result) throw Failure{result.failure()};
+    return std::move(*result);
+}
+
+// A scene being built or loaded. Instances and ids are numbered when it is first used after a
+// change (Scene::buildInstances).
+struct PyScene {
+    Scene scene;
+    bool dirty = false;
+
+    Scene& built() {
+        if (dirty) scene.buildInstances();
+        dirty = false;
+        return scene;
+    }
+};
+
+void defineErrors(py::module_& m);  // Module.cpp: frugal.Error and a class a kind
+void bindScene(py::module_& m);     // SceneBindings.cpp: Scene
+void bindLoad(py::module_& m);      // SceneBindings.cpp: load
+void bindCamera(py::module_& m);    // SceneBindings.cpp: Camera
+void bindFrame(py::module_& m);     // RenderBindings.cpp: Frame
+void bindRenderer(py::module_& m);  // RenderBindings.cpp: Renderer
+
+}  // namespace frugal::python

@@ -1,0 +1,310 @@
+// The rendering half of the module: frugal.Renderer (a frugal::Renderer with its keyword arguments,
+// a lock and a pool of frames to fill again) and frugal.Frame (the images as numpy arrays).
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <frugal/Files.h>
+#include <frugal/Renderer.h>
+#include <frugal/Stats.h>
+
+#include "Arrays.h"
+#include "Bindings.h"
+#include "Settings.h"
+
+namespace frugal::python {
+
+namespace {
+
+// --- frames ------------------------------------------------------------------------------------
+
+// Frames whose Python objects are gone, kept for the next render() to fill (Renderer::render into a
+// Frame: no allocation, no page faults a frame). A frame goes back only when nothing views it: its
+// arrays keep the Python frame, and so the memory they show, alive.
+struct FramePool {
+    static constexpr std::size_t kKept = 2;
+    std::mutex lock;
+    std::vector<Frame> frames;
+
+    Frame take() {
+        std::lock_guard<std::mutex> held(lock);
+        if (frames.empty()) return {};
+        Frame frame = std::move(frames.back());
+        frames.pop_back();
+        return frame;
+    }
+    void give(Frame&& frame) {
+        std::lock_guard<std::mutex> held(lock);
+        if (frames.size() < kKept) frames.push_back(std::move(frame));
+    }
+};
+
+struct PyFrame {
+    Frame frame;
+    Settings settings;
+    py::object depth, stats;           // made on first use
+    std::shared_ptr<FramePool> pool;  // where the frame's memory goes when this object does
+
+    PyFrame() = default;
+    PyFrame(PyFrame&&) noexcept = default;
+    PyFrame& operator=(PyFrame&&) noexcept = default;
+    ~PyFrame() {
+        if (pool) pool->give(std::move(frame));
+    }
+};
+
+py::array depthArray(py::object self) {
+    PyFrame& f = self.cast<PyFrame&>();
+    const DepthImage& d = f.frame.depth;
+    if (d.format == DepthFormat::D32F)  // the values are the floats' bits: a view
+        return topFirstView(reinterpret_cast<const float*>(d.values.data()), d.width, d.height, 1, self);
+    // D24: window z = value / (2^24 - 1), converted once (a copy, top row first).
+    py::array_t<float> out({py::ssize_t(d.height), py::ssize_t(d.width)});
+    float* data = out.mutable_data();
+    {
+        py::gil_scoped_release unlocked;
+        for (int y = 0; y < d.height; ++y) {
+            const std::uint32_t* row = d.values.data() + std::size_t(d.height - 1 - y) * std::size_t(d.width);
+            float* to = data + std::size_t(y) * std::size_t(d.width);
+            // windowDepth(D24, v), with v (below 2^24) converted as a signed integer: it vectorises.
+            for (int x = 0; x < d.width; ++x) to[x] = float(std::int32_t(row[x])) / float(kDepthMax);
+        }
+    }
+    return out;
+}
+
+py::object jsonLoads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+py::array matrixArray(const glm::mat4& m) {
+    py::array_t<float> out({4, 4});
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
+    return out;
+}
+
+void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
+                const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath) {
+    const auto text = [](const std::optional<std::filesystem::path>& p) {
+        return p ? std::optional<std::string>(p->string()) : std::nullopt;
+    };
+    const std::optional<std::string> color = text(colorPath), depth = text(depthPath), ids = text(idsPath);
+    if (ids && f.frame.ids.ids.empty())
+        throw InputError{"ids: the frame has no ids (make the renderer with ids=True)"};
+    py::gil_scoped_release unlocked;
+    if (color) take(writePng(*color, f.frame.color));
+    if (depth) {
+        const bool pfm = depth->size() >= 4 && depth->compare(depth->size() - 4, 4, ".pfm") == 0;
+        take(pfm ? writePfm(*depth, f.frame.depth) : writePng(*depth, f.frame.depth));
+    }
+    if (ids) take(writePng(*ids, f.frame.ids));
+}
+
+
+// --- the renderer ------------------------------------------------------------------------------
+
+// One frugal::Renderer, used by one thread at a time (the lock), with its context released after
+// every call so that the next may come from another thread. close() frees it before the garbage
+// collector would.
+struct PyRenderer {
+    std::optional<Renderer> renderer;
+    std::mutex lock;
+    std::shared_ptr<FramePool> pool = std::make_shared<FramePool>();
+
+    PyRenderer(PyScene& scene, const py::kwargs& kwargs) {
+        const Settings settings = settingsFrom(kwargs);
+        Scene copy = scene.built();
+        py::gil_scoped_release unlocked;
+        Result<Renderer> made = Renderer::create(std::move(copy), settings);
+        if (made) made->releaseThread();
+        renderer.emplace(take(std::move(made)));
+    }
+    ~PyRenderer() { close(); }
+
+    void close() {
+        py::gil_scoped_release unlocked;  // a GL context's teardown may wait for its threads
+        std::lock_guard<std::mutex> held(lock);
+        renderer.reset();
+    }
+
+    // The renderer, or InputError once closed. Callers hold the lock where it renders.
+    Renderer& live() {
+        if (!renderer) throw InputError{"the renderer is closed"};
+        return *renderer;
+    }
+
+    PyFrame render(const std::optional<Camera>& camera, double time) {
+        if (!std::isfinite(time)) throw InputError{"time: " + std::to_string(time) + " is not finite"};
+        PyFrame out;
+        {
+            py::gil_scoped_release unlocked;
+            std::lock_guard<std::mutex> held(lock);
+            Renderer& r = live();
+            out.frame = pool->take();
+            Result<bool> rendered = r.render(camera.value_or(Camera{}), time, out.frame);
+            r.releaseThread();
+            take(std::move(rendered));
+            out.settings = r.settings();
+        }
+        out.pool = pool;
+        return out;
+    }
+
+    void setTransform(int node, const py::handle& transform) {
+        const glm::mat4 m = matrixFrom(transform, "transform");
+        std::lock_guard<std::mutex> held(lock);
+        take(live().setTransform(node, m));
+    }
+};
+
+// The C++ loop a benchmark compares Python's with: `frames` renders through the same renderer into
+// one Frame (as a C++ program does best), without Python between them; the wall time of each, in
+// milliseconds, with the context released after each as render() does.
+std::vector<double> cppLoop(PyRenderer& r, const std::optional<Camera>& camera, double time, int frames) {
+    std::vector<double> ms;
+    py::gil_scoped_release unlocked;
+    std::lock_guard<std::mutex> held(r.lock);
+    Renderer& renderer = r.live();
+    std::optional<Error> failed;
+    Frame frame;
+    for (int i = 0; i < frames && !failed; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        Result<bool> rendered = renderer.render(camera.value_or(Camera{}), time, frame);
+        renderer.releaseThread();
+        if (!rendered) failed = rendered.failure();
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    if (failed) throw Failure{*failed};
+    return ms;
+}
+
+py::object cullPreparationDict(const Renderer& r) {
+    const std::optional<Renderer::CullPreparation> p = r.cullPreparation();
+    if (!p) return py::none();
+    py::dict d;
+    d["sphere_ms"] = p->sphereMs;
+    d["map_ms"] = p->mapMs;
+    d["cluster_ms"] = p->clusterMs;
+    d["hull_ms"] = p->hullMs;
+    d["total_ms"] = p->totalMs;
+    d["hull"] = p->hull;
+    return d;
+}
+
+py::object stateCostsDict(const Renderer& r) {
+    const std::optional<StateCosts> costs = r.stateCosts();
+    if (!costs) return py::none();
+    py::dict d;
+    d["kinds"] = costs->kinds;
+    d["start_us"] = costs->startUs;
+    d["us"] = costs->us;
+    d["rounds"] = costs->rounds;
+    d["refine_every"] = costs->refineEvery;
+    return d;
+}
+
+}  // namespace
+
+void bindFrame(py::module_& m) {
+    py::class_<PyFrame>(m, "Frame", "One rendered frame: images as numpy arrays (top row first) and its stats.")
+        .def_property_readonly(
+            "color",
+            [](py::object self) {
+                const ColorImage& c = self.cast<PyFrame&>().frame.color;
+                return topFirstView(c.rgba.data(), c.width, c.height, 4, self);
+            },
+            "(H, W, 4) uint8 RGBA, top row first: a view of the frame's memory (no copy).")
+        .def_property_readonly(
+            "depth",
+            [](py::object self) {
+                PyFrame& f = self.cast<PyFrame&>();
+                if (!f.depth) f.depth = depthArray(self);
+                return f.depth;
+            },
+            "(H, W) float32 window z, top row first. d24: value / (2^24 - 1), 0 near, 1 far (converted on\n"
+            "first use: a copy); d32f: the stored floats, reversed (1 near, 0 far), a view.")
+        .def_property_readonly(
+            "depth_values",
+            [](py::object self) {
+                const DepthImage& d = self.cast<PyFrame&>().frame.depth;
+                return topFirstView(d.values.data(), d.width, d.height, 1, self);
+            },
+            "(H, W) uint32 as stored: d24 the 24-bit values, d32f the floats' bits (a view).")
+        .def_property_readonly(
+            "ids",
+            [](py::object self) -> py::object {
+                const IdImage& ids = self.cast<PyFrame&>().frame.ids;
+                if (ids.ids.empty()) return py::none();
+                return topFirstView(ids.ids.data(), ids.width, ids.height, 1, self);
+            },
+            "(H, W) uint32 triangle ids, 0 = background (a view); None unless the renderer has ids=True.")
+        .def_property_readonly(
+            "stats",
+            [](PyFrame& f) {
+                if (!f.stats) f.stats = jsonLoads(frameStatsJsonText(f.frame.stats, f.settings));
+                return f.stats;
+            },
+            "The render JSON's record of this frame: time, render_ms, readback_ms, culling, reuse, ...")
+        .def_property_readonly(
+            "camera",
+            [](PyFrame& f) {
+                py::dict d = jsonLoads(viewJsonText(f.frame.view, f.settings));
+                d["view_matrix"] = matrixArray(f.frame.view.view);
+                d["projection_matrix"] = matrixArray(f.frame.view.projection);
+                return d;
+            },
+            "The camera as resolved for this frame (the render JSON's 'camera') and its 4x4 matrices.")
+        .def("write", &writeFiles, py::kw_only(), py::arg("color") = py::none(), py::arg("depth") = py::none(),
+             py::arg("ids") = py::none(),
+             "Writes the images as frugal render does (each file whole or not at all): colour PNG, depth\n"
+             "(.png 16-bit or .pfm float32), ids PNG.");
+}
+
+void bindRenderer(py::module_& m) {
+    py::class_<PyRenderer>(m, "Renderer",
+                           "Renderer(scene, **settings): frugal's renderer on a copy of `scene`. The settings are the\n"
+                           "command line's options (size=(800, 600), backend='auto', cull='conservative', reuse=True,\n"
+                           "order='key', hsr=..., depth_format='d32f', ids=True, ...; frugal.default_settings()).\n"
+                           "Usable as a context manager: leaving the block closes it.")
+        .def(py::init<PyScene&, const py::kwargs&>(), py::arg("scene"))
+        .def("render", &PyRenderer::render, py::arg("camera") = py::none(), py::arg("time") = 0.0,
+             "The frame at scene time `time` (seconds) through `camera` (default: the scene's first camera,\n"
+             "else a view that fits the scene). The GIL is released while it renders.")
+        .def("set_transform", &PyRenderer::setTransform, py::arg("node"), py::arg("transform"),
+             "Moves node `node` (an add_instance result) for the frames that follow; reuse redraws only it.")
+        .def("close", &PyRenderer::close, "Frees the backend, its context and uploads now; later calls raise InputError.")
+        .def("__enter__", [](py::object self) { return self; })
+        .def("__exit__", [](PyRenderer& r, const py::args&) { r.close(); })
+        .def_property_readonly("backend", [](PyRenderer& r) { return r.live().backendName(); },
+                               "The backend chosen: egl-surfaceless, egl-device, osmesa or software.")
+        .def_property_readonly("backend_renderer", [](PyRenderer& r) { return r.live().backendRenderer(); },
+                               "GL_RENDERER and GL_VERSION, or the software backend's description.")
+        .def_property_readonly("backend_log", [](PyRenderer& r) { return r.live().backendLog(); },
+                               "One line per GL context tried.")
+        .def_property_readonly("settings", [](PyRenderer& r) { return settingsDict(r.live().settings()); })
+        .def_property_readonly("triangle_count", [](PyRenderer& r) { return r.live().scene().triangleCount(); })
+        .def_property_readonly("cull_preparation", [](PyRenderer& r) { return cullPreparationDict(r.live()); },
+                               "With culling: what preparing it took (ms: sphere, map, cluster, hull, total); else None.")
+        .def_property_readonly("state_costs", [](PyRenderer& r) { return stateCostsDict(r.live()); },
+                               "With order paper, greedy or best: the state costs measured (us a change, by kind).")
+        .def_property_readonly("static_pair_bytes", [](PyRenderer& r) { return r.live().staticPairBytes(); },
+                               "With reuse: the bytes of the static pair (one more target); else 0.")
+        .def("__repr__", [](PyRenderer& r) {
+            if (!r.renderer) return std::string("<frugal.Renderer (closed)>");
+            const Settings& s = r.renderer->settings();
+            return "<frugal.Renderer " + std::to_string(s.width) + "x" + std::to_string(s.height) + " on " +
+                   r.renderer->backendName() + ">";
+        });
+    m.def("_cpp_loop", &cppLoop, py::arg("renderer"), py::arg("camera"), py::arg("time"), py::arg("frames"));
+}
+
+}  // namespace frugal::python

@@ -1,0 +1,276 @@
+// The scene half of the module: frugal.Scene (built from numpy arrays or loaded), frugal.load and
+// frugal.Camera.
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <frugal/Camera.h>
+#include <frugal/Scene.h>
+
+#include "Arrays.h"
+#include "Bindings.h"
+
+namespace frugal::python {
+
+namespace {
+
+// --- scenes ------------------------------------------------------------------------------------
+
+Wrap wrapFrom(const std::string& name) {
+    if (name == "repeat") return Wrap::Repeat;
+    if (name == "clamp") return Wrap::ClampToEdge;
+    if (name == "mirror") return Wrap::MirroredRepeat;
+    throw InputError{"wrap: '" + name + "' is not a mode (repeat, clamp, mirror)"};
+}
+
+int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, const std::string& filter,
+               const std::string& name) {
+    Pixels p = pixelsFrom(pixels);
+    Texture texture;
+    texture.name = name;
+    texture.width = p.width;
+    texture.height = p.height;
+    texture.rgba = std::move(p.rgba);
+    texture.wrapS = texture.wrapT = wrapFrom(wrap);
+    if (filter != "linear" && filter != "nearest")
+        throw InputError{"filter: '" + filter + "' is not a filter (linear, nearest)"};
+    texture.filter = filter == "nearest" ? Filter::Nearest : Filter::Linear;
+    return take(s.scene.addTexture(std::move(texture)));
+}
+
+int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided,
+                const std::string& name) {
+    Material material;
+    material.name = name;
+    const bool rgb = py::isinstance<py::sequence>(color) && py::len(color) == 3;
+    material.baseColorFactor = rgb ? glm::vec4(vectorFrom<3>(color, "color"), 1.0f) : vectorFrom<4>(color, "color");
+    material.baseColorTexture = texture.value_or(-1);
+    material.doubleSided = doubleSided;
+    return take(s.scene.addMaterial(std::move(material)));
+}
+
+int addMesh(PyScene& s, const py::handle& positions, const py::handle& indices, const py::handle& normals,
+            const py::handle& colors, const py::handle& uvs, std::optional<int> material, const std::string& name,
+            bool fileOrder) {
+    Mesh mesh;
+    mesh.name = name;
+    mesh.positions = vectorsFrom<3>(positions, "positions");
+    mesh.indices = indicesFrom(indices);
+    if (!normals.is_none()) mesh.normals = vectorsFrom<3>(normals, "normals");
+    if (!colors.is_none()) mesh.colors = colorsFrom(colors);
+    if (!uvs.is_none()) mesh.uvs = vectorsFrom<2>(uvs, "uvs");
+    mesh.material = material.value_or(-1);
+    py::gil_scoped_release unlocked;  // normals and the vertex-cache order
+    return take(s.scene.addMesh(std::move(mesh), !fileOrder));
+}
+
+int addInstance(PyScene& s, int mesh, const py::handle& transform, const std::string& name) {
+    const glm::mat4 m = transform.is_none() ? glm::mat4(1.0f) : matrixFrom(transform, "transform");
+    const int node = take(s.scene.addInstance(mesh, m, name));
+    s.dirty = true;
+    return node;
+}
+
+py::dict cameraDict(const SceneCamera& c) {
+    py::dict d;
+    d["name"] = c.name;
+    d["node"] = c.node;
+    d["perspective"] = c.perspective;
+    d["yfov_degrees"] = glm::degrees(c.yfov);
+    d["aspect_ratio"] = c.fileAspect();
+    d["znear"] = c.znear;
+    d["zfar"] = c.zfar;
+    return d;
+}
+
+// One mesh's arrays (copies), as add_mesh takes them: (N, 3) float32 positions and normals,
+// (T, 3) uint32 indices in the drawing order, triangle_source (T,) uint32, colours and uvs when
+// the mesh has them, and its material.
+template <class T, class V>
+py::array_t<T> rowsOf(const std::vector<V>& values, py::ssize_t columns) {
+    py::array_t<T> array({py::ssize_t(values.size()), columns});
+    if (!values.empty()) std::memcpy(array.mutable_data(), values.data(), values.size() * sizeof(V));
+    return array;
+}
+
+py::dict meshDict(const Mesh& mesh) {
+    const auto rows = [](const auto& values, py::ssize_t columns, auto zero) {
+        return rowsOf<decltype(zero)>(values, columns);
+    };
+    py::dict d;
+    d["name"] = mesh.name;
+    d["positions"] = rows(mesh.positions, 3, 0.0f);
+    d["normals"] = rows(mesh.normals, 3, 0.0f);
+    py::array_t<std::uint32_t> indices({py::ssize_t(mesh.triangleCount()), py::ssize_t(3)});
+    if (!mesh.indices.empty()) std::memcpy(indices.mutable_data(), mesh.indices.data(), mesh.indices.size() * 4);
+    d["indices"] = indices;
+    py::array_t<std::uint32_t> source(py::ssize_t(mesh.triangleSource.size()));
+    if (!mesh.triangleSource.empty())
+        std::memcpy(source.mutable_data(), mesh.triangleSource.data(), mesh.triangleSource.size() * 4);
+    d["triangle_source"] = source;
+    d["colors"] = mesh.colors.empty() ? py::object(py::none()) : py::object(rows(mesh.colors, 4, 0.0f));
+    d["uvs"] = mesh.uvs.empty() ? py::object(py::none()) : py::object(rows(mesh.uvs, 2, 0.0f));
+    d["material"] = mesh.material;
+    return d;
+}
+
+
+// --- cameras -----------------------------------------------------------------------------------
+
+Camera withPlanes(Camera c, std::optional<float> znear, std::optional<float> zfar, const std::string& depthRange) {
+    if (znear && !(std::isfinite(*znear) && *znear > 0.0f))
+        throw InputError{"near: " + std::to_string(*znear) + " must be a finite number above 0"};
+    if (zfar && !(std::isfinite(*zfar) && *zfar >= 0.0f))
+        throw InputError{"far: " + std::to_string(*zfar) + " must be a finite number, 0 (infinite) or above"};
+    c.znear = znear;
+    c.zfar = zfar;
+    if (depthRange != "fit" && depthRange != "file")
+        throw InputError{"depth_range: '" + depthRange + "' is not a mode (fit, file)"};
+    c.depthRange = depthRange == "file" ? DepthRange::File : DepthRange::Fit;
+    return c;
+}
+
+float fovFrom(float degrees) {
+    if (!(std::isfinite(degrees) && degrees > 0.0f && degrees < 180.0f))
+        throw InputError{"fov: " + std::to_string(degrees) + " degrees: must be above 0 and below 180"};
+    return degrees;
+}
+
+}  // namespace
+
+void bindScene(py::module_& m) {
+    py::class_<PyScene>(m, "Scene", "A scene: loaded with frugal.load, or built here from numpy arrays.")
+        .def(py::init<>())
+        .def("add_texture", &addTexture, py::arg("pixels"), py::kw_only(), py::arg("wrap") = "repeat",
+             py::arg("filter") = "linear", py::arg("name") = "",
+             "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF).\n"
+             "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
+        .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
+             py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("name") = "",
+             "A material: base colour (RGB or RGBA, linear factors), a texture index, and whether back faces\n"
+             "are drawn (single-sided by default, as glTF). Returns its index.")
+        .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
+             py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
+             py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,
+             "A triangle mesh: positions (N, 3), indices (T, 3) or (3T,) of an integer dtype, counter-clockwise\n"
+             "= front; normals (N, 3) (computed when None), colors (N, 3|4), uvs (N, 2). Checked (dtype, shape,\n"
+             "finite values, indices below N) and finished as a loaded mesh is: its triangles are reordered for\n"
+             "the vertex cache unless file_order, and triangle ids stay those of `indices`. Returns its index.")
+        .def("add_instance", &addInstance, py::arg("mesh"), py::arg("transform") = py::none(), py::kw_only(),
+             py::arg("name") = "",
+             "Places mesh `mesh` with a 4x4 model matrix (row-major, translation in the last column).\n"
+             "Returns the node, which set_transform and Renderer.set_transform take.")
+        .def(
+            "set_transform",
+            [](PyScene& s, int node, const py::handle& transform) {
+                take(s.scene.setTransform(node, matrixFrom(transform, "transform")));
+                s.dirty = true;
+            },
+            py::arg("node"), py::arg("transform"), "Node `node`'s local transform becomes `transform` (4x4).")
+        .def(
+            "mesh", [](PyScene& s, int i) {
+                if (i < 0 || i >= int(s.scene.meshes.size()))
+                    throw InputError{"mesh " + std::to_string(i) + " does not exist (the scene has " +
+                                     std::to_string(s.scene.meshes.size()) + ")"};
+                return meshDict(s.scene.meshes[std::size_t(i)]);
+            },
+            py::arg("index"), "Mesh `index`'s arrays (copies) and material, as add_mesh takes them.")
+        .def_property_readonly("source", [](PyScene& s) { return s.scene.source; })
+        .def_property_readonly("mesh_count", [](PyScene& s) { return s.scene.meshes.size(); })
+        .def_property_readonly("instance_count", [](PyScene& s) { return s.built().instances.size(); })
+        .def_property_readonly("triangle_count", [](PyScene& s) { return s.built().triangleCount(); })
+        .def_property_readonly("duration", [](PyScene& s) { return s.scene.duration(); })
+        .def_property_readonly("fps", [](PyScene& s) { return s.scene.fps; })
+        .def_property_readonly("node_names",
+                               [](PyScene& s) {
+                                   std::vector<std::string> names;
+                                   for (const Node& n : s.scene.nodes) names.push_back(n.name);
+                                   return names;
+                               })
+        .def_property_readonly("cameras",
+                               [](PyScene& s) {
+                                   py::list cameras;
+                                   for (const SceneCamera& c : s.scene.cameras) cameras.append(cameraDict(c));
+                                   return cameras;
+                               })
+        .def_property_readonly("warnings", [](PyScene& s) { return s.scene.warnings; })
+        .def_property_readonly("unsupported", [](PyScene& s) { return s.scene.unsupported; })
+        .def(
+            "bounds",
+            [](PyScene& s, double time) {
+                const Bounds b = s.built().bounds(time);
+                return py::make_tuple(py::make_tuple(b.min.x, b.min.y, b.min.z), py::make_tuple(b.max.x, b.max.y, b.max.z));
+            },
+            py::arg("time") = 0.0, "((xmin, ymin, zmin), (xmax, ymax, zmax)) of every instance at `time`.")
+        .def("__repr__", [](PyScene& s) {
+            return "<frugal.Scene '" + s.scene.source + "': " + std::to_string(s.scene.meshes.size()) + " meshes, " +
+                   std::to_string(s.built().instances.size()) + " instances, " +
+                   std::to_string(s.built().triangleCount()) + " triangles>";
+        });
+
+}
+
+void bindLoad(py::module_& m) {
+    m.def(
+        "load",
+        [](const std::filesystem::path& spec, bool cullBackfaces, bool fileOrder) {
+            LoadOptions options;
+            options.optimizeOrder = !fileOrder;
+            options.objDoubleSided = !cullBackfaces;
+            std::optional<Result<Scene>> loaded;
+            {
+                py::gil_scoped_release unlocked;
+                loaded.emplace(loadScene(spec.string(), options));
+            }
+            return PyScene{take(std::move(*loaded)), false};
+        },
+        py::arg("spec"), py::kw_only(), py::arg("cull_backfaces") = false, py::arg("file_order") = false,
+        "A scene from a .gltf/.glb or .obj file, or a built-in ('builtin:dominoes?polygons=1404').\n"
+        "cull_backfaces: draw OBJ single-sided; file_order: keep the file's triangle order.");
+}
+
+void bindCamera(py::module_& m) {
+    py::class_<Camera>(m, "Camera", "What a frame is seen through (frugal.Camera.look_at, from_pose, from_scene, automatic).")
+        .def_static(
+            "look_at",
+            [](const py::handle& eye, const py::handle& target, float fov, const py::handle& up,
+               std::optional<float> znear, std::optional<float> zfar, const std::string& depthRange) {
+                const glm::vec3 e = vectorFrom<3>(eye, "eye"), t = vectorFrom<3>(target, "target");
+                if (e == t) throw InputError{"eye and target coincide: the camera has no direction"};
+                return withPlanes(Camera::lookAt(e, t, fovFrom(fov), vectorFrom<3>(up, "up")), znear, zfar, depthRange);
+            },
+            py::arg("eye"), py::arg("target"), py::arg("fov") = 40.0f, py::kw_only(),
+            py::arg("up") = py::make_tuple(0.0, 1.0, 0.0), py::arg("near") = py::none(), py::arg("far") = py::none(),
+            py::arg("depth_range") = "fit",
+            "From `eye` towards `target`, a vertical field of view in degrees, `up` the image's up.\n"
+            "near/far: the clip planes (default: around the scene; far 0 = infinite); depth_range: fit (the\n"
+            "planes moved in to where the scene is) or file (as given).")
+        .def_static(
+            "from_pose",
+            [](const py::handle& pose, float fov, std::optional<float> znear, std::optional<float> zfar,
+               const std::string& depthRange) {
+                return withPlanes(Camera::fromPose(matrixFrom(pose, "pose"), fovFrom(fov)), znear, zfar, depthRange);
+            },
+            py::arg("pose"), py::arg("fov") = 40.0f, py::kw_only(), py::arg("near") = py::none(),
+            py::arg("far") = py::none(), py::arg("depth_range") = "fit",
+            "A 4x4 camera-to-world matrix in OpenGL's convention (looks down its -z, +y up; pyrender's):\n"
+            "the eye is pose[:3, 3].")
+        .def_static("from_scene", &Camera::fromScene, py::arg("index") = 0,
+                    "The scene's camera `index` (its node's transform at the frame's time).")
+        .def_static("automatic", &Camera::automatic,
+                    "A view that fits the scene's bounds at the frame's time, from the front and a little above.")
+        .def("__repr__", [](const Camera& c) {
+            if (c.sceneCamera) return "<frugal.Camera scene camera " + std::to_string(*c.sceneCamera) + ">";
+            if (c.eye) return std::string("<frugal.Camera look-at>");
+            return std::string("<frugal.Camera automatic>");
+        });
+}
+
+}  // namespace frugal::python
