@@ -30,7 +30,7 @@ def import_frugal():
         import frugal
     except ImportError as e:
         sys.exit(f"error: cannot import frugal ({e}); run with PYTHONPATH=<build>/python, "
-                 "e.g. PYTHONPATH=/work/main/build/python /usr/bin/python3 ...")
+                 "e.g. PYTHONPATH=build/python /usr/bin/python3 ...")
     return frugal
 
 

@@ -20,7 +20,7 @@ Python into a frame the renderer takes back once nothing refers to it), so neith
 pages in a frame; --malloc pinned fixes glibc's thresholds to check that the allocator does not
 decide the ratio.
 
-Run: PYTHONPATH=/work/main/build/python /usr/bin/python3 bench/python/overhead.py [--json FILE]
+Run: PYTHONPATH=build/python /usr/bin/python3 bench/python/overhead.py [--json FILE]
 """
 
 import argparse

@@ -27,7 +27,7 @@ timings (render_ms, readback_ms: medians over 20 more frames after the timed one
 If moderngl is missing or cannot make an EGL context, the JSON says "skipped" with the reason and
 the script exits 0.
 
-Run: PYTHONPATH=/work/main/build/python /usr/bin/python3 bench/python/vs_moderngl.py [--json FILE]
+Run: PYTHONPATH=build/python /usr/bin/python3 bench/python/vs_moderngl.py [--json FILE]
 """
 
 import argparse
