@@ -126,6 +126,13 @@ glm::mat4 matrixFrom(const py::handle& object, const char* what) {
     return m;
 }
 
+py::array matrixArray(const glm::mat4& m) {
+    py::array_t<float> out({4, 4});
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
+    return out;
+}
+
 template <int K>
 glm::vec<K, float> vectorFrom(const py::handle& object, const char* what) {
     const py::array array = asArray(object, what);

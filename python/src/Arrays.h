@@ -36,6 +36,9 @@ std::vector<std::uint32_t> indicesFrom(const py::handle& object);
 // as glm's column-major matrix.
 glm::mat4 matrixFrom(const py::handle& object, const char* what);
 
+// glm's column-major matrix as a 4x4 float32 array, row-major as numpy prints it.
+py::array matrixArray(const glm::mat4& m);
+
 // A vector of K finite numbers (a tuple, a list or an array).
 template <int K>
 glm::vec<K, float> vectorFrom(const py::handle& object, const char* what);

@@ -85,13 +85,6 @@ py::array depthArray(py::object self) {
 
 py::object jsonLoads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
-py::array matrixArray(const glm::mat4& m) {
-    py::array_t<float> out({4, 4});
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
-    return out;
-}
-
 void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
                 const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath) {
     const auto text = [](const std::optional<std::filesystem::path>& p) {

@@ -78,6 +78,42 @@ int addInstance(PyScene& s, int mesh, const py::handle& transform, const std::st
     return node;
 }
 
+// The drawn instances in draw order: node, mesh, first id (a triangle's id is first_id plus its
+// index in the mesh's source, 0 = background) and triangle count.
+py::list instanceList(Scene& scene) {
+    py::list out;
+    for (const Instance& instance : scene.instances) {
+        py::dict d;
+        d["node"] = instance.node;
+        d["mesh"] = instance.mesh;
+        d["first_id"] = instance.firstId;
+        d["triangles"] = scene.meshes[std::size_t(instance.mesh)].triangleCount();
+        out.append(d);
+    }
+    return out;
+}
+
+py::list materialList(const Scene& scene) {
+    py::list out;
+    for (const Material& m : scene.materials) {
+        py::dict d;
+        d["name"] = m.name;
+        d["color"] = py::make_tuple(m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a);
+        d["texture"] = m.baseColorTexture < 0 ? py::object(py::none()) : py::object(py::int_(m.baseColorTexture));
+        d["double_sided"] = m.doubleSided;
+        out.append(d);
+    }
+    return out;
+}
+
+py::array worldMatrix(PyScene& s, int node, double time) {
+    if (node < 0 || node >= int(s.scene.nodes.size()))
+        throw InputError{"node " + std::to_string(node) + " does not exist (the scene has " +
+                         std::to_string(s.scene.nodes.size()) + ")"};
+    if (!std::isfinite(time)) throw InputError{"time: " + std::to_string(time) + " is not finite"};
+    return matrixArray(s.scene.worldTransforms(time)[std::size_t(node)]);
+}
+
 py::dict cameraDict(const SceneCamera& c) {
     py::dict d;
     d["name"] = c.name;
@@ -200,6 +236,13 @@ void bindScene(py::module_& m) {
                                    for (const SceneCamera& c : s.scene.cameras) cameras.append(cameraDict(c));
                                    return cameras;
                                })
+        .def_property_readonly("instances", [](PyScene& s) { return instanceList(s.built()); },
+                               "The drawn instances in draw order: node, mesh, first_id, triangles (ids: first_id +\n"
+                               "the triangle's index in its mesh's source; 0 = background).")
+        .def_property_readonly("materials", [](PyScene& s) { return materialList(s.scene); },
+                               "Each material: name, color (RGBA factors), texture (index or None), double_sided.")
+        .def("world_transform", &worldMatrix, py::arg("node"), py::arg("time") = 0.0,
+             "Node `node`'s 4x4 world matrix at `time` (animations sampled, parents applied).")
         .def_property_readonly("warnings", [](PyScene& s) { return s.scene.warnings; })
         .def_property_readonly("unsupported", [](PyScene& s) { return s.scene.unsupported; })
         .def(

@@ -176,3 +176,23 @@ def test_moving_an_instance_with_reuse_stays_exact():
     assert modes[2:5] == ["reuse"] * 3, modes
     assert moved[2:5] == [1, 1, 1], moved
     assert modes[5] == "full" and a.camera["zfar"] > 12.0
+
+
+def test_instances_materials_and_ids_name_what_drew_each_pixel():
+    """scene.instances maps an id image back to instances and triangles (the recipe of
+    docs/python.md), and materials and world transforms are what was added."""
+    scene, nodes = memory_scene()
+    instances = scene.instances
+    assert [(i["node"], i["mesh"]) for i in instances] == [(0, 0), (1, 1), (2, 0)]
+    assert instances[0]["first_id"] == 1 and instances[1]["first_id"] == 1 + 12
+    assert [m["double_sided"] for m in scene.materials] == [False, True] and scene.materials[1]["texture"] == 0
+    np.testing.assert_allclose(scene.world_transform(nodes[1]), INSTANCES[1][1], atol=1e-6)
+
+    frame = frugal.Renderer(scene, size=(160, 120), ids=True).render(frugal.Camera.look_at((0.5, 1.5, 4), (0, 0, 0)))
+    ids = frame.ids
+    first = np.array([i["first_id"] for i in instances])
+    instance = np.searchsorted(first, ids, side="right") - 1  # -1 where ids == 0 (background)
+    triangle = ids - first[np.maximum(instance, 0)]
+    assert set(np.unique(instance[ids > 0])) == {0, 1, 2}
+    counts = np.array([i["triangles"] for i in instances])
+    assert (triangle[ids > 0] < counts[instance[ids > 0]]).all()
