@@ -82,6 +82,23 @@ def add_common_args(parser, malloc, frames=200, block=10, warmup=20):
     parser.add_argument("--json", metavar="FILE", help="also write the JSON object to FILE")
 
 
+def start(description):
+    """What both benchmarks do first: parse the options, set the allocator, import frugal, load the
+    scene and make a renderer of the size asked for (its defaults otherwise). Returns (args, the
+    allocator's description, the module, the scene, the renderer); a frugal error exits with its line."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_common_args(parser, malloc="default")
+    args = parser.parse_args()
+    malloc = set_malloc(args.malloc)
+    frugal = import_frugal()
+    try:
+        scene = frugal.load(args.scene)
+        renderer = frugal.Renderer(scene, size=args.size)
+    except frugal.Error as e:
+        sys.exit(f"error: {e}")
+    return args, malloc, frugal, scene, renderer
+
+
 # glibc's mallopt parameters (malloc.h).
 M_TRIM_THRESHOLD = -1
 M_MMAP_THRESHOLD = -3

@@ -23,8 +23,6 @@ decide the ratio.
 Run: PYTHONPATH=build/python /usr/bin/python3 bench/python/overhead.py [--json FILE]
 """
 
-import argparse
-import sys
 import time
 
 import benchutil
@@ -52,18 +50,8 @@ def python_block(r, cam, frames, read):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    benchutil.add_common_args(parser, malloc="default")
-    args = parser.parse_args()
-    malloc = benchutil.set_malloc(args.malloc)
-    frugal = benchutil.import_frugal()
-
+    args, malloc, frugal, scene, r = benchutil.start(__doc__)
     width, height = args.size
-    try:
-        scene = frugal.load(args.scene)
-        r = frugal.Renderer(scene, size=(width, height))
-    except frugal.Error as e:
-        sys.exit(f"error: {e}")
     cam = frugal.Camera.automatic()
     benchutil.log(f"{scene!r} on {r.backend} ({r.backend_renderer}), {width}x{height}")
 

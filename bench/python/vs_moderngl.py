@@ -30,7 +30,6 @@ the script exits 0.
 Run: PYTHONPATH=build/python /usr/bin/python3 bench/python/vs_moderngl.py [--json FILE]
 """
 
-import argparse
 import sys
 import time
 
@@ -189,24 +188,15 @@ def check_untransformed(scene, mesh):
                  "this benchmark needs one mesh placed once")
     if mesh["colors"] is not None or mesh["uvs"] is not None:
         sys.exit(f"error: {scene.source}: mesh 0 has vertex colours or uvs; the moderngl shader is the plain one")
-    (lo, hi), p = scene.bounds(), mesh["positions"]
-    if not (np.allclose(lo, p.min(axis=0)) and np.allclose(hi, p.max(axis=0))):
+    if not np.array_equal(scene.world_transform(scene.instances[0]["node"]), np.eye(4)):
         sys.exit(f"error: {scene.source}: the instance is transformed; the moderngl side draws mesh 0 untransformed")
+    if mesh["material"] >= 0 and scene.materials[mesh["material"]]["color"] != (1.0, 1.0, 1.0, 1.0):
+        sys.exit(f"error: {scene.source}: mesh 0's base colour is not white, as the moderngl shader's is")
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    benchutil.add_common_args(parser, malloc="default")
-    args = parser.parse_args()
-    malloc = benchutil.set_malloc(args.malloc)
-    frugal = benchutil.import_frugal()
+    args, malloc, frugal, scene, r = benchutil.start(__doc__)
     width, height = args.size
-
-    try:
-        scene = frugal.load(args.scene)
-        r = frugal.Renderer(scene, size=(width, height))
-    except frugal.Error as e:
-        sys.exit(f"error: {e}")
     mesh = scene.mesh(0)
     check_untransformed(scene, mesh)
     cam = frugal.Camera.automatic()

@@ -43,7 +43,7 @@ def test_a_renderer_moves_between_threads():
     renderer = frugal.Renderer(frugal.load("builtin:cubes?count=6"), size=SIZE)
     here = renderer.render(time=0.5).color.copy()
     there = []
-    worker = threading.Thread(target=lambda: there.append(renderer.render(time=0.5).color.copy()))
+    worker = threading.Thread(target=lambda r=renderer: there.append(r.render(time=0.5).color.copy()))
     worker.start()
     worker.join()
     np.testing.assert_array_equal(here, there[0])
