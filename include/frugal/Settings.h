@@ -8,11 +8,13 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include <frugal/Camera.h>
 #include <frugal/Image.h>
+#include <frugal/Result.h>
 
 namespace frugal {
 
@@ -113,5 +115,32 @@ struct Settings {
     glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
+
+// A settings file (settings.json, as `frugal report` writes one): a JSON object whose keys are the
+// command line's names of the settings above (the Python module's keyword arguments are these with
+// '_' for '-'), each optional:
+//   {"size": [800, 600], "backend": "auto", "threads": 0, "interp": "exact", "cull": "conservative",
+//    "cull-bins": [16, 32], "order": "key", "refine-costs": 10, "reuse": true, "reuse-grain": 16,
+//    "reuse-cell": 16, "no-fallback": false, "exact-static": false, "hsr": "zbuffer",
+//    "depth-format": "d24", "background": [0.12, 0.13, 0.15, 1], "ids": false}
+// Names as toString gives them; "size" and "cull-bins" also as "800x600"; "background" RGB or RGBA.
+inline constexpr std::array<const char*, 17> kSettingNames{
+    "size",       "backend",    "threads",     "interp",       "cull", "cull-bins",    "order",      "refine-costs",
+    "reuse",      "reuse-grain", "reuse-cell", "no-fallback", "exact-static", "hsr", "depth-format", "background",
+    "ids"};
+
+struct SettingsFile {
+    Settings settings;               // `base` with the file's values
+    std::vector<std::string> keys;   // the keys the file gave, sorted
+};
+// `base` with the values of the settings file at `path`. Errors, one line starting with
+// "settings <path>: " (Error::aboutSetting): the file cannot be read (Io); not JSON, not an object,
+// a key that is not a setting (with the names), a value of the wrong kind ("key 'cull': 'x' is not
+// a method (none, ...)") (BadInput). Ranges are Renderer::create's to check, as for any Settings.
+Result<SettingsFile> readSettingsFile(const std::string& path, const Settings& base = {});
+// The same from JSON text; `name` stands for the file in messages.
+Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string& name, const Settings& base = {});
+// `settings` as a settings file: every key, one a line, in kSettingNames' order.
+std::string settingsJson(const Settings& settings);
 
 }  // namespace frugal

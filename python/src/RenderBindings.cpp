@@ -266,7 +266,8 @@ void bindRenderer(py::module_& m) {
     py::class_<PyRenderer>(m, "Renderer",
                            "Renderer(scene, **settings): frugal's renderer on a copy of `scene`. The settings are the\n"
                            "command line's options (size=(800, 600), backend='auto', cull='conservative', reuse=True,\n"
-                           "order='key', hsr=..., depth_format='d32f', ids=True, ...; frugal.default_settings()).\n"
+                           "order='key', hsr=..., depth_format='d32f', ids=True, ...; frugal.default_settings()),\n"
+                           "and settings='settings.json' to start from a settings file (the others win over it).\n"
                            "Usable as a context manager: leaving the block closes it.")
         .def(py::init<PyScene&, const py::kwargs&>(), py::arg("scene"))
         .def("render", &PyRenderer::render, py::arg("camera") = py::none(), py::arg("time") = 0.0,

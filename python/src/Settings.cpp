@@ -5,6 +5,7 @@
 #include <string>
 
 #include "Arrays.h"
+#include "Bindings.h"
 
 namespace frugal::python {
 
@@ -93,8 +94,13 @@ const std::map<std::string, Setter>& setters() {
 
 Settings settingsFrom(const py::kwargs& kwargs) {
     Settings settings;
+    if (kwargs.contains("settings")) {  // a settings file first: the other keyword arguments win
+        const py::object path = py::module_::import("os").attr("fspath")(kwargs["settings"]);
+        settings = take(readSettingsFile(path.cast<std::string>())).settings;
+    }
     for (const auto& [key, value] : kwargs) {
         const std::string name = key.cast<std::string>();
+        if (name == "settings") continue;
         const auto setter = setters().find(name);
         if (setter == setters().end()) {
             std::string names;

@@ -12,6 +12,7 @@ namespace py = pybind11;
 
 // Settings from keyword arguments; an unknown name or a value of the wrong form raises InputError
 // naming it ("cull: 'x' is not a method (none, sphere, ...)"). Ranges are the Renderer's to check.
+// settings=PATH reads a settings file (frugal/Settings.h) first; the other arguments win over it.
 Settings settingsFrom(const py::kwargs& kwargs);
 
 // The names settingsFrom takes, with their values in `settings`.

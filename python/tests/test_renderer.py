@@ -45,3 +45,24 @@ def test_the_module_needs_only_the_documented_libraries():
     for package in ("libegl1", "libegl-mesa0", "libgl1-mesa-dri", "libtinygltf2d", "libtinyobjloader2rc10",
                     "libmeshoptimizer2d", "libstb0", "libgmp10", "zlib1g", "python3-numpy"):
         assert package in page, f"docs/python.md does not name {package}"
+
+
+def test_a_settings_file_is_where_the_keyword_arguments_start(tmp_path, cli):
+    """settings= reads the command line's settings file; keyword arguments win over it; the frame
+    equals `frugal render --settings` of the same file."""
+    import numpy as np
+    from conftest import read_png, run_cli
+    path = tmp_path / "settings.json"
+    path.write_text('{"cull": "conservative", "order": "key", "size": "96x72", "reuse": true}')
+    scene = frugal.load("builtin:cubes?count=6")
+    r = frugal.Renderer(scene, settings=path, order="submit")
+    assert (r.settings["cull"], r.settings["order"], r.settings["size"], r.settings["reuse"]) == \
+        ("conservative", "submit", (96, 72), True)
+    run_cli(cli, "render", "builtin:cubes?count=6", "--settings", path, "--order", "submit", "-q",
+            "-o", tmp_path / "c.png")
+    np.testing.assert_array_equal(r.render().color, read_png(tmp_path / "c.png"))
+    path.write_text('{"reuse": "yes"}')
+    with pytest.raises(frugal.InputError, match=r"settings .*settings\.json: key 'reuse': \"yes\" is not true or false"):
+        frugal.Renderer(scene, settings=path)
+    with pytest.raises(frugal.IoError, match="cannot read the file"):
+        frugal.Renderer(scene, settings=tmp_path / "none.json")

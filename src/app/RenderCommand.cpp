@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -72,12 +73,47 @@ struct RenderRequest {
     int refineCosts = 10;
 };
 
+// --settings FILE (frugal/Settings.h): its values are where the flags start from, so a flag given
+// beside it wins wherever it stands. "ids" is left out: ids are drawn when --ids names a file.
+Result<bool> applySettingsFile(const std::vector<std::string>& args, RenderRequest& r) {
+    const auto given = std::find(args.begin(), args.end(), "--settings");
+    if (given == args.end() || std::next(given) == args.end()) return true;  // the flag reports a missing value
+    Result<SettingsFile> file = readSettingsFile(*std::next(given));
+    if (!file) return file.failure();
+    const Settings& s = file->settings;
+    RenderOptions& o = r.options;
+    o.width = s.width;
+    o.height = s.height;
+    o.sizeGiven = std::find(file->keys.begin(), file->keys.end(), "size") != file->keys.end();
+    o.backend = s.backend;
+    o.threads = s.threads;
+    o.interp = s.interp;
+    o.depthFormat = s.depthFormat;
+    o.background = s.background;
+    if (s.cull != Cull::None) r.cull.method = s.cull;
+    r.cull.bins.thetaBins = s.cullBinsTheta;
+    r.cull.bins.phiBins = s.cullBinsPhi;
+    r.order = s.order;
+    r.refineCosts = s.refineCosts;
+    r.reuse.enabled = s.reuse;
+    r.reuse.settings = s.reuseSettings;
+    r.hsr = s.hsr;
+    return true;
+}
+
 // The command line into `request`: the exit status to return, or nothing to go on.
 std::optional<int> parseRender(const std::vector<std::string>& args, RenderRequest& r, std::ostream& out,
                                std::ostream& err) {
+    if (Result<bool> applied = applySettingsFile(args, r); !applied) return fail(err, applied.failure());
     CommandLine command{"render", renderHelp(), &r.options};
     Outputs& files = r.outputs;
+    std::string settingsFile;  // read above, before the other flags
     command.flags = {
+        {"settings file", {
+            flag::text("--settings", "FILE", "start from a settings file: a JSON object of the options below by "
+                       "name, e.g. {\"cull\": \"conservative\", \"reuse\": true} (docs/cli.md, 'Settings "
+                       "files'); flags given beside it win", settingsFile),
+        }},
         {"outputs (each written to a temporary file and renamed, never left half-written)", {
             flag::text("-o, --output", "FILE", "colour PNG (default frame.png). With --frames, FILE may hold a printf "
                        "number such as out_%04d.png; otherwise _%04d is put before the extension", files.color),
