@@ -15,6 +15,7 @@ const char* kUsage = R"(frugal — offscreen OpenGL renderer (Mesa EGL/OSMesa) t
 
 usage:
   frugal render [SCENE] [-o FILE.png] [options]   render a frame or a sequence to PNG
+  frugal report [SCENE] [options] -o DIR          every speed-accuracy trade on SCENE, and the settings to use
   frugal info SCENE                               what a scene holds, and what frugal does not model
   frugal bench render [SCENE] [options]           frame time per backend, as JSON
   frugal compare A.png B.png [options]            compare an image with a reference (B)
@@ -48,7 +49,7 @@ namespace {
 void printUsage(std::ostream& out) {
     out << kUsage;
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
-    out << "with no SCENE, render, bench, diff, cull-report and reuse-bench use builtin:default.\n";
+    out << "with no SCENE, render, report, bench, diff, cull-report and reuse-bench use builtin:default.\n";
     out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << exitCodesHelp();
 }
 
@@ -58,7 +59,7 @@ struct CommandEntry {
 };
 
 const CommandEntry kCommands[] = {
-    {"render", runRender},           {"info", runInfo},         {"bench", runBench},
+    {"render", runRender},           {"report", runReport},     {"info", runInfo},         {"bench", runBench},
     {"compare", runCompare},         {"diff", runDiff},         {"cull-report", runCullReport},
     {"reuse-bench", runReuseBench},  {"hsr-bench", runHsrBench}, {"order-bench", runOrderBench},
     {"span-bench", runSpanBench},    {"state-sim", runStateSim}, {"soak", runSoak},

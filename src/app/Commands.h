@@ -8,6 +8,7 @@
 namespace frugal {
 
 int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
@@ -21,6 +22,7 @@ int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::os
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
+const char* reportHelp();
 const char* infoHelp();
 const char* benchHelp();
 const char* compareHelp();

@@ -46,7 +46,7 @@ TEST(CliTest, VersionIsTheProjectVersion) {
 
 TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {
     const fs::path dir = test::freshDir("CliHelpEach");
-    for (const char* command : {"render", "info", "bench", "compare", "diff", "cull-report", "reuse-bench", "hsr-bench",
+    for (const char* command : {"render", "report", "info", "bench", "compare", "diff", "cull-report", "reuse-bench", "hsr-bench",
                                 "order-bench", "span-bench", "state-sim", "soak"}) {
         SCOPED_TRACE(command);
         const CliRun help = runFrugal(dir, {"help", command});
@@ -68,7 +68,7 @@ TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {
     EXPECT_EQ(unknown.status, 2);
     EXPECT_EQ(unknown.out, "");
     EXPECT_EQ(unknown.errLines().size(), 1u);
-    EXPECT_EQ(unknown.err.rfind("error: help wat: no such command (commands: render, info, ", 0), 0u) << unknown.err;
+    EXPECT_EQ(unknown.err.rfind("error: help wat: no such command (commands: render, report, info, ", 0), 0u) << unknown.err;
     EXPECT_TRUE(filesIn(dir).empty());
 }
 
@@ -134,7 +134,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help render')"},
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
-        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, order-bench, span-bench, state-sim, soak, help)"},
+        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, report, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, order-bench, span-bench, state-sim, soak, help)"},
         {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"render", "--near", "5", "--far", "1"}, 2, "error: --far 1: must exceed --near 5"},
         // Only --near given: the library names the values, and which one it fitted.

@@ -1,0 +1,114 @@
+// `frugal report`: every trade on one scene in one run, judged against the plain render; the
+// recommendation is exact (or within the budget) and its settings.json renders what the plain
+// render does. No test here depends on which method is fastest: timings decide that.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <frugal/Settings.h>
+
+#include "CliSupport.h"
+#include "JsonSupport.h"
+#include "TestSupport.h"
+
+namespace frugal {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliRun;
+using test::readAll;
+using test::runFrugal;
+
+const nlohmann::json& row(const nlohmann::json& report, const std::string& name) {
+    for (const nlohmann::json& r : report["rows"])
+        if (r["name"] == name) return r;
+    static const nlohmann::json none;
+    ADD_FAILURE() << "no row " << name;
+    return none;
+}
+
+TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
+    const fs::path dir = test::freshDir("ReportViews");
+    const CliRun run = runFrugal(dir, {"report", "builtin:cubes?count=12", "--views", "4", "--size", "96x72",
+                                       "--repeat", "2", "--budget-px", "50", "-o", "out"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    ASSERT_EQ(run.out.substr(0, 15), "fastest exact: ") << run.out;
+    EXPECT_NE(run.out.find("\nfastest within 50 px a frame: "), std::string::npos) << run.out;
+    EXPECT_NE(run.err.find("report: 12 candidates on "), std::string::npos) << run.err;
+
+    const nlohmann::json report = test::readJson(dir / "out" / "report.json");
+    EXPECT_EQ(report["shots"], 4);
+    EXPECT_EQ(report["rows"][0]["name"], "plain");
+    EXPECT_EQ(report["rows"].size(), 12u);
+    for (const nlohmann::json& r : report["rows"]) {
+        EXPECT_EQ(r["exact"], r["differing_px"] == 0) << r["name"];
+        EXPECT_LE(r["worst_frame_px"].get<std::uint64_t>(), r["differing_px"].get<std::uint64_t>()) << r["name"];
+    }
+    EXPECT_TRUE(row(report, "cull oracle")["floor"].get<bool>());
+    EXPECT_EQ(row(report, "cull conservative")["differing_px"], 0) << "conservative culling never misses";
+    EXPECT_GT(row(report, "cull paper")["differing_px"].get<int>(), 0) << "paper 002's method misses on these views";
+
+    const std::string exact = report["recommended"]["exact"], budget = report["recommended"]["within_budget"];
+    EXPECT_NE(exact, "cull oracle");
+    if (exact != "plain") {
+        EXPECT_TRUE(row(report, exact)["exact"].get<bool>());
+    }
+    if (budget != "plain") {
+        EXPECT_LE(row(report, budget)["worst_frame_px"].get<int>(), 50);
+    }
+
+    // settings.json is the exact pick's settings, which the library reads back.
+    Result<SettingsFile> settings = readSettingsFile((dir / "out" / "settings.json").string());
+    ASSERT_TRUE(settings) << settings.error();
+    EXPECT_EQ(settingsJson(settings->settings) + "", readAll(dir / "out" / "settings.json"));
+    EXPECT_EQ(nlohmann::json::parse(readAll(dir / "out" / "settings.json")),
+              exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
+    const std::string csv = readAll(dir / "out" / "report.csv");
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 13) << "a header and a line a row";
+}
+
+TEST(ReportCliTest, ASequenceWeighsReuseAndItsSettingsRenderThePlainImages) {
+    const fs::path dir = test::freshDir("ReportSequence");
+    const std::string scene = "builtin:dominoes?polygons=204";
+    CliRun run = runFrugal(dir, {"report", scene, "--frames", "0:5", "--size", "96x72", "-q", "-o", "out"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    const nlohmann::json report = test::readJson(dir / "out" / "report.json");
+    EXPECT_TRUE(report["sequence"].get<bool>());
+    EXPECT_GT(row(report, "reuse")["extra_bytes"].get<int>(), 0) << "the static pair";
+    EXPECT_EQ(row(report, "reuse")["differing_px"], 0);
+
+    run = runFrugal(dir, {"render", scene, "--frames", "0:5", "--size", "96x72", "-q", "-o", "a.png",
+                          "--settings", "out/settings.json"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    run = runFrugal(dir, {"render", scene, "--frames", "0:5", "--size", "96x72", "-q", "-o", "b.png"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    for (int f = 0; f <= 5; ++f) {
+        const std::string n = "_000" + std::to_string(f) + ".png";
+        EXPECT_EQ(readAll(dir / ("a" + n)), readAll(dir / ("b" + n))) << "frame " << f;
+    }
+}
+
+TEST(ReportCliTest, BadInputIsOneLineAndNoFiles) {
+    const fs::path dir = test::freshDir("ReportBad");
+    CliRun run = runFrugal(dir, {"report", "--views", "0", "-o", "out"});
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err, "error: --views: '0' is not a whole number from 1 to 10000\n");
+    run = runFrugal(dir, {"report", "missing.obj", "-o", "out"});
+    EXPECT_EQ(run.status, 1);
+    EXPECT_EQ(run.errLines().size(), 1u) << run.err;
+    test::writeFile(dir / "file", "x");
+    run = runFrugal(dir, {"report", "builtin:cubes?count=2", "--views", "1", "--size", "32x24", "-q", "-o", "file"});
+    EXPECT_EQ(run.status, 2) << "refused before any work";
+    EXPECT_EQ(run.err, "error: -o file: a file, not a folder\n");
+    EXPECT_EQ(test::filesIn(dir), std::vector<std::string>{"file"});
+}
+
+}  // namespace
+}  // namespace frugal
