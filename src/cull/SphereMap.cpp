@@ -7,6 +7,8 @@
 
 #include <meshoptimizer.h>
 
+#include "scene/MeshBuild.h"
+
 namespace frugal {
 
 namespace {
@@ -15,8 +17,6 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Splits one bin's triangles (consecutive in `indices`, vertex-cache order) into meshoptimizer
 // meshlets by scanning (meshopt_buildMeshletsScan keeps the order: each meshlet is a run of the
@@ -56,7 +56,7 @@ void clusterBin(const Mesh& mesh, const std::vector<glm::vec4>& planes, const st
         cluster.boxMax = glm::vec3(-INFINITY);
         for (std::size_t i = 0; i < std::size_t(cluster.count) * 3; ++i) {
             const glm::vec3& p = mesh.positions[tri[i]];
-            allFinite = allFinite && finite(p);
+            allFinite = allFinite && isFinite(p);
             cluster.boxMin = glm::min(cluster.boxMin, p);
             cluster.boxMax = glm::max(cluster.boxMax, p);
         }

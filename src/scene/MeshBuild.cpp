@@ -10,7 +10,6 @@ namespace frugal {
 
 namespace {
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 void computeMissingNormals(Mesh& mesh) {
     const bool had = !mesh.normals.empty();
@@ -21,7 +20,7 @@ void computeMissingNormals(Mesh& mesh) {
         const std::uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
         // Unnormalised cross product: area weighting for free.
         const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
-        if (!finite(n)) continue;
+        if (!isFinite(n)) continue;
         target[a] += n;
         target[b] += n;
         target[c] += n;
@@ -87,7 +86,7 @@ MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
         const std::uint32_t* tri = &mesh.indices[3 * t];
         assert(tri[0] < mesh.positions.size() && tri[1] < mesh.positions.size() && tri[2] < mesh.positions.size());
-        if (!finite(mesh.positions[tri[0]]) || !finite(mesh.positions[tri[1]]) || !finite(mesh.positions[tri[2]])) {
+        if (!isFinite(mesh.positions[tri[0]]) || !isFinite(mesh.positions[tri[1]]) || !isFinite(mesh.positions[tri[2]])) {
             ++stats.droppedNonFinite;
             continue;
         }
@@ -99,12 +98,12 @@ MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
     mesh.triangleSource.resize(kept);
     // Unused non-finite positions stay in the vertex buffer; make them harmless zeros.
     for (glm::vec3& p : mesh.positions)
-        if (!finite(p)) p = glm::vec3(0.0f);
+        if (!isFinite(p)) p = glm::vec3(0.0f);
     // Non-finite colours or texture coordinates would reach the shader as NaN: neutral values instead.
     for (glm::vec4& c : mesh.colors)
-        if (!finite(glm::vec3(c)) || !std::isfinite(c.w)) c = glm::vec4(1.0f);
+        if (!isFinite(c)) c = glm::vec4(1.0f);
     for (glm::vec2& uv : mesh.uvs)
-        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+        if (!isFinite(uv)) uv = glm::vec2(0.0f);
 
     computeMissingNormals(mesh);
     if (optimizeOrderFlag && kept > 0) optimizeOrder(mesh);

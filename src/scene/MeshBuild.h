@@ -1,12 +1,21 @@
 // Shared last step of every loader: make a Mesh safe and fast to draw.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <frugal/Scene.h>
 
 namespace frugal {
+
+// Every component finite (no NaN, no infinity): what a vertex must be to be drawn.
+template <int N>
+bool isFinite(const glm::vec<N, float>& v) {
+    for (int k = 0; k < N; ++k)
+        if (!std::isfinite(v[k])) return false;
+    return true;
+}
 
 struct MeshBuildStats {
     std::size_t droppedNonFinite = 0;  // triangles with a NaN/Inf position (never passed to GL)

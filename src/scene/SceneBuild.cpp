@@ -15,13 +15,6 @@ namespace {
 Error bad(std::string message) { return Error{std::move(message), ErrorKind::BadInput}; }
 
 template <int N>
-bool finite(const glm::vec<N, float>& v) {
-    for (int k = 0; k < N; ++k)
-        if (!std::isfinite(v[k])) return false;
-    return true;
-}
-
-template <int N>
 std::string text(const glm::vec<N, float>& v) {
     std::string out = "(";
     for (int k = 0; k < N; ++k) out += (k ? ", " : "") + fmt(double(v[k]));
@@ -32,7 +25,7 @@ std::string text(const glm::vec<N, float>& v) {
 template <int N>
 std::string firstNotFinite(const char* what, const std::vector<glm::vec<N, float>>& values) {
     for (std::size_t i = 0; i < values.size(); ++i)
-        if (!finite(values[i])) return std::string(what) + " " + std::to_string(i) + " is " + text(values[i]) + ", not finite";
+        if (!isFinite(values[i])) return std::string(what) + " " + std::to_string(i) + " is " + text(values[i]) + ", not finite";
     return {};
 }
 
@@ -87,7 +80,7 @@ Result<int> Scene::addTexture(Texture texture) {
 }
 
 Result<int> Scene::addMaterial(Material material) {
-    if (!finite(material.baseColorFactor))
+    if (!isFinite(material.baseColorFactor))
         return bad("material: base colour " + text(material.baseColorFactor) + " is not finite");
     if (material.baseColorTexture < -1 || material.baseColorTexture >= int(textures.size()))
         return bad("material: texture " + std::to_string(material.baseColorTexture) + " does not exist (the scene has " +
