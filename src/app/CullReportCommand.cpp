@@ -55,19 +55,16 @@ Flag methodsFlag(std::vector<Cull>& methods) {
 // around the scene's bounding sphere. The render's --near/--far and depth settings apply to each.
 Result<std::vector<ReportView>> viewsOf(const RenderOptions& options, const std::string& cameraPath, int count,
                                         const Scene& scene, CullMeasureSettings& settings) {
+    const bool oneCamera = options.camera.sceneCamera || options.camera.eye || options.camera.target;
+    if (cameraPath.empty() && !oneCamera) return viewsAround(options, scene, count, settings.time);
     std::vector<ReportView> views;
     if (!cameraPath.empty()) {
         Result<std::vector<Camera>> path = readCameraPath(cameraPath);
         if (!path) return path.failure();
         for (const Camera& camera : *path) views.push_back(ReportView{"path", camera});
         settings.timing = "path";
-    } else if (options.camera.sceneCamera || options.camera.eye || options.camera.target) {
-        views.push_back(ReportView{"camera", options.camera});
     } else {
-        const Bounds bounds = scene.bounds(settings.time);
-        if (bounds.empty()) return Error{options.scene + ": the scene has no geometry to view"};
-        views = reportViews(bounds.center(), bounds.radius(), count, options.camera.yfovDegrees.value_or(40.0f),
-                            float(options.width) / float(options.height));
+        views.push_back(ReportView{"camera", options.camera});
     }
     for (ReportView& view : views) applyDepthOptions(options.camera, view.camera);
     return views;

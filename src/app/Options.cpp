@@ -190,6 +190,16 @@ Settings rendererSettings(const RenderOptions& options) {
     return s;
 }
 
+Result<std::vector<ReportView>> viewsAround(const RenderOptions& options, const Scene& scene, int count, double time) {
+    const Bounds bounds = scene.bounds(time);
+    if (bounds.empty()) return Error{options.scene + ": the scene has no geometry to view"};
+    std::vector<ReportView> views = reportViews(bounds.center(), bounds.radius(), count,
+                                                options.camera.yfovDegrees.value_or(40.0f),
+                                                float(options.width) / float(options.height));
+    for (ReportView& view : views) applyDepthOptions(options.camera, view.camera);
+    return views;
+}
+
 Camera cameraOf(const RenderOptions& options, int frame) {
     if (options.cameraPath.empty()) return options.camera;
     const int first = options.frames ? options.frames->first : 0;

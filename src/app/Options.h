@@ -17,6 +17,7 @@
 #include "render/Frame.h"
 #include "render/Plan.h"
 #include "app/Flags.h"
+#include "cull/Views.h"
 #include "renderer/Backends.h"
 #include "scene/Load.h"
 
@@ -84,6 +85,11 @@ bool parseIntPair(const std::string& text, int& first, int& second);
 // What --near, --far and --depth-range (in `options`) give every view of a camera path or a report:
 // a view's own planes are replaced by them, given or not.
 void applyDepthOptions(const Camera& options, Camera& view);
+
+// `count` views around the scene's bounding sphere at `time` (cull/Views.h reportViews), with the
+// options' field of view and aspect ratio, and --near, --far and --depth-range applied to each.
+// Error: "<scene>: the scene has no geometry to view".
+Result<std::vector<ReportView>> viewsAround(const RenderOptions& options, const Scene& scene, int count, double time);
 
 // Scene time of frame `frame`: --time when no --frames, else frame / fps (--fps or the scene's).
 double frameTimeOf(const RenderOptions& options, const Scene& scene, int frame);

@@ -6,7 +6,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "cull/Views.h"
 #include "io/ImageIO.h"
 #include "lab/Trades.h"
 
@@ -40,16 +39,10 @@ Result<TradeSettings> shotsOf(const RenderOptions& options, const Scene& scene, 
         return t;
     }
     const double time = options.time.value_or(0.0);
-    const Bounds bounds = scene.bounds(time);
-    if (bounds.empty()) return Error{options.scene + ": the scene has no geometry to view"};
-    const std::vector<ReportView> views = reportViews(bounds.center(), bounds.radius(), count,
-                                                      options.camera.yfovDegrees.value_or(40.0f),
-                                                      float(options.width) / float(options.height));
-    for (std::size_t i = 0; i < views.size(); ++i) {
-        Camera camera = views[i].camera;
-        applyDepthOptions(options.camera, camera);
-        t.shots.push_back({"view " + std::to_string(i) + " (" + views[i].viewClass + ")", camera, time});
-    }
+    Result<std::vector<ReportView>> views = viewsAround(options, scene, count, time);
+    if (!views) return views.failure();
+    for (std::size_t i = 0; i < views->size(); ++i)
+        t.shots.push_back({"view " + std::to_string(i) + " (" + (*views)[i].viewClass + ")", (*views)[i].camera, time});
     return t;
 }
 
