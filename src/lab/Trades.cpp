@@ -146,21 +146,25 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
              std::to_string(settings.shots.size()) + (settings.sequence ? " frames" : " views"));
 
     std::vector<Frame> frames(candidates.size());
+    // Candidate i's render of `shot` into its frame; an error names both.
+    const auto renderShot = [&](std::size_t i, const TradeShot& shot) -> Result<bool> {
+        if (Result<bool> done = renderers[i].render(shot.camera, shot.time, frames[i]); !done)
+            return Error{candidates[i].name + ": " + shot.label + ": " + done.error(), done.errorKind()};
+        return true;
+    };
     // One untimed render of the first shot each: llvmpipe compiles a state's shaders on its first
     // draw, and a cost-driven order measures its costs; neither belongs to a frame's time. (A
     // sequence then starts again from its first frame, which reuse sees as a still camera.)
     if (!settings.shots.empty())
         for (std::size_t i = 0; i < candidates.size(); ++i)
-            if (Result<bool> done = renderers[i].render(settings.shots[0].camera, settings.shots[0].time, frames[i]); !done)
-                return Error{candidates[i].name + ": " + settings.shots[0].label + ": " + done.error(), done.errorKind()};
+            if (Result<bool> done = renderShot(i, settings.shots[0]); !done) return done.failure();
     const int repeat = settings.sequence ? 1 : std::max(settings.repeat, 1);
     for (std::size_t s = 0; s < settings.shots.size(); ++s) {
         const TradeShot& shot = settings.shots[s];
         for (int r = 0; r < repeat; ++r)
             for (std::size_t k = 0; k < candidates.size(); ++k) {
                 const std::size_t i = (k + s + std::size_t(r)) % candidates.size();  // the order rotates
-                if (Result<bool> done = renderers[i].render(shot.camera, shot.time, frames[i]); !done)
-                    return Error{candidates[i].name + ": " + shot.label + ": " + done.error(), done.errorKind()};
+                if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
                 report.rows[i].ms.push_back(frames[i].stats.renderMs);
             }
         if (Result<bool> judged = judge(report.rows, frames, candidates[0].settings.background); !judged)
