@@ -154,6 +154,11 @@ glm::vec<K, float> vectorFrom(const py::handle& object, const char* what) {
 template glm::vec3 vectorFrom<3>(const py::handle&, const char*);
 template glm::vec4 vectorFrom<4>(const py::handle&, const char*);
 
+glm::vec4 colorFrom(const py::handle& object, const char* what) {
+    const bool rgb = py::isinstance<py::sequence>(object) && !py::isinstance<py::str>(object) && py::len(object) == 3;
+    return rgb ? glm::vec4(vectorFrom<3>(object, what), 1.0f) : vectorFrom<4>(object, what);
+}
+
 Pixels pixelsFrom(const py::handle& object) {
     const std::string what = "texture";
     const py::array array = asArray(object, what);

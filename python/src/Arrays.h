@@ -43,6 +43,9 @@ py::array matrixArray(const glm::mat4& m);
 template <int K>
 glm::vec<K, float> vectorFrom(const py::handle& object, const char* what);
 
+// A colour: 3 finite numbers (RGB, alpha 1) or 4 (RGBA).
+glm::vec4 colorFrom(const py::handle& object, const char* what);
+
 // A texture's pixels: (H, W, 4) or (H, W, 3) uint8, first row first (v = 0, as glTF), as RGBA.
 struct Pixels {
     int width = 0, height = 0;

@@ -49,8 +49,7 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
                 const std::string& name) {
     Material material;
     material.name = name;
-    const bool rgb = py::isinstance<py::sequence>(color) && py::len(color) == 3;
-    material.baseColorFactor = rgb ? glm::vec4(vectorFrom<3>(color, "color"), 1.0f) : vectorFrom<4>(color, "color");
+    material.baseColorFactor = colorFrom(color, "color");
     material.baseColorTexture = texture.value_or(-1);
     material.doubleSided = doubleSided;
     return take(s.scene.addMaterial(std::move(material)));

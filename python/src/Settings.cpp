@@ -80,11 +80,7 @@ const std::map<std::string, Setter>& setters() {
         {"hsr", [](Settings& s, const py::handle& v) { s.hsr = choice(v, "hsr", kHsrs, "a mode"); }},
         {"depth_format",
          [](Settings& s, const py::handle& v) { s.depthFormat = choice(v, "depth_format", kDepthFormats, "a format"); }},
-        {"background",
-         [](Settings& s, const py::handle& v) {
-             const bool rgb = py::isinstance<py::sequence>(v) && !py::isinstance<py::str>(v) && py::len(v) == 3;
-             s.background = rgb ? glm::vec4(vectorFrom<3>(v, "background"), 1.0f) : vectorFrom<4>(v, "background");
-         }},
+        {"background", [](Settings& s, const py::handle& v) { s.background = colorFrom(v, "background"); }},
         {"ids", [](Settings& s, const py::handle& v) { s.ids = flag(v, "ids"); }},
     };
     return table;
