@@ -96,7 +96,23 @@ def start(description):
         renderer = frugal.Renderer(scene, size=args.size)
     except frugal.Error as e:
         sys.exit(f"error: {e}")
+    width, height = args.size
+    log(f"{scene!r} on {renderer.backend} ({renderer.backend_renderer}), {width}x{height}")
     return args, malloc, frugal, scene, renderer
+
+
+def run_header(benchmark, date, frugal, args, renderer):
+    """The fields every benchmark's JSON starts with: what ran, when, on which build and backend."""
+    return {
+        "benchmark": benchmark,
+        "date": date,
+        "frugal": frugal_build(frugal),
+        "backend": renderer.backend,
+        "gl_renderer": renderer.backend_renderer,
+        "scene": args.scene,
+        "triangles": renderer.triangle_count,
+        "size": list(args.size),
+    }
 
 
 # glibc's mallopt parameters (malloc.h).

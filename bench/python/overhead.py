@@ -51,9 +51,7 @@ def python_block(r, cam, frames, read):
 
 def main():
     args, malloc, frugal, scene, r = benchutil.start(__doc__)
-    width, height = args.size
     cam = frugal.Camera.automatic()
-    benchutil.log(f"{scene!r} on {r.backend} ({r.backend_renderer}), {width}x{height}")
 
     started, machine = benchutil.now_utc(), benchutil.machine()
     results, _ = benchutil.run_interleaved({
@@ -69,14 +67,7 @@ def main():
 
     python_over_cpp = ratio("python_render", "cpp_loop")
     benchutil.emit({
-        "benchmark": "overhead",
-        "date": started,
-        "frugal": benchutil.frugal_build(frugal),
-        "backend": r.backend,
-        "gl_renderer": r.backend_renderer,
-        "scene": args.scene,
-        "triangles": r.triangle_count,
-        "size": [width, height],
+        **benchutil.run_header("overhead", started, frugal, args, r),
         "camera": "frugal.Camera.automatic()",
         "settings": "frugal.Renderer defaults (frugal.default_settings())",
         "frames_per_method": args.frames,

@@ -202,17 +202,9 @@ def main():
     cam = frugal.Camera.automatic()
     camera = r.render(cam).camera
     result = {
-        "benchmark": "vs_moderngl",
-        "date": benchutil.now_utc(),
-        "frugal": benchutil.frugal_build(frugal),
-        "backend": r.backend,
-        "gl_renderer": r.backend_renderer,
-        "scene": args.scene,
-        "triangles": r.triangle_count,
-        "size": [width, height],
+        **benchutil.run_header("vs_moderngl", benchutil.now_utc(), frugal, args, r),
         "camera": {k: camera[k] for k in ("eye", "forward", "yfov_degrees", "znear", "zfar")},
     }
-    benchutil.log(f"{scene!r} on {r.backend} ({r.backend_renderer}), {width}x{height}")
 
     try:
         mgl = ModernglRenderer(mesh, (width, height), camera["view_matrix"], camera["projection_matrix"],
