@@ -23,4 +23,14 @@ Result<bool> writePng(const std::string& path, const DepthImage& image);
 Result<bool> writePfm(const std::string& path, const DepthImage& image);
 Result<bool> writePng(const std::string& path, const IdImage& image);
 
+// A frame's files as `frugal render` writes them, as one set: each to a temporary name, then all
+// renamed together (a set is never half renamed, and on an error none of it is left). An empty path
+// is not written; depth is PFM when its path ends in .pfm (any case), else the 16-bit PNG. Error for
+// ids asked of a frame without them: "ids <path>: the frame has no ids (Settings::ids)" (BadInput).
+struct FramePaths {
+    std::string color, depth, ids;
+};
+struct Frame;
+Result<bool> writeFrame(const FramePaths& paths, const Frame& frame);
+
 }  // namespace frugal

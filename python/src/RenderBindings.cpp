@@ -87,21 +87,12 @@ py::object jsonLoads(const std::string& text) { return py::module_::import("json
 
 void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
                 const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath) {
-    const auto text = [](const std::optional<std::filesystem::path>& p) {
-        return p ? std::optional<std::string>(p->string()) : std::nullopt;
-    };
-    const std::optional<std::string> color = text(colorPath), depth = text(depthPath), ids = text(idsPath);
-    if (ids && f.frame.ids.ids.empty())
+    if (idsPath && f.frame.ids.ids.empty())
         throw InputError{"ids: the frame has no ids (make the renderer with ids=True)"};
+    const auto text = [](const std::optional<std::filesystem::path>& p) { return p ? p->string() : std::string(); };
     py::gil_scoped_release unlocked;
-    if (color) take(writePng(*color, f.frame.color));
-    if (depth) {
-        const bool pfm = depth->size() >= 4 && depth->compare(depth->size() - 4, 4, ".pfm") == 0;
-        take(pfm ? writePfm(*depth, f.frame.depth) : writePng(*depth, f.frame.depth));
-    }
-    if (ids) take(writePng(*ids, f.frame.ids));
+    take(writeFrame({text(colorPath), text(depthPath), text(idsPath)}, f.frame));
 }
-
 
 // --- the renderer ------------------------------------------------------------------------------
 
@@ -258,8 +249,8 @@ void bindFrame(py::module_& m) {
             "The camera as resolved for this frame (the render JSON's 'camera') and its 4x4 matrices.")
         .def("write", &writeFiles, py::kw_only(), py::arg("color") = py::none(), py::arg("depth") = py::none(),
              py::arg("ids") = py::none(),
-             "Writes the images as frugal render does (each file whole or not at all): colour PNG, depth\n"
-             "(.png 16-bit or .pfm float32), ids PNG.");
+             "Writes the images as frugal render does, as one set (all of them or, on an error, none):\n"
+             "colour PNG, depth (.png 16-bit or .pfm float32), ids PNG.");
 }
 
 void bindRenderer(py::module_& m) {

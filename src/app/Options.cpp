@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <ostream>
 #include <string_view>
 
@@ -215,12 +214,6 @@ Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, 
                                                   options.height, writeIds, options.depthFormat);
     if (!setup) return Error{options.scene + ": " + setup.error()};
     return setup;
-}
-
-bool hasExtension(const std::string& path, const std::string& extension) {
-    std::string e = std::filesystem::path(path).extension().string();
-    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e == extension;
 }
 
 }  // namespace frugal

@@ -118,7 +118,4 @@ Camera cameraOf(const RenderOptions& options, int frame);
 // Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);
 
-// Whether `path` ends in `extension` (".png"), in any case.
-bool hasExtension(const std::string& path, const std::string& extension);
-
 }  // namespace frugal

@@ -241,14 +241,8 @@ private:
 
 // The frame's files, all or none.
 Result<bool> writeFrameFiles(const Outputs& o, const Frame& frame, int index, bool sequence) {
-    OutputSet files;
-    files.add(framePath(o.color, index, sequence), encodeColorPng(frame.color));
-    if (!o.depth.empty())
-        files.add(framePath(o.depth, index, sequence), hasExtension(o.depth, ".pfm")
-                                                           ? Result<Content>(Content(encodeDepthPfm(frame.depth)))
-                                                           : Result<Content>(encodeDepthPng(frame.depth)));
-    if (!o.ids.empty()) files.add(framePath(o.ids, index, sequence), encodeIdPng(frame.ids));
-    return files.commit();
+    const auto path = [&](const std::string& given) { return given.empty() ? given : framePath(given, index, sequence); };
+    return writeFrame({path(o.color), path(o.depth), path(o.ids)}, frame);
 }
 
 // "frame 3 (4/10): 8.2 ms (conservative: 31000 of 69666 triangles) -> out_0003.png".

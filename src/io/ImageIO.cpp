@@ -18,6 +18,9 @@
 #include <stb_image.h>
 #include <zlib.h>
 
+#include <frugal/Files.h>
+#include <frugal/Renderer.h>
+
 #include "base/Format.h"
 #include "io/Interrupt.h"
 #include "scene/ImageCheck.h"
@@ -186,6 +189,12 @@ Bytes encodeDepthPfm(const DepthImage& image) {
     return depthPfm(image.width, image.height, image.values.data(), image.format);
 }
 Result<Bytes> encodeIdPng(const IdImage& image) { return idPng(image.width, image.height, image.ids.data()); }
+
+bool hasExtension(const std::string& path, const std::string& extension) {
+    std::string e = std::filesystem::path(path).extension().string();
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e == extension;
+}
 
 Result<bool> writePng(const std::string& path, const ColorImage& image) {
     return writeFileAtomic(path, encodeColorPng(image));
@@ -477,6 +486,18 @@ Result<bool> Spool::append(std::string_view bytes) {
     }
     size_ += bytes.size();
     return true;
+}
+
+Result<bool> writeFrame(const FramePaths& paths, const Frame& frame) {
+    if (!paths.ids.empty() && frame.ids.ids.empty())
+        return Error{"ids " + paths.ids + ": the frame has no ids (Settings::ids)"};
+    OutputSet files;
+    if (!paths.color.empty()) files.add(paths.color, encodeColorPng(frame.color));
+    if (!paths.depth.empty())
+        files.add(paths.depth, hasExtension(paths.depth, ".pfm") ? Result<Content>(Content(encodeDepthPfm(frame.depth)))
+                                                                 : Result<Content>(encodeDepthPng(frame.depth)));
+    if (!paths.ids.empty()) files.add(paths.ids, encodeIdPng(frame.ids));
+    return files.commit();
 }
 
 }  // namespace frugal

@@ -47,6 +47,9 @@ struct DepthInfo {
     bool perspective = true;
 };
 
+// Whether `path` ends in `extension` (".png"), in any case.
+bool hasExtension(const std::string& path, const std::string& extension);
+
 Result<Bytes> encodeColorPng(const Buffers& buffers);
 Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt);
 Bytes encodeDepthPfm(const Buffers& buffers);

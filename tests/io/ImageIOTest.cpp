@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <frugal/Files.h>
+#include <frugal/Renderer.h>
+
 #include "TestSupport.h"
 #include "io/ImageIO.h"
 
@@ -88,6 +91,32 @@ TEST(ImageIOTest, OutputSetLeavesNothingWhenAWriteFails) {
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error(), (dir / "missing-folder" / "b.png").string() + ": cannot write: No such file or directory");
     EXPECT_TRUE(std::filesystem::is_empty(dir)) << "no final file and no temporary file may remain";
+}
+
+// writeFrame: the files `frugal render` writes, as one set; depth by its extension in any case.
+TEST(ImageIOTest, WriteFrameWritesTheSetOrNothing) {
+    const std::filesystem::path dir = test::freshDir("ImageIOTestFrame");
+    const Buffers b = gradient(8, 4);
+    Frame frame;
+    frame.color = ColorImage{b.width, b.height, b.rgba};
+    frame.depth.width = b.width;
+    frame.depth.height = b.height;
+    frame.depth.values = b.depth;
+    const std::string color = (dir / "c.png").string(), depth = (dir / "d.PFM").string();
+    ASSERT_TRUE(writeFrame({color, depth, ""}, frame));
+    const Result<Bytes> png = encodeColorPng(frame.color);
+    ASSERT_TRUE(png);
+    EXPECT_EQ(test::readAll(color), std::string(png->begin(), png->end()));
+    const Bytes pfm = encodeDepthPfm(frame.depth);
+    EXPECT_EQ(test::readAll(depth), std::string(pfm.begin(), pfm.end()));
+
+    const std::string other = (dir / "other.png").string(), ids = (dir / "i.png").string();
+    Result<bool> noIds = writeFrame({other, "", ids}, frame);
+    ASSERT_FALSE(noIds);
+    EXPECT_EQ(noIds.error(), "ids " + ids + ": the frame has no ids (Settings::ids)");
+    Result<bool> failed = writeFrame({other, (dir / "missing-folder" / "d.png").string(), ""}, frame);
+    ASSERT_FALSE(failed);
+    EXPECT_FALSE(std::filesystem::exists(other)) << "a set is written whole or not at all";
 }
 
 TEST(ImageIOTest, OutputSetTakesBackEarlierFilesWhenALaterRenameFails) {
