@@ -91,16 +91,21 @@ public:
     std::string backendRenderer() const;  // GL_RENDERER and GL_VERSION, or the software backend's description
     const std::vector<std::string>& backendLog() const;  // one line per context tried, or "software: ok"
     // With Cull other than None: what preparing the culling took (milliseconds: sphere, map,
-    // clusters, hull, total) and the maps' bytes.
+    // clusters, hull, total) and the bytes it keeps.
     struct CullPreparation {
         double sphereMs = 0, mapMs = 0, clusterMs = 0, hullMs = 0, totalMs = 0;
-        bool hull = false;  // built (paper only)
+        bool hull = false;        // built (paper only)
+        std::uint64_t bytes = 0;  // the maps (barycenter, memory access, facing planes) and the hull's vertices
     };
     std::optional<CullPreparation> cullPreparation() const;
     // With Order paper, greedy or best: the state costs measured, as refined so far.
     std::optional<StateCosts> stateCosts() const;
     // Bytes of the static pair (with reuse), else 0.
     std::uint64_t staticPairBytes() const;
+    // Memory this renderer keeps beyond a plain render's (the default settings'): the static pair,
+    // the culling's maps and hull, the hidden-surface planner's polygons. The GPU's copy of the
+    // scene is the same for all: culling reorders the index buffer, it does not add one.
+    std::uint64_t extraBytes() const;
 
 private:
     struct Impl;

@@ -181,6 +181,7 @@ py::object cullPreparationDict(const Renderer& r) {
     d["hull_ms"] = p->hullMs;
     d["total_ms"] = p->totalMs;
     d["hull"] = p->hull;
+    d["bytes"] = p->bytes;
     return d;
 }
 
@@ -278,11 +279,15 @@ void bindRenderer(py::module_& m) {
         .def_property_readonly("settings", [](PyRenderer& r) { return settingsDict(r.live().settings()); })
         .def_property_readonly("triangle_count", [](PyRenderer& r) { return r.live().scene().triangleCount(); })
         .def_property_readonly("cull_preparation", [](PyRenderer& r) { return cullPreparationDict(r.live()); },
-                               "With culling: what preparing it took (ms: sphere, map, cluster, hull, total); else None.")
+                               "With culling: what preparing it took (ms: sphere, map, cluster, hull, total) and the bytes it "
+                               "keeps; else None.")
         .def_property_readonly("state_costs", [](PyRenderer& r) { return stateCostsDict(r.live()); },
                                "With order paper, greedy or best: the state costs measured (us a change, by kind).")
         .def_property_readonly("static_pair_bytes", [](PyRenderer& r) { return r.live().staticPairBytes(); },
                                "With reuse: the bytes of the static pair (one more target); else 0.")
+        .def_property_readonly("extra_bytes", [](PyRenderer& r) { return r.live().extraBytes(); },
+                               "Memory kept beyond a plain render's: static pair, culling maps and hull, "
+                               "hidden-surface polygons.")
         .def("__repr__", [](PyRenderer& r) {
             if (!r.renderer) return std::string("<frugal.Renderer (closed)>");
             const Settings& s = r.renderer->settings();

@@ -15,7 +15,10 @@ def test_settings_round_trip_and_defaults():
     assert r.triangle_count == scene.triangle_count == 36
     assert set(r.cull_preparation) >= {"sphere_ms", "map_ms", "total_ms"} and r.state_costs is None
     assert r.static_pair_bytes == 0
-    assert frugal.Renderer(scene, size=(64, 48), reuse=True).static_pair_bytes > 0
+    assert r.extra_bytes == r.cull_preparation["bytes"] > 0, "culling's maps, nothing else"
+    reusing = frugal.Renderer(scene, size=(64, 48), reuse=True)
+    assert reusing.extra_bytes == reusing.static_pair_bytes > 0
+    assert frugal.Renderer(scene, size=(64, 48)).extra_bytes == 0
 
 
 def test_close_and_context_manager():

@@ -55,8 +55,7 @@ Flag methodsFlag(std::vector<Cull>& methods) {
 // around the scene's bounding sphere. The render's --near/--far and depth settings apply to each.
 Result<std::vector<ReportView>> viewsOf(const RenderOptions& options, const std::string& cameraPath, int count,
                                         const Scene& scene, CullMeasureSettings& settings) {
-    const bool oneCamera = options.camera.sceneCamera || options.camera.eye || options.camera.target;
-    if (cameraPath.empty() && !oneCamera) return viewsAround(options, scene, count, settings.time);
+    if (cameraPath.empty() && !oneCamera(options)) return viewsAround(options, scene, count, settings.time);
     std::vector<ReportView> views;
     if (!cameraPath.empty()) {
         Result<std::vector<Camera>> path = readCameraPath(cameraPath);
@@ -116,10 +115,9 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {
-        const bool oneCamera = options.camera.sceneCamera || options.camera.eye || options.camera.target;
-        if (!outputs.cameraPath.empty() && (viewsGiven || oneCamera))
+        if (!outputs.cameraPath.empty() && (viewsGiven || oneCamera(options)))
             cursor.fail("--camera-path: give either a camera path, --views N, or one camera");
-        else if (viewsGiven && oneCamera)
+        else if (viewsGiven && oneCamera(options))
             cursor.fail("--views: give either --views N or one camera (--camera/--eye/--target)");
         else if (options.frames)
             cursor.fail("--frames: cull-report measures views at one time; use --time");

@@ -199,6 +199,10 @@ Result<std::vector<ReportView>> viewsAround(const RenderOptions& options, const 
     return views;
 }
 
+bool oneCamera(const RenderOptions& options) {
+    return options.camera.sceneCamera || options.camera.eye || options.camera.target;
+}
+
 Camera cameraOf(const RenderOptions& options, int frame) {
     if (options.cameraPath.empty()) return options.camera;
     const int first = options.frames ? options.frames->first : 0;

@@ -82,6 +82,9 @@ Flag orderFlag(Order& order, std::string help = {});
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
 bool parseIntPair(const std::string& text, int& first, int& second);
 
+// Whether the options name one camera: --camera N, --eye or --target.
+bool oneCamera(const RenderOptions& options);
+
 // What --near, --far and --depth-range (in `options`) give every view of a camera path or a report:
 // a view's own planes are replaced by them, given or not.
 void applyDepthOptions(const Camera& options, Camera& view);

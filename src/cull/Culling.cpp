@@ -273,6 +273,7 @@ PrepStats SceneCuller::totals() const {
         total.hullMs += map.stats.hullMs;
         total.mapBytes += map.stats.mapBytes;
         total.accessBytes += map.stats.accessBytes;
+        total.hullBytes += map.stats.hullBytes;
     }
     return total;
 }

@@ -204,6 +204,7 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
     map.stats.mapBytes = map.entries.size() * sizeof(MapEntry);
     map.stats.accessBytes = map.bins.size() * sizeof(Bin) + map.clusters.size() * sizeof(Cluster) +
                             map.planes.size() * sizeof(glm::vec4);
+    map.stats.hullBytes = map.hull.vertices.size() * sizeof(glm::vec3);
     return map;
 }
 

@@ -73,6 +73,7 @@ struct PrepStats {
     double sphereMs = 0.0, mapMs = 0.0, clusterMs = 0.0, hullMs = 0.0;
     std::size_t mapBytes = 0;     // barycenter map (entries)
     std::size_t accessBytes = 0;  // memory-access map (bins, clusters, planes)
+    std::size_t hullBytes = 0;    // the hull's vertices (when built)
     double totalMs() const { return sphereMs + mapMs + clusterMs + hullMs; }
 };
 

@@ -24,6 +24,12 @@ std::size_t Planner::polygonCount() const {
     return count;
 }
 
+std::size_t Planner::bytes() const {
+    std::size_t total = firstPolygon_.size() * sizeof(std::uint32_t);
+    for (const MeshPolygons& p : polygons_) total += p.polygonOf.size() * sizeof(std::uint32_t);
+    return total;
+}
+
 DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<glm::mat4>& world, const DrawList& list,
                        int width, int height, PlanStats* stats) const {
     const auto start = std::chrono::steady_clock::now();

@@ -90,6 +90,7 @@ public:
 
     const MeshPolygons& polygons(int mesh) const { return polygons_[std::size_t(mesh)]; }
     std::size_t polygonCount() const;  // over all instances
+    std::size_t bytes() const;         // what the planner keeps: each triangle's polygon, each instance's first
 
 private:
     const Scene* scene_;

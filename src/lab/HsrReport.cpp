@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "base/Stats.h"
+#include "lab/PaperFigures.h"
 #include "lab/ReportText.h"
 
 namespace frugal {
@@ -13,9 +14,9 @@ using reporttext::Json;
 using reporttext::number;
 
 double paperFps(const std::string& mode) {
-    if (mode == "zbuffer") return 14.20;
-    if (mode == "depthsort") return 52.13;
-    if (mode == "adaptive") return 27.83;  // adaptive-convex, sorted-zbuffer: ours, not in the paper
+    if (mode == "zbuffer") return paper003::kZBufferFps;
+    if (mode == "depthsort") return paper003::kDepthSortFps;
+    if (mode == "adaptive") return paper003::kAdaptiveFps;  // adaptive-convex, sorted-zbuffer: ours, not in the paper
     return 0.0;
 }
 

@@ -40,8 +40,9 @@ void giveBack(Buffers& b, Frame& frame) {
     frame.depth.values = std::move(b.depth);
 }
 
-// The candidates' last frames of one shot, judged against the plain render's (row 0).
-Result<bool> judge(std::vector<TradeRow>& rows, std::vector<Frame>& frames, const glm::vec4& background) {
+// The candidates' last frames of `shot`, judged against the plain render's (row 0).
+Result<bool> judge(std::vector<TradeRow>& rows, std::vector<Frame>& frames, const TradeShot& shot,
+                   const glm::vec4& background) {
     Buffers reference = lend(frames[0]);
     CompareOptions options;
     options.background = colorBytes(background);
@@ -56,7 +57,11 @@ Result<bool> judge(std::vector<TradeRow>& rows, std::vector<Frame>& frames, cons
         }
         TradeRow& row = rows[i];
         row.differingPx += c->failingPixels;
-        row.worstFramePx = std::max<std::uint64_t>(row.worstFramePx, c->failingPixels);
+        if (c->failingPixels > row.worstFramePx) {
+            row.worstFramePx = c->failingPixels;
+            row.worstMask = std::move(c->mask);
+            row.worstShot = shot.label;
+        }
         row.worstPsnr = std::min(row.worstPsnr, c->psnr);
         if (c->depth) row.worstDepth = std::max(row.worstDepth, c->depth->maxDifference);
     }
@@ -88,6 +93,14 @@ std::vector<std::size_t> paretoFront(const std::vector<TradeRow>& rows) {
         if (!beaten) front.push_back(i);
     }
     return front;
+}
+
+// A timed frame's figures added to its row (the means are taken at the end).
+void note(TradeRow& row, const FrameStats& stats, double triangles) {
+    row.ms.push_back(stats.renderMs);
+    row.submittedShare += stats.cull ? double(stats.cull->pvs) / triangles : 1.0;
+    const StateChanges& c = stats.stateChanges;
+    row.stateChanges += double(c.programs + c.meshes + c.textures + c.toggles);
 }
 
 std::optional<double> floorMedian(const std::vector<TradeRow>& rows) {
@@ -136,7 +149,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
         TradeRow row;
         row.candidate = c;
         row.worstPsnr = std::numeric_limits<double>::infinity();
-        row.extraBytes = made->staticPairBytes();
+        row.extraBytes = made->extraBytes();
         if (const std::optional<Renderer::CullPreparation> prep = made->cullPreparation()) row.prepareMs = prep->totalMs;
         report.rows.push_back(std::move(row));
         renderers.push_back(std::move(*made));
@@ -145,6 +158,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
     progress("report: " + std::to_string(candidates.size()) + " candidates on " + report.backend + ", " +
              std::to_string(settings.shots.size()) + (settings.sequence ? " frames" : " views"));
 
+    const double triangles = double(std::max<std::size_t>(scene.triangleCount(), 1));
     std::vector<Frame> frames(candidates.size());
     // Candidate i's render of `shot` into its frame; an error names both.
     const auto renderShot = [&](std::size_t i, const TradeShot& shot) -> Result<bool> {
@@ -165,13 +179,18 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
             for (std::size_t k = 0; k < candidates.size(); ++k) {
                 const std::size_t i = (k + s + std::size_t(r)) % candidates.size();  // the order rotates
                 if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
-                report.rows[i].ms.push_back(frames[i].stats.renderMs);
+                note(report.rows[i], frames[i].stats, triangles);
             }
-        if (Result<bool> judged = judge(report.rows, frames, candidates[0].settings.background); !judged)
+        if (Result<bool> judged = judge(report.rows, frames, shot, candidates[0].settings.background); !judged)
             return judged.failure();
         progress(shot.label + " (" + std::to_string(s + 1) + "/" + std::to_string(settings.shots.size()) + ")");
     }
-    for (TradeRow& row : report.rows) row.medianMs = median(row.ms);
+    for (TradeRow& row : report.rows) {
+        row.medianMs = median(row.ms);
+        const double timed = double(std::max<std::size_t>(row.ms.size(), 1));
+        row.submittedShare /= timed;
+        row.stateChanges /= timed;
+    }
     report.bestExact = fastest(report.rows, [](const TradeRow& r) { return r.exact(); });
     report.bestWithinBudget =
         fastest(report.rows, [&settings](const TradeRow& r) { return r.worstFramePx <= settings.budgetPx; });
@@ -199,6 +218,9 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
                         {"worst_depth", r.worstDepth},
                         {"extra_bytes", r.extraBytes},
                         {"prepare_ms", r.prepareMs},
+                        {"submitted_share", r.submittedShare},
+                        {"state_changes", r.stateChanges},
+                        {"worst_shot", r.worstShot.empty() ? Json() : Json(r.worstShot)},
                         {"exact", r.exact()},
                         {"pareto", std::find(report.pareto.begin(), report.pareto.end(), i) != report.pareto.end()},
                         {"settings", settingsObject}});
@@ -220,15 +242,19 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
 
 std::string tradeReportCsv(const TradeReport& report) {
     std::ostringstream out;
-    out << "name,family,floor,median_ms,x_plain,differing_px,worst_frame_px,worst_depth,extra_bytes,exact,pareto\n";
+    out << "name,family,floor,median_ms,x_plain,x_floor,differing_px,worst_frame_px,worst_psnr,worst_depth,"
+           "extra_bytes,prepare_ms,submitted_share,state_changes,exact,pareto\n";
     const double plain = report.rows.front().medianMs;
+    const std::optional<double> floorMs = floorMedian(report.rows);
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
         const TradeRow& r = report.rows[i];
         const bool onFront = std::find(report.pareto.begin(), report.pareto.end(), i) != report.pareto.end();
         out << r.candidate.name << "," << r.candidate.family << "," << (r.candidate.floor ? 1 : 0) << ","
-            << fmt(r.medianMs) << "," << fmt(plain > 0 ? r.medianMs / plain : 0.0) << "," << r.differingPx << ","
-            << r.worstFramePx << "," << r.worstDepth << "," << r.extraBytes << "," << (r.exact() ? 1 : 0) << ","
-            << (onFront ? 1 : 0) << "\n";
+            << fmt(r.medianMs) << "," << fmt(plain > 0 ? r.medianMs / plain : 0.0) << ","
+            << (floorMs && *floorMs > 0 ? fmt(r.medianMs / *floorMs) : "") << "," << r.differingPx << ","
+            << r.worstFramePx << "," << (std::isinf(r.worstPsnr) ? "inf" : fmt(r.worstPsnr)) << "," << r.worstDepth
+            << "," << r.extraBytes << "," << fmt(r.prepareMs) << "," << fmt(r.submittedShare) << ","
+            << fmt(r.stateChanges) << "," << (r.exact() ? 1 : 0) << "," << (onFront ? 1 : 0) << "\n";
     }
     return out.str();
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <frugal/Camera.h>
+#include <frugal/Image.h>
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
@@ -54,9 +55,17 @@ struct TradeRow {
     std::uint64_t worstFramePx = 0;  // the most in one shot
     double worstPsnr = 0.0;          // the lowest over the shots (RGB; +inf: identical)
     std::uint32_t worstDepth = 0;    // the largest depth difference where both cover, in LSB (d24) or ULP (d32f)
-    std::uint64_t extraBytes = 0;    // memory beyond the plain render's: the static pair with reuse
+    std::uint64_t extraBytes = 0;    // memory beyond the plain render's (Renderer::extraBytes)
     double prepareMs = 0.0;          // culling preparation, when any
-    bool exact() const { return differingPx == 0; }
+    double submittedShare = 0.0;     // triangles submitted ÷ the scene's, the mean over the timed frames
+    double stateChanges = 0.0;       // program, mesh and texture binds and toggles a frame, the mean
+    // The error mask (compareBuffers: red where a pixel differs, the plain render in grey elsewhere)
+    // of the shot with the most differing pixels, and that shot's label; empty when no colour differs.
+    Buffers worstMask;
+    std::string worstShot;
+    // The same images as the plain render: no colour differs, nor any depth where both cover (the
+    // hidden-surface modes draw some polygons without writing depth: colour-exact, depth not).
+    bool exact() const { return differingPx == 0 && worstDepth == 0; }
 };
 
 struct TradeReport {

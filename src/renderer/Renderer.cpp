@@ -94,7 +94,8 @@ Result<bool> Renderer::Impl::open() {
         culler = SceneCuller::prepare(*scene, bins);  // reorders the meshes: before the upload
         const PrepStats totals = culler->totals();
         cullPreparation = CullPreparation{totals.sphereMs, totals.mapMs,     totals.clusterMs,
-                                          totals.hullMs,   totals.totalMs(), bins.hull};
+                                          totals.hullMs,   totals.totalMs(), bins.hull,
+                                          totals.mapBytes + totals.accessBytes + totals.hullBytes};
     }
     if (s.hsr != Hsr::ZBuffer) planner.emplace(*scene);
 
@@ -285,6 +286,10 @@ std::uint64_t Renderer::staticPairBytes() const {
     return impl_->reuse
                ? std::uint64_t(impl_->settings.width) * std::uint64_t(impl_->settings.height) * kTargetBytesPerPixel
                : 0;
+}
+std::uint64_t Renderer::extraBytes() const {
+    return staticPairBytes() + (impl_->cullPreparation ? impl_->cullPreparation->bytes : 0) +
+           (impl_->planner ? impl_->planner->bytes() : 0);
 }
 
 }  // namespace frugal

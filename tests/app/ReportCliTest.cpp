@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <frugal/Settings.h>
+
+#include "io/ImageIO.h"
+#include "lab/TradePage.h"
 
 #include "CliSupport.h"
 #include "JsonSupport.h"
@@ -24,6 +29,12 @@ namespace fs = std::filesystem;
 using test::CliRun;
 using test::readAll;
 using test::runFrugal;
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
 
 const nlohmann::json& row(const nlohmann::json& report, const std::string& name) {
     for (const nlohmann::json& r : report["rows"])
@@ -47,7 +58,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(report["rows"][0]["name"], "plain");
     EXPECT_EQ(report["rows"].size(), 12u);
     for (const nlohmann::json& r : report["rows"]) {
-        EXPECT_EQ(r["exact"], r["differing_px"] == 0) << r["name"];
+        EXPECT_EQ(r["exact"], r["differing_px"] == 0 && r["worst_depth"] == 0) << r["name"];
         EXPECT_LE(r["worst_frame_px"].get<std::uint64_t>(), r["differing_px"].get<std::uint64_t>()) << r["name"];
     }
     EXPECT_TRUE(row(report, "cull oracle")["floor"].get<bool>());
@@ -71,6 +82,32 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
     const std::string csv = readAll(dir / "out" / "report.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 13) << "a header and a line a row";
+
+    // The page: this run's figures, a mask for each inexact method (inline, and full size beside it).
+    const std::string html = readAll(dir / "out" / "index.html");
+    EXPECT_LE(html.size(), 2u << 20) << "at most 2 MB";
+    std::size_t inexact = 0;
+    for (const nlohmann::json& r : report["rows"]) {
+        char median[64];
+        std::snprintf(median, sizeof median, "<td>%.3f</td>", r["median_ms"].get<double>());
+        EXPECT_NE(html.find("<td>" + r["name"].get<std::string>() + "</td>"), std::string::npos) << r["name"];
+        EXPECT_NE(html.find(median), std::string::npos) << r["name"] << ": " << median;
+        if (r["differing_px"] == 0) continue;
+        ++inexact;
+        const fs::path maskFile = dir / "out" / "masks" / (methodSlug(r["name"].get<std::string>()) + ".png");
+        Result<DecodedImage> m = readPng(maskFile.string());
+        ASSERT_TRUE(m) << m.error();
+        EXPECT_EQ(m->width, 96);
+        EXPECT_EQ(m->height, 72);
+    }
+    EXPECT_GE(inexact, 1u) << "paper culling";
+    EXPECT_EQ(occurrences(html, "<img class=\"mask\""), inexact);
+    EXPECT_EQ(test::filesIn(dir / "out" / "masks").size(), inexact);
+    const std::vector<std::string> papers = test::lines(readAll(dir / "out" / "papers.csv"));
+    EXPECT_EQ(papers.size(), 1u + 2 + 2 + 1) << "002 twice, 003 twice, 004 once; no reuse in a set of views";
+    if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox): pareto.gp not checked");
+    ASSERT_EQ(std::system(("cd '" + (dir / "out").string() + "' && gnuplot pareto.gp").c_str()), 0);
+    EXPECT_NE(readAll(dir / "out" / "pareto.svg").find("<svg"), std::string::npos);
 }
 
 TEST(ReportCliTest, ASequenceWeighsReuseAndItsSettingsRenderThePlainImages) {
@@ -93,6 +130,28 @@ TEST(ReportCliTest, ASequenceWeighsReuseAndItsSettingsRenderThePlainImages) {
         const std::string n = "_000" + std::to_string(f) + ".png";
         EXPECT_EQ(readAll(dir / ("a" + n)), readAll(dir / ("b" + n))) << "frame " << f;
     }
+}
+
+TEST(ReportCliTest, ACameraPathGivesItsViewsAndOneCameraOneView) {
+    const fs::path dir = test::freshDir("ReportPath");
+    test::writeFile(dir / "path.json", R"([{"eye":[0,0.5,3],"target":[0,0,0]},{"eye":[2,0.5,2],"target":[0,0,0],"fov":50}])");
+    CliRun run = runFrugal(dir, {"report", "builtin:cubes?count=3", "--camera-path", "path.json", "--size", "48x36",
+                                 "--repeat", "1", "-q", "-o", "path"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    nlohmann::json report = test::readJson(dir / "path" / "report.json");
+    EXPECT_EQ(report["shots"], 2);
+    EXPECT_FALSE(report["sequence"].get<bool>());
+    run = runFrugal(dir, {"report", "builtin:cubes?count=3", "--eye", "0,1,4", "--size", "48x36", "--repeat", "1",
+                          "-q", "-o", "one"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    report = test::readJson(dir / "one" / "report.json");
+    EXPECT_EQ(report["shots"], 1);
+    run = runFrugal(dir, {"report", "--views", "3", "--eye", "1,1,1", "-o", "x"});
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err, "error: --views: give either --views N, --frames A:B, --camera-path or one camera\n");
+    run = runFrugal(dir, {"report", "--camera-path", "path.json", "--camera", "0", "-o", "x"});
+    EXPECT_EQ(run.status, 2);
+    EXPECT_EQ(run.err, "error: --camera-path: give either a camera path or one camera (--camera, --eye, ...)\n");
 }
 
 TEST(ReportCliTest, BadInputIsOneLineAndNoFiles) {
