@@ -19,10 +19,10 @@ Runs every method that trades accuracy for speed on SCENE (default builtin:defau
 process with interleaved timing: the culling methods (the oracle as their floor), the draw orders
 key and greedy, the hidden-surface modes, on the software backend the interpolators, in a sequence
 (--frames) temporal reuse, and combinations. Each is judged against the plain render of the same
-view or frame: pixels that differ, the worst frame, PSNR, the worst depth difference. Prints the
-fastest exact settings (the plain render's colour and depth, bit for bit) and the fastest within
---budget-px differing pixels a frame ("plain render" when nothing is at least 3 % faster than
-it), and writes into DIR:
+view or frame: pixels that differ, the worst frame, the visible triangles it lacks (misses), PSNR,
+the worst depth difference. Prints the fastest exact settings (the plain render's colour and
+depth, bit for bit) and the fastest within --budget-px differing pixels a frame ("plain render"
+when nothing is at least 3 % faster than it), and writes into DIR:
   index.html      one page that works offline: the recommendation, the chart of time against
                   error (SVG), every method's figures with an error mask beside each one whose
                   colour differs, and the seed papers' published figures beside this run's

@@ -245,7 +245,7 @@ std::string methodsTable(const TradeReport& report, const std::map<std::size_t, 
     const std::optional<double> floor = floorMs(report);
     std::ostringstream s;
     s << "<table id=\"methods\">\n<thead><tr><th>method</th><th>family</th><th>median ms</th><th>&times; plain</th>"
-         "<th>&times; floor</th><th>differing px</th><th>worst frame px</th><th>worst PSNR dB</th>"
+         "<th>&times; floor</th><th>differing px</th><th>worst frame px</th><th>misses</th><th>worst PSNR dB</th>"
          "<th>worst depth</th><th>submitted</th><th>binds a frame</th><th>extra memory</th><th>prepare ms</th>"
          "<th>front</th><th>error mask (worst frame)</th></tr></thead>\n<tbody>\n";
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
@@ -255,7 +255,8 @@ std::string methodsTable(const TradeReport& report, const std::map<std::size_t, 
           << escape(r.candidate.name) << "</td><td>" << escape(r.candidate.family) << "</td><td>" << fixed(r.medianMs, 3)
           << "</td><td>" << fixed(plain > 0 ? r.medianMs / plain : 0.0, 3) << "</td><td>"
           << (floor && *floor > 0 ? fixed(r.medianMs / *floor, 2) : "") << "</td><td>" << grouped(r.differingPx)
-          << "</td><td>" << grouped(r.worstFramePx) << "</td><td>" << psnrText(r.worstPsnr) << "</td><td>"
+          << "</td><td>" << grouped(r.worstFramePx) << "</td><td>" << grouped(r.misses) << "</td><td>"
+          << psnrText(r.worstPsnr) << "</td><td>"
           << r.worstDepth << "</td><td>" << fixed(100.0 * r.submittedShare, 1) << " %</td><td>"
           << fixed(r.stateChanges, 0) << "</td><td>" << bytesText(r.extraBytes) << "</td><td>"
           << (r.prepareMs > 0 ? fixed(r.prepareMs, 1) : "") << "</td><td>" << (onFront(report, i) ? "&#9679;" : "")
@@ -357,7 +358,9 @@ Result<TradePageFiles> tradePage(const TradeReport& report, const TradeSettings&
          "frames. The line joins the methods no other beats in both. The floor is the oracle: it submits exactly the "
          "visible triangles, a bound no culling method can pass.</p>\n";
     h << "<h2>Every method</h2>\n" << methodsTable(report, thumbnails);
-    h << "<p><i>differing px</i>: over all frames, against the plain render; <i>worst depth</i>: the largest depth "
+    h << "<p><i>differing px</i>: over all frames, against the plain render; <i>misses</i>: triangles the plain "
+         "render shows that the method's image lacks, summed over the frames (for culling: visible triangles it did "
+         "not submit); <i>worst depth</i>: the largest depth "
          "difference where both cover, in LSB (d24) or ULP (d32f); <i>submitted</i>: triangles submitted &divide; the "
          "scene's; <i>binds</i>: program, mesh, texture binds and toggles; <i>extra memory</i>: kept beyond the plain "
          "render (static pair, culling maps and hull, hidden-surface polygons). A mask is red where the worst frame "

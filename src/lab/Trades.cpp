@@ -25,31 +25,70 @@ TradeCandidate with(const Settings& base, std::string name, std::string family,
     return c;
 }
 
-// A frame's colour and depth as Buffers (moved in; give them back with giveBack).
+// A frame's planes as Buffers (moved in; give them back with giveBack).
 Buffers lend(Frame& frame) {
     Buffers b;
     b.width = frame.color.width;
     b.height = frame.color.height;
     b.rgba = std::move(frame.color.rgba);
     b.depth = std::move(frame.depth.values);
+    b.ids = std::move(frame.ids.ids);
     b.depthFormat = frame.depth.format;
     return b;
 }
 void giveBack(Buffers& b, Frame& frame) {
     frame.color.rgba = std::move(b.rgba);
     frame.depth.values = std::move(b.depth);
+    frame.ids.ids = std::move(b.ids);
 }
+
+// Triangles the plain render shows that another image lacks, from the id planes (0 background,
+// else the triangle's id). A triangle a method drew stays visible wherever the plain render shows
+// it, since leaving triangles out only removes occluders: for culling these are the visible
+// triangles it did not submit (the misses, RVS minus PVS); for a hidden-surface mode, the triangles
+// its order wrongly hid.
+class MissCounter {
+public:
+    void reference(const std::vector<std::uint32_t>& ids) {
+        plain_.clear();
+        ++now_;
+        for (const std::uint32_t id : ids)
+            if (id != 0 && mark(id)) plain_.push_back(id);
+    }
+    std::uint64_t missing(const std::vector<std::uint32_t>& ids) {
+        ++now_;
+        for (const std::uint32_t id : ids)
+            if (id != 0) mark(id);
+        std::uint64_t missed = 0;
+        for (const std::uint32_t id : plain_) missed += stamp_[id] != now_;
+        return missed;
+    }
+
+private:
+    // Stamps `id` with the current pass; true when it was not stamped in it yet.
+    bool mark(std::uint32_t id) {
+        if (id >= stamp_.size()) stamp_.resize(std::size_t(id) + 1, 0);
+        if (stamp_[id] == now_) return false;
+        stamp_[id] = now_;
+        return true;
+    }
+    std::vector<std::uint32_t> stamp_;  // per id: the pass that last saw it
+    std::uint32_t now_ = 0;
+    std::vector<std::uint32_t> plain_;  // the ids the reference shows, each once
+};
 
 // The candidates' last frames of `shot`, judged against the plain render's (row 0).
 Result<bool> judge(std::vector<TradeRow>& rows, std::vector<Frame>& frames, const TradeShot& shot,
-                   const glm::vec4& background) {
+                   const glm::vec4& background, MissCounter& misses) {
     Buffers reference = lend(frames[0]);
+    misses.reference(reference.ids);
     CompareOptions options;
     options.background = colorBytes(background);
     Result<bool> judged = true;
     for (std::size_t i = 1; i < rows.size() && judged; ++i) {
         Buffers actual = lend(frames[i]);
         Result<ImageComparison> c = compareBuffers(actual, reference, options);
+        rows[i].misses += misses.missing(actual.ids);
         giveBack(actual, frames[i]);
         if (!c) {
             judged = Error{rows[i].candidate.name + ": " + c.error()};
@@ -144,7 +183,11 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
     TradeReport report;
     std::vector<Renderer> renderers;
     for (const TradeCandidate& c : candidates) {
-        Result<Renderer> made = Renderer::create(scene, c.settings);
+        // Every candidate writes the id plane, to count misses (in every target anyway: it adds
+        // only its read-back, which no frame's time includes).
+        Settings measured = c.settings;
+        measured.ids = true;
+        Result<Renderer> made = Renderer::create(scene, measured);
         if (!made) return Error{c.name + ": " + made.error(), made.errorKind(), made.failure().aboutSetting};
         TradeRow row;
         row.candidate = c;
@@ -160,6 +203,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
 
     const double triangles = double(std::max<std::size_t>(scene.triangleCount(), 1));
     std::vector<Frame> frames(candidates.size());
+    MissCounter misses;
     // Candidate i's render of `shot` into its frame; an error names both.
     const auto renderShot = [&](std::size_t i, const TradeShot& shot) -> Result<bool> {
         if (Result<bool> done = renderers[i].render(shot.camera, shot.time, frames[i]); !done)
@@ -181,7 +225,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
                 if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
                 note(report.rows[i], frames[i].stats, triangles);
             }
-        if (Result<bool> judged = judge(report.rows, frames, shot, candidates[0].settings.background); !judged)
+        if (Result<bool> judged = judge(report.rows, frames, shot, candidates[0].settings.background, misses); !judged)
             return judged.failure();
         progress(shot.label + " (" + std::to_string(s + 1) + "/" + std::to_string(settings.shots.size()) + ")");
     }
@@ -214,6 +258,7 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
                         {"x_floor", floorMs && *floorMs > 0 ? Json(r.medianMs / *floorMs) : Json()},
                         {"differing_px", r.differingPx},
                         {"worst_frame_px", r.worstFramePx},
+                        {"misses", r.misses},
                         {"worst_psnr", std::isinf(r.worstPsnr) ? Json() : Json(r.worstPsnr)},
                         {"worst_depth", r.worstDepth},
                         {"extra_bytes", r.extraBytes},
@@ -243,7 +288,7 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
 std::string tradeReportCsv(const TradeReport& report) {
     std::ostringstream out;
     out << "name,family,floor,median_ms,x_plain,x_floor,differing_px,worst_frame_px,worst_psnr,worst_depth,"
-           "extra_bytes,prepare_ms,submitted_share,state_changes,exact,pareto\n";
+           "extra_bytes,prepare_ms,submitted_share,state_changes,exact,pareto,misses\n";
     const double plain = report.rows.front().medianMs;
     const std::optional<double> floorMs = floorMedian(report.rows);
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
@@ -254,7 +299,8 @@ std::string tradeReportCsv(const TradeReport& report) {
             << (floorMs && *floorMs > 0 ? fmt(r.medianMs / *floorMs) : "") << "," << r.differingPx << ","
             << r.worstFramePx << "," << (std::isinf(r.worstPsnr) ? "inf" : fmt(r.worstPsnr)) << "," << r.worstDepth
             << "," << r.extraBytes << "," << fmt(r.prepareMs) << "," << fmt(r.submittedShare) << ","
-            << fmt(r.stateChanges) << "," << (r.exact() ? 1 : 0) << "," << (onFront ? 1 : 0) << "\n";
+            << fmt(r.stateChanges) << "," << (r.exact() ? 1 : 0) << "," << (onFront ? 1 : 0) << "," << r.misses
+            << "\n";
     }
     return out.str();
 }

@@ -53,6 +53,7 @@ struct TradeRow {
     double medianMs = 0.0;
     std::uint64_t differingPx = 0;   // over all shots, against the plain render
     std::uint64_t worstFramePx = 0;  // the most in one shot
+    std::uint64_t misses = 0;        // triangles the plain render shows and this one lacks, over all shots
     double worstPsnr = 0.0;          // the lowest over the shots (RGB; +inf: identical)
     std::uint32_t worstDepth = 0;    // the largest depth difference where both cover, in LSB (d24) or ULP (d32f)
     std::uint64_t extraBytes = 0;    // memory beyond the plain render's (Renderer::extraBytes)
@@ -88,7 +89,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
 
 // report.json: {"scene", "shots", "sequence", "repeat", "budget_px", "backend", "rows": [{"name",
 // "family", "floor", "median_ms", "x_plain", "x_floor", "differing_px", "worst_frame_px",
-// "worst_psnr", "worst_depth", "extra_bytes", "prepare_ms", "exact", "pareto", "settings"}],
+// "misses", "worst_psnr", "worst_depth", "extra_bytes", "prepare_ms", "exact", "pareto", "settings"}],
 // "recommended": {"exact", "within_budget"}}; report.csv: one line a row; and the two lines
 // `frugal report` prints.
 std::string tradeReportJson(const TradeReport& report, const TradeSettings& settings);

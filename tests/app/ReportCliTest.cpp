@@ -63,7 +63,19 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     }
     EXPECT_TRUE(row(report, "cull oracle")["floor"].get<bool>());
     EXPECT_EQ(row(report, "cull conservative")["differing_px"], 0) << "conservative culling never misses";
+    EXPECT_EQ(row(report, "cull conservative")["misses"], 0);
     EXPECT_GT(row(report, "cull paper")["differing_px"].get<int>(), 0) << "paper 002's method misses on these views";
+    EXPECT_GT(row(report, "cull paper")["misses"].get<int>(), 0);
+    EXPECT_EQ(row(report, "plain")["misses"], 0);
+
+    // The same views in cull-report, which finds the misses from the oracle's visible set and the
+    // submitted list instead of two images: the same triangles missed, the same pixels differing.
+    const CliRun cull = runFrugal(dir, {"cull-report", "builtin:cubes?count=12", "--views", "4", "--size", "96x72",
+                                        "--methods", "paper", "--repeat", "1", "-q", "--json", "cull.json"});
+    ASSERT_EQ(cull.status, 0) << cull.err;
+    const nlohmann::json paper = test::readJson(dir / "cull.json")["summary"]["paper"];
+    EXPECT_EQ(row(report, "cull paper")["misses"], paper["total_misses"]);
+    EXPECT_EQ(row(report, "cull paper")["differing_px"], paper["total_pixels_differing"]);
 
     const std::string exact = report["recommended"]["exact"], budget = report["recommended"]["within_budget"];
     EXPECT_NE(exact, "cull oracle");

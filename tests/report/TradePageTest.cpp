@@ -84,6 +84,7 @@ TradeRow row(const std::string& name, const std::string& family, double ms, std:
     r.medianMs = ms;
     r.differingPx = px;
     r.worstFramePx = px;
+    r.misses = px / 100;
     r.worstPsnr = px ? 31.5 : std::numeric_limits<double>::infinity();
     if (px) {
         r.worstMask = mask(40, 30, 80, {{1, 2}});
@@ -128,7 +129,8 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     EXPECT_EQ(full->height, 30);
 
     // The figures are the report's.
-    EXPECT_NE(html.find("<td>cull paper</td><td>cull</td><td>4.250</td><td>0.425</td><td>1.42</td><td>1,234</td>"),
+    EXPECT_NE(html.find("<td>cull paper</td><td>cull</td><td>4.250</td><td>0.425</td><td>1.42</td><td>1,234</td><td>1,234</td>"
+                        "<td>12</td>"),
               std::string::npos);
     EXPECT_NE(html.find("<b>Fastest exact:</b> <code>order key</code>, 9.00 ms a frame, 0.90&times;"),
               std::string::npos);
