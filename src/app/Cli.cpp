@@ -27,6 +27,7 @@ usage:
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
   frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
   frugal soak [SCENE] [options]                   100,000 frames and 1,000 create/destroy cycles: memory, images
+  frugal batch MANIFEST [--shard I/N] [options]   the jobs of a manifest, or shard I of N of them; status, merge
   frugal help [COMMAND]                           this text, or a command's options
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
@@ -63,6 +64,7 @@ const CommandEntry kCommands[] = {
     {"compare", runCompare},         {"diff", runDiff},         {"cull-report", runCullReport},
     {"reuse-bench", runReuseBench},  {"hsr-bench", runHsrBench}, {"order-bench", runOrderBench},
     {"span-bench", runSpanBench},    {"state-sim", runStateSim}, {"soak", runSoak},
+    {"batch", runBatch},
 };
 
 std::string commandNames() {

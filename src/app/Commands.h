@@ -20,6 +20,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
 int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* reportHelp();
@@ -34,5 +35,6 @@ const char* hsrBenchHelp();
 const char* spanBenchHelp();
 const char* stateSimHelp();
 const char* soakHelp();
+const char* batchHelp();
 
 }  // namespace frugal

@@ -104,6 +104,8 @@ int InterruptPoints::arrived() {
     return signal;
 }
 
+int notedSignal() { return gNoted; }
+
 void raiseNotedSignal() {
     if (gNoted == 0) return;
     std::fflush(nullptr);  // what the command printed to stdout, before the process ends

@@ -63,6 +63,10 @@ private:
     bool taken_ = false;
 };
 
+// The signal an InterruptPoints noted and took (a command stopped by it), or 0: a caller that runs
+// commands one after another (frugal batch) stops there; main then ends the process by it.
+int notedSignal();
+
 // Called by main once the command has returned: a signal an InterruptPoints took ends the process
 // now, by that signal's default action. Returns when there was none.
 void raiseNotedSignal();

@@ -1,0 +1,360 @@
+// `frugal batch`: the jobs of a manifest (batch/Manifest.h), shard I of N of them, each run as the
+// command line would run it, its outputs in OUT/<id>/; `batch status` and `batch merge` read OUT.
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <frugal/Renderer.h>
+#include <frugal/Scene.h>
+#include <frugal/Version.h>
+
+#include "app/Cli.h"
+#include "app/Command.h"
+#include "app/Commands.h"
+#include "base/Format.h"
+#include "batch/Manifest.h"
+#include "batch/Shards.h"
+#include "io/ImageIO.h"
+#include "io/Interrupt.h"
+
+namespace frugal {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+using namespace batch;
+
+const char* batchHelp() {
+    return R"(usage: frugal batch MANIFEST [--shard I/N] [--out DIR] [--resume] [-q]
+       frugal batch status DIR
+       frugal batch merge DIR
+
+Runs the jobs of MANIFEST (a JSON list of render, cull-report, reuse-bench and report jobs on
+scenes; docs/batch.md), or with --shard I/N the part of them that shard I of N takes: every shard
+computes the same split from the manifest alone, balanced by an estimated cost (triangles x frames
+x pixels), so N processes started anywhere divide the jobs without talking to each other. Each
+job's files go to DIR/<id>/; when it finishes, DIR/<id>/done.json records its inputs' hash (the
+job's keys, the files it reads, frugal's version) and its time; a job that fails leaves
+DIR/<id>/failed.json with its error line, and the others still run. The manifest is checked in
+full (keys, kinds, ids, files, scenes loaded) before any job runs.
+
+  status DIR   jobs done, running, failed (with their error lines) and left; the time left
+  merge DIR    DIR/merged.json: every job in manifest order with its inputs' hash and its files
+               (a render's images with their hash), identical whatever the shards; DIR/times.csv:
+               each job's seconds. Fails when a job is not done.
+)";
+}
+
+namespace {
+
+constexpr const char* kDone = "done.json";
+constexpr const char* kFailed = "failed.json";
+constexpr const char* kRunning = "running.json";
+constexpr const char* kJobList = "batch.json";
+
+Bytes bytesOf(const std::string& text) { return Bytes(text.begin(), text.end()); }
+
+std::optional<std::string> readText(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+int runCommand(const std::vector<std::string>& line, std::ostream& out, std::ostream& err) {
+    const std::vector<std::string> args(line.begin() + 1, line.end());
+    const std::string& name = line.front();
+    if (name == "render") return runRender(args, out, err);
+    if (name == "cull-report") return runCullReport(args, out, err);
+    if (name == "reuse-bench") return runReuseBench(args, out, err);
+    return runReport(args, out, err);
+}
+
+// The last "error: ..." line of a command's stderr, or its last line.
+std::string errorLine(const std::string& err) {
+    std::string last, lastError;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty()) continue;
+        last = line;
+        if (line.rfind("error: ", 0) == 0) lastError = line;
+    }
+    return oneLine(lastError.empty() ? last : lastError, 400);
+}
+
+std::string hostName() {
+    char name[256] = {};
+    return gethostname(name, sizeof name - 1) == 0 ? name : "unknown";
+}
+
+// DIR/batch.json: the job list status and merge read (ids, commands, what each writes, cost).
+std::string jobListJson(const Manifest& manifest, const std::vector<double>& costs) {
+    Json jobs = Json::array();
+    for (std::size_t i = 0; i < manifest.jobs.size(); ++i) {
+        const Job& job = manifest.jobs[i];
+        jobs.push_back({{"id", job.id}, {"command", toString(job.command)}, {"cost", costs[i]}});
+    }
+    return Json{{"frugal_batch", 1}, {"manifest", fs::absolute(manifest.path).lexically_normal().string()},
+                {"jobs", jobs}}
+               .dump(2) +
+           "\n";
+}
+
+// The triangles of each scene, for the estimate; a scene that does not load fails the manifest.
+Result<std::vector<double>> costsOf(const Manifest& manifest) {
+    std::optional<Error> failed;
+    std::map<std::string, int> lineOf;
+    for (const Job& job : manifest.jobs) lineOf.emplace(job.scene, job.line);
+    const auto triangles = [&](const std::string& scene) -> std::uint64_t {
+        if (failed) return 0;
+        Result<Scene> loaded = loadScene(scene);
+        if (!loaded) {
+            failed = Error{"manifest " + manifest.path + " line " + std::to_string(lineOf[scene]) + ": scene: " +
+                               loaded.error(),
+                           ErrorKind::BadInput};
+            return 0;
+        }
+        return loaded->triangleCount();
+    };
+    std::vector<double> costs = estimateCosts(manifest, triangles);
+    if (failed) return *failed;
+    return costs;
+}
+
+struct RunOptions {
+    std::string manifest;
+    std::string out = "batch-out";
+    Shard shard;
+    bool resume = false;
+    bool quiet = false;
+};
+
+// Runs one job into DIR/<id>/: "" when done, else its error line. Only an interrupt stops the batch.
+std::string runJob(const Job& job, const std::string& hash, const RunOptions& o, double& seconds) {
+    const fs::path dir = fs::path(o.out) / job.id;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) return "error: " + dir.string() + ": cannot make the folder (" + ec.message() + ")";
+    fs::remove(dir / kDone, ec);
+    fs::remove(dir / kFailed, ec);
+    const Json running = {{"host", hostName()}, {"pid", long(getpid())}, {"shard", std::to_string(o.shard.index) + "/" +
+                                                                              std::to_string(o.shard.count)}};
+    if (Result<bool> w = writeFileAtomic((dir / kRunning).string(), bytesOf(running.dump() + "\n")); !w)
+        return "error: " + w.error();
+    if (!job.settingsText.empty())
+        if (Result<bool> w = writeFileAtomic((dir / "settings.json").string(), bytesOf(job.settingsText)); !w)
+            return "error: " + w.error();
+
+    std::ostringstream out, err;
+    const auto start = std::chrono::steady_clock::now();
+    const int status = runCommand(commandLine(job, dir.string()), out, err);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string problem;
+    if (status == kExitOk) {
+        const DoneRecord record{job.id, hash, version(), seconds};
+        if (Result<bool> w = writeFileAtomic((dir / kDone).string(), bytesOf(doneJson(record))); !w)
+            problem = "error: " + w.error();
+    } else {
+        problem = errorLine(err.str());
+        if (problem.empty()) problem = "error: " + std::string(toString(job.command)) + " exited " + std::to_string(status);
+        const Json failed = {{"id", job.id}, {"status", status}, {"error", problem}};
+        (void)writeFileAtomic((dir / kFailed).string(), bytesOf(failed.dump(2) + "\n"));
+    }
+    fs::remove(dir / kRunning, ec);
+    return problem;
+}
+
+int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
+    Result<Manifest> manifest = readManifest(o.manifest);
+    if (!manifest) return fail(err, manifest.failure());
+    Result<std::vector<double>> costs = costsOf(*manifest);
+    if (!costs) return fail(err, costs.failure());
+    const std::vector<int> shardOf = assignShards(*costs, o.shard.count);
+
+    std::error_code ec;
+    fs::create_directories(o.out, ec);
+    if (ec) return fail(err, Error{o.out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
+    // Every shard writes the same list: the last rename wins, each whole.
+    if (Result<bool> w = writeFileAtomic((fs::path(o.out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
+        !w)
+        return fail(err, w.failure());
+
+    std::vector<const Job*> mine;
+    for (std::size_t i = 0; i < manifest->jobs.size(); ++i)
+        if (shardOf[i] == o.shard.index) mine.push_back(&manifest->jobs[i]);
+    int done = 0, skipped = 0, failed = 0;
+    const std::string shardName = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
+    if (!o.quiet)
+        err << "batch: shard " << shardName << ": " << mine.size() << " of " << manifest->jobs.size() << " jobs\n";
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+        const Job& job = *mine[k];
+        Result<std::string> hash = inputsHash(job, version());
+        if (!hash) return fail(err, hash.failure());
+        const std::string progress = "[" + std::to_string(k + 1) + "/" + std::to_string(mine.size()) + "] " + job.id;
+        if (o.resume) {
+            const std::optional<std::string> text = readText(fs::path(o.out) / job.id / kDone);
+            const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
+            if (record && record->inputs == *hash && record->version == version()) {
+                ++skipped;
+                if (!o.quiet) err << progress << ": done before, skipped\n";
+                continue;
+            }
+        }
+        double seconds = 0;
+        const std::string problem = runJob(job, *hash, o, seconds);
+        if (const int signal = notedSignal(); signal != 0) {
+            err << "batch: interrupted by " << signalName(signal) << " in job " << job.id << " after " << done
+                << " of " << mine.size() << " jobs; --resume finishes the rest\n";
+            return kExitError;
+        }
+        if (problem.empty()) {
+            ++done;
+            if (!o.quiet) err << progress << ": done in " << fmt(seconds) << " s\n";
+        } else {
+            ++failed;
+            err << progress << ": failed: " << problem << "\n";
+        }
+    }
+    out << "batch: shard " << shardName << ": " << done << " done, " << skipped << " skipped (done before), "
+        << failed << " failed\n";
+    return failed == 0 ? kExitOk : kExitError;
+}
+
+// The job list an output folder holds.
+Result<Json> jobList(const std::string& dir) {
+    const std::optional<std::string> text = readText(fs::path(dir) / kJobList);
+    if (!text) return Error{dir + ": no " + kJobList + " (not the output folder of a batch)", ErrorKind::BadInput};
+    Json doc = Json::parse(*text, nullptr, false);
+    if (!doc.is_object() || !doc.contains("jobs") || !doc["jobs"].is_array())
+        return Error{dir + "/" + kJobList + ": not a batch's job list", ErrorKind::BadInput};
+    return doc;
+}
+
+int runStatus(const std::string& dir, std::ostream& out, std::ostream& err) {
+    Result<Json> list = jobList(dir);
+    if (!list) return fail(err, list.failure());
+    int done = 0, running = 0, stale = 0, left = 0;
+    double doneSeconds = 0, doneCost = 0, leftCost = 0;
+    std::vector<std::string> failures;
+    for (const Json& job : (*list)["jobs"]) {
+        const fs::path jobDir = fs::path(dir) / job.value("id", "");
+        const double cost = job.value("cost", 0.0);
+        if (const std::optional<std::string> text = readText(jobDir / kDone); text && parseDone(*text)) {
+            ++done;
+            doneSeconds += parseDone(*text)->seconds;
+            doneCost += cost;
+            continue;
+        }
+        leftCost += cost;
+        if (const std::optional<std::string> text = readText(jobDir / kFailed)) {
+            const Json failed = Json::parse(*text, nullptr, false);
+            failures.push_back(job.value("id", "") + ": " +
+                               (failed.is_object() ? failed.value("error", std::string("?")) : std::string("?")));
+        } else if (const std::optional<std::string> runningText = readText(jobDir / kRunning)) {
+            // A record whose process is gone (killed outright) on this host: the job will not finish.
+            const Json r = Json::parse(*runningText, nullptr, false);
+            const bool gone = r.is_object() && r.value("host", "") == hostName() && r.contains("pid") &&
+                              r["pid"].is_number_integer() && kill(pid_t(r["pid"].get<long>()), 0) != 0 &&
+                              errno == ESRCH;
+            ++(gone ? stale : running);
+        } else {
+            ++left;
+        }
+    }
+    out << "jobs: " << (*list)["jobs"].size() << ", done " << done << ", running " << running << ", failed "
+        << failures.size() << ", not started " << left << "\n";
+    if (stale > 0)
+        out << "stopped: " << stale << " (their process on this host is gone, killed before they finished: "
+            << "--resume runs them)\n";
+    if (done > 0 && leftCost > 0 && doneCost > 0)
+        out << "time left: about " << fmt(doneSeconds / doneCost * leftCost)
+            << " s of work (the finished jobs' seconds per unit of estimated cost, over the rest)\n";
+    for (const std::string& f : failures) out << "failed " << f << "\n";
+    return kExitOk;
+}
+
+int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
+    Result<Json> list = jobList(dir);
+    if (!list) return fail(err, list.failure());
+    Json jobs = Json::array();
+    std::string times = "id,command,seconds\n";
+    for (const Json& entry : (*list)["jobs"]) {
+        const std::string id = entry.value("id", "");
+        const fs::path jobDir = fs::path(dir) / id;
+        const std::optional<std::string> text = readText(jobDir / kDone);
+        const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
+        if (!record)
+            return fail(err, Error{dir + ": job " + id + " is not done (run its shard again, with --resume)",
+                                   ErrorKind::BadInput});
+        // Its files, by name; a render's images and settings (deterministic) with their hash, the
+        // rest (reports, whose figures are timed and whose picks follow the timings) without.
+        const bool render = entry.value("command", "") == "render";
+        std::vector<std::string> names;
+        for (const fs::directory_entry& f : fs::directory_iterator(jobDir)) {
+            const std::string name = f.path().filename().string();
+            if (name != kDone && name != kRunning && name != kFailed && f.is_regular_file()) names.push_back(name);
+        }
+        std::sort(names.begin(), names.end());
+        Json files = Json::array();
+        for (const std::string& name : names) {
+            Json file = {{"name", name}};
+            if (render && (hasExtension(name, ".png") || hasExtension(name, ".pfm") || name == "settings.json")) {
+                const std::optional<std::string> bytes = readText(jobDir / name);
+                if (!bytes) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
+                file["fnv1a"] = fnv1a(bytes->data(), bytes->size());
+            }
+            files.push_back(file);
+        }
+        jobs.push_back({{"id", id}, {"command", entry.value("command", "")}, {"inputs", record->inputs},
+                        {"version", record->version}, {"files", files}});
+        times += id + "," + entry.value("command", "") + "," + fmt(record->seconds) + "\n";
+    }
+    OutputSet files;
+    files.add(dir + "/merged.json", bytesOf(Json{{"frugal_batch", 1}, {"jobs", jobs}}.dump(2) + "\n"));
+    files.add(dir + "/times.csv", bytesOf(times));
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    out << "merged " << jobs.size() << " jobs into " << dir << "/merged.json and times.csv\n";
+    return kExitOk;
+}
+
+}  // namespace
+
+int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (!args.empty() && (args[0] == "status" || args[0] == "merge")) {
+        if (args.size() != 2 || args[1].rfind("-", 0) == 0)
+            return usageError(err, "batch " + args[0] + ": expected one output folder (frugal batch " + args[0] +
+                                       " DIR)");
+        return args[0] == "status" ? runStatus(args[1], out, err) : runMerge(args[1], out, err);
+    }
+    RunOptions o;
+    std::string shard = "0/1";
+    CommandLine command{"batch", batchHelp(), nullptr};
+    command.flags = {{"batch", {
+        flag::text("--shard", "I/N", "run shard I of N (default 0/1: every job)", shard),
+        flag::text("--out", "DIR", "the output folder: DIR/<id>/ for each job (default batch-out)", o.out),
+        flag::on("--resume", "skip the jobs whose done.json matches their inputs (the others run again)", o.resume),
+        flag::on("-q, --quiet", "no progress lines", o.quiet),
+    }}};
+    command.positional = [&o](const std::string& arg, ArgCursor& cursor) {
+        if (!o.manifest.empty()) return cursor.fail("unexpected argument '" + arg + "' (one MANIFEST only)");
+        o.manifest = arg;
+    };
+    command.finish = [&](ArgCursor& cursor) {
+        if (o.manifest.empty()) cursor.fail("batch: no manifest (frugal batch MANIFEST.json; 'frugal help batch')");
+        else if (Result<Shard> s = parseShard(shard); !s) cursor.fail(s.error());
+        else o.shard = *s;
+    };
+    if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
+    return runBatch(o, out, err);
+}
+
+}  // namespace frugal

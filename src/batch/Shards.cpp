@@ -1,0 +1,103 @@
+#include "batch/Shards.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <numeric>
+
+#include <nlohmann/json.hpp>
+
+namespace frugal::batch {
+
+namespace {
+
+std::uint64_t fnvStep(std::uint64_t h, const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string hex(std::uint64_t h) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+}  // namespace
+
+std::string fnv1a(const void* data, std::size_t size, std::uint64_t seed) { return hex(fnvStep(seed, data, size)); }
+
+Result<Shard> parseShard(const std::string& text) {
+    long long i = -1, n = -1;
+    char slash = 0, extra = 0;
+    const int got = std::sscanf(text.c_str(), "%lld%c%lld%c", &i, &slash, &n, &extra);
+    if (got != 3 || slash != '/' || n < 1 || n > 100000 || i < 0)
+        return Error{"--shard " + text + ": expected I/N, shard I of N (0 <= I < N <= 100000)", ErrorKind::BadInput};
+    if (i >= n)
+        return Error{"--shard " + text + ": I must be below N (0 to " + std::to_string(n - 1) + ")", ErrorKind::BadInput};
+    return Shard{int(i), int(n)};
+}
+
+std::vector<int> assignShards(const std::vector<double>& costs, int shards) {
+    std::vector<std::size_t> order(costs.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&costs](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+    std::vector<double> load(std::size_t(std::max(shards, 1)), 0.0);
+    std::vector<int> shardOf(costs.size(), 0);
+    for (const std::size_t job : order) {
+        const auto least = std::min_element(load.begin(), load.end());  // the first of equals
+        shardOf[job] = int(least - load.begin());
+        *least += costs[job];
+    }
+    return shardOf;
+}
+
+std::vector<double> estimateCosts(const Manifest& manifest,
+                                  const std::function<std::uint64_t(const std::string& scene)>& triangles) {
+    std::map<std::string, std::uint64_t> known;
+    std::vector<double> costs;
+    for (const Job& job : manifest.jobs) {
+        auto found = known.find(job.scene);
+        if (found == known.end()) found = known.emplace(job.scene, triangles(job.scene)).first;
+        // A scene with no triangles still costs its frames' clears and writes.
+        costs.push_back(double(std::max<std::uint64_t>(found->second, 1)) * double(job.frames) * double(job.pixels));
+    }
+    return costs;
+}
+
+Result<std::string> inputsHash(const Job& job, const std::string& version) {
+    std::uint64_t h = 14695981039346656037ull;
+    const auto add = [&h](const std::string& s) { h = fnvStep(h, s.data(), s.size() + 1); };  // with its NUL
+    add(job.canonical);
+    add(job.settingsText);
+    add(version);
+    std::vector<char> buffer(1 << 16);
+    for (const std::string& path : job.inputFiles) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return Error{path + ": cannot read the file (an input of job '" + job.id + "')", ErrorKind::Io};
+        while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0)
+            h = fnvStep(h, buffer.data(), std::size_t(in.gcount()));
+        add(path);
+    }
+    return hex(h);
+}
+
+std::string doneJson(const DoneRecord& r) {
+    const nlohmann::json doc = {{"id", r.id}, {"inputs", r.inputs}, {"version", r.version}, {"seconds", r.seconds}};
+    return doc.dump(2) + "\n";
+}
+
+std::optional<DoneRecord> parseDone(const std::string& text) {
+    const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+    if (!doc.is_object() || !doc.contains("id") || !doc["id"].is_string() || !doc.contains("inputs") ||
+        !doc["inputs"].is_string() || !doc.contains("version") || !doc["version"].is_string() ||
+        !doc.contains("seconds") || !doc["seconds"].is_number())
+        return std::nullopt;
+    return DoneRecord{doc["id"], doc["inputs"], doc["version"], doc["seconds"].get<double>()};
+}
+
+}  // namespace frugal::batch

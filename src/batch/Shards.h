@@ -1,0 +1,53 @@
+// Which jobs of a manifest shard I of N runs, and what each job's finished run leaves behind.
+//
+// Shards: every shard computes the same assignment from the manifest alone, so N processes started
+// anywhere, in any order, split the jobs without talking to each other. A job's estimated cost is
+// triangles × frames × pixels; jobs go, costliest first (ties: manifest order), to the shard with the
+// least cost so far (ties: the lowest shard), which keeps the shards within one job of each other.
+//
+// Records, in OUT/<id>/: done.json when a job finished (its inputs' hash, frugal's version, the
+// seconds it took); failed.json with its error line when it failed; running.json while it runs.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <frugal/Result.h>
+
+#include "batch/Manifest.h"
+
+namespace frugal::batch {
+
+// "I/N" with 0 <= I < N <= 100000. Error: "--shard 4/4: I must be below N (0 to 3)".
+struct Shard {
+    int index = 0, count = 1;
+};
+Result<Shard> parseShard(const std::string& text);
+
+// Costs by job (any unit, compared only among themselves) -> the shard of each job.
+std::vector<int> assignShards(const std::vector<double>& costs, int shards);
+
+// triangles × frames × pixels, `triangles(scene)` asked once a scene.
+std::vector<double> estimateCosts(const Manifest& manifest,
+                                  const std::function<std::uint64_t(const std::string& scene)>& triangles);
+
+// 64-bit FNV-1a of the job's keys, the contents of the files it reads, its inline settings and the
+// version of frugal that runs it, as 16 hex digits: a job is redone when any of these changed.
+// Error: an input file that cannot be read.
+Result<std::string> inputsHash(const Job& job, const std::string& version);
+
+struct DoneRecord {
+    std::string id, inputs, version;
+    double seconds = 0.0;
+};
+std::string doneJson(const DoneRecord& record);
+// The record in `text`, or nothing when it is not one (a torn or foreign file counts as not done).
+std::optional<DoneRecord> parseDone(const std::string& text);
+
+// 64-bit FNV-1a of bytes, as 16 hex digits.
+std::string fnv1a(const void* data, std::size_t size, std::uint64_t seed = 14695981039346656037ull);
+
+}  // namespace frugal::batch
