@@ -23,6 +23,7 @@
 #include "base/Format.h"
 #include "batch/Manifest.h"
 #include "batch/Shards.h"
+#include "batch/Slurm.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
 
@@ -34,6 +35,7 @@ using namespace batch;
 
 const char* batchHelp() {
     return R"(usage: frugal batch MANIFEST [--shard I/N] [--out DIR] [--resume] [-q]
+       frugal batch MANIFEST --slurm N [--sbatch-args "..."] [--dry-run] [--out DIR]
        frugal batch status DIR
        frugal batch merge DIR
 
@@ -45,6 +47,11 @@ job's files go to DIR/<id>/; when it finishes, DIR/<id>/done.json records its in
 job's keys, the files it reads, frugal's version) and its time; a job that fails leaves
 DIR/<id>/failed.json with its error line, and the others still run. The manifest is checked in
 full (keys, kinds, ids, files, scenes loaded) before any job runs.
+
+With --slurm N it submits the batch to Slurm instead: a job array of N tasks, each running its
+shard (--shard array/N --resume, the index from SLURM_ARRAY_TASK_ID), and a merge job that starts
+when the array has ended; the scripts and logs are in DIR/slurm/. MANIFEST, DIR and this binary
+must be at the same paths on the nodes (a shared file system).
 
   status DIR   jobs done, running, failed (with their error lines) and left; the time left
   merge DIR    DIR/merged.json: every job in manifest order with its inputs' hash and its files
@@ -136,6 +143,9 @@ struct RunOptions {
     Shard shard;
     bool resume = false;
     bool quiet = false;
+    int slurm = 0;  // shards to submit as a Slurm array; 0: run here
+    std::string sbatchArgs;
+    bool dryRun = false;
 };
 
 // Runs one job into DIR/<id>/: "" when done, else its error line. Only an interrupt stops the batch.
@@ -155,9 +165,15 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
             return "error: " + w.error();
 
     std::ostringstream out, err;
+    const std::vector<std::string> line = commandLine(job, dir.string());
     const auto start = std::chrono::steady_clock::now();
-    const int status = runCommand(commandLine(job, dir.string()), out, err);
+    const int status = runCommand(line, out, err);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // What the command printed, after the command line that ran it (for people; merge lists it unhashed).
+    std::string log = "$ frugal";
+    for (const std::string& word : line) log += " " + shellWord(word);
+    log += "\n" + out.str() + err.str();
+    (void)writeFileAtomic((dir / "log.txt").string(), bytesOf(log));
     std::string problem;
     if (status == kExitOk) {
         const DoneRecord record{job.id, hash, version(), seconds};
@@ -227,6 +243,78 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     out << "batch: shard " << shardName << ": " << done << " done, " << skipped << " skipped (done before), "
         << failed << " failed\n";
     return failed == 0 ? kExitOk : kExitError;
+}
+
+// This binary's absolute path, for the scripts the nodes run.
+std::string thisBinary() {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("frugal") : self.string();
+}
+
+// The job id sbatch --parsable printed: its last line, up to a ';' (a cluster's name after it).
+Result<std::string> jobIdOf(const std::string& printed) {
+    std::string last;
+    std::istringstream in(printed);
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty()) last = line;
+    last = last.substr(0, last.find(';'));
+    if (last.empty() || last.find_first_not_of("0123456789") != std::string::npos)
+        return Error{"sbatch printed no job id: " + oneLine(printed, 200), ErrorKind::BadInput};
+    return last;
+}
+
+int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
+    Result<Manifest> manifest = readManifest(o.manifest);
+    if (!manifest) return fail(err, manifest.failure());
+    Result<std::vector<double>> costs = costsOf(*manifest);
+    if (!costs) return fail(err, costs.failure());
+    Result<std::vector<std::string>> extra = splitWords(o.sbatchArgs);
+    if (!extra) return fail(err, Error{"--sbatch-args: " + extra.error(), ErrorKind::BadInput});
+    const std::string dir = fs::absolute(o.out).lexically_normal().string();
+    if (dir.find_first_of(" \t\n%") != std::string::npos)
+        return fail(err, Error{"--out " + o.out + ": the Slurm scripts' #SBATCH --output takes no space or '%' in a path",
+                               ErrorKind::BadInput, false});
+    const SlurmScripts scripts =
+        slurmScripts(thisBinary(), fs::absolute(o.manifest).lexically_normal().string(), dir, o.slurm);
+    const std::string shardsPath = dir + "/slurm/shards.sh", mergePath = dir + "/slurm/merge.sh";
+    std::vector<std::string> arrayCommand{"sbatch", "--parsable"};
+    arrayCommand.insert(arrayCommand.end(), extra->begin(), extra->end());
+    std::vector<std::string> mergeCommand = arrayCommand;
+    arrayCommand.push_back(shardsPath);
+    if (o.dryRun) {
+        out << "# " << shardsPath << "\n" << scripts.shards << "# " << mergePath << "\n" << scripts.merge
+            << "# submitted with:\n";
+        for (const std::string& w : arrayCommand) out << (&w == &arrayCommand.front() ? "" : " ") << shellWord(w);
+        out << "\n";
+        for (const std::string& w : mergeCommand) out << shellWord(w) << " ";
+        out << "--dependency=afterany:<the array's job id> " << shellWord(mergePath) << "\n";
+        return kExitOk;
+    }
+    std::error_code ec;
+    fs::create_directories(dir + "/slurm", ec);
+    if (ec) return fail(err, Error{dir + "/slurm: cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
+    OutputSet files;
+    files.add(shardsPath, bytesOf(scripts.shards));
+    files.add(mergePath, bytesOf(scripts.merge));
+    files.add(dir + "/" + kJobList, bytesOf(jobListJson(*manifest, *costs)));
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    Result<std::string> array = runProgram(arrayCommand);
+    if (!array) return fail(err, array.failure());
+    Result<std::string> arrayId = jobIdOf(*array);
+    if (!arrayId) return fail(err, arrayId.failure());
+    mergeCommand.push_back("--dependency=afterany:" + *arrayId);
+    mergeCommand.push_back(mergePath);
+    Result<std::string> merge = runProgram(mergeCommand);
+    if (!merge) return fail(err, Error{"the array is job " + *arrayId + "; the merge job: " + merge.error(), merge.errorKind()});
+    Result<std::string> mergeId = jobIdOf(*merge);
+    if (!mergeId) return fail(err, mergeId.failure());
+    const Json jobs = {{"array", *arrayId}, {"merge", *mergeId}, {"shards", o.slurm}};
+    if (Result<bool> w = writeFileAtomic(dir + "/slurm/jobs.json", bytesOf(jobs.dump(2) + "\n")); !w)
+        return fail(err, w.failure());
+    out << "submitted: job array " << *arrayId << " (" << o.slurm << " shards of " << manifest->jobs.size()
+        << " jobs), then merge job " << *mergeId << "; 'frugal batch status " << o.out << "' follows them\n";
+    return kExitOk;
 }
 
 // The job list an output folder holds.
@@ -336,25 +424,42 @@ int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
         return args[0] == "status" ? runStatus(args[1], out, err) : runMerge(args[1], out, err);
     }
     RunOptions o;
-    std::string shard = "0/1";
+    std::string shard;  // empty: not given, every job
     CommandLine command{"batch", batchHelp(), nullptr};
     command.flags = {{"batch", {
-        flag::text("--shard", "I/N", "run shard I of N (default 0/1: every job)", shard),
+        flag::text("--shard", "I/N", "run shard I of N (0 <= I < N; default 0/1: every job); array/N: I from "
+                   "SLURM_ARRAY_TASK_ID (a Slurm job array) or JOB_COMPLETION_INDEX (a Kubernetes Indexed Job)",
+                   shard, "a shard"),
         flag::text("--out", "DIR", "the output folder: DIR/<id>/ for each job (default batch-out)", o.out),
         flag::on("--resume", "skip the jobs whose done.json matches their inputs (the others run again)", o.resume),
         flag::on("-q, --quiet", "no progress lines", o.quiet),
+    }}, {"Slurm", {
+        flag::whole("--slurm", "N", "submit the batch as a Slurm job array of N shards and a merge job after it",
+                    o.slurm, 1, 100000),
+        flag::text("--sbatch-args", "\"...\"", "options for both sbatch calls (--partition=..., --time=..., "
+                   "--mem=...), split at spaces, '...' and \"...\" quoting", o.sbatchArgs, "options"),
+        flag::on("--dry-run", "with --slurm: print the scripts and the sbatch commands; write and submit nothing",
+                 o.dryRun),
     }}};
     command.positional = [&o](const std::string& arg, ArgCursor& cursor) {
         if (!o.manifest.empty()) return cursor.fail("unexpected argument '" + arg + "' (one MANIFEST only)");
         o.manifest = arg;
     };
     command.finish = [&](ArgCursor& cursor) {
+        const bool shardGiven = !shard.empty();
+        const bool fromArray = shard.rfind("array/", 0) == 0;
+        Result<Shard> s = parseShard(fromArray ? "0/" + shard.substr(6) : shardGiven ? shard : "0/1");
         if (o.manifest.empty()) cursor.fail("batch: no manifest (frugal batch MANIFEST.json; 'frugal help batch')");
-        else if (Result<Shard> s = parseShard(shard); !s) cursor.fail(s.error());
-        else o.shard = *s;
+        else if (!s) cursor.fail(s.error());
+        else if (o.slurm > 0 && shardGiven) cursor.fail("--slurm: each array task picks its shard; give no --shard");
+        else if (o.dryRun && o.slurm == 0) cursor.fail("--dry-run: only with --slurm N");
+        else if (!o.sbatchArgs.empty() && o.slurm == 0) cursor.fail("--sbatch-args: only with --slurm N");
+        else if (!fromArray) o.shard = *s;
+        else if (Result<int> index = arrayTaskIndex(s->count); !index) cursor.fail(index.error());
+        else o.shard = Shard{*index, s->count};
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
-    return runBatch(o, out, err);
+    return o.slurm > 0 ? submitSlurm(o, out, err) : runBatch(o, out, err);
 }
 
 }  // namespace frugal

@@ -103,6 +103,47 @@ TEST(BatchShardsTest, TheCostliestJobsGoFirstToTheLeastLoadedShard) {
     }
 }
 
+TEST(BatchCliTest, AnArrayTaskTakesItsShardFromSlurmOrKubernetes) {
+    const fs::path dir = test::freshDir("BatchArray");
+    writeManifest(dir);
+    ASSERT_EQ(runFrugal(dir, {"batch", "m.json", "--out", "one", "-q"}).status, 0);
+    // Kubernetes' index for shards 0 and 1, Slurm's (an array numbered from 1) for 2 and 3.
+    for (const std::string env : {"JOB_COMPLETION_INDEX=0", "JOB_COMPLETION_INDEX=1",
+                                  "SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_MIN=1", "SLURM_ARRAY_TASK_ID=4 SLURM_ARRAY_TASK_MIN=1"}) {
+        const CliRun task = runFrugal(dir, {"batch", "m.json", "--shard", "array/4", "--out", "array", "-q"}, env);
+        ASSERT_EQ(task.status, 0) << env << ": " << task.err;
+    }
+    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "one"}).status, 0);
+    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "array"}).status, 0);
+    EXPECT_EQ(readAll(dir / "one" / "merged.json"), readAll(dir / "array" / "merged.json"));
+
+    CliRun bad = runFrugal(dir, {"batch", "m.json", "--shard", "array/4"}, "JOB_COMPLETION_INDEX=4");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(bad.err, "error: --shard array/4: JOB_COMPLETION_INDEX=4 is not a shard index (0 to 3)\n");
+    bad = runFrugal(dir, {"batch", "m.json", "--shard", "array/4"}, "env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_EQ(bad.err.rfind("error: --shard array/4: neither SLURM_ARRAY_TASK_ID", 0), 0u) << bad.err;
+
+    // --slurm --dry-run: the two scripts and the sbatch lines, nothing written.
+    const CliRun dry = runFrugal(dir, {"batch", "m.json", "--slurm", "3", "--dry-run", "--out", "slurm-out",
+                                       "--sbatch-args", "--partition=cpu --comment='two words'"});
+    ASSERT_EQ(dry.status, 0) << dry.err;
+    const std::string out = fs::weakly_canonical(dir / "slurm-out").string();
+    EXPECT_NE(dry.out.find("#SBATCH --array=0-2\n"), std::string::npos) << dry.out;
+    EXPECT_NE(dry.out.find("#SBATCH --output=" + out + "/slurm/shard-%a.log\n"), std::string::npos) << dry.out;
+    EXPECT_NE(dry.out.find(" batch '" + fs::weakly_canonical(dir / "m.json").string() + "' --shard array/3 --out '" +
+                           out + "' --resume\n"),
+              std::string::npos)
+        << dry.out;
+    EXPECT_NE(dry.out.find("sbatch --parsable --partition=cpu '--comment=two words' " + out + "/slurm/shards.sh\n"),
+              std::string::npos)
+        << dry.out;
+    EXPECT_NE(dry.out.find("--dependency=afterany:<the array's job id> " + out + "/slurm/merge.sh"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "slurm-out"));
+    bad = runFrugal(dir, {"batch", "m.json", "--slurm", "2", "--shard", "0/2"});
+    EXPECT_EQ(bad.err, "error: --slurm: each array task picks its shard; give no --shard\n");
+}
+
 TEST(BatchCliTest, ResumeRedoesOnlyWhatIsMissingOrChanged) {
     const fs::path dir = test::freshDir("BatchResume");
     writeManifest(dir);
