@@ -36,6 +36,7 @@ using namespace batch;
 const char* batchHelp() {
     return R"(usage: frugal batch MANIFEST [--shard I/N] [--out DIR] [--resume] [-q]
        frugal batch MANIFEST --slurm N [--sbatch-args "..."] [--dry-run] [--out DIR]
+       frugal batch MANIFEST --plan N [--out DIR]
        frugal batch status DIR
        frugal batch merge DIR
 
@@ -47,6 +48,10 @@ job's files go to DIR/<id>/; when it finishes, DIR/<id>/done.json records its in
 job's keys, the files it reads, frugal's version) and its time; a job that fails leaves
 DIR/<id>/failed.json with its error line, and the others still run. The manifest is checked in
 full (keys, kinds, ids, files, scenes loaded) before any job runs.
+
+--plan N (which --slurm runs itself) writes DIR/plan.json: a split into N shards from the costs
+corrected by what DIR holds done (each command's seconds per unit of estimated cost; a job done
+costs nothing), which every shard of N then follows instead of its own.
 
 With --slurm N it submits the batch to Slurm instead: a job array of N tasks, each running its
 shard (--shard array/N --resume, the index from SLURM_ARRAY_TASK_ID), and a merge job that starts
@@ -66,6 +71,7 @@ constexpr const char* kDone = "done.json";
 constexpr const char* kFailed = "failed.json";
 constexpr const char* kRunning = "running.json";
 constexpr const char* kJobList = "batch.json";
+constexpr const char* kPlan = "plan.json";
 
 Bytes bytesOf(const std::string& text) { return Bytes(text.begin(), text.end()); }
 
@@ -137,6 +143,53 @@ Result<std::vector<double>> costsOf(const Manifest& manifest) {
     return costs;
 }
 
+// Per job, its seconds when OUT/<id>/done.json is there with the inputs of now.
+Result<std::vector<std::optional<double>>> doneSecondsOf(const Manifest& manifest, const std::string& out) {
+    std::vector<std::optional<double>> seconds;
+    for (const Job& job : manifest.jobs) {
+        const std::optional<std::string> text = readText(fs::path(out) / job.id / kDone);
+        const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
+        if (!record || record->version != version()) {
+            seconds.emplace_back();
+            continue;
+        }
+        Result<std::string> hash = inputsHash(job, version());
+        if (!hash) return hash.failure();
+        seconds.push_back(record->inputs == *hash ? std::optional<double>(record->seconds) : std::nullopt);
+    }
+    return seconds;
+}
+
+// OUT/plan.json for `count` shards, from the estimates corrected by what OUT holds done.
+Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
+                       int count) {
+    Result<std::vector<std::optional<double>>> done = doneSecondsOf(manifest, out);
+    if (!done) return done.failure();
+    Plan plan;
+    plan.manifest = manifestHash(manifest);
+    plan.count = count;
+    plan.costs = correctedCosts(manifest, estimates, *done);
+    plan.shardOf = assignShards(plan.costs, count);
+    if (Result<bool> w = writeFileAtomic((fs::path(out) / kPlan).string(), bytesOf(planJson(plan))); !w)
+        return w.failure();
+    return plan;
+}
+
+// The split a shard follows: OUT/plan.json when it is for this manifest and this N, else its own
+// from the manifest alone (the same in every shard).
+std::vector<int> splitOf(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
+                         int count, std::string& from) {
+    if (const std::optional<std::string> text = readText(fs::path(out) / kPlan))
+        if (const std::optional<Plan> plan = parsePlan(*text);
+            plan && plan->manifest == manifestHash(manifest) && plan->count == count &&
+            plan->shardOf.size() == manifest.jobs.size()) {
+            from = " (split by " + (fs::path(out) / kPlan).string() + ")";
+            return plan->shardOf;
+        }
+    from = "";
+    return assignShards(estimates, count);
+}
+
 struct RunOptions {
     std::string manifest;
     std::string out = "batch-out";
@@ -144,6 +197,7 @@ struct RunOptions {
     bool resume = false;
     bool quiet = false;
     int slurm = 0;  // shards to submit as a Slurm array; 0: run here
+    int plan = 0;   // shards to write OUT/plan.json for; 0: none
     std::string sbatchArgs;
     bool dryRun = false;
 };
@@ -189,12 +243,42 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     return problem;
 }
 
+// `--plan N`: OUT/plan.json, and what each shard is to run.
+int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
+    Result<Manifest> manifest = readManifest(o.manifest);
+    if (!manifest) return fail(err, manifest.failure());
+    Result<std::vector<double>> costs = costsOf(*manifest);
+    if (!costs) return fail(err, costs.failure());
+    std::error_code ec;
+    fs::create_directories(o.out, ec);
+    if (ec) return fail(err, Error{o.out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
+    if (Result<bool> w = writeFileAtomic((fs::path(o.out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
+        !w)
+        return fail(err, w.failure());
+    Result<Plan> plan = writePlan(*manifest, *costs, o.out, o.plan);
+    if (!plan) return fail(err, plan.failure());
+    std::vector<int> jobs(std::size_t(o.plan), 0), left(std::size_t(o.plan), 0);
+    std::vector<double> load(std::size_t(o.plan), 0.0);
+    for (std::size_t i = 0; i < plan->shardOf.size(); ++i) {
+        const std::size_t s = std::size_t(plan->shardOf[i]);
+        ++jobs[s];
+        left[s] += plan->costs[i] > 0;
+        load[s] += plan->costs[i];
+    }
+    out << "plan: " << o.out << "/" << kPlan << ", " << o.plan << " shards of " << manifest->jobs.size() << " jobs\n";
+    for (int s = 0; s < o.plan; ++s)
+        out << "  shard " << s << ": " << jobs[std::size_t(s)] << (jobs[std::size_t(s)] == 1 ? " job, " : " jobs, ")
+            << left[std::size_t(s)] << " to run, cost " << fmt(load[std::size_t(s)]) << "\n";
+    return kExitOk;
+}
+
 int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     Result<Manifest> manifest = readManifest(o.manifest);
     if (!manifest) return fail(err, manifest.failure());
     Result<std::vector<double>> costs = costsOf(*manifest);
     if (!costs) return fail(err, costs.failure());
-    const std::vector<int> shardOf = assignShards(*costs, o.shard.count);
+    std::string splitFrom;
+    const std::vector<int> shardOf = splitOf(*manifest, *costs, o.out, o.shard.count, splitFrom);
 
     std::error_code ec;
     fs::create_directories(o.out, ec);
@@ -210,7 +294,8 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     int done = 0, skipped = 0, failed = 0;
     const std::string shardName = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
     if (!o.quiet)
-        err << "batch: shard " << shardName << ": " << mine.size() << " of " << manifest->jobs.size() << " jobs\n";
+        err << "batch: shard " << shardName << ": " << mine.size() << " of " << manifest->jobs.size() << " jobs"
+            << splitFrom << "\n";
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const Job& job = *mine[k];
         Result<std::string> hash = inputsHash(job, version());
@@ -299,6 +384,7 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
     files.add(mergePath, bytesOf(scripts.merge));
     files.add(dir + "/" + kJobList, bytesOf(jobListJson(*manifest, *costs)));
     if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    if (Result<Plan> plan = writePlan(*manifest, *costs, dir, o.slurm); !plan) return fail(err, plan.failure());
     Result<std::string> array = runProgram(arrayCommand);
     if (!array) return fail(err, array.failure());
     Result<std::string> arrayId = jobIdOf(*array);
@@ -433,6 +519,8 @@ int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
         flag::text("--out", "DIR", "the output folder: DIR/<id>/ for each job (default batch-out)", o.out),
         flag::on("--resume", "skip the jobs whose done.json matches their inputs (the others run again)", o.resume),
         flag::on("-q, --quiet", "no progress lines", o.quiet),
+        flag::whole("--plan", "N", "write OUT/plan.json, the split into N shards that every shard then follows, "
+                    "from costs corrected by the jobs OUT holds done (--slurm writes one itself)", o.plan, 1, 100000),
     }}, {"Slurm", {
         flag::whole("--slurm", "N", "submit the batch as a Slurm job array of N shards and a merge job after it",
                     o.slurm, 1, 100000),
@@ -452,6 +540,7 @@ int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
         if (o.manifest.empty()) cursor.fail("batch: no manifest (frugal batch MANIFEST.json; 'frugal help batch')");
         else if (!s) cursor.fail(s.error());
         else if (o.slurm > 0 && shardGiven) cursor.fail("--slurm: each array task picks its shard; give no --shard");
+        else if (o.plan > 0 && (shardGiven || o.slurm > 0)) cursor.fail("--plan: it runs nothing; give no --shard or --slurm");
         else if (o.dryRun && o.slurm == 0) cursor.fail("--dry-run: only with --slurm N");
         else if (!o.sbatchArgs.empty() && o.slurm == 0) cursor.fail("--sbatch-args: only with --slurm N");
         else if (!fromArray) o.shard = *s;
@@ -459,7 +548,7 @@ int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
         else o.shard = Shard{*index, s->count};
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
-    return o.slurm > 0 ? submitSlurm(o, out, err) : runBatch(o, out, err);
+    return o.slurm > 0 ? submitSlurm(o, out, err) : o.plan > 0 ? planBatch(o, out, err) : runBatch(o, out, err);
 }
 
 }  // namespace frugal

@@ -46,12 +46,15 @@ std::vector<int> assignShards(const std::vector<double>& costs, int shards) {
     std::vector<std::size_t> order(costs.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&costs](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
-    std::vector<double> load(std::size_t(std::max(shards, 1)), 0.0);
+    // Least cost first, then fewest jobs (jobs of no cost, done ones in a plan, still spread), then
+    // the lowest shard.
+    std::vector<std::pair<double, std::size_t>> load(std::size_t(std::max(shards, 1)), {0.0, 0});
     std::vector<int> shardOf(costs.size(), 0);
     for (const std::size_t job : order) {
         const auto least = std::min_element(load.begin(), load.end());  // the first of equals
         shardOf[job] = int(least - load.begin());
-        *least += costs[job];
+        least->first += costs[job];
+        ++least->second;
     }
     return shardOf;
 }
@@ -67,6 +70,68 @@ std::vector<double> estimateCosts(const Manifest& manifest,
         costs.push_back(double(std::max<std::uint64_t>(found->second, 1)) * double(job.frames) * double(job.pixels));
     }
     return costs;
+}
+
+std::vector<double> correctedCosts(const Manifest& manifest, const std::vector<double>& estimates,
+                                   const std::vector<std::optional<double>>& doneSeconds) {
+    const auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    };
+    std::map<Command, std::vector<double>> rates;
+    std::vector<double> all;
+    for (std::size_t i = 0; i < manifest.jobs.size(); ++i)
+        if (doneSeconds[i] && estimates[i] > 0) {
+            rates[manifest.jobs[i].command].push_back(*doneSeconds[i] / estimates[i]);
+            all.push_back(*doneSeconds[i] / estimates[i]);
+        }
+    if (all.empty()) return estimates;
+    const double overall = median(all);
+    std::vector<double> costs;
+    for (std::size_t i = 0; i < manifest.jobs.size(); ++i) {
+        if (doneSeconds[i]) {
+            costs.push_back(0.0);
+            continue;
+        }
+        const auto own = rates.find(manifest.jobs[i].command);
+        costs.push_back(estimates[i] * (own != rates.end() ? median(own->second) : overall));
+    }
+    return costs;
+}
+
+std::string planJson(const Plan& plan) {
+    const nlohmann::json doc = {{"frugal_batch_plan", 1}, {"manifest", plan.manifest}, {"shards", plan.count},
+                                {"shard_of", plan.shardOf}, {"costs", plan.costs}};
+    return doc.dump() + "\n";
+}
+
+std::optional<Plan> parsePlan(const std::string& text) {
+    const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+    if (!doc.is_object() || doc.value("frugal_batch_plan", 0) != 1 || !doc.contains("manifest") ||
+        !doc["manifest"].is_string() || !doc.contains("shards") || !doc["shards"].is_number_integer() ||
+        !doc.contains("shard_of") || !doc["shard_of"].is_array() || !doc.contains("costs") || !doc["costs"].is_array())
+        return std::nullopt;
+    Plan plan;
+    plan.manifest = doc["manifest"];
+    plan.count = doc["shards"];
+    for (const nlohmann::json& s : doc["shard_of"]) {
+        if (!s.is_number_integer() || s.get<int>() < 0 || s.get<int>() >= plan.count) return std::nullopt;
+        plan.shardOf.push_back(s.get<int>());
+    }
+    for (const nlohmann::json& c : doc["costs"]) {
+        if (!c.is_number()) return std::nullopt;
+        plan.costs.push_back(c.get<double>());
+    }
+    return plan;
+}
+
+std::string manifestHash(const Manifest& manifest) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (const Job& job : manifest.jobs) {
+        h = fnvStep(h, job.canonical.data(), job.canonical.size() + 1);
+        h = fnvStep(h, job.settingsText.data(), job.settingsText.size() + 1);
+    }
+    return hex(h);
 }
 
 Result<std::string> inputsHash(const Job& job, const std::string& version) {

@@ -3,7 +3,8 @@
 // Shards: every shard computes the same assignment from the manifest alone, so N processes started
 // anywhere, in any order, split the jobs without talking to each other. A job's estimated cost is
 // triangles × frames × pixels; jobs go, costliest first (ties: manifest order), to the shard with the
-// least cost so far (ties: the lowest shard), which keeps the shards within one job of each other.
+// least cost so far (ties: the fewest jobs, then the lowest shard), which keeps the shards within
+// one job of each other.
 //
 // Records, in OUT/<id>/: done.json when a job finished (its inputs' hash, frugal's version, the
 // seconds it took); failed.json with its error line when it failed; running.json while it runs.
@@ -33,6 +34,28 @@ std::vector<int> assignShards(const std::vector<double>& costs, int shards);
 // triangles × frames × pixels, `triangles(scene)` asked once a scene.
 std::vector<double> estimateCosts(const Manifest& manifest,
                                   const std::function<std::uint64_t(const std::string& scene)>& triangles);
+
+// The estimates corrected by what finished jobs measured (`doneSeconds`: per job, its seconds when
+// it is done with the inputs of now): a job done costs 0, as it will be skipped; the others' costs
+// become estimated seconds, their estimate times the median seconds per unit of estimate of the
+// finished jobs of their command (of all finished jobs when their command has none). With no job
+// finished, the estimates as they are.
+std::vector<double> correctedCosts(const Manifest& manifest, const std::vector<double>& estimates,
+                                   const std::vector<std::optional<double>>& doneSeconds);
+
+// A split written once (OUT/plan.json, by `--slurm` or `--plan`) that every shard then reads instead
+// of computing its own: the only way corrected costs, which depend on what is done when they are
+// computed, still give every shard the same split.
+struct Plan {
+    std::string manifest;    // manifestHash of the manifest it splits
+    int count = 0;           // N
+    std::vector<int> shardOf;
+    std::vector<double> costs;  // the costs it was made from
+};
+std::string planJson(const Plan& plan);
+std::optional<Plan> parsePlan(const std::string& text);
+// FNV-1a over the jobs' ids and keys, in order: a plan is for this manifest and no other.
+std::string manifestHash(const Manifest& manifest);
 
 // 64-bit FNV-1a of the job's keys, the contents of the files it reads, its inline settings and the
 // version of frugal that runs it, as 16 hex digits: a job is redone when any of these changed.

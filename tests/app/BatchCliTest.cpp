@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <csignal>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -142,6 +143,54 @@ TEST(BatchCliTest, AnArrayTaskTakesItsShardFromSlurmOrKubernetes) {
     EXPECT_FALSE(fs::exists(dir / "slurm-out"));
     bad = runFrugal(dir, {"batch", "m.json", "--slurm", "2", "--shard", "0/2"});
     EXPECT_EQ(bad.err, "error: --slurm: each array task picks its shard; give no --shard\n");
+}
+
+TEST(BatchShardsTest, FinishedJobsCorrectTheEstimatesOfTheirCommand) {
+    batch::Manifest m;
+    for (const batch::Command c : {batch::Command::Render, batch::Command::Render, batch::Command::Report,
+                                   batch::Command::Report, batch::Command::CullReport}) {
+        batch::Job job;
+        job.command = c;
+        m.jobs.push_back(job);
+    }
+    const std::vector<double> estimates{100, 200, 100, 300, 50};
+    EXPECT_EQ(batch::correctedCosts(m, estimates, std::vector<std::optional<double>>(5)), estimates) << "none done";
+    // A render done in 1 s (0.01 s a unit), a report in 5 s (0.05 s a unit): the rest in seconds.
+    const std::vector<double> costs = batch::correctedCosts(m, estimates, {1.0, std::nullopt, 5.0, std::nullopt, std::nullopt});
+    ASSERT_EQ(costs.size(), 5u);
+    EXPECT_EQ(costs[0], 0.0) << "done: skipped";
+    EXPECT_DOUBLE_EQ(costs[1], 2.0);
+    EXPECT_EQ(costs[2], 0.0);
+    EXPECT_DOUBLE_EQ(costs[3], 15.0) << "its command's rate";
+    EXPECT_DOUBLE_EQ(costs[4], 50 * 0.03) << "no cull-report done: the median of all (0.01, 0.05)";
+}
+
+TEST(BatchCliTest, APlanCorrectedByWhatIsDoneIsTheSplitEveryShardFollows) {
+    const fs::path dir = test::freshDir("BatchPlan");
+    writeManifest(dir);
+    ASSERT_EQ(runFrugal(dir, {"batch", "m.json", "--out", "out", "-q"}).status, 0);
+    fs::remove(dir / "out" / "cubes" / "done.json");
+    fs::remove(dir / "out" / "report" / "done.json");
+    const CliRun plan = runFrugal(dir, {"batch", "m.json", "--plan", "2", "--out", "out"});
+    ASSERT_EQ(plan.status, 0) << plan.err;
+    EXPECT_EQ(plan.out.rfind("plan: out/plan.json, 2 shards of 7 jobs\n", 0), 0u) << plan.out;
+    const nlohmann::json written = test::readJson(dir / "out" / "plan.json");
+    ASSERT_EQ(written["costs"].size(), 7u);
+    for (std::size_t i = 0; i < 7; ++i)
+        EXPECT_EQ(written["costs"][i].get<double>() > 0, kIds[i] == "cubes" || kIds[i] == "report") << kIds[i];
+    EXPECT_NE(written["shard_of"][0], written["shard_of"][5]) << "the two jobs left, one a shard";
+    int ran = 0;
+    for (int i = 0; i < 2; ++i) {
+        const CliRun shard = runFrugal(dir, {"batch", "m.json", "--shard", std::to_string(i) + "/2", "--out", "out",
+                                             "--resume"});
+        ASSERT_EQ(shard.status, 0) << shard.err;
+        EXPECT_NE(shard.err.find("jobs (split by out/plan.json)"), std::string::npos) << shard.err;
+        ran += shard.out.find(": 1 done,") != std::string::npos;
+    }
+    EXPECT_EQ(ran, 2);
+    // Another N, or another manifest: the plan is not theirs, and each shard splits by itself.
+    const CliRun three = runFrugal(dir, {"batch", "m.json", "--shard", "0/3", "--out", "out", "--resume"});
+    EXPECT_EQ(three.err.find("split by"), std::string::npos) << three.err;
 }
 
 TEST(BatchCliTest, ResumeRedoesOnlyWhatIsMissingOrChanged) {
