@@ -243,19 +243,32 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     return problem;
 }
 
+// The manifest checked and its jobs' estimated costs; then `out` made, with its job list (every
+// shard writes the same one: the last rename wins, each whole).
+struct Checked {
+    Manifest manifest;
+    std::vector<double> costs;
+};
+Result<Checked> check(const std::string& manifestPath, const std::string& out) {
+    Result<Manifest> manifest = readManifest(manifestPath);
+    if (!manifest) return manifest.failure();
+    Result<std::vector<double>> costs = costsOf(*manifest);
+    if (!costs) return costs.failure();
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) return Error{out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io};
+    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
+        !w)
+        return w.failure();
+    return Checked{std::move(*manifest), std::move(*costs)};
+}
+
 // `--plan N`: OUT/plan.json, and what each shard is to run.
 int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
-    Result<Manifest> manifest = readManifest(o.manifest);
-    if (!manifest) return fail(err, manifest.failure());
-    Result<std::vector<double>> costs = costsOf(*manifest);
-    if (!costs) return fail(err, costs.failure());
-    std::error_code ec;
-    fs::create_directories(o.out, ec);
-    if (ec) return fail(err, Error{o.out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
-    if (Result<bool> w = writeFileAtomic((fs::path(o.out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
-        !w)
-        return fail(err, w.failure());
-    Result<Plan> plan = writePlan(*manifest, *costs, o.out, o.plan);
+    Result<Checked> checked = check(o.manifest, o.out);
+    if (!checked) return fail(err, checked.failure());
+    const Manifest* manifest = &checked->manifest;
+    Result<Plan> plan = writePlan(*manifest, checked->costs, o.out, o.plan);
     if (!plan) return fail(err, plan.failure());
     std::vector<int> jobs(std::size_t(o.plan), 0), left(std::size_t(o.plan), 0);
     std::vector<double> load(std::size_t(o.plan), 0.0);
@@ -273,20 +286,11 @@ int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
 }
 
 int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
-    Result<Manifest> manifest = readManifest(o.manifest);
-    if (!manifest) return fail(err, manifest.failure());
-    Result<std::vector<double>> costs = costsOf(*manifest);
-    if (!costs) return fail(err, costs.failure());
+    Result<Checked> checked = check(o.manifest, o.out);
+    if (!checked) return fail(err, checked.failure());
+    const Manifest* manifest = &checked->manifest;
     std::string splitFrom;
-    const std::vector<int> shardOf = splitOf(*manifest, *costs, o.out, o.shard.count, splitFrom);
-
-    std::error_code ec;
-    fs::create_directories(o.out, ec);
-    if (ec) return fail(err, Error{o.out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
-    // Every shard writes the same list: the last rename wins, each whole.
-    if (Result<bool> w = writeFileAtomic((fs::path(o.out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
-        !w)
-        return fail(err, w.failure());
+    const std::vector<int> shardOf = splitOf(*manifest, checked->costs, o.out, o.shard.count, splitFrom);
 
     std::vector<const Job*> mine;
     for (std::size_t i = 0; i < manifest->jobs.size(); ++i)
