@@ -60,8 +60,9 @@ must be at the same paths on the nodes (a shared file system).
 
   status DIR   jobs done, running, failed (with their error lines) and left; the time left
   merge DIR    DIR/merged.json: every job in manifest order with its inputs' hash and its files
-               (a render's images with their hash), identical whatever the shards; DIR/times.csv:
-               each job's seconds. Fails when a job is not done.
+               (a render's images with their hash), identical whatever the shards; the jobs' CSV
+               tables joined, a row each led by its job's id (DIR/merged-cull-report.csv, ...);
+               DIR/times.csv: each job's seconds. Fails when a job is not done.
 )";
 }
 
@@ -465,6 +466,8 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
     if (!list) return fail(err, list.failure());
     Json jobs = Json::array();
     std::string times = "id,command,seconds\n";
+    // The jobs' CSV tables joined by file name, each row led by its job's id: merged-<name>.csv.
+    std::map<std::string, std::string> tables;
     for (const Json& entry : (*list)["jobs"]) {
         const std::string id = entry.value("id", "");
         const fs::path jobDir = fs::path(dir) / id;
@@ -489,6 +492,19 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
                 const std::optional<std::string> bytes = readText(jobDir / name);
                 if (!bytes) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
                 file["fnv1a"] = fnv1a(bytes->data(), bytes->size());
+            } else if (hasExtension(name, ".csv")) {
+                const std::optional<std::string> csv = readText(jobDir / name);
+                if (!csv) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
+                std::istringstream lines(*csv);
+                std::string header;
+                std::getline(lines, header);
+                std::string& table = tables[name];
+                if (table.empty()) table = "job," + header + "\n";
+                else if (table.compare(0, table.find('\n'), "job," + header) != 0)
+                    return fail(err, Error{(jobDir / name).string() + ": its header differs from the other jobs' " + name,
+                                           ErrorKind::BadInput});
+                for (std::string row; std::getline(lines, row);)
+                    if (!row.empty()) table += id + "," + row + "\n";
             }
             files.push_back(file);
         }
@@ -499,8 +515,13 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
     OutputSet files;
     files.add(dir + "/merged.json", bytesOf(Json{{"frugal_batch", 1}, {"jobs", jobs}}.dump(2) + "\n"));
     files.add(dir + "/times.csv", bytesOf(times));
+    std::string joined;
+    for (const auto& [name, table] : tables) {
+        files.add(dir + "/merged-" + name, bytesOf(table));
+        joined += ", merged-" + name;
+    }
     if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
-    out << "merged " << jobs.size() << " jobs into " << dir << "/merged.json and times.csv\n";
+    out << "merged " << jobs.size() << " jobs into " << dir << "/merged.json" << joined << " and times.csv\n";
     return kExitOk;
 }
 
