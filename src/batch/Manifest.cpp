@@ -185,7 +185,8 @@ private:
         if (!v.is_string() || v.get<std::string>().empty()) return "expected a file name, got " + kindOf(v);
         const fs::path p = base_ / v.get<std::string>();
         std::error_code ec;
-        if (!fs::is_regular_file(p, ec)) return quoted(v) + ": no such file (" + p.lexically_normal().string() + ")";
+        if (!fs::is_regular_file(p, ec))
+            return quoted(v) + ": no such file (" + oneLine(p.lexically_normal().string()) + ")";
         out = p.lexically_normal().string();
         job_.inputFiles.push_back(out);
         return "";
@@ -254,7 +255,8 @@ private:
                 flag("--fov", fmt(value.get<double>()));
                 continue;
             }
-            if (k != "eye" && k != "target" && k != "up") return k + ": not a key of a camera (eye, target, up, fov)";
+            if (k != "eye" && k != "target" && k != "up")
+                return oneLine(k, 80) + ": not a key of a camera (eye, target, up, fov)";
             if (!value.is_array() || value.size() != 3 ||
                 !std::all_of(value.begin(), value.end(),
                              [](const Json& n) { return n.is_number() && std::isfinite(n.get<double>()); }))
@@ -350,7 +352,8 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
     if (!doc.is_object()) return problem(1, "expected an object with \"frugal_batch\": 1 and \"jobs\"");
     for (const auto& [key, value] : doc.items())
         if (key != "frugal_batch" && key != "defaults" && key != "jobs" && key != "comment")
-            return problem(lines.of(key), key + ": not a key of a manifest (frugal_batch, defaults, jobs, comment)");
+            return problem(lines.of(key),
+                           oneLine(key, 80) + ": not a key of a manifest (frugal_batch, defaults, jobs, comment)");
     if (!doc.contains("frugal_batch") || doc["frugal_batch"] != 1)
         return problem(lines.of("frugal_batch"), "frugal_batch: expected 1 (the version of this format)");
     const Json defaults = doc.value("defaults", Json::object());
@@ -392,7 +395,7 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
         for (const std::string& k : order) {
             if (!keys.count(k)) continue;
             if (std::string why = reader.read(k, keys[k]); !why.empty())
-                return problem(keyLines[k], "job " + std::to_string(i) + ": " + k + ": " + why);
+                return problem(keyLines[k], "job " + std::to_string(i) + ": " + oneLine(k, 80) + ": " + why);
         }
         if (std::string why = reader.finish(keys); !why.empty())
             return problem(job.line, "job " + std::to_string(i) + " '" + job.id + "': " + why);

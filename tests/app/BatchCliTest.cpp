@@ -8,6 +8,7 @@
 #include <csignal>
 #include <filesystem>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,49 @@ TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
     ASSERT_TRUE(manifest) << manifest.error();
     const std::vector<int> shards = batch::assignShards(std::vector<double>(7, 1.0), 4);
     EXPECT_EQ(shards, (std::vector<int>{0, 1, 2, 3, 0, 1, 2})) << "equal costs: round robin in manifest order";
+}
+
+// The manifest parser on damaged text: bytes flipped, cut, doubled, deleted, and on noise. Each parse
+// ends with a manifest or one error line naming the manifest; never a crash (ASan and UBSan check
+// the scan of lines and nesting in the sanitizer build).
+TEST(BatchManifestTest, DamagedTextGivesAManifestOrOneErrorLine) {
+    const fs::path dir = test::freshDir("BatchDamaged");
+    writeManifest(dir);
+    const std::string good = readAll(dir / "m.json");
+    const std::string path = (dir / "m.json").string();
+    ASSERT_TRUE(batch::parseManifest(good, path));
+    std::mt19937 random(20261203);
+    const std::string alphabet = "{}[]\":,\\ \n\t0123456789.-+eE/abcdefghijklmnopqrstuvwxyz_ \x01\xff\xc3";
+    int parsed = 0, refused = 0;
+    for (int i = 0; i < 10000; ++i) {
+        std::string text = good;
+        const int edits = 1 + int(random() % 4);
+        for (int e = 0; e < edits && !text.empty(); ++e) {
+            const std::size_t at = random() % text.size();
+            switch (random() % 5) {
+            case 0: text[at] = alphabet[random() % alphabet.size()]; break;
+            case 1: text.erase(at, 1 + random() % 8); break;
+            case 2: text.insert(at, 1, alphabet[random() % alphabet.size()]); break;
+            case 3: text.resize(at); break;
+            default: text.insert(at, text.substr(at, 1 + random() % 40)); break;
+            }
+        }
+        if (i % 10 == 0) {  // noise, and deep nesting
+            text.assign(std::size_t(random() % 200), ' ');
+            for (char& c : text) c = alphabet[random() % alphabet.size()];
+            if (i % 100 == 0) text = std::string(5000, '[') + std::string(5000, ']');
+        }
+        Result<batch::Manifest> m = batch::parseManifest(text, path);
+        if (m) {
+            ++parsed;
+            continue;
+        }
+        ++refused;
+        ASSERT_EQ(m.error().rfind("manifest " + path, 0), 0u) << m.error();
+        ASSERT_EQ(m.error().find('\n'), std::string::npos) << m.error();
+    }
+    EXPECT_GT(refused, 1000);
+    EXPECT_GT(parsed, 10) << "some edits leave a valid manifest (in a string, in whitespace)";
 }
 
 TEST(BatchShardsTest, TheCostliestJobsGoFirstToTheLeastLoadedShard) {
