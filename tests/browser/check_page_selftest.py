@@ -1,10 +1,11 @@
 #!/usr/bin/python3
-"""Self-test of check_page.py against the hand-made pages in fixtures/.
+"""Self-test of check_page.py against a hand-made page and its broken variants.
 
-good.html must pass and leave a real full-width PNG screenshot; every other
-fixture is broken in exactly one way and must fail (exit 1) with every
-`error:` line naming that reason, so the checker neither misses a problem
-nor reports unrelated ones. Runs two checks at a time (each is one headless
+fixtures/good.html must pass and leave a real full-width PNG screenshot. Each
+variant is good.html with one change (BROKEN below, written into the output
+folder) that breaks it in exactly one way: it must fail (exit 1) with every
+`error:` line naming that reason, so the checker neither misses a problem nor
+reports unrelated ones. Runs two checks at a time (each is one headless
 Chromium).
 
 usage: check_page_selftest.py [--out DIR] [--chromium PATH] [--jobs N]
@@ -25,20 +26,38 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 CHECKER = HERE / "check_page.py"
-FIXTURES = HERE / "fixtures"
+GOOD = HERE / "fixtures" / "good.html"
 TIMEOUT = 60  # seconds per checker run; the harness kills it 15 s later
 
-# fixture -> regex every error line must match (None: must pass).
-EXPECT = {
-    "good.html": None,
-    "console-error.html": r"console error: fixture: something went wrong",
-    "exception.html": r"exception: Uncaught Error: fixture: boom",
-    "broken-mask.html": r"img\.mask #2 \(mask B\) did not load",
-    "truncated-mask.html": r"img\.mask #2 \(mask B\) data: PNG is truncated",
-    "external.html": r"http://example\.com/x\.js",
-    "hidden-chart.html": r"svg#pareto is display:none",
-    "no-masks.html": r"found 0 img\.mask, need >= 1",
+MASK_B = ('<img class="mask" alt="mask B" src="data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAQAAAAECAIAAAAm'
+          'kwkpAAAAEElEQVR42mPQWBAARwzEcQDEwxGBeljglQAAAABJRU5ErkJggg==">')
+END = "</body>"
+
+# Each broken variant: (the text of good.html it replaces, wherever it stands, its replacement, a
+# regex every error line must match).
+BROKEN = {
+    "console-error.html": (END, "<script>console.error('fixture: something went wrong');</script>\n" + END,
+                           r"console error: fixture: something went wrong"),
+    "exception.html": (END, "<script>throw new Error('fixture: boom');</script>\n" + END,
+                       r"exception: Uncaught Error: fixture: boom"),
+    "broken-mask.html": (MASK_B, '<img class="mask" alt="mask B" src="data:image/png;base64,bm90IGEgcG5n">',
+                         r"img\.mask #2 \(mask B\) did not load"),
+    "truncated-mask.html": (MASK_B, MASK_B[:MASK_B.index("EElEQVR42mPQ") + 12] + '">',
+                            r"img\.mask #2 \(mask B\) data: PNG is truncated"),
+    "external.html": ("</style>", '</style>\n<script src="http://example.com/x.js"></script>',
+                      r"http://example\.com/x\.js"),
+    "hidden-chart.html": ('<svg id="pareto"', '<svg id="pareto" style="display:none"', r"svg#pareto is display:none"),
+    "no-masks.html": ('<img class="mask"', '<img class="thumbnail"', r"found 0 img\.mask, need >= 1"),
 }
+EXPECT = {"good.html": None, **{name: pattern for name, (_, _, pattern) in BROKEN.items()}}
+
+
+def write_variants(out):
+    """Writes each broken variant of good.html into `out`."""
+    good = GOOD.read_text()
+    for name, (old, new, _) in BROKEN.items():
+        assert old in good, "good.html changed: %r is not in it" % old
+        (out / name).write_text(good.replace(old, new))
 
 
 def run_checker(page, shot, chromium, extra=()):
@@ -63,7 +82,7 @@ def png_size(path):
 
 def check_fixture(name, out, chromium):
     """Returns (name, list of failures, exit status, seconds)."""
-    page, shot = FIXTURES / name, out / (Path(name).stem + ".png")
+    page, shot = (GOOD if name == "good.html" else out / name), out / (Path(name).stem + ".png")
     start = time.monotonic()
     rc, stdout, stderr = run_checker(page, shot, chromium, ["--min-masks", "1"])
     took = time.monotonic() - start
@@ -109,11 +128,12 @@ def main():
     failed = []
     try:
         # No browser needed: a missing executable must map to exit 3 (skip).
-        rc, _, err = run_checker(FIXTURES / "good.html", out / "none.png",
+        rc, _, err = run_checker(GOOD, out / "none.png",
                                  "/nonexistent/chromium")
         if rc != 3 or not err.startswith("error: chromium: "):
             failed.append("missing chromium: expected exit 3, got %s: %s" % (rc, err.strip()))
 
+        write_variants(out)
         with concurrent.futures.ThreadPoolExecutor(max(1, args.jobs)) as pool:
             results = list(pool.map(lambda n: check_fixture(n, out, args.chromium),
                                     sorted(EXPECT)))
