@@ -123,16 +123,6 @@ const char* familyColor(const std::string& family) {
     return found == colors.end() ? "#000000" : found->second;
 }
 
-bool onFront(const TradeReport& report, std::size_t i) {
-    return std::find(report.pareto.begin(), report.pareto.end(), i) != report.pareto.end();
-}
-
-std::optional<double> floorMs(const TradeReport& report) {
-    for (const TradeRow& r : report.rows)
-        if (r.candidate.floor) return r.medianMs;
-    return std::nullopt;
-}
-
 // A step of 1, 2 or 5 times a power of ten giving about `count` ticks over [0, top].
 double niceStep(double top, int count) {
     const double raw = std::max(top, 1e-9) / count;
@@ -187,7 +177,7 @@ std::string paretoSvg(const TradeReport& report) {
           << labelY << "\" font-size=\"11\" text-anchor=\"end\">" << escape(label) << "</text>\n";
     };
     vertical(report.rows.front().medianMs, "plain", "2 3", kBottom - 34);
-    if (const std::optional<double> f = floorMs(report)) vertical(*f, "floor (oracle)", "6 3", kBottom - 20);
+    if (const std::optional<double> f = report.floorMs()) vertical(*f, "floor (oracle)", "6 3", kBottom - 20);
 
     std::vector<std::size_t> front = report.pareto;
     std::sort(front.begin(), front.end(),
@@ -199,10 +189,10 @@ std::string paretoSvg(const TradeReport& report) {
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
         const TradeRow& r = report.rows[i];
         s << "<circle cx=\"" << fixed(x(r.medianMs), 1) << "\" cy=\"" << fixed(y(r.differingPx), 1) << "\" r=\""
-          << (onFront(report, i) ? 6 : 4) << "\" fill=\"" << familyColor(r.candidate.family)
+          << (report.onFront(i) ? 6 : 4) << "\" fill=\"" << familyColor(r.candidate.family)
           << "\" fill-opacity=\"0.85\"><title>" << escape(r.candidate.name) << ": " << fixed(r.medianMs, 2) << " ms, "
           << grouped(r.differingPx) << " px differ</title></circle>\n";
-        if (onFront(report, i))
+        if (report.onFront(i))
             s << "<text x=\"" << fixed(x(r.medianMs) + 8, 1) << "\" y=\"" << fixed(y(r.differingPx) - 8, 1)
               << "\" font-size=\"11\">" << escape(r.candidate.name) << "</text>\n";
     }
@@ -241,8 +231,6 @@ std::string recommendationHtml(const TradeReport& report, const TradeSettings& s
 }
 
 std::string methodsTable(const TradeReport& report, const std::map<std::size_t, std::string>& thumbnails) {
-    const double plain = report.rows.front().medianMs;
-    const std::optional<double> floor = floorMs(report);
     std::ostringstream s;
     s << "<table id=\"methods\">\n<thead><tr><th>method</th><th>family</th><th>median ms</th><th>&times; plain</th>"
          "<th>&times; floor</th><th>differing px</th><th>worst frame px</th><th>misses</th><th>worst PSNR dB</th>"
@@ -253,13 +241,13 @@ std::string methodsTable(const TradeReport& report, const std::map<std::size_t, 
         const bool picked = report.bestExact == i || report.bestWithinBudget == i;
         s << "<tr" << (picked ? " class=\"picked\"" : r.candidate.floor ? " class=\"floor\"" : "") << "><td>"
           << escape(r.candidate.name) << "</td><td>" << escape(r.candidate.family) << "</td><td>" << fixed(r.medianMs, 3)
-          << "</td><td>" << fixed(plain > 0 ? r.medianMs / plain : 0.0, 3) << "</td><td>"
-          << (floor && *floor > 0 ? fixed(r.medianMs / *floor, 2) : "") << "</td><td>" << grouped(r.differingPx)
+          << "</td><td>" << fixed(report.xPlain(r), 3) << "</td><td>"
+          << (report.xFloor(r) ? fixed(*report.xFloor(r), 2) : "") << "</td><td>" << grouped(r.differingPx)
           << "</td><td>" << grouped(r.worstFramePx) << "</td><td>" << grouped(r.misses) << "</td><td>"
           << psnrText(r.worstPsnr) << "</td><td>"
           << r.worstDepth << "</td><td>" << fixed(100.0 * r.submittedShare, 1) << " %</td><td>"
           << fixed(r.stateChanges, 0) << "</td><td>" << bytesText(r.extraBytes) << "</td><td>"
-          << (r.prepareMs > 0 ? fixed(r.prepareMs, 1) : "") << "</td><td>" << (onFront(report, i) ? "&#9679;" : "")
+          << (r.prepareMs > 0 ? fixed(r.prepareMs, 1) : "") << "</td><td>" << (report.onFront(i) ? "&#9679;" : "")
           << "</td><td>";
         if (const auto t = thumbnails.find(i); t != thumbnails.end())
             s << "<a href=\"masks/" << methodSlug(r.candidate.name) << ".png\"><img class=\"mask\" src=\"data:image/png;base64,"
@@ -285,7 +273,6 @@ std::vector<std::pair<const PaperFigure*, const TradeRow*>> paperPairs(const Tra
 }
 
 std::string papersTable(const TradeReport& report) {
-    const double plain = report.rows.front().medianMs;
     std::ostringstream s;
     s << "<table id=\"papers\">\n<thead><tr><th>method</th><th>paper</th><th>table</th><th>its setting</th>"
          "<th>its baseline</th><th>its result</th><th>paper: &times; baseline</th><th>this run: &times; plain</th>"
@@ -293,7 +280,7 @@ std::string papersTable(const TradeReport& report) {
     for (const auto& [f, r] : paperPairs(report))
         s << "<tr><td>" << escape(f->method) << "</td><td>" << f->paper << "</td><td>" << escape(f->source) << "</td><td>"
           << escape(f->setting) << "</td><td>" << escape(f->baseline) << "</td><td>" << escape(f->result) << "</td><td>"
-          << fixed(f->timeRatio, 3) << "</td><td>" << fixed(plain > 0 ? r->medianMs / plain : 0.0, 3) << "</td><td>"
+          << fixed(f->timeRatio, 3) << "</td><td>" << fixed(report.xPlain(*r), 3) << "</td><td>"
           << grouped(r->differingPx) << "</td><td>" << escape(f->unit) << "</td></tr>\n";
     s << "</tbody>\n</table>\n";
     return s.str();
@@ -318,12 +305,11 @@ code{background:#f3f3f3;padding:0 3px}
 }  // namespace
 
 std::string paperFiguresCsv(const TradeReport& report) {
-    const double plain = report.rows.front().medianMs;
     std::string out = "method,paper,source,setting,baseline,result,paper_ratio,unit,x_plain,differing_px\n";
     for (const auto& [f, r] : paperPairs(report))
         out += csvField(f->method) + "," + csvField(f->paper) + "," + csvField(f->source) + "," + csvField(f->setting) +
                "," + csvField(f->baseline) + "," + csvField(f->result) + "," + csvNumber(f->timeRatio) + "," +
-               csvField(f->unit) + "," + csvNumber(plain > 0 ? r->medianMs / plain : 0.0) + "," +
+               csvField(f->unit) + "," + csvNumber(report.xPlain(*r)) + "," +
                std::to_string(r->differingPx) + "\n";
     return out;
 }

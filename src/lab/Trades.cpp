@@ -142,13 +142,25 @@ void note(TradeRow& row, const FrameStats& stats, double triangles) {
     row.stateChanges += double(c.programs + c.meshes + c.textures + c.toggles);
 }
 
-std::optional<double> floorMedian(const std::vector<TradeRow>& rows) {
+}  // namespace
+
+bool TradeReport::onFront(std::size_t row) const { return std::find(pareto.begin(), pareto.end(), row) != pareto.end(); }
+
+std::optional<double> TradeReport::floorMs() const {
     for (const TradeRow& r : rows)
         if (r.candidate.floor) return r.medianMs;
     return std::nullopt;
 }
 
-}  // namespace
+double TradeReport::xPlain(const TradeRow& row) const {
+    const double plain = rows.front().medianMs;
+    return plain > 0 ? row.medianMs / plain : 0.0;
+}
+
+std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
+    const std::optional<double> floor = floorMs();
+    return floor && *floor > 0 ? std::optional<double>(row.medianMs / *floor) : std::nullopt;
+}
 
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
@@ -244,8 +256,6 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
 
 std::string tradeReportJson(const TradeReport& report, const TradeSettings& settings) {
     using Json = nlohmann::json;
-    const double plain = report.rows.front().medianMs;
-    const std::optional<double> floorMs = floorMedian(report.rows);
     Json rows = Json::array();
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
         const TradeRow& r = report.rows[i];
@@ -254,8 +264,8 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
                         {"family", r.candidate.family},
                         {"floor", r.candidate.floor},
                         {"median_ms", r.medianMs},
-                        {"x_plain", plain > 0 ? r.medianMs / plain : 0.0},
-                        {"x_floor", floorMs && *floorMs > 0 ? Json(r.medianMs / *floorMs) : Json()},
+                        {"x_plain", report.xPlain(r)},
+                        {"x_floor", report.xFloor(r) ? Json(*report.xFloor(r)) : Json()},
                         {"differing_px", r.differingPx},
                         {"worst_frame_px", r.worstFramePx},
                         {"misses", r.misses},
@@ -267,7 +277,7 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
                         {"state_changes", r.stateChanges},
                         {"worst_shot", r.worstShot.empty() ? Json() : Json(r.worstShot)},
                         {"exact", r.exact()},
-                        {"pareto", std::find(report.pareto.begin(), report.pareto.end(), i) != report.pareto.end()},
+                        {"pareto", report.onFront(i)},
                         {"settings", settingsObject}});
     }
     const auto pick = [&report](const std::optional<std::size_t>& i) {
@@ -289,17 +299,15 @@ std::string tradeReportCsv(const TradeReport& report) {
     std::ostringstream out;
     out << "name,family,floor,median_ms,x_plain,x_floor,differing_px,worst_frame_px,worst_psnr,worst_depth,"
            "extra_bytes,prepare_ms,submitted_share,state_changes,exact,pareto,misses\n";
-    const double plain = report.rows.front().medianMs;
-    const std::optional<double> floorMs = floorMedian(report.rows);
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
         const TradeRow& r = report.rows[i];
-        const bool onFront = std::find(report.pareto.begin(), report.pareto.end(), i) != report.pareto.end();
+        const std::optional<double> xFloor = report.xFloor(r);
         out << r.candidate.name << "," << r.candidate.family << "," << (r.candidate.floor ? 1 : 0) << ","
-            << fmt(r.medianMs) << "," << fmt(plain > 0 ? r.medianMs / plain : 0.0) << ","
-            << (floorMs && *floorMs > 0 ? fmt(r.medianMs / *floorMs) : "") << "," << r.differingPx << ","
+            << fmt(r.medianMs) << "," << fmt(report.xPlain(r)) << "," << (xFloor ? fmt(*xFloor) : "") << ","
+            << r.differingPx << ","
             << r.worstFramePx << "," << (std::isinf(r.worstPsnr) ? "inf" : fmt(r.worstPsnr)) << "," << r.worstDepth
             << "," << r.extraBytes << "," << fmt(r.prepareMs) << "," << fmt(r.submittedShare) << ","
-            << fmt(r.stateChanges) << "," << (r.exact() ? 1 : 0) << "," << (onFront ? 1 : 0) << "," << r.misses
+            << fmt(r.stateChanges) << "," << (r.exact() ? 1 : 0) << "," << (report.onFront(i) ? 1 : 0) << "," << r.misses
             << "\n";
     }
     return out.str();

@@ -74,6 +74,11 @@ struct TradeReport {
     std::vector<TradeRow> rows;  // rows[0] is the plain render
     std::optional<std::size_t> bestExact, bestWithinBudget;  // indices into rows; none: the plain render
     std::vector<std::size_t> pareto;  // the rows on the front of median time against differing pixels
+
+    bool onFront(std::size_t row) const;
+    std::optional<double> floorMs() const;  // the floor's (the oracle's) median, when it was measured
+    double xPlain(const TradeRow& row) const;                // its median ÷ the plain render's (0 when that is 0)
+    std::optional<double> xFloor(const TradeRow& row) const;  // its median ÷ the floor's, when there is one
 };
 
 // The candidates for `base` (size, backend, threads, depth format, background): the plain render,
