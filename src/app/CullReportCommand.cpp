@@ -83,16 +83,10 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     CommandLine command{"cull-report", cullReportHelp(), &options};
     command.flags = {
         {"views (default: --views 32)", {
-            {"--views", "N", "N views around the scene's bounding sphere: the two poles of the map (view axis along +z "
-             "and -z), then whole-in-view, partial (less than half of the sphere inside the frustum), grazing, and "
-             "camera-inside views",
-             [&](const std::string& text) {
-                 viewsGiven = true;
-                 long long n = 0;
-                 std::string why = flag::readWhole(text, 1, 10000, n);
-                 if (why.empty()) viewCount = int(n);
-                 return why;
-             }},
+            flag::whole("--views", "N", "N views around the scene's bounding sphere: the two poles of the map (view "
+                        "axis along +z and -z), then whole-in-view, partial (less than half of the sphere inside the "
+                        "frustum), grazing, and camera-inside views",
+                        viewCount, 1, 10000, &viewsGiven),
             flag::text("--camera-path", "FILE", "a JSON list of {\"eye\":[x,y,z],\"target\":[x,y,z],\"up\":[x,y,z],"
                        "\"fov\":deg} (up and fov optional), timed in order; or the render's camera options "
                        "(--camera, --eye, ...) for one view", outputs.cameraPath),

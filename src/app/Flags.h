@@ -77,9 +77,12 @@ template <class T> struct WholeOf { using type = T; };
 template <class T> struct WholeOf<std::optional<T>> { using type = T; };
 
 // A whole number in [lo, hi] into an integer or an optional one: "'x' is not a whole number from lo to hi".
+// `given`, when set, becomes true once the flag is seen (a command whose flags exclude each other).
 template <class T>
-Flag whole(std::string name, std::string value, std::string help, T& target, long long lo, long long hi) {
-    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi](const std::string& text) {
+Flag whole(std::string name, std::string value, std::string help, T& target, long long lo, long long hi,
+           bool* given = nullptr) {
+    return {std::move(name), std::move(value), std::move(help), [&target, lo, hi, given](const std::string& text) {
+                if (given) *given = true;
                 long long v = 0;
                 std::string why = readWhole(text, lo, hi, v);
                 if (why.empty()) target = static_cast<typename WholeOf<T>::type>(v);

@@ -78,15 +78,9 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     command.flags = {{"report", {
         flag::text("-o, --output", "DIR", "the folder for index.html and the files beside it (default frugal-report; "
                    "made when missing)", dir),
-        {"--views", "N", "views around the scene's bounding sphere, as cull-report's (default 32); with --frames "
-         "A:B the frames of the sequence instead, with one camera (--camera, --eye, ...) that view alone",
-         [&](const std::string& text) {
-             viewsGiven = true;
-             long long n = 0;
-             std::string why = flag::readWhole(text, 1, 10000, n);
-             if (why.empty()) views = int(n);
-             return why;
-         }},
+        flag::whole("--views", "N", "views around the scene's bounding sphere, as cull-report's (default 32); with "
+                    "--frames A:B the frames of the sequence instead, with one camera (--camera, --eye, ...) that view "
+                    "alone", views, 1, 10000, &viewsGiven),
         flag::text("--camera-path", "FILE", "a JSON list of {\"eye\":[x,y,z],\"target\":[x,y,z],\"up\":[x,y,z],"
                    "\"fov\":deg} (up and fov optional): each entry a view; with --frames A:B entry i is frame A+i, "
                    "the last entry holds (equal entries: a still camera, where reuse pays)", options.cameraPathFile),
