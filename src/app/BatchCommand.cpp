@@ -6,7 +6,6 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <ostream>
 #include <sstream>
@@ -76,23 +75,6 @@ constexpr const char* kPlan = "plan.json";
 
 Bytes bytesOf(const std::string& text) { return Bytes(text.begin(), text.end()); }
 
-std::optional<std::string> readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-int runCommand(const std::vector<std::string>& line, std::ostream& out, std::ostream& err) {
-    const std::vector<std::string> args(line.begin() + 1, line.end());
-    const std::string& name = line.front();
-    if (name == "render") return runRender(args, out, err);
-    if (name == "cull-report") return runCullReport(args, out, err);
-    if (name == "reuse-bench") return runReuseBench(args, out, err);
-    return runReport(args, out, err);
-}
-
 // The last "error: ..." line of a command's stderr, or its last line.
 std::string errorLine(const std::string& err) {
     std::string last, lastError;
@@ -103,6 +85,17 @@ std::string errorLine(const std::string& err) {
         if (line.rfind("error: ", 0) == 0) lastError = line;
     }
     return oneLine(lastError.empty() ? last : lastError, 400);
+}
+
+// OUT/<id>/done.json, when it is one.
+std::optional<DoneRecord> doneRecord(const fs::path& jobDir) {
+    const std::optional<std::string> text = readWholeFile((jobDir / kDone).string());
+    return text ? parseDone(*text) : std::nullopt;
+}
+
+// Whether `record` is of the job as it is now: its inputs' hash and this version of frugal.
+bool current(const DoneRecord& record, const std::string& hash) {
+    return record.inputs == hash && record.version == version();
 }
 
 std::string hostName() {
@@ -148,15 +141,14 @@ Result<std::vector<double>> costsOf(const Manifest& manifest) {
 Result<std::vector<std::optional<double>>> doneSecondsOf(const Manifest& manifest, const std::string& out) {
     std::vector<std::optional<double>> seconds;
     for (const Job& job : manifest.jobs) {
-        const std::optional<std::string> text = readText(fs::path(out) / job.id / kDone);
-        const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
-        if (!record || record->version != version()) {
+        const std::optional<DoneRecord> record = doneRecord(fs::path(out) / job.id);
+        if (!record || record->version != version()) {  // a record of another version: no hash to make
             seconds.emplace_back();
             continue;
         }
         Result<std::string> hash = inputsHash(job, version());
         if (!hash) return hash.failure();
-        seconds.push_back(record->inputs == *hash ? std::optional<double>(record->seconds) : std::nullopt);
+        seconds.push_back(current(*record, *hash) ? std::optional<double>(record->seconds) : std::nullopt);
     }
     return seconds;
 }
@@ -180,7 +172,7 @@ Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& esti
 // from the manifest alone (the same in every shard).
 std::vector<int> splitOf(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
                          int count, std::string& from) {
-    if (const std::optional<std::string> text = readText(fs::path(out) / kPlan))
+    if (const std::optional<std::string> text = readWholeFile((fs::path(out) / kPlan).string()))
         if (const std::optional<Plan> plan = parsePlan(*text);
             plan && plan->manifest == manifestHash(manifest) && plan->count == count &&
             plan->shardOf.size() == manifest.jobs.size()) {
@@ -222,7 +214,7 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     std::ostringstream out, err;
     const std::vector<std::string> line = commandLine(job, dir.string());
     const auto start = std::chrono::steady_clock::now();
-    const int status = runCommand(line, out, err);
+    const int status = runCli(line, out, err);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // What the command printed, after the command line that ran it (for people; merge lists it unhashed).
     std::string log = "$ frugal";
@@ -244,29 +236,35 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     return problem;
 }
 
-// The manifest checked and its jobs' estimated costs; then `out` made, with its job list (every
-// shard writes the same one: the last rename wins, each whole).
+// The manifest checked and its jobs' estimated costs.
 struct Checked {
     Manifest manifest;
     std::vector<double> costs;
 };
-Result<Checked> check(const std::string& manifestPath, const std::string& out) {
+Result<Checked> check(const std::string& manifestPath) {
     Result<Manifest> manifest = readManifest(manifestPath);
     if (!manifest) return manifest.failure();
     Result<std::vector<double>> costs = costsOf(*manifest);
     if (!costs) return costs.failure();
+    return Checked{std::move(*manifest), std::move(*costs)};
+}
+
+// The same, then `out` made, with its job list (every shard writes the same one: the last rename
+// wins, each whole).
+Result<Checked> checkInto(const std::string& manifestPath, const std::string& out) {
+    Result<Checked> checked = check(manifestPath);
+    if (!checked) return checked;
     std::error_code ec;
     fs::create_directories(out, ec);
     if (ec) return Error{out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io};
-    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(jobListJson(*manifest, *costs)));
-        !w)
-        return w.failure();
-    return Checked{std::move(*manifest), std::move(*costs)};
+    const std::string list = jobListJson(checked->manifest, checked->costs);
+    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(list)); !w) return w.failure();
+    return checked;
 }
 
 // `--plan N`: OUT/plan.json, and what each shard is to run.
 int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
-    Result<Checked> checked = check(o.manifest, o.out);
+    Result<Checked> checked = checkInto(o.manifest, o.out);
     if (!checked) return fail(err, checked.failure());
     const Manifest* manifest = &checked->manifest;
     Result<Plan> plan = writePlan(*manifest, checked->costs, o.out, o.plan);
@@ -287,7 +285,7 @@ int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
 }
 
 int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
-    Result<Checked> checked = check(o.manifest, o.out);
+    Result<Checked> checked = checkInto(o.manifest, o.out);
     if (!checked) return fail(err, checked.failure());
     const Manifest* manifest = &checked->manifest;
     std::string splitFrom;
@@ -307,9 +305,8 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
         if (!hash) return fail(err, hash.failure());
         const std::string progress = "[" + std::to_string(k + 1) + "/" + std::to_string(mine.size()) + "] " + job.id;
         if (o.resume) {
-            const std::optional<std::string> text = readText(fs::path(o.out) / job.id / kDone);
-            const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
-            if (record && record->inputs == *hash && record->version == version()) {
+            if (const std::optional<DoneRecord> record = doneRecord(fs::path(o.out) / job.id);
+                record && current(*record, *hash)) {
                 ++skipped;
                 if (!o.quiet) err << progress << ": done before, skipped\n";
                 continue;
@@ -355,10 +352,10 @@ Result<std::string> jobIdOf(const std::string& printed) {
 }
 
 int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
-    Result<Manifest> manifest = readManifest(o.manifest);
-    if (!manifest) return fail(err, manifest.failure());
-    Result<std::vector<double>> costs = costsOf(*manifest);
-    if (!costs) return fail(err, costs.failure());
+    Result<Checked> checked = check(o.manifest);  // OUT is written only once the dry run is ruled out
+    if (!checked) return fail(err, checked.failure());
+    const Manifest* manifest = &checked->manifest;
+    const std::vector<double>* costs = &checked->costs;
     Result<std::vector<std::string>> extra = splitWords(o.sbatchArgs);
     if (!extra) return fail(err, Error{"--sbatch-args: " + extra.error(), ErrorKind::BadInput});
     const std::string dir = fs::absolute(o.out).lexically_normal().string();
@@ -410,7 +407,7 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
 
 // The job list an output folder holds.
 Result<Json> jobList(const std::string& dir) {
-    const std::optional<std::string> text = readText(fs::path(dir) / kJobList);
+    const std::optional<std::string> text = readWholeFile((fs::path(dir) / kJobList).string());
     if (!text) return Error{dir + ": no " + kJobList + " (not the output folder of a batch)", ErrorKind::BadInput};
     Json doc = Json::parse(*text, nullptr, false);
     if (!doc.is_object() || !doc.contains("jobs") || !doc["jobs"].is_array())
@@ -427,18 +424,18 @@ int runStatus(const std::string& dir, std::ostream& out, std::ostream& err) {
     for (const Json& job : (*list)["jobs"]) {
         const fs::path jobDir = fs::path(dir) / job.value("id", "");
         const double cost = job.value("cost", 0.0);
-        if (const std::optional<std::string> text = readText(jobDir / kDone); text && parseDone(*text)) {
+        if (const std::optional<DoneRecord> record = doneRecord(jobDir)) {
             ++done;
-            doneSeconds += parseDone(*text)->seconds;
+            doneSeconds += record->seconds;
             doneCost += cost;
             continue;
         }
         leftCost += cost;
-        if (const std::optional<std::string> text = readText(jobDir / kFailed)) {
+        if (const std::optional<std::string> text = readWholeFile((jobDir / kFailed).string())) {
             const Json failed = Json::parse(*text, nullptr, false);
             failures.push_back(job.value("id", "") + ": " +
                                (failed.is_object() ? failed.value("error", std::string("?")) : std::string("?")));
-        } else if (const std::optional<std::string> runningText = readText(jobDir / kRunning)) {
+        } else if (const std::optional<std::string> runningText = readWholeFile((jobDir / kRunning).string())) {
             // A record whose process is gone (killed outright) on this host: the job will not finish.
             const Json r = Json::parse(*runningText, nullptr, false);
             const bool gone = r.is_object() && r.value("host", "") == hostName() && r.contains("pid") &&
@@ -471,8 +468,7 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
     for (const Json& entry : (*list)["jobs"]) {
         const std::string id = entry.value("id", "");
         const fs::path jobDir = fs::path(dir) / id;
-        const std::optional<std::string> text = readText(jobDir / kDone);
-        const std::optional<DoneRecord> record = text ? parseDone(*text) : std::nullopt;
+        const std::optional<DoneRecord> record = doneRecord(jobDir);
         if (!record)
             return fail(err, Error{dir + ": job " + id + " is not done (run its shard again, with --resume)",
                                    ErrorKind::BadInput});
@@ -489,11 +485,11 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
         for (const std::string& name : names) {
             Json file = {{"name", name}};
             if (render && (hasExtension(name, ".png") || hasExtension(name, ".pfm") || name == "settings.json")) {
-                const std::optional<std::string> bytes = readText(jobDir / name);
+                const std::optional<std::string> bytes = readWholeFile((jobDir / name).string());
                 if (!bytes) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
                 file["fnv1a"] = fnv1a(bytes->data(), bytes->size());
             } else if (hasExtension(name, ".csv")) {
-                const std::optional<std::string> csv = readText(jobDir / name);
+                const std::optional<std::string> csv = readWholeFile((jobDir / name).string());
                 if (!csv) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
                 std::istringstream lines(*csv);
                 std::string header;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
@@ -14,6 +13,7 @@
 #include <frugal/Settings.h>
 
 #include "base/Format.h"
+#include "io/ImageIO.h"
 
 namespace frugal::batch {
 
@@ -413,13 +413,10 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
 }
 
 Result<Manifest> readManifest(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
     std::error_code ec;
-    if (!in || fs::is_directory(path, ec))
-        return Error{"manifest " + path + ": cannot read the file", ErrorKind::Io};
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseManifest(text.str(), path);
+    const std::optional<std::string> text = fs::is_directory(path, ec) ? std::nullopt : readWholeFile(path);
+    if (!text) return Error{"manifest " + path + ": cannot read the file", ErrorKind::Io};
+    return parseManifest(*text, path);
 }
 
 std::vector<std::string> outputNames(const Job& job) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <system_error>
 
 #include <fcntl.h>
@@ -308,6 +309,14 @@ Result<bool> writeTemporary(const std::string& path, const std::string& target, 
 }
 
 }  // namespace
+
+std::optional<std::string> readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
 
 Result<bool> writeFileAtomic(const std::string& path, Result<Content> bytes) {
     OutputSet set;

@@ -1,12 +1,12 @@
 // Settings files (frugal/Settings.h): the settings by their command-line names, in JSON.
 #include <charconv>
-#include <fstream>
 #include <functional>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include <frugal/Settings.h>
+
+#include "io/ImageIO.h"
 
 namespace frugal {
 namespace {
@@ -135,11 +135,9 @@ Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string&
 }
 
 Result<SettingsFile> readSettingsFile(const std::string& path, const Settings& base) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return problem(path, "cannot read the file", ErrorKind::Io);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseSettingsJson(text.str(), path, base);
+    const std::optional<std::string> text = readWholeFile(path);
+    if (!text) return problem(path, "cannot read the file", ErrorKind::Io);
+    return parseSettingsJson(*text, path, base);
 }
 
 std::string settingsJson(const Settings& s) {
