@@ -116,25 +116,19 @@ std::string jobListJson(const Manifest& manifest, const std::vector<double>& cos
            "\n";
 }
 
-// The triangles of each scene, for the estimate; a scene that does not load fails the manifest.
+// The estimated costs, each scene loaded once for its triangles; a scene that does not load fails
+// the manifest, at the line of the first job that names it.
 Result<std::vector<double>> costsOf(const Manifest& manifest) {
-    std::optional<Error> failed;
-    std::map<std::string, int> lineOf;
-    for (const Job& job : manifest.jobs) lineOf.emplace(job.scene, job.line);
-    const auto triangles = [&](const std::string& scene) -> std::uint64_t {
-        if (failed) return 0;
-        Result<Scene> loaded = loadScene(scene);
-        if (!loaded) {
-            failed = Error{"manifest " + manifest.path + " line " + std::to_string(lineOf[scene]) + ": scene: " +
-                               loaded.error(),
-                           ErrorKind::BadInput};
-            return 0;
-        }
-        return loaded->triangleCount();
-    };
-    std::vector<double> costs = estimateCosts(manifest, triangles);
-    if (failed) return *failed;
-    return costs;
+    std::map<std::string, std::uint64_t> triangles;
+    for (const Job& job : manifest.jobs) {
+        if (triangles.count(job.scene)) continue;
+        Result<Scene> loaded = loadScene(job.scene);
+        if (!loaded)
+            return Error{"manifest " + manifest.path + " line " + std::to_string(job.line) + ": scene: " + loaded.error(),
+                         ErrorKind::BadInput};
+        triangles[job.scene] = loaded->triangleCount();
+    }
+    return estimateCosts(manifest, triangles);
 }
 
 // Per job, its seconds when OUT/<id>/done.json is there with the inputs of now.

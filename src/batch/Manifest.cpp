@@ -383,7 +383,6 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
             keyLines[k] = lines.of(at + "/" + k);
         }
         Job job;
-        job.index = int(i);
         job.line = lines.of(at);
         std::string number = std::to_string(i);
         job.id = "job-" + std::string(width - number.size(), '0') + number;
@@ -417,21 +416,6 @@ Result<Manifest> readManifest(const std::string& path) {
     const std::optional<std::string> text = fs::is_directory(path, ec) ? std::nullopt : readWholeFile(path);
     if (!text) return Error{"manifest " + path + ": cannot read the file", ErrorKind::Io};
     return parseManifest(*text, path);
-}
-
-std::vector<std::string> outputNames(const Job& job) {
-    switch (job.command) {
-    case Command::Render: {
-        std::vector<std::string> names;
-        for (const std::string& o : job.outputs)
-            names.push_back(o == "color" ? "color" : o == "depth" ? "depth" : o == "ids" ? "ids" : "render.json");
-        return names;
-    }
-    case Command::CullReport: return {"cull-report.json", "cull-report.csv"};
-    case Command::ReuseBench: return {"reuse-bench.json", "reuse-bench.csv"};
-    case Command::Report: return {"index.html", "report.json", "report.csv", "papers.csv", "settings.json"};
-    }
-    return {};
 }
 
 std::vector<std::string> commandLine(const Job& job, const std::string& jobDir) {

@@ -27,9 +27,9 @@ const char* toString(Command command);
 struct Job {
     std::string id;           // [A-Za-z0-9._-], 1 to 100, not starting with '.'; default "job-<index>"
     Command command = Command::Render;
-    int index = 0;            // in the manifest
     int line = 0;             // of the job's object in the manifest
-    // The command's arguments but its outputs: the scene, then flags (paths made absolute).
+    // The command's arguments but its outputs: the scene, then flags (paths joined to the manifest's
+    // folder, so that they name the same files from where frugal runs).
     std::vector<std::string> args;
     // An inline settings object, as the settings file written beside the job's outputs (render only).
     std::string settingsText;
@@ -56,9 +56,5 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path);
 
 // The command line that runs `job` with its outputs in `jobDir` (the command's name first).
 std::vector<std::string> commandLine(const Job& job, const std::string& jobDir);
-
-// The names of the files a job writes into its folder, as commandLine names them (a sequence's
-// images carry frame numbers: these are the prefixes).
-std::vector<std::string> outputNames(const Job& job);
 
 }  // namespace frugal::batch

@@ -12,6 +12,8 @@ namespace frugal::batch {
 
 namespace {
 
+constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;  // FNV-1a's 64-bit offset basis
+
 std::uint64_t fnvStep(std::uint64_t h, const void* data, std::size_t size) {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < size; ++i) {
@@ -29,7 +31,7 @@ std::string hex(std::uint64_t h) {
 
 }  // namespace
 
-std::string fnv1a(const void* data, std::size_t size, std::uint64_t seed) { return hex(fnvStep(seed, data, size)); }
+std::string fnv1a(const void* data, std::size_t size) { return hex(fnvStep(kFnvOffset, data, size)); }
 
 Result<Shard> parseShard(const std::string& text) {
     long long i = -1, n = -1;
@@ -59,15 +61,12 @@ std::vector<int> assignShards(const std::vector<double>& costs, int shards) {
     return shardOf;
 }
 
-std::vector<double> estimateCosts(const Manifest& manifest,
-                                  const std::function<std::uint64_t(const std::string& scene)>& triangles) {
-    std::map<std::string, std::uint64_t> known;
+std::vector<double> estimateCosts(const Manifest& manifest, const std::map<std::string, std::uint64_t>& triangles) {
     std::vector<double> costs;
     for (const Job& job : manifest.jobs) {
-        auto found = known.find(job.scene);
-        if (found == known.end()) found = known.emplace(job.scene, triangles(job.scene)).first;
         // A scene with no triangles still costs its frames' clears and writes.
-        costs.push_back(double(std::max<std::uint64_t>(found->second, 1)) * double(job.frames) * double(job.pixels));
+        const std::uint64_t t = std::max<std::uint64_t>(triangles.at(job.scene), 1);
+        costs.push_back(double(t) * double(job.frames) * double(job.pixels));
     }
     return costs;
 }
@@ -126,7 +125,7 @@ std::optional<Plan> parsePlan(const std::string& text) {
 }
 
 std::string manifestHash(const Manifest& manifest) {
-    std::uint64_t h = 14695981039346656037ull;
+    std::uint64_t h = kFnvOffset;
     for (const Job& job : manifest.jobs) {
         h = fnvStep(h, job.canonical.data(), job.canonical.size() + 1);
         h = fnvStep(h, job.settingsText.data(), job.settingsText.size() + 1);
@@ -135,7 +134,7 @@ std::string manifestHash(const Manifest& manifest) {
 }
 
 Result<std::string> inputsHash(const Job& job, const std::string& version) {
-    std::uint64_t h = 14695981039346656037ull;
+    std::uint64_t h = kFnvOffset;
     const auto add = [&h](const std::string& s) { h = fnvStep(h, s.data(), s.size() + 1); };  // with its NUL
     add(job.canonical);
     add(job.settingsText);

@@ -11,7 +11,7 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,9 +31,8 @@ Result<Shard> parseShard(const std::string& text);
 // Costs by job (any unit, compared only among themselves) -> the shard of each job.
 std::vector<int> assignShards(const std::vector<double>& costs, int shards);
 
-// triangles × frames × pixels, `triangles(scene)` asked once a scene.
-std::vector<double> estimateCosts(const Manifest& manifest,
-                                  const std::function<std::uint64_t(const std::string& scene)>& triangles);
+// triangles × frames × pixels; `triangles` has every job's scene.
+std::vector<double> estimateCosts(const Manifest& manifest, const std::map<std::string, std::uint64_t>& triangles);
 
 // The estimates corrected by what finished jobs measured (`doneSeconds`: per job, its seconds when
 // it is done with the inputs of now): a job done costs 0, as it will be skipped; the others' costs
@@ -71,6 +70,6 @@ std::string doneJson(const DoneRecord& record);
 std::optional<DoneRecord> parseDone(const std::string& text);
 
 // 64-bit FNV-1a of bytes, as 16 hex digits.
-std::string fnv1a(const void* data, std::size_t size, std::uint64_t seed = 14695981039346656037ull);
+std::string fnv1a(const void* data, std::size_t size);
 
 }  // namespace frugal::batch
