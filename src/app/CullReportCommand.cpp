@@ -36,7 +36,7 @@ struct Outputs : ReportPaths {
 
 // --methods A,B,...: the methods, each once, in the order given.
 Flag methodsFlag(std::vector<Cull>& methods) {
-    return {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, oracle (default all)",
+    return {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, occlusion, oracle (default all)",
             [&methods](const std::string& list) -> std::string {
                 methods.clear();
                 std::stringstream items(list);

@@ -9,9 +9,12 @@ std::vector<Flag> cullFlags(CullOptions& options, bool withMethod) {
     if (withMethod)
         flags.push_back(flag::choice(
             "--cull", "METHOD", "a method",
-            "none (default), sphere, backface, cones, paper, conservative or oracle. conservative never drops a "
-            "triangle that owns a pixel; paper reproduces paper 002 and misses some; oracle draws exactly the visible "
-            "set found by an id pass (a lower bound, not a shortcut). See 'frugal cull-report'.",
+            "none (default), sphere, backface, cones, paper, conservative, occlusion or oracle. conservative never "
+            "drops a triangle that owns a pixel; occlusion is conservative less what is hidden behind what is drawn "
+            "anyway and, on llvmpipe's rules, the triangles that own no pixel centre, found on the CPU (the same "
+            "pixels; it skips itself where it does not pay; not with --reuse); paper reproduces paper 002 and misses "
+            "some; oracle draws exactly the visible set found by an id pass (a lower bound, not a shortcut). See "
+            "'frugal cull-report' and docs/occlusion.md.",
             options.method, kCulls));
     flags.push_back({"--cull-bins", "TxP", "bins of the spherical barycenter map: T polar by P azimuthal (default 16x32)",
                      [&options](const std::string& text) -> std::string {

@@ -145,6 +145,9 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
         const Cull method = r.cull.method.value_or(Cull::None);
         if (r.reuse.enabled && method == Cull::Oracle)
             cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+        else if (r.reuse.enabled && method == Cull::Occlusion)
+            cursor.fail("--reuse with --cull occlusion: a static part hidden behind a moving one would be missing from "
+                        "the static image once it moves away; use --cull conservative with --reuse");
         else if (r.hsr != hsr::Mode::ZBuffer && r.reuse.enabled)
             cursor.fail(std::string("--hsr ") + toString(r.hsr) +
                         " with --reuse: reuse redraws what moved with the z-buffer over the static image; use one");

@@ -55,7 +55,7 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
     CommandLine command{"reuse-bench", reuseBenchHelp(), &options};
     std::vector<Flag> culling = cullFlags(a.cull, true);
     culling[0].help = "full and reuse frames draw that method's list (none, sphere, backface, cones, paper or "
-                      "conservative; not oracle)";
+                      "conservative; not occlusion or oracle)";
     command.flags = {
         {"frames and timing", {
             flag::frames("--frames", "the frames, inclusive (required; A has no predecessor: it is a rebuild)",
@@ -82,6 +82,9 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
             cursor.fail("--frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)");
         else if (a.cull.method == Cull::Oracle)
             cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+        else if (a.cull.method == Cull::Occlusion)
+            cursor.fail("--cull occlusion: a static part hidden behind a moving one would be missing from the static "
+                        "image once it moves away; use --cull conservative with reuse");
         else if (const std::string problem = plotProblem(a.outputs); !problem.empty())
             cursor.fail(problem);
     };

@@ -202,6 +202,20 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
     out.add(runStart, runLength);
 }
 
+// Conservative culling of one cluster: dropped whole when its box is outside the frustum or its
+// cone faces away, kept whole when inside and facing, tested triangle by triangle otherwise.
+void conservativeCluster(const Mesh& mesh, const MeshMap& map, const Cluster& c, const InstanceView& iv,
+                         Outcodes& vertices, bool singleSided, RangeList& out) {
+    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
+    if (side == Side::Outside) return;
+    if (singleSided && !c.hasDegenerate && iv.coneAway(c, false)) return;
+    const bool allFacing = !singleSided || iv.coneAway(c, true);
+    if (side == Side::Inside && allFacing)
+        out.add(c.first, c.count);
+    else
+        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided && !allFacing, out);
+}
+
 // Adds every non-empty bin of `map` one of whose sample directions (`samples`, kBinSamples a bin)
 // satisfies `take`.
 template <class Take>
@@ -284,10 +298,50 @@ SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::v
     return classifySphere(maps_[std::size_t(in.mesh)].sphere, world[std::size_t(in.node)], view);
 }
 
+DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
+                                    const OcclusionTarget& target) const {
+    // The conservative plan, cluster by cluster, then what the occlusion pass leaves of it.
+    std::vector<KeptCluster> kept;
+    std::vector<IndexRange> ranges;
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        if (mesh.triangleCount() == 0) continue;
+        const MeshMap& map = maps_[std::size_t(instance.mesh)];
+        const InstanceView iv(world[std::size_t(instance.node)], view);
+        Outcodes vertices(mesh, iv.mvp);
+        const bool singleSided = isSingleSided(scene, mesh);
+        for (std::size_t c = 0; c < map.clusters.size(); ++c) {
+            RangeList out;
+            conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, out);
+            if (out.ranges.empty()) continue;
+            kept.push_back({std::uint32_t(i), std::uint32_t(c), std::uint32_t(ranges.size()),
+                            std::uint32_t(out.ranges.size())});
+            ranges.insert(ranges.end(), out.ranges.begin(), out.ranges.end());
+        }
+    }
+    std::vector<KeptCluster> left;
+    std::vector<IndexRange> leftRanges;
+    occlusion_.run(scene, maps_, world, view, target, kept, ranges, left, leftRanges);
+    DrawList list;
+    for (std::size_t k = 0; k < left.size();) {
+        const std::uint32_t instance = left[k].instance;
+        RangeList out;
+        for (; k < left.size() && left[k].instance == instance; ++k)
+            for (std::uint32_t r = 0; r < left[k].rangeCount; ++r) {
+                const IndexRange& range = leftRanges[left[k].firstRange + r];
+                out.add(range.firstTriangle, range.triangleCount);
+            }
+        if (!out.ranges.empty()) list.push_back(DrawCommand{int(instance), std::move(out.ranges)});
+    }
+    return list;
+}
+
 DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world,
-                           const View& view) const {
+                           const View& view, const OcclusionTarget& target) const {
     DrawList list;
     if (method == Cull::None || method == Cull::Oracle) return fullDrawList(scene);
+    if (method == Cull::Occlusion) return cullOcclusion(scene, world, view, target);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
@@ -323,17 +377,7 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
             case Cull::Conservative: {
                 const InstanceView iv(model, view);
                 Outcodes vertices(mesh, iv.mvp);
-                for (const Cluster& c : map.clusters) {
-                    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
-                    if (side == Side::Outside) continue;
-                    if (singleSided && !c.hasDegenerate && iv.coneAway(c, false)) continue;
-                    const bool allFacing = !singleSided || iv.coneAway(c, true);
-                    if (side == Side::Inside && allFacing)
-                        out.add(c.first, c.count);
-                    else
-                        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside,
-                                      singleSided && !allFacing, out);
-                }
+                for (const Cluster& c : map.clusters) conservativeCluster(mesh, map, c, iv, vertices, singleSided, out);
                 break;
             }
 
@@ -386,6 +430,7 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
             }
 
             case Cull::None:
+            case Cull::Occlusion:
             case Cull::Oracle:
                 break;
         }

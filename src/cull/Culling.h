@@ -14,12 +14,18 @@
 //   conservative  never drops a triangle that can own a pixel: clusters are culled whole when their
 //                 box is outside the frustum or their cone faces away, kept whole when inside and
 //                 facing, and tested triangle by triangle otherwise (the same exact tests as backface).
+//   occlusion     conservative's clusters less those hidden behind others that are drawn anyway,
+//                 tested against a depth buffer of occluders rasterized on the CPU (cull/Occlusion.h);
+//                 exact like conservative. It needs the target (cull's `target`); without one it
+//                 is conservative.
 //   oracle        exactly the frame's really visible set; it needs the frame's id image, so it is not
 //                 a plan made here (renderer/Oracle.h: makeOracle). cull() gives the full list.
 // Facing follows GL: a triangle of a single-sided material is drawn when counter-clockwise in window
 // space; a mirroring transform (negative determinant) swaps the sides. Every "drop" decision has a
 // margin of float rounding on its side, so an undecided triangle (edge-on, zero area, not a number) is
-// kept. None of the methods uses history: each view is culled from scratch.
+// kept. None of the methods uses history: each view is culled from scratch. (occlusion's policy of
+// skipping itself after passes that did not pay looks back at earlier calls; that changes its plan,
+// never the image.)
 #pragma once
 
 #include <optional>
@@ -32,6 +38,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
+#include "cull/Occlusion.h"
 #include "cull/SphereMap.h"
 #include "render/Camera.h"
 #include "render/Plan.h"
@@ -49,7 +56,12 @@ public:
 
     // The plan of `method` for one frame: node transforms `world`, camera `view` (render/Camera.h).
     // Instances in scene order; instances with nothing to draw are left out.
-    DrawList cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world, const View& view) const;
+    // `target`: the size and rules of the target drawn into (occlusion only).
+    DrawList cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
+                  const OcclusionTarget& target = {}) const;
+
+    // What the last occlusion cull did (cull(Cull::Occlusion, ...)), and its buffer as an image.
+    const OcclusionCuller& occlusion() const { return occlusion_; }
 
     // How the paper method sees instance `instance` in this frame.
     SphereClass classify(const Scene& scene, int instance, const std::vector<glm::mat4>& world,
@@ -59,10 +71,16 @@ public:
     PrepStats totals() const;  // summed over meshes
 
 private:
+    DrawList cullOcclusion(const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
+                           const OcclusionTarget& target) const;
+
     std::vector<MeshMap> maps_;
     // Per bin: sample directions of the bin's cell (unit vectors, kBinSamples each); the same for
     // every mesh, since they depend on the bin counts only.
     std::vector<glm::vec3> binSamples_;
+    // The occlusion pass's buffers, kept from view to view (cull is const: one culler serves one
+    // renderer, which calls it from one thread at a time).
+    mutable OcclusionCuller occlusion_;
 };
 
 // Triangles a list submits, counted as the backends execute ranges (render/IndexRanges.h).

@@ -107,6 +107,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     // Timed rounds: the methods asked for, then the baselines (none is the full draw and oracle the
     // oracle's: their rows take the baselines' times).
     std::vector<Timing> timings(methods.size());
+    const OcclusionTarget occlusionTarget = frugal::occlusionTarget(backend, s.width, s.height);
     Timing fullTiming, cullfaceTiming, oracleTiming;
     for (int round = -1; round < s_.repeat; ++round) {  // round -1: warm-up, untimed
         const bool record = round >= 0;
@@ -114,7 +115,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
             Timing& t = timings[m];
             if (methods[m] == Cull::None || methods[m] == Cull::Oracle) continue;
             const auto t0 = Clock::now();
-            t.list = culler_.cull(methods[m], scene_, world, setup_->view);
+            t.list = culler_.cull(methods[m], scene_, world, setup_->view, occlusionTarget);
             const double cullMs = msSince(t0);
             if (record) t.cull.push_back(cullMs);
             frame(renderer, &t.list, t, record);

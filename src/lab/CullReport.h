@@ -11,7 +11,7 @@
 namespace frugal {
 
 struct MethodResult {
-    std::string method;  // none, sphere, backface, cones, paper, conservative, oracle
+    std::string method;  // none, sphere, backface, cones, paper, conservative, occlusion, oracle
     std::size_t tos = 0, pvs = 0, rvs = 0, misses = 0, waste = 0;
     std::size_t pixelsDiffering = 0;   // colour, against the full render of the view, tolerance 0
     double cullMs = 0.0;               // CPU time to make the plan (median of the repeats)

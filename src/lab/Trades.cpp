@@ -164,7 +164,7 @@ std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
 
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
-    for (const Cull cull : {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Paper, Cull::Conservative})
+    for (const Cull cull : {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Paper, Cull::Conservative, Cull::Occlusion})
         out.push_back(with(base, std::string("cull ") + toString(cull), "cull", [cull](Settings& s) { s.cull = cull; }));
     out.push_back(with(base, "cull oracle", "floor", [](Settings& s) { s.cull = Cull::Oracle; }, true));
     for (const Order order : {Order::Key, Order::Greedy})
@@ -177,6 +177,10 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
                                [interp](Settings& s) { s.interp = interp; }));
     out.push_back(with(base, "cull conservative + order key", "combination", [](Settings& s) {
         s.cull = Cull::Conservative;
+        s.order = Order::Key;
+    }));
+    out.push_back(with(base, "cull occlusion + order key", "combination", [](Settings& s) {
+        s.cull = Cull::Occlusion;
         s.order = Order::Key;
     }));
     if (sequence) {

@@ -116,6 +116,13 @@ public:
     virtual std::string name() const = 0;      // "egl-surfaceless", "osmesa", "software", ...
     virtual std::string renderer() const = 0;  // GL_RENDERER / GL_VERSION, or a description
 
+    // Whether it rasterizes by llvmpipe's rules (software/Rasterizer.h): llvmpipe itself, or the
+    // software backend. Plans that depend on which pixels a triangle covers (occlusion culling's
+    // per-triangle tests) are exact only then.
+    bool followsLlvmpipeRules() const {
+        return name() == "software" || renderer().find("llvmpipe") != std::string::npos;
+    }
+
     // Largest width or height createTarget accepts (GL_MAX_RENDERBUFFER_SIZE and GL_MAX_VIEWPORT_DIMS).
     virtual int maxTargetSize() const = 0;
     // Largest width or height uploadTexture accepts (GL_MAX_TEXTURE_SIZE).

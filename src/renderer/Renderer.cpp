@@ -41,6 +41,9 @@ std::optional<Error> settingsProblem(const Settings& s) {
                        std::to_string(s.reuseSettings.cell) + ": a grain of 0 or more, a cell of 1 to 4096 pixels");
     if (s.reuse && s.cull == Cull::Oracle)
         return problem("reuse with cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
+    if (s.reuse && s.cull == Cull::Occlusion)
+        return problem("reuse with cull occlusion: a static part hidden behind a moving one would be missing from the "
+                       "static image once it moves away; use cull conservative with reuse");
     if (s.hsr != Hsr::ZBuffer && s.reuse)
         return problem(std::string("hsr ") + toString(s.hsr) +
                        " with reuse: reuse redraws what moved with the z-buffer over the static image; use one");
@@ -206,7 +209,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         t0 = Clock::now();
         oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
     } else if (culler) {
-        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view);
+        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view, occlusionTarget(*backend, s.width, s.height));
         const double cullMs = msBetween(t0, Clock::now());
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();

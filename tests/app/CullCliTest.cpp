@@ -25,7 +25,7 @@ using test::filesIn;
 using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
-const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, oracle";
+const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, occlusion, oracle";
 
 // The number of distinct triangle ids (background 0 excluded) in frugal's id PNG.
 std::size_t distinctIds(const fs::path& path) {

@@ -34,9 +34,9 @@ using test::filesIn;
 using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
-const std::vector<std::string> kMethods = {"none", "sphere", "backface", "cones", "paper", "conservative", "oracle"};
+const std::vector<std::string> kMethods = {"none", "sphere", "backface", "cones", "paper", "conservative", "occlusion", "oracle"};
 // Methods that never drop a triangle owning a pixel (src/cull/Culling.h).
-const std::set<std::string> kConservative = {"sphere", "backface", "cones", "conservative"};
+const std::set<std::string> kConservative = {"sphere", "backface", "cones", "conservative", "occlusion"};
 const std::vector<std::string> kMethodKeys = {"method",
                                               "tos",
                                               "pvs",

@@ -51,12 +51,12 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     ASSERT_EQ(run.status, 0) << run.err;
     ASSERT_EQ(run.out.substr(0, 15), "fastest exact: ") << run.out;
     EXPECT_NE(run.out.find("\nfastest within 50 px a frame: "), std::string::npos) << run.out;
-    EXPECT_NE(run.err.find("report: 12 candidates on "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("report: 14 candidates on "), std::string::npos) << run.err;
 
     const nlohmann::json report = test::readJson(dir / "out" / "report.json");
     EXPECT_EQ(report["shots"], 4);
     EXPECT_EQ(report["rows"][0]["name"], "plain");
-    EXPECT_EQ(report["rows"].size(), 12u);
+    EXPECT_EQ(report["rows"].size(), 14u);
     for (const nlohmann::json& r : report["rows"]) {
         EXPECT_EQ(r["exact"], r["differing_px"] == 0 && r["worst_depth"] == 0) << r["name"];
         EXPECT_LE(r["worst_frame_px"].get<std::uint64_t>(), r["differing_px"].get<std::uint64_t>()) << r["name"];
@@ -93,7 +93,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(nlohmann::json::parse(readAll(dir / "out" / "settings.json")),
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
     const std::string csv = readAll(dir / "out" / "report.csv");
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 13) << "a header and a line a row";
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 15) << "a header and a line a row";
 
     // The page: this run's figures, a mask for each inexact method (inline, and full size beside it).
     const std::string html = readAll(dir / "out" / "index.html");

@@ -5,7 +5,8 @@
 // What a frame check proves, for each method:
 //   none, oracle                  the plan is fullDrawList;
 //   sphere, backface, cones,      misses == 0 (RVS ⊆ PVS), and the plan rendered is the full render,
-//   conservative                  colour and ids byte for byte;
+//   conservative, occlusion       colour, depth and ids byte for byte (occlusion runs on every frame here:
+//                                 target(), not its pays-or-skips policy);
 //   paper                         the plan is well-formed (PVS ⊆ TOS); misses are counted, not judged.
 // Every plan: instances in scene order, each once, ranges non-empty, ascending, disjoint and inside
 // the instance's mesh; submittedTriangles agrees with the drawn set.
@@ -34,7 +35,7 @@
 namespace frugal::test {
 
 // The methods that must never miss a visible triangle.
-inline constexpr Cull kNeverMiss[] = {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Conservative};
+inline constexpr Cull kNeverMiss[] = {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Conservative, Cull::Occlusion};
 
 inline const glm::vec4 kBackground{0.1f, 0.15f, 0.2f, 1.0f};
 
@@ -42,10 +43,11 @@ inline const glm::vec4 kBackground{0.1f, 0.15f, 0.2f, 1.0f};
 // movable: the renderer keeps a pointer to `scene`.
 class CullBench {
 public:
-    CullBench(Scene s, int w, int h, const MapParams& params = {}) : scene(std::move(s)), width(w), height(h) {
+    CullBench(Scene s, int w, int h, const MapParams& params = {}, DepthFormat format = DepthFormat::D24)
+        : scene(std::move(s)), width(w), height(h), depthFormat(format) {
         culler = SceneCuller::prepare(scene, params);  // reorders the meshes: before the upload
         backend = makeSoftwareBackend();
-        target = backend->createTarget(width, height);
+        target = backend->createTarget(width, height, format);
         EXPECT_NE(target, kNoHandle);
         Result<SceneRenderer> made = SceneRenderer::create(*backend, scene);
         if (made)
@@ -62,6 +64,13 @@ public:
 
     bool canRender() const { return renderer.has_value() && target != kNoHandle; }
 
+    // The occlusion pass's target: the software backend's rules, run on every frame.
+    OcclusionTarget occlusionTarget() const {
+        OcclusionTarget t = frugal::occlusionTarget(*backend, width, height);
+        t.adaptive = false;
+        return t;
+    }
+
     Scene scene;
     SceneCuller culler;
     std::unique_ptr<Backend> backend;
@@ -69,6 +78,7 @@ public:
     std::optional<SceneRenderer> renderer;
     std::string uploadError;
     int width, height;
+    DepthFormat depthFormat;
 };
 
 // What one method did over the frames checked.
@@ -190,6 +200,7 @@ inline std::size_t differingPixels(const Buffers& a, const Buffers& b, std::stri
     const std::size_t pixels = std::min(a.pixelCount(), b.pixelCount());
     for (std::size_t p = 0; p < pixels; ++p) {
         bool same = a.ids.size() != pixels || b.ids.size() != pixels || a.ids[p] == b.ids[p];
+        same = same && (a.depth.size() != pixels || b.depth.size() != pixels || a.depth[p] == b.depth[p]);
         for (int k = 0; k < 4; ++k) same = same && a.rgba[4 * p + std::size_t(k)] == b.rgba[4 * p + std::size_t(k)];
         if (!same && differ++ == 0) {
             std::ostringstream out;
@@ -210,7 +221,8 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
     const DrawList full = fullDrawList(scene);
     for (Cull method : kCulls) {
         DrawList list;
-        EXPECT_NO_THROW(list = bench.culler.cull(method, scene, setup.world, setup.view)) << toString(method);
+        EXPECT_NO_THROW(list = bench.culler.cull(method, scene, setup.world, setup.view, bench.occlusionTarget()))
+            << toString(method);
         expectWellFormed(scene, list, std::string(toString(method)) + " plan");
         if (method == Cull::None || method == Cull::Oracle) {
             EXPECT_TRUE(sameList(list, full)) << toString(method) << " must give the full list";
@@ -250,7 +262,8 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
 }
 
 inline FrameResult checkFrame(CullBench& bench, const Camera& camera, const std::string& label, double time = 0.0) {
-    Result<FrameSetup> setup = setUpFrame(bench.scene, camera, time, bench.width, bench.height, true);
+    Result<FrameSetup> setup =
+        setUpFrame(bench.scene, camera, time, bench.width, bench.height, true, bench.depthFormat);
     EXPECT_TRUE(setup) << label << ": " << setup.error();
     if (!setup) return {};
     return checkSetup(bench, *setup, label);

@@ -1,0 +1,616 @@
+// Occlusion culling on the CPU: see Occlusion.h for the method and what makes it exact.
+#include "cull/Occlusion.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "software/Kernels.h"
+#include "software/Rasterizer.h"
+#include "software/ThreadPool.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+// The vertex transform below reproduces the software backend's (Kernels.inl transform): every
+// product and sum rounded on its own, the viewport fused only where the CPU fuses it.
+#pragma GCC optimize("fp-contract=off")
+
+namespace frugal {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kBlockLog2 = 3;  // 8 × 8 pixel blocks keep the farthest occluder depth of their pixels
+constexpr int kBlock = 1 << kBlockLog2;
+constexpr float kOpen = std::numeric_limits<float>::infinity();  // no occluder at this pixel
+constexpr double kUnit = 1.0 / 16777216.0;                       // 2^-24: float's unit roundoff
+
+// Below this many submitted triangles the pass costs more than the draw it could save (measured on
+// llvmpipe: docs/occlusion.md).
+constexpr std::size_t kMinTriangles = 4096;
+// What a submitted triangle costs the draw (its vertices, clipping, setup and binning; the pixels
+// it does not own cost nothing), measured with three bunnies at 800 × 600 on 2 cores: the draw
+// time of the conservative plan less the oracle's, over the triangles between them
+// (docs/occlusion.md). A GPU takes a triangle in about a nanosecond: the pass never pays there.
+constexpr double kLlvmpipeNsPerTriangle = 110.0;
+constexpr double kSoftwareNsPerTriangle = 30.0;
+constexpr double kGpuNsPerTriangle = 1.0;
+// After a pass that did not pay, the next 1, 2, 4, ... (at most kMaxBackOff) calls skip it.
+constexpr int kMaxBackOff = 16;
+
+// A vertex as the occluder pass needs it: window position and clip mask (0xFF: not yet transformed).
+struct WindowVertex {
+    float x = 0, y = 0, z = 0;
+    // Fixed-point position as setup computes it (Rasterizer.h 3.: round_even((x − 0.5)·256)); only
+    // meaningful when `fixed`, i.e. |(x − 0.5)·256| < 2^26.
+    std::int32_t fx = 0, fy = 0;
+    std::uint8_t mask = 0xFF;
+    bool fixed = false;
+};
+
+// ⌊a / b⌋ for b > 0.
+inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// Round to nearest even as CVTSS2SI does (|f| < 2^26 here).
+inline std::int32_t roundEven(float f) {
+#if defined(__x86_64__)
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
+    return std::int32_t(std::nearbyint(f));
+#endif
+}
+
+// A cluster in the order of the pass.
+struct Item {
+    float nearest = 0;           // far-ness bound of the box's nearest point (less every margin)
+    std::int32_t x0, y0, x1, y1;  // pixels it may reach, inclusive; x0 > x1: none
+    std::uint32_t kept = 0;      // index into the kept clusters
+    bool testable = false;       // false: reaches the near plane or is not finite, always kept
+};
+
+// What every band's walk reads.
+struct Walk {
+    const Scene& scene;
+    const std::vector<MeshMap>& maps;
+    const std::vector<glm::mat4>& world;
+    const glm::mat4& viewProjection;
+    const std::vector<KeptCluster>& kept;
+    const std::vector<IndexRange>& ranges;
+};
+
+// Rows [y0, y1] of the buffer (whole 8-row blocks), walked by one thread.
+struct Band {
+    int y0 = 0, y1 = -1;
+    std::vector<std::uint8_t> seen;     // per triangle slot: 1 when this band may see it (or must keep it)
+    std::vector<WindowVertex> window;   // the current cluster's vertices, transformed
+};
+
+}  // namespace
+
+struct OcclusionCuller::State {
+    OcclusionStats stats;
+    int width = 0, height = 0, blocksX = 0, blocksY = 0;
+    bool halfZ = false;
+    sw::Viewport viewport;
+    bool fused = sw::cpuHasFma();
+    bool exactRules = true;  // the draw rasterizes by llvmpipe's rules: triangles are tested one by one
+    int backOff = 0, skipLeft = 0;  // calls to skip after passes that did not pay
+    // Far-ness: window depth for D24 (0 near), its negation for D32F (reversed: 1 near), so that
+    // "nearer" is "smaller" for both. depth: per pixel (row 0 at the bottom, window y), an upper
+    // bound of what the frame's depth buffer ends with; blockMax: per block, the farthest of those.
+    std::vector<float> depth, blockMax;
+    std::vector<std::uint8_t> blockDirty;
+    // Per mesh, its clusters' vertices side by side (built on first use): a cluster's triangles then
+    // read a few hundred bytes in a row, not vertices scattered over the mesh.
+    struct ClusterVertices {
+        bool built = false;
+        std::vector<glm::vec3> positions;        // cluster by cluster
+        std::vector<std::uint32_t> firstVertex;  // per cluster, and one past the last
+        std::vector<std::uint16_t> corners;      // per triangle of the mesh: 3 indices into its cluster's vertices
+    };
+    std::vector<ClusterVertices> meshes;
+    std::vector<std::uint32_t> scratch;    // vertex → index in the cluster being built
+    std::vector<Item> items;               // the kept clusters, nearest first
+    std::vector<std::uint32_t> slots;      // per item: its first triangle slot (and one past the last)
+    std::vector<Band> bands;
+    std::unique_ptr<sw::ThreadPool> threads;
+
+    sw::ThreadPool& pool() {
+        if (!threads) threads = std::make_unique<sw::ThreadPool>(int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
+        return *threads;
+    }
+
+    // One band per thread, split where the clusters' triangles (by the middle row of their
+    // rectangles) are shared out evenly, on block boundaries.
+    void splitBands(const std::vector<KeptCluster>& kept, const std::vector<IndexRange>& ranges) {
+        (void)kept;
+        (void)ranges;
+        const int count = std::min(pool().size(), blocksY);
+        bands.resize(std::size_t(count));
+        std::vector<double> rowWeight(std::size_t(blocksY), 0.0);
+        double total = 0.0;
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const Item& it = items[i];
+            const double n = double(slots[i + 1] - slots[i]);
+            const int row = it.testable && it.y0 <= it.y1 ? ((it.y0 + it.y1) / 2) >> kBlockLog2 : blocksY / 2;
+            rowWeight[std::size_t(std::clamp(row, 0, blocksY - 1))] += n;
+            total += n;
+        }
+        int row = 0;
+        double sum = 0.0;
+        for (int b = 0; b < count; ++b) {
+            Band& band = bands[std::size_t(b)];
+            band.y0 = row * kBlock;
+            const double goal = total * double(b + 1) / double(count);
+            // At least one block row each, and room left for the bands after this one.
+            int end = row + 1;
+            sum += rowWeight[std::size_t(row)];
+            while (end < blocksY - (count - 1 - b) && sum < goal) sum += rowWeight[std::size_t(end++)];
+            if (b == count - 1) end = blocksY;
+            band.y1 = std::min(end * kBlock, height) - 1;
+            row = end;
+            band.seen.assign(slots.back(), 0);
+        }
+    }
+
+    // Walks every item for `band`: a testable cluster whose rectangle misses the band, or is hidden
+    // within it, is skipped (its flags stay 0); otherwise each triangle is tested (and occludes) on
+    // the band's rows. Equal to one walk over the whole screen: a band sees a triangle exactly when
+    // the whole screen does at some pixel of the band, and a triangle that a band does not see
+    // writes nothing there (every pixel it covers already holds something nearer).
+    void walk(const Walk& w, Band& band) {
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const Item& it = items[i];
+            if (it.testable && (it.x0 > it.x1 || it.y1 < band.y0 || it.y0 > band.y1 || hidden(it, band))) continue;
+            const KeptCluster& kc = w.kept[it.kept];
+            const Instance& instance = w.scene.instances[kc.instance];
+            const Mesh& mesh = w.scene.meshes[std::size_t(instance.mesh)];
+            const bool singleSided = mesh.material < 0 || !w.scene.materials[std::size_t(mesh.material)].doubleSided;
+            const ClusterVertices& cv = meshes[std::size_t(instance.mesh)];
+            const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
+            const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
+            const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
+            band.window.resize(vertexCount);
+            for (std::uint32_t v = 0; v < vertexCount; ++v) band.window[v].mask = 0xFF;
+            std::uint32_t slot = slots[i];
+            for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
+                const IndexRange& range = w.ranges[kc.firstRange + r];
+                for (std::uint32_t t = range.firstTriangle; t < range.firstTriangle + range.triangleCount; ++t, ++slot) {
+                    const std::uint16_t* tri = &cv.corners[3 * std::size_t(t)];
+                    WindowVertex* v[3];
+                    bool clipped = false;
+                    for (int c = 0; c < 3; ++c) {
+                        v[c] = &band.window[tri[c]];
+                        if (v[c]->mask == 0xFF) *v[c] = transform(m, cv.positions[firstVertex + tri[c]]);
+                        clipped = clipped || v[c]->mask != 0;
+                    }
+                    // A clipped triangle is drawn from rounded new vertices: kept, and hides nothing.
+                    // Without llvmpipe's rules every triangle is kept, and occludes.
+                    const bool seen = !clipped && triangleMaySeen(*v[0], *v[1], *v[2], singleSided, band.y0, band.y1);
+                    band.seen[slot] = std::uint8_t(clipped || !exactRules || seen);
+                }
+            }
+        }
+    }
+
+    const ClusterVertices& clusterVertices(const Mesh& mesh, const MeshMap& map, std::size_t index) {
+        if (meshes.size() <= index) meshes.resize(index + 1);
+        ClusterVertices& cv = meshes[index];
+        if (cv.built) return cv;
+        cv.built = true;
+        scratch.assign(mesh.positions.size(), UINT32_MAX);
+        cv.corners.assign(mesh.indices.size(), 0);
+        cv.firstVertex.clear();
+        for (const Cluster& c : map.clusters) {
+            const auto first = std::uint32_t(cv.positions.size());
+            cv.firstVertex.push_back(first);
+            for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i) {
+                const std::uint32_t v = mesh.indices[i];
+                if (scratch[v] == UINT32_MAX) {
+                    scratch[v] = std::uint32_t(cv.positions.size()) - first;
+                    cv.positions.push_back(mesh.positions[v]);
+                }
+                cv.corners[i] = std::uint16_t(scratch[v]);  // a cluster has at most 3·124 vertices
+            }
+            for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i)
+                scratch[mesh.indices[i]] = UINT32_MAX;
+        }
+        cv.firstVertex.push_back(std::uint32_t(cv.positions.size()));
+        return cv;
+    }
+
+    void reset(int w, int h, DepthFormat format) {
+        width = w;
+        height = h;
+        halfZ = format == DepthFormat::D32F;
+        viewport = sw::makeViewport(w, h, format);
+        blocksX = (w + kBlock - 1) / kBlock;
+        blocksY = (h + kBlock - 1) / kBlock;
+        depth.assign(std::size_t(w) * std::size_t(h), kOpen);
+        blockMax.assign(std::size_t(blocksX) * std::size_t(blocksY), kOpen);
+        blockDirty.assign(blockMax.size(), 0);
+    }
+
+    float farness(float windowZ) const { return halfZ ? -windowZ : windowZ; }
+
+    float block(int bx, int by) {
+        const std::size_t b = std::size_t(by) * std::size_t(blocksX) + std::size_t(bx);
+        if (blockDirty[b]) {
+            const int x0 = bx * kBlock, y0 = by * kBlock;
+            const int x1 = std::min(x0 + kBlock, width), y1 = std::min(y0 + kBlock, height);
+            float m = -kOpen;
+            for (int y = y0; y < y1; ++y) {
+                const float* row = &depth[std::size_t(y) * std::size_t(width)];
+                for (int x = x0; x < x1; ++x) m = std::max(m, row[x]);
+            }
+            blockMax[b] = m;
+            blockDirty[b] = 0;
+        }
+        return blockMax[b];
+    }
+
+    // Every pixel of the item's rectangle within the band holds an occluder strictly nearer than
+    // its nearest point.
+    bool hidden(const Item& it, const Band& band) {
+        const int bx0 = it.x0 >> kBlockLog2, bx1 = it.x1 >> kBlockLog2;
+        const int by0 = std::max(it.y0, band.y0) >> kBlockLog2, by1 = std::min(it.y1, band.y1) >> kBlockLog2;
+        for (int by = by0; by <= by1; ++by)
+            for (int bx = bx0; bx <= bx1; ++bx) {
+                if (block(bx, by) < it.nearest) continue;  // the whole block hides it
+                // Some pixel of the block is not nearer: look at the pixels the box reaches.
+                const int x0 = std::max(it.x0, bx * kBlock), x1 = std::min(it.x1, bx * kBlock + kBlock - 1);
+                const int y0 = std::max({it.y0, band.y0, by * kBlock}), y1 = std::min({it.y1, band.y1, by * kBlock + kBlock - 1});
+                for (int y = y0; y <= y1; ++y) {
+                    const float* row = &depth[std::size_t(y) * std::size_t(width)];
+                    for (int x = x0; x <= x1; ++x)
+                        if (!(row[x] < it.nearest)) return false;
+                }
+            }
+        return true;
+    }
+
+    // The window position of vertex `v` of a mesh under `mvp`, as the software backend's vertex
+    // stage computes it (Kernels.inl transform; Rasterizer.h 1.).
+    WindowVertex transform(const glm::mat4& m, const glm::vec3& p) const {
+        glm::vec4 c;
+        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
+        WindowVertex v;
+        v.mask = std::uint8_t(sw::clipMask(c, halfZ));
+        const float oow = 1.0f / c.w;
+        const float nx = c.x * oow, ny = c.y * oow, nz = c.z * oow;
+        if (fused) {
+            v.x = std::fma(nx, viewport.sx, viewport.tx);
+            v.y = std::fma(ny, viewport.sy, viewport.ty);
+            v.z = std::fma(nz, viewport.sz, viewport.tz);
+        } else {
+            v.x = nx * viewport.sx + viewport.tx;
+            v.y = ny * viewport.sy + viewport.ty;
+            v.z = nz * viewport.sz + viewport.tz;
+        }
+        const float fx = (v.x - 0.5f) * 256.0f, fy = (v.y - 0.5f) * 256.0f;
+        constexpr float kLimit = 67108864.0f;  // 2^26, as setupTriangle
+        v.fixed = std::fabs(fx) < kLimit && std::fabs(fy) < kLimit;
+        if (v.fixed) {
+            v.fx = roundEven(fx);
+            v.fy = roundEven(fy);
+        }
+        return v;
+    }
+
+    // One triangle of a cluster that may be seen, as llvmpipe rasterizes it (Rasterizer.h 3. and 5.):
+    // it owns no pixel centre, or every pixel it covers already holds an occluder strictly nearer
+    // (false: drop it), or it may own a pixel (true: keep it; it then occludes, unless the draw
+    // module may drop it, 2a.).
+    // Whether setup would keep the triangle and it covers a pixel centre: setupTriangle's fixed-point
+    // arithmetic (Rasterizer.h 3.) without the depth plane.
+    bool coversPixel(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, bool singleSided, int rowLo,
+                     int rowHi) const {
+        std::int64_t X[3] = {a.fx, b.fx, c.fx}, Y[3] = {a.fy, b.fy, c.fy};
+        const std::int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});
+        const std::int64_t minY = std::min({Y[0], Y[1], Y[2]}), maxY = std::max({Y[0], Y[1], Y[2]});
+        const std::int64_t x0 = std::max<std::int64_t>(-((-minX) >> 8), 0), x1 = std::min<std::int64_t>(maxX >> 8, width - 1);
+        const std::int64_t y0 = std::max<std::int64_t>(-((-minY) >> 8), rowLo), y1 = std::min<std::int64_t>(maxY >> 8, rowHi);
+        if (x0 > x1 || y0 > y1) return false;
+        const std::int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
+        if (area == 0) return false;
+        const bool front = area < 0;
+        if (singleSided && !front) return false;
+        if (front) {
+            std::swap(X[0], X[1]);
+            std::swap(Y[0], Y[1]);
+        }
+        std::int64_t k[3], ex[3], ey[3];
+        for (int i = 0; i < 3; ++i) {
+            const int j = i == 2 ? 0 : i + 1;
+            ex[i] = Y[i] - Y[j];
+            ey[i] = X[i] - X[j];
+            std::int64_t e = ex[i] * X[i] - ey[i] * Y[i];
+            if (ex[i] < 0 || (ex[i] == 0 && ey[i] > 0)) e += 1;
+            k[i] = (e - 1) >> 8;
+        }
+        for (std::int64_t py = y0; py <= y1; ++py)
+            for (std::int64_t px = x0; px <= x1; ++px)
+                if (k[0] - ex[0] * px + ey[0] * py >= 0 && k[1] - ex[1] * px + ey[1] * py >= 0 &&
+                    k[2] - ex[2] * px + ey[2] * py >= 0)
+                    return true;
+        return false;
+    }
+
+    bool triangleMaySeen(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, bool singleSided, int rowLo,
+                         int rowHi) {
+        // Most triangles of a dense mesh own no pixel centre: setup's own coverage test (Rasterizer.h
+        // 3.), first, on the fixed-point positions kept with the vertices; the depth plane only for
+        // those that cover a pixel.
+        if (a.fixed && b.fixed && c.fixed && !coversPixel(a, b, c, singleSided, rowLo, rowHi)) return false;
+        sw::SetupVertex s[3];
+        const WindowVertex* w[3] = {&a, &b, &c};
+        for (int i = 0; i < 3; ++i) {
+            s[i].x = w[i]->x;
+            s[i].y = w[i]->y;
+            s[i].z = w[i]->z;
+            s[i].oow = 1.0f;
+        }
+        sw::Triangle t;
+        if (!sw::setupTriangle(&s[0], &s[1], &s[2], singleSided, viewport, &t)) return false;  // no pixel
+        // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
+        // triangle is kept but hides nothing.
+        const bool occludes = !singleSided || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        // llvmpipe's z at pixel (px, py) is fma(dzdy, py, fma(dzdx, px, z0)) in float, clamped to
+        // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes: both
+        // are within 4 units of roundoff of the sizes of the terms from the exact plane, so `slack`
+        // (twice that, and the 24-bit step) bounds the distance between the two.
+        const double slack = 8.0 * kUnit * (std::abs(double(t.z0)) + std::abs(double(t.dzdx)) * width +
+                                            std::abs(double(t.dzdy)) * height) + 2.0 * kUnit;
+        if (!(slack < 1.0)) return true;  // not a number, or a plane too steep to say anything
+        const float s0 = float(slack) * (1.0f + 1e-6f), up = float(2.0 * kUnit);
+        const float dzdx = t.dzdx;
+        bool seen = false;
+        for (int py = std::max(t.y0, rowLo); py <= std::min(t.y1, rowHi); ++py) {
+            // The row's covered pixels, edge by edge: k − dx·px + dy·py ≥ 0.
+            std::int64_t xa = t.x0, xb = t.x1;
+            for (const sw::Edge& e : t.e) {
+                const std::int64_t r = e.k + std::int64_t(e.dy) * py;  // dx·px ≤ r
+                if (e.dx > 0)
+                    xb = std::min(xb, floorDiv(r, e.dx));
+                else if (e.dx < 0)
+                    xa = std::max(xa, -floorDiv(r, -std::int64_t(e.dx)));
+                else if (r < 0)
+                    xb = xa - 1;
+            }
+            if (xa > xb) continue;
+            float* row = &depth[std::size_t(py) * std::size_t(width)];
+            const float zRow = float(double(t.z0) + double(t.dzdy) * py);
+            // Far-ness bounds of the stored value at each pixel: lo ≤ it ≤ hi (D24 stores the
+            // clamped z, D32F is read as its negation).
+            bool rowSeen = false;
+            if (!halfZ) {
+                for (std::int64_t px = xa; px <= xb; ++px) {
+                    const float z = zRow + dzdx * float(px);
+                    const float lo = std::clamp(z - s0, 0.0f, 1.0f), hi = std::min(z + s0, 1.0f) + up;
+                    rowSeen = rowSeen || !(row[px] < lo);
+                    if (occludes) row[px] = std::min(row[px], hi);
+                }
+            } else {
+                for (std::int64_t px = xa; px <= xb; ++px) {
+                    const float z = zRow + dzdx * float(px);
+                    const float lo = -std::clamp(z + s0, 0.0f, 1.0f), hi = -std::clamp(z - s0, 0.0f, 1.0f) + up;
+                    rowSeen = rowSeen || !(row[px] < lo);
+                    if (occludes) row[px] = std::min(row[px], hi);
+                }
+            }
+            seen = seen || rowSeen;
+            if (occludes) {
+                std::uint8_t* dirty = &blockDirty[std::size_t(py >> kBlockLog2) * std::size_t(blocksX)];
+                for (std::int64_t bx = xa >> kBlockLog2; bx <= xb >> kBlockLog2; ++bx) dirty[bx] = 1;
+            }
+        }
+        return seen;
+    }
+};
+
+OcclusionTarget occlusionTarget(const Backend& backend, int width, int height) {
+    OcclusionTarget target;
+    target.width = width;
+    target.height = height;
+    target.exactRules = backend.followsLlvmpipeRules();
+    // What a submitted triangle costs the draw, measured on a dense mesh (docs/occlusion.md).
+    target.drawNsPerTriangle = backend.name() == "software" ? kSoftwareNsPerTriangle
+                               : target.exactRules         ? kLlvmpipeNsPerTriangle
+                                                           : kGpuNsPerTriangle;
+    return target;
+}
+
+OcclusionCuller::OcclusionCuller() : state_(std::make_unique<State>()) {}
+OcclusionCuller::~OcclusionCuller() = default;
+OcclusionCuller::OcclusionCuller(OcclusionCuller&&) noexcept = default;
+OcclusionCuller& OcclusionCuller::operator=(OcclusionCuller&&) noexcept = default;
+
+const OcclusionStats& OcclusionCuller::stats() const { return state_->stats; }
+
+void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, const std::vector<glm::mat4>& world,
+                          const View& view, const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
+                          const std::vector<IndexRange>& ranges, std::vector<KeptCluster>& result,
+                          std::vector<IndexRange>& out) {
+    const int width = target.width, height = target.height;
+    const bool exactRules = target.exactRules;
+    const auto t0 = Clock::now();
+    State& st = *state_;
+    st.stats = {};
+    std::size_t planned = 0;
+    for (const IndexRange& r : ranges) planned += r.triangleCount;
+    const bool skip =
+        width <= 0 || height <= 0 || (target.adaptive && (planned < kMinTriangles || st.skipLeft > 0));
+    if (skip) {
+        if (target.adaptive && st.skipLeft > 0) --st.skipLeft;
+        st.width = st.height = 0;
+        result = kept;
+        out = ranges;
+        st.stats.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        return;
+    }
+    st.exactRules = exactRules;
+    st.stats.ran = true;
+    st.reset(width, height, view.depthFormat);
+
+    // Every kept cluster's box on the screen: the pixels it may reach and its nearest far-ness.
+    const glm::mat4 viewProjection = view.projection * view.view;  // as the backends compute it
+    const sw::Viewport& vp = st.viewport;
+    st.items.clear();
+    st.items.reserve(kept.size());
+    std::uint32_t lastInstance = std::numeric_limits<std::uint32_t>::max();
+    glm::dmat4 mvp(1.0);
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        const KeptCluster& kc = kept[k];
+        const Instance& instance = scene.instances[kc.instance];
+        if (kc.instance != lastInstance) {
+            mvp = glm::dmat4(viewProjection * world[std::size_t(instance.node)]);  // the float product, exactly
+            lastInstance = kc.instance;
+            st.clusterVertices(scene.meshes[std::size_t(instance.mesh)], maps[std::size_t(instance.mesh)],
+                               std::size_t(instance.mesh));
+        }
+        const Cluster& c = maps[std::size_t(instance.mesh)].clusters[kc.cluster];
+        Item it{};
+        it.kept = std::uint32_t(k);
+        // Bound of the float vertex transform's error per clip coordinate: four rounded terms.
+        const glm::dvec3 reach = glm::max(glm::abs(glm::dvec3(c.boxMin)), glm::abs(glm::dvec3(c.boxMax)));
+        double err[4];
+        for (int r = 0; r < 4; ++r)
+            err[r] = 4.0 * kUnit *
+                     (std::abs(mvp[0][r]) * reach.x + std::abs(mvp[1][r]) * reach.y + std::abs(mvp[2][r]) * reach.z +
+                      std::abs(mvp[3][r]));
+        double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY, zMin = INFINITY, zMax = -INFINITY;
+        double wMin = INFINITY;
+        bool testable = true;
+        for (int corner = 0; corner < 8 && testable; ++corner) {
+            const glm::dvec3 p(corner & 1 ? c.boxMax.x : c.boxMin.x, corner & 2 ? c.boxMax.y : c.boxMin.y,
+                               corner & 4 ? c.boxMax.z : c.boxMin.z);
+            const glm::dvec4 q = mvp * glm::dvec4(p, 1.0);
+            // In front of the near plane by more than the rounding of both sides.
+            const double nearSide = st.halfZ ? q.z - err[2] : q.z + q.w - err[2] - err[3];
+            if (!std::isfinite(q.x + q.y + q.z + q.w) || !(q.w - err[3] > 0.0) || !(nearSide > 0.0)) testable = false;
+            xMin = std::min(xMin, q.x / q.w), xMax = std::max(xMax, q.x / q.w);
+            yMin = std::min(yMin, q.y / q.w), yMax = std::max(yMax, q.y / q.w);
+            zMin = std::min(zMin, q.z / q.w), zMax = std::max(zMax, q.z / q.w);
+            wMin = std::min(wMin, q.w);
+        }
+        if (testable) {
+            // x/w, y/w, z/w of a vertex inside the box lie between the corners' (a ratio of affine
+            // functions over a box takes its extremes at corners); the float transform moves them by
+            // at most (e + |ratio|·e_w)/w, and the division and viewport by a few units more.
+            const double ratio = std::max({1.0, std::abs(xMin), std::abs(xMax), std::abs(yMin), std::abs(yMax),
+                                           std::abs(zMin), std::abs(zMax)});
+            const double ex = (err[0] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
+            const double ey = (err[1] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
+            const double ez = (err[2] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
+            // Window pixels whose centre the box may cover, grown by one pixel.
+            const double wx0 = (xMin - ex) * vp.sx + vp.tx - 1.0, wx1 = (xMax + ex) * vp.sx + vp.tx + 1.0;
+            const double wy0 = (yMin - ey) * vp.sy + vp.ty - 1.0, wy1 = (yMax + ey) * vp.sy + vp.ty + 1.0;
+            it.x0 = std::int32_t(std::clamp(std::ceil(wx0 - 0.5), 0.0, double(width)));
+            it.x1 = std::int32_t(std::clamp(std::floor(wx1 - 0.5), -1.0, double(width - 1)));
+            it.y0 = std::int32_t(std::clamp(std::ceil(wy0 - 0.5), 0.0, double(height)));
+            it.y1 = std::int32_t(std::clamp(std::floor(wy1 - 0.5), -1.0, double(height - 1)));
+            // The nearest window depth a fragment may get, less its rounding and the 24-bit step.
+            const double slack = 4.0 * kUnit;
+            const double nearest = st.halfZ ? -(zMax + ez) - slack : 0.5 * (zMin - ez) + 0.5 - slack;
+            it.nearest = float(nearest) - float(2.0 * kUnit);
+            it.testable = std::isfinite(nearest);
+        }
+        st.items.push_back(it);
+    }
+    // Nearest first; boxes that cannot be tested first of all (they are drawn, and hide things).
+    std::sort(st.items.begin(), st.items.end(), [](const Item& a, const Item& b) {
+        if (a.testable != b.testable) return !a.testable;
+        return a.nearest < b.nearest;
+    });
+
+    // Triangle slots: item i's triangles are [slot[i], slot[i + 1]) of every band's flags.
+    st.slots.assign(st.items.size() + 1, 0);
+    for (std::size_t i = 0; i < st.items.size(); ++i) {
+        const KeptCluster& kc = kept[st.items[i].kept];
+        std::uint32_t n = 0;
+        for (std::uint32_t r = 0; r < kc.rangeCount; ++r) n += ranges[kc.firstRange + r].triangleCount;
+        st.slots[i + 1] = st.slots[i] + n;
+    }
+    st.splitBands(kept, ranges);
+
+    // Each band of rows walks every cluster in the order above, with the part of the buffer it owns:
+    // what it finds is what one walk over the whole screen finds (State::walk).
+    const Walk walk{scene, maps, world, viewProjection, kept, ranges};
+    st.pool().run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
+
+    // A triangle is kept when some band may see it (or must keep it); a cluster with nothing left
+    // is hidden.
+    out.clear();
+    result.assign(kept.size(), KeptCluster{});
+    std::size_t left = 0;
+    for (std::size_t i = 0; i < st.items.size(); ++i) {
+        const Item& it = st.items[i];
+        const KeptCluster& kc = kept[it.kept];
+        KeptCluster& kr = result[it.kept];
+        kr = kc;
+        kr.firstRange = std::uint32_t(out.size());
+        kr.rangeCount = 0;
+        if (it.testable) ++st.stats.clustersTested;
+        std::uint32_t slot = st.slots[i], runStart = 0, runLength = 0;
+        for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
+            const IndexRange& range = ranges[kc.firstRange + r];
+            for (std::uint32_t t = range.firstTriangle; t < range.firstTriangle + range.triangleCount; ++t, ++slot) {
+                bool keep = false;
+                for (const Band& b : st.bands) keep = keep || b.seen[slot] != 0;
+                if (!keep) continue;
+                if (runLength > 0 && runStart + runLength == t) {
+                    ++runLength;
+                    continue;
+                }
+                if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+                runStart = t;
+                runLength = 1;
+            }
+        }
+        if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+        if (kr.rangeCount == 0) ++st.stats.clustersHidden;
+        for (std::uint32_t r = 0; r < kr.rangeCount; ++r) left += out[kr.firstRange + r].triangleCount;
+    }
+    st.stats.trianglesHidden = planned - left;
+    st.stats.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    // Did it pay? The draw it saved, by the target's cost of a triangle, against its own time.
+    st.stats.savedMs = double(st.stats.trianglesHidden) * target.drawNsPerTriangle * 1e-6;
+    if (!target.adaptive) return;
+    if (st.stats.savedMs < st.stats.ms) {
+        st.backOff = std::min(std::max(1, 2 * st.backOff), kMaxBackOff);
+        st.skipLeft = st.backOff;
+    } else {
+        st.backOff = 0;
+    }
+}
+
+std::vector<std::uint8_t> OcclusionCuller::image(int& width, int& height) const {
+    const State& st = *state_;
+    width = st.width;
+    height = st.height;
+    std::vector<std::uint8_t> rgba(std::size_t(width) * std::size_t(height) * 4);
+    // Grey by depth between the nearest and farthest covered pixels: white nearest.
+    float lo = kOpen, hi = -kOpen;
+    for (float f : st.depth)
+        if (f != kOpen) lo = std::min(lo, f), hi = std::max(hi, f);
+    const float span = hi > lo ? hi - lo : 1.0f;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float f = st.depth[std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)];
+            std::uint8_t* px = &rgba[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4];
+            if (f == kOpen) {
+                px[0] = 40, px[1] = 60, px[2] = 140, px[3] = 255;
+            } else {
+                const auto g = std::uint8_t(std::lround(235.0f - 200.0f * (f - lo) / span));
+                px[0] = px[1] = px[2] = g, px[3] = 255;
+            }
+        }
+    return rgba;
+}
+
+}  // namespace frugal

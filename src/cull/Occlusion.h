@@ -1,0 +1,108 @@
+// Occlusion culling on the CPU (`--cull occlusion`): of the clusters the conservative plan keeps,
+// drop those hidden behind others that are drawn anyway. After the masked software occlusion
+// culling of Hasselgren, Andersson and Akenine-Möller (HPG 2016), with frugal's own rasterizer in
+// place of its coarse one: occluders are rasterized with llvmpipe's exact coverage (software/
+// Rasterizer.h), so the buffer never claims a pixel the GL draw leaves open.
+//
+// The occlusion buffer holds, per pixel, an upper bound on the depth the frame's z-buffer ends with
+// there: the nearest occluder's depth plane at the pixel plus the bound of its float rounding (or
+// "open" where no occluder covers the pixel), and per 8 × 8 block the farthest of those. Clusters are
+// visited nearest first (by the nearest corner of their box); each is tested, and when it may be
+// seen it is kept and rasterized into the buffer as an occluder. A cluster is hidden when every
+// pixel its box can reach (its screen rectangle, grown by one pixel and by the bound of the float
+// vertex transform) holds an occluder strictly nearer than the box's nearest point (less a margin
+// for rounding and the 24-bit quantization). Then each of its fragments fails the depth test
+// against a fragment that is drawn, in whatever order they are drawn: the image, depth and ids are
+// the same as the conservative plan's.
+//
+// Occluders are only triangles the GL draw does not clip (clip mask 0): a clipped triangle's new
+// vertices are rounded, and the buffer must not depend on them. A box that reaches the near plane,
+// or whose numbers are not finite, is never tested (kept). The vertex transform and setup are
+// llvmpipe's (bit for bit on llvmpipe and the software backend, checked by tests); on another GL
+// driver the one-pixel and depth margins are what is left, untested here.
+//
+// Every triangle of a cluster that is not hidden whole is set up on the CPU: on llvmpipe's rules,
+// one that owns no pixel centre (most of a dense mesh far away) or whose pixels all hold something
+// nearer is dropped, and so the plan comes close to the oracle's. The walk is split into bands of
+// rows, one per core; each band sees exactly what one walk over the whole screen sees there.
+//
+// It pays for itself or turns itself off: a pass is skipped when the conservative plan submits
+// fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped,
+// by what a triangle costs the target) was less than its own time, the next 1, 2, 4, ... 16 calls
+// skip it. A skipped pass leaves the conservative plan as it is.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <frugal/Image.h>
+#include <frugal/Scene.h>
+
+#include "cull/SphereMap.h"
+#include "render/Backend.h"
+#include "render/Camera.h"
+
+namespace frugal {
+
+// What occlusion culling did in one view.
+struct OcclusionStats {
+    bool ran = false;                   // false: skipped (too little to gain, or it did not pay lately)
+    std::size_t clustersTested = 0;     // kept by the conservative plan, with a box in front of the eye
+    std::size_t clustersHidden = 0;     // dropped
+    std::size_t trianglesHidden = 0;    // of the conservative plan's: dropped with the clusters, or alone
+    double ms = 0.0;                    // the pass: ordering, rasterizing and testing
+    double savedMs = 0.0;               // estimated: trianglesHidden × the target's cost of a triangle
+};
+
+// One cluster that the conservative plan keeps, with the ranges of it that the plan submits.
+struct KeptCluster {
+    std::uint32_t instance = 0;                   // index into scene.instances
+    std::uint32_t cluster = 0;                    // index into its mesh map's clusters
+    std::uint32_t firstRange = 0, rangeCount = 0;  // into the plan's ranges
+};
+
+// The target the plan is drawn into.
+struct OcclusionTarget {
+    int width = 0, height = 0;
+    // The draw follows llvmpipe's rasterization rules (llvmpipe, or the software backend): clusters
+    // are then also tested triangle by triangle, and a triangle that owns no pixel centre is dropped.
+    // Otherwise (a GPU's driver) only whole clusters are tested, with their margins.
+    bool exactRules = true;
+    double drawNsPerTriangle = 110.0;  // what a submitted triangle costs the draw (llvmpipe's, 2 cores)
+    // false: the pass runs on every call, however little it gains (tests, and measuring it).
+    bool adaptive = true;
+};
+
+// The target of `backend`: its rules, and its cost of a triangle.
+OcclusionTarget occlusionTarget(const Backend& backend, int width, int height);
+
+class OcclusionCuller {
+public:
+    OcclusionCuller();
+    ~OcclusionCuller();
+    OcclusionCuller(OcclusionCuller&&) noexcept;
+    OcclusionCuller& operator=(OcclusionCuller&&) noexcept;
+
+    // What is left of each of `kept` (result[k]: the same cluster, its ranges in `out`; none when
+    // it is hidden), for `target`, whose depth buffer has `view.depthFormat`. `maps` are the scene's
+    // mesh maps, `ranges` the plan's.
+    void run(const Scene& scene, const std::vector<MeshMap>& maps, const std::vector<glm::mat4>& world,
+             const View& view, const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
+             const std::vector<IndexRange>& ranges, std::vector<KeptCluster>& result, std::vector<IndexRange>& out);
+
+    const OcclusionStats& stats() const;
+
+    // The last run's buffer as an RGBA8 image (top row first): open pixels blue, covered pixels
+    // grey, lighter the nearer. Empty when the last run was skipped.
+    std::vector<std::uint8_t> image(int& width, int& height) const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace frugal

@@ -1,0 +1,346 @@
+// Occlusion culling (cull/Occlusion.h) on the cases where a depth bound goes wrong first: objects
+// exactly touching, coplanar occluder and occludee, an occluder through the near plane, orthographic
+// cameras, tiny and huge coordinates, both depth formats, and a thousand random scenes of boxes
+// behind boxes. Every frame is checked by checkFrame (CullRenderSupport.h): no visible triangle
+// missed, and the culled render equal to the full one in colour, depth and ids. Each test also
+// asserts that occlusion removed something, so that it cannot pass by culling nothing.
+#include <random>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "CullRenderSupport.h"
+#include "TestSupport.h"
+
+namespace frugal {
+namespace {
+
+using test::CullBench;
+using test::Tallies;
+
+// An axis-aligned box of size 2·half around the origin, each face split into n × n quads,
+// counter-clockwise outside.
+Mesh boxMesh(const glm::vec3& half, int n = 2) {
+    Mesh mesh;
+    mesh.name = "box";
+    for (int axis = 0; axis < 3; ++axis)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            const auto base = std::uint32_t(mesh.positions.size());
+            for (int i = 0; i <= n; ++i)
+                for (int j = 0; j <= n; ++j) {
+                    glm::vec3 p(0.0f);
+                    p[axis] = float(sign) * half[axis];
+                    p[u] = (-1.0f + 2.0f * float(i) / float(n)) * half[u];
+                    p[v] = (-1.0f + 2.0f * float(j) / float(n)) * half[v];
+                    mesh.positions.push_back(p);
+                }
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    const std::uint32_t a = base + std::uint32_t(i * (n + 1) + j), b = a + std::uint32_t(n + 1);
+                    // (u, v, axis) is right-handed: u × v points along +axis.
+                    if (sign > 0)
+                        mesh.indices.insert(mesh.indices.end(), {a, b, b + 1, a, b + 1, a + 1});
+                    else
+                        mesh.indices.insert(mesh.indices.end(), {a, a + 1, b + 1, a, b + 1, b});
+                }
+        }
+    return test::finished(std::move(mesh));
+}
+
+// A scene of materials 0 (single-sided) and 1 (double-sided), no meshes yet.
+Scene emptyScene(const std::string& name) {
+    Scene scene = test::singleMeshScene(boxMesh(glm::vec3(0.5f)), false);
+    scene.source = "test:" + name;
+    scene.meshes.clear();
+    scene.nodes.clear();
+    scene.roots.clear();
+    return scene;
+}
+
+int addBox(Scene& scene, const glm::vec3& half, const glm::vec3& at, int material = 0, int n = 2,
+           const glm::quat& rotation = {1, 0, 0, 0}, const glm::vec3& scale = glm::vec3(1.0f)) {
+    Mesh mesh = boxMesh(half, n);
+    mesh.material = material;
+    scene.meshes.push_back(std::move(mesh));
+    return test::addMeshNode(scene, int(scene.meshes.size()) - 1, at, rotation, scale);
+}
+
+// Checks the frame and returns what occlusion submitted against conservative.
+struct Culled {
+    std::size_t conservative = 0, occlusion = 0;
+};
+Culled check(CullBench& bench, const Camera& camera, const std::string& label) {
+    const test::FrameResult frame = test::checkFrame(bench, camera, label);
+    EXPECT_TRUE(frame.rendered) << label;
+    return {frame.count(Cull::Conservative).pvs, frame.count(Cull::Occlusion).pvs};
+}
+
+TEST(OcclusionTest, ABoxBehindABoxIsCulledAndTheImageIsTheSame) {
+    Scene scene = emptyScene("behind");
+    addBox(scene, glm::vec3(1.0f), {0, 0, 0});
+    addBox(scene, glm::vec3(0.5f), {0, 0, -4});  // hidden whole from +z
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 96, 72);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    const Culled c = check(bench, test::lookAt({0, 0, 6}, {0, 0, 0}), "from the front");
+    EXPECT_LT(c.occlusion, c.conservative) << "the box behind is culled";
+    EXPECT_TRUE(bench.culler.occlusion().stats().ran);
+    EXPECT_GE(bench.culler.occlusion().stats().clustersHidden, 1u);
+}
+
+TEST(OcclusionTest, ObjectsExactlyTouching) {
+    // Face to face (the back box's front face lies in the front box's back face), edge to edge,
+    // and a box standing on another; seen from angles where the touching faces are and are not seen.
+    Tallies tallies;
+    for (int material : {0, 1}) {
+        Scene scene = emptyScene("touching");
+        addBox(scene, glm::vec3(1.0f), {0, 0, 0}, material, 4);
+        addBox(scene, glm::vec3(1.0f), {0, 0, -2}, material, 4);     // face to face
+        addBox(scene, glm::vec3(1.0f), {2, 0, -2}, material, 4);     // edge to edge with the first
+        addBox(scene, glm::vec3(0.5f), {0, 1.5f, 0}, material, 4);   // on top of the first
+        scene.buildInstances();
+        CullBench bench(std::move(scene), 128, 96);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        const glm::vec3 eyes[] = {{0, 0, 8}, {0.01f, 0.02f, 8}, {3, 2, 7}, {-4, 0.5f, 5}, {0, 6, 0.5f}, {8, 0, -2}};
+        std::size_t conservative = 0, occlusion = 0;
+        for (const glm::vec3& eye : eyes) {
+            const test::FrameResult f = test::checkFrame(bench, test::lookAt(eye, {0.5f, 0, -1}),
+                                                         "material " + std::to_string(material));
+            tallies.add(f);
+            conservative += f.count(Cull::Conservative).pvs;
+            occlusion += f.count(Cull::Occlusion).pvs;
+        }
+        EXPECT_LT(occlusion, conservative) << tallies.summary();
+    }
+    EXPECT_EQ(tallies.of(Cull::Occlusion).misses, 0u) << tallies.summary();
+}
+
+TEST(OcclusionTest, CoplanarOccluderAndOccludee) {
+    // Two quads in one plane, overlapping (z-fighting: the first drawn keeps its pixels), and a box
+    // whose front face lies in the plane of a wall in front of it: neither may hide the other.
+    Scene scene = emptyScene("coplanar");
+    addBox(scene, {1.0f, 1.0f, 0.0f}, {0, 0, 0}, 1, 6);
+    addBox(scene, {1.0f, 1.0f, 0.0f}, {0.5f, 0.3f, 0}, 1, 6);
+    addBox(scene, {2.0f, 2.0f, 0.1f}, {0, 0, -1.0f}, 0, 6);   // a wall behind, its front at z = -0.9
+    addBox(scene, {0.4f, 0.4f, 0.4f}, {0, 0, -1.3f}, 0, 6);   // front face at -0.9: coplanar with the wall
+    scene.buildInstances();
+    for (DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        Scene copy = scene;
+        CullBench bench(std::move(copy), 128, 96, {}, format);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        Tallies tallies;
+        for (const glm::vec3& eye : {glm::vec3(0, 0, 5), glm::vec3(1, 1, 4), glm::vec3(-2, 0.5f, 3)})
+            tallies.add(test::checkFrame(bench, test::lookAt(eye, {0, 0, -0.5f}), toString(format)));
+        EXPECT_EQ(tallies.of(Cull::Occlusion).misses, 0u) << tallies.summary();
+        EXPECT_LT(tallies.of(Cull::Occlusion).pvs, tallies.of(Cull::Conservative).pvs) << tallies.summary();
+    }
+}
+
+TEST(OcclusionTest, OccluderThroughTheNearPlane) {
+    // A wall that the near plane cuts, in front of boxes: its clipped triangles hide nothing, its
+    // others do; boxes seen through the gap beside it stay.
+    Scene scene = emptyScene("near");
+    addBox(scene, {1.5f, 3.0f, 0.2f}, {-0.8f, 0, 0.3f}, 0, 8);
+    for (int i = 0; i < 5; ++i) addBox(scene, glm::vec3(0.3f), {-1.5f + 0.8f * float(i), 0, -3.0f}, 0, 3);
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 128, 96);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    Camera camera = test::lookAt({0, 0, 0.6f}, {0, 0, -3});
+    camera.znear = 0.2f;  // the wall spans z ∈ [0.1, 0.5]: the near plane at z = 0.4 cuts it
+    camera.zfar = 10.0f;
+    const Culled c = check(bench, camera, "wall through the near plane");
+    EXPECT_LT(c.occlusion, c.conservative);
+}
+
+TEST(OcclusionTest, OrthographicCamera) {
+    // A row of boxes along the view axis: the first hides the rest.
+    Scene scene = emptyScene("ortho");
+    for (int i = 0; i < 6; ++i) addBox(scene, glm::vec3(0.8f), {0.05f * float(i), 0, -2.0f * float(i)}, i % 2, 3);
+    SceneCamera camera;
+    camera.name = "ortho";
+    camera.perspective = false;
+    camera.xmag = 2.0f;
+    camera.ymag = 1.5f;
+    camera.znear = 0.1f;
+    camera.zfar = 30.0f;
+    test::addCameraNode(scene, camera, {0, 0, 5});
+    scene.buildInstances();
+    for (DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        Scene copy = scene;
+        CullBench bench(std::move(copy), 128, 96, {}, format);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        Camera spec;
+        spec.sceneCamera = 0;
+        const Culled c = check(bench, spec, std::string("orthographic, ") + toString(format));
+        EXPECT_LT(c.occlusion * 2, c.conservative) << "most of the row is hidden";
+    }
+}
+
+// Boxes behind boxes scaled by `factor`, as mesh coordinates and as node scales.
+void checkScale(float factor) {
+    for (bool inNode : {false, true}) {
+        Scene scene = emptyScene("scaled");
+        for (int i = 0; i < 4; ++i) {
+            const glm::vec3 half = glm::vec3(0.6f - 0.1f * float(i)) * (inNode ? 1.0f : factor);
+            const glm::vec3 at = glm::vec3(0.1f * float(i), 0.05f * float(i), -1.5f * float(i)) * factor;
+            addBox(scene, half, at, 0, 3, {1, 0, 0, 0}, glm::vec3(inNode ? factor : 1.0f));
+        }
+        scene.buildInstances();
+        CullBench bench(std::move(scene), 128, 96);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        Camera camera = test::lookAt(glm::vec3(0.2f, 0.3f, 4.0f) * factor, glm::vec3(0, 0, -2) * factor);
+        const Culled c = check(bench, camera, (inNode ? "node scaled by " : "mesh scaled by ") + std::to_string(factor));
+        EXPECT_LT(c.occlusion, c.conservative);
+    }
+}
+
+TEST(OcclusionTest, TinyCoordinates) { checkScale(1e-6f); }
+TEST(OcclusionTest, HugeCoordinates) { checkScale(1e6f); }
+
+TEST(OcclusionTest, FarFromTheOrigin) {
+    // Small boxes a million units from the origin: the float transform loses most of its digits,
+    // and the bounds must say so.
+    Scene scene = emptyScene("far");
+    const glm::vec3 origin(1e6f, -2e6f, 5e5f);
+    for (int i = 0; i < 4; ++i) addBox(scene, glm::vec3(0.5f), origin + glm::vec3(0.02f * float(i), 0, -1.2f * float(i)), 0, 3);
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 128, 96);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    check(bench, test::lookAt(origin + glm::vec3(0.1f, 0.2f, 3.0f), origin + glm::vec3(0, 0, -2)), "far from the origin");
+}
+
+// Random scenes of boxes behind boxes: a few occluders in front of the camera and a crowd behind,
+// random sizes, rotations, mirroring, materials, depth formats and target sizes.
+void checkRandomBoxes(unsigned first, unsigned last) {
+    std::size_t conservative = 0, occlusion = 0, frames = 0;
+    Tallies tallies;
+    for (unsigned seed = first; seed <= last; ++seed) {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        Scene scene = emptyScene("boxes" + std::to_string(seed));
+        const int occluders = 1 + int(seed % 3), crowd = 2 + int(seed % 7);
+        for (int i = 0; i < occluders + crowd; ++i) {
+            const bool front = i < occluders;
+            const glm::vec3 half = front ? glm::vec3(0.6f + 0.8f * unit(rng), 0.6f + 0.8f * unit(rng), 0.1f + 0.5f * unit(rng))
+                                         : glm::vec3(0.1f + 0.4f * unit(rng));
+            const glm::vec3 at = front ? glm::vec3(0.8f * u(rng), 0.8f * u(rng), 1.0f * u(rng))
+                                       : glm::vec3(1.5f * u(rng), 1.5f * u(rng), -2.0f - 3.0f * unit(rng));
+            const glm::quat rotation = glm::angleAxis(0.6f * u(rng), glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f));
+            glm::vec3 scale(1.0f);
+            if (unit(rng) < 0.2f) scale.x = -1.0f;  // mirrored: the other winding is the front
+            addBox(scene, half, at, unit(rng) < 0.3f ? 1 : 0, 1 + int(seed % 3), rotation, scale);
+        }
+        scene.buildInstances();
+        const DepthFormat format = seed % 4 == 3 ? DepthFormat::D32F : DepthFormat::D24;
+        const int width = 48 + int(seed % 5) * 16, height = 36 + int(seed % 3) * 12;
+        CullBench bench(std::move(scene), width, height, {}, format);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        Camera camera = test::lookAt(glm::vec3(0.8f * u(rng), 0.8f * u(rng), 4.0f + 3.0f * unit(rng)),
+                                     glm::vec3(0.3f * u(rng), 0.3f * u(rng), -2.0f));
+        camera.yfovDegrees = 30.0f + 40.0f * unit(rng);
+        const test::FrameResult f = test::checkFrame(bench, camera, "boxes " + std::to_string(seed));
+        tallies.add(f);
+        conservative += f.count(Cull::Conservative).pvs;
+        occlusion += f.count(Cull::Occlusion).pvs;
+        ++frames;
+        if (::testing::Test::HasFailure()) break;  // the first failing scene says enough
+    }
+    EXPECT_EQ(tallies.rendered, frames);
+    EXPECT_EQ(tallies.of(Cull::Occlusion).misses, 0u) << tallies.summary();
+    EXPECT_LT(occlusion * 10, conservative * 9) << "occlusion culls at least a tenth over the scenes";
+}
+
+TEST(OcclusionTest, RandomBoxesBehindBoxes1To250) { checkRandomBoxes(1, 250); }
+TEST(OcclusionTest, RandomBoxesBehindBoxes251To500) { checkRandomBoxes(251, 500); }
+TEST(OcclusionTest, RandomBoxesBehindBoxes501To750) { checkRandomBoxes(501, 750); }
+TEST(OcclusionTest, RandomBoxesBehindBoxes751To1000) { checkRandomBoxes(751, 1000); }
+
+TEST(OcclusionTest, ThreeBunniesComeCloseToTheVisibleSet) {
+    std::optional<Scene> bunny = test::loadBunny(false);
+    if (!bunny) GTEST_SKIP() << "no bunny (glmark2-data)";
+    Result<Scene> three = makeBuiltin("copies?count=3&of=/usr/share/glmark2/models/bunny.obj");
+    ASSERT_TRUE(three) << three.error();
+    for (Material& m : three->materials) m.doubleSided = false;
+    CullBench bench(std::move(*three), 400, 300);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    const test::FrameResult f = test::checkFrame(bench, {}, "three bunnies");
+    ASSERT_TRUE(f.rendered);
+    // The plan is within a tenth of the visible set, where conservative is far above it.
+    EXPECT_LT(double(f.count(Cull::Occlusion).pvs), 1.1 * double(f.rvs));
+    EXPECT_GT(double(f.count(Cull::Conservative).pvs), 2.0 * double(f.rvs));
+}
+
+TEST(OcclusionTest, WithoutLlvmpipesRulesOnlyWholeClustersAreDropped) {
+    // A GPU's rasterizer is not llvmpipe's: no triangle is dropped for its pixels, only clusters
+    // hidden whole, with their margins.
+    Scene scene = emptyScene("gpu");
+    addBox(scene, glm::vec3(1.0f), {0, 0, 0}, 0, 6);
+    addBox(scene, glm::vec3(0.5f), {0, 0, -4}, 0, 6);
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 96, 72);
+    ASSERT_TRUE(bench.canRender());
+    Result<FrameSetup> setup = setUpFrame(bench.scene, test::lookAt({0, 0, 6}, {0, 0, 0}), 0.0, 96, 72, true);
+    ASSERT_TRUE(setup);
+    OcclusionTarget gpu = bench.occlusionTarget();
+    gpu.exactRules = false;
+    const DrawList whole = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, gpu);
+    const DrawList exact =
+        bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, bench.occlusionTarget());
+    const DrawList conservative = bench.culler.cull(Cull::Conservative, bench.scene, setup->world, setup->view);
+    // The hidden box goes in both; triangle by triangle only on llvmpipe's rules.
+    for (const DrawList* list : {&whole, &exact}) {
+        ASSERT_FALSE(list->empty());
+        EXPECT_EQ(list->back().instance, 0) << "instance 1 is hidden whole";
+    }
+    EXPECT_LE(submittedTriangles(bench.scene, exact), submittedTriangles(bench.scene, whole));
+    EXPECT_EQ(submittedTriangles(bench.scene, whole), submittedTriangles(bench.scene, conservative) -
+                                                          submittedTriangles(bench.scene, {conservative.back()}));
+}
+
+TEST(OcclusionTest, ItSkipsItselfWhereItDoesNotPay) {
+    Scene scene = emptyScene("pays");
+    addBox(scene, glm::vec3(1.0f), {0, 0, 0}, 0, 40);  // 19,200 triangles, 9,600 facing any eye at most
+    addBox(scene, glm::vec3(0.5f), {0, 0, -4}, 0, 40);
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 96, 72);
+    Result<FrameSetup> setup = setUpFrame(bench.scene, test::lookAt({0, 0, 6}, {0, 0, 0}), 0.0, 96, 72, true);
+    ASSERT_TRUE(setup);
+    const DrawList conservative = bench.culler.cull(Cull::Conservative, bench.scene, setup->world, setup->view);
+    OcclusionTarget target = bench.occlusionTarget();
+    target.adaptive = true;
+    const OcclusionStats& stats = bench.culler.occlusion().stats();
+
+    // It pays when a dropped triangle saves more than the pass costs a triangle...
+    target.drawNsPerTriangle = 1e6;
+    DrawList list = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+    EXPECT_TRUE(stats.ran);
+    EXPECT_GT(stats.trianglesHidden, 0u);
+    EXPECT_LT(submittedTriangles(bench.scene, list), submittedTriangles(bench.scene, conservative));
+    // ...and not when a triangle costs the draw nothing: then the next call skips the pass and
+    // gives conservative's plan, the one after runs it again, then two are skipped.
+    target.drawNsPerTriangle = 0.0;
+    std::vector<bool> ran;
+    for (int call = 0; call < 6; ++call) {
+        list = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+        ran.push_back(stats.ran);
+        if (!stats.ran) {
+            EXPECT_TRUE(test::sameList(list, conservative));
+        }
+    }
+    EXPECT_EQ(ran, (std::vector<bool>{true, false, true, false, false, true}));
+
+    // A plan of a few triangles is never worth the pass.
+    Scene small = emptyScene("small");
+    addBox(small, glm::vec3(1.0f), {0, 0, 0});
+    small.buildInstances();
+    CullBench smallBench(std::move(small), 96, 72);
+    target.drawNsPerTriangle = 1e6;
+    Result<FrameSetup> smallSetup = setUpFrame(smallBench.scene, test::lookAt({0, 0, 6}, {0, 0, 0}), 0.0, 96, 72, true);
+    ASSERT_TRUE(smallSetup);
+    smallBench.culler.cull(Cull::Occlusion, smallBench.scene, smallSetup->world, smallSetup->view, target);
+    EXPECT_FALSE(smallBench.culler.occlusion().stats().ran);
+}
+
+}  // namespace
+}  // namespace frugal
