@@ -32,11 +32,20 @@ struct StateChanges {
 };
 
 // Culling in one frame.
+// The occlusion pass of one frame (cull occlusion): whether it ran (it skips itself where it does not
+// pay), its time (within CullStats::ms) and the triangles of the conservative plan it dropped.
+struct OcclusionFrameStats {
+    bool ran = false;
+    double ms = 0.0;
+    std::size_t trianglesHidden = 0;
+};
+
 struct CullStats {
     std::size_t tos = 0;     // the scene's triangles
     std::size_t pvs = 0;     // the triangles submitted (the oracle: its visible set)
     double ms = 0.0;         // culling (the oracle: its id pass, read-back and scene; not in renderMs)
     std::size_t ranges = 0;  // index ranges submitted (none for the oracle)
+    std::optional<OcclusionFrameStats> occlusion;  // cull occlusion only
 };
 
 // Temporal reuse in one frame (paper 000): the mode, its reason, and what was copied, cleared and

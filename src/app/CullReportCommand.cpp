@@ -1,6 +1,7 @@
 // `frugal cull-report`: how exact each culling method's visible set is, and what it saves, view by
 // view (the measurement is lab/CullMeasure.h's).
 #include <algorithm>
+#include <filesystem>
 #include <ostream>
 #include <sstream>
 
@@ -77,6 +78,7 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     CullOptions cull;
     Outputs outputs;
     int viewCount = 32, repeat = 5;
+    std::string masksDir;
     bool viewsGiven = false;
     hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     std::vector<Cull> methods(std::begin(kCulls), std::end(kCulls));
@@ -99,6 +101,12 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
                              "render'), its plan timed with the draw; the reference stays the z-buffered full render"),
             cullFlags(cull, false)[0],
         }},
+        {"occlusion (with the occlusion method)", {
+            flag::text("--masks", "DIR", "write each view's occlusion buffer to DIR/occlusion-view-<v>.png (the "
+                       "nearest occluder's depth bound, grey, lighter nearer; blue where no occluder covers the "
+                       "pixel), as one more untimed pass made to run; the JSON names each file",
+                       masksDir),
+        }},
         {"outputs (each written whole or not at all)",
          reportFlags(outputs,
                      "the report: views, methods, summary (medians, worst view, total misses, the share of the draw "
@@ -117,13 +125,15 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             cursor.fail("--frames: cull-report measures views at one time; use --time");
         else if (const std::string problem = plotProblem(outputs); !problem.empty())
             cursor.fail(problem);
+        else if (!masksDir.empty() && std::find(methods.begin(), methods.end(), Cull::Occlusion) == methods.end())
+            cursor.fail("--masks: the occlusion buffers come from the occlusion method; add it to --methods");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.failure());
     CullMeasureSettings settings{options.scene, rendererSettings(options), methods, repeat,
-                                 options.time.value_or(0.0), "cold"};
+                                 options.time.value_or(0.0), "cold", masksDir};
     settings.render.cullBinsTheta = cull.bins.thetaBins;
     settings.render.cullBinsPhi = cull.bins.phiBins;
     settings.render.hsr = hsrMode;
@@ -134,7 +144,15 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     if (!measured) return fail(err, measured.failure());
     const ReportTexts texts{[&measured] { return measured->json; },
                             [&measured] { return cullReportCsv(measured->report); }, cullReportGnuplot};
-    if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;
+    if (!measured->images.empty()) {
+        std::error_code made;
+        std::filesystem::create_directories(masksDir, made);
+        if (made) return fail(err, Error{"--masks " + masksDir + ": cannot make the folder (" + made.message() + ")",
+                                         ErrorKind::Io});
+    }
+    // The buffers' images with the report's files, all or none.
+    if (const int status = writeReportFiles(outputs, texts, err, std::move(measured->images)); status != kExitOk)
+        return status;
     out << cullReportSummary(*measured, methods);
     return kExitOk;
 }

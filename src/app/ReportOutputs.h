@@ -20,6 +20,7 @@ std::vector<Flag> reportFlags(ReportPaths& paths, std::string jsonHelp, std::str
 std::string plotProblem(const ReportPaths& paths, bool pngToo = false);
 
 // writeReport (lab/ReportFiles.h), its error printed by fail(): kExitOk when everything is written.
-int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::ostream& err);
+int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::ostream& err,
+                     std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra = {});
 
 }  // namespace frugal

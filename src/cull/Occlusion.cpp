@@ -120,17 +120,17 @@ struct OcclusionCuller::State {
     std::vector<Band> bands;
     std::unique_ptr<sw::ThreadPool> threads;
 
-    sw::ThreadPool& pool() {
-        if (!threads) threads = std::make_unique<sw::ThreadPool>(int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u)));
+    // The walk's threads: `count`, or every core (at most 8) for 0.
+    sw::ThreadPool& pool(int count) {
+        const int wanted = count > 0 ? std::min(count, 64) : int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+        if (!threads || threads->size() != wanted) threads = std::make_unique<sw::ThreadPool>(wanted);
         return *threads;
     }
 
     // One band per thread, split where the clusters' triangles (by the middle row of their
     // rectangles) are shared out evenly, on block boundaries.
-    void splitBands(const std::vector<KeptCluster>& kept, const std::vector<IndexRange>& ranges) {
-        (void)kept;
-        (void)ranges;
-        const int count = std::min(pool().size(), blocksY);
+    void splitBands(int threadCount) {
+        const int count = std::min(pool(threadCount).size(), blocksY);
         bands.resize(std::size_t(count));
         std::vector<double> rowWeight(std::size_t(blocksY), 0.0);
         double total = 0.0;
@@ -333,11 +333,28 @@ struct OcclusionCuller::State {
             if (ex[i] < 0 || (ex[i] == 0 && ey[i] > 0)) e += 1;
             k[i] = (e - 1) >> 8;
         }
-        for (std::int64_t py = y0; py <= y1; ++py)
-            for (std::int64_t px = x0; px <= x1; ++px)
-                if (k[0] - ex[0] * px + ey[0] * py >= 0 && k[1] - ex[1] * px + ey[1] * py >= 0 &&
-                    k[2] - ex[2] * px + ey[2] * py >= 0)
-                    return true;
+        // Pixel (px, py) is covered when every k − dx·px + dy·py ≥ 0, i.e. when the OR of the three
+        // is not negative. Most triangles of a dense mesh span at most 2 × 2 pixel centres: those
+        // are decided without a branch a pixel (the outcome is a coin toss the predictor loses).
+        std::int64_t e00[3];
+        for (int i = 0; i < 3; ++i) e00[i] = k[i] - ex[i] * x0 + ey[i] * y0;
+        if (x1 - x0 <= 1 && y1 - y0 <= 1) {
+            const std::int64_t m00 = e00[0] | e00[1] | e00[2];
+            const std::int64_t m10 = (e00[0] - ex[0]) | (e00[1] - ex[1]) | (e00[2] - ex[2]);
+            const std::int64_t m01 = (e00[0] + ey[0]) | (e00[1] + ey[1]) | (e00[2] + ey[2]);
+            const std::int64_t m11 =
+                (e00[0] - ex[0] + ey[0]) | (e00[1] - ex[1] + ey[1]) | (e00[2] - ex[2] + ey[2]);
+            const bool right = x1 > x0, up = y1 > y0;
+            return (m00 >= 0) | (right & (m10 >= 0)) | (up & (m01 >= 0)) | (right & up & (m11 >= 0));
+        }
+        for (std::int64_t py = y0; py <= y1; ++py) {
+            std::int64_t e[3];
+            for (int i = 0; i < 3; ++i) e[i] = e00[i] + ey[i] * (py - y0);
+            for (std::int64_t px = x0; px <= x1; ++px) {
+                if ((e[0] | e[1] | e[2]) >= 0) return true;
+                for (int i = 0; i < 3; ++i) e[i] -= ex[i];
+            }
+        }
         return false;
     }
 
@@ -371,16 +388,27 @@ struct OcclusionCuller::State {
         const float dzdx = t.dzdx;
         bool seen = false;
         for (int py = std::max(t.y0, rowLo); py <= std::min(t.y1, rowHi); ++py) {
-            // The row's covered pixels, edge by edge: k − dx·px + dy·py ≥ 0.
+            // The row's covered pixels, edge by edge: k − dx·px + dy·py ≥ 0. A narrow triangle
+            // tests its few pixels; a wide one solves each edge for px (a division an edge).
             std::int64_t xa = t.x0, xb = t.x1;
-            for (const sw::Edge& e : t.e) {
-                const std::int64_t r = e.k + std::int64_t(e.dy) * py;  // dx·px ≤ r
-                if (e.dx > 0)
-                    xb = std::min(xb, floorDiv(r, e.dx));
-                else if (e.dx < 0)
-                    xa = std::max(xa, -floorDiv(r, -std::int64_t(e.dx)));
-                else if (r < 0)
-                    xb = xa - 1;
+            if (t.x1 - t.x0 < 8) {
+                const auto inside = [&t, py](std::int64_t px) {
+                    std::int64_t m = 0;
+                    for (const sw::Edge& e : t.e) m |= e.k - std::int64_t(e.dx) * px + std::int64_t(e.dy) * py;
+                    return m >= 0;
+                };
+                while (xa <= xb && !inside(xa)) ++xa;
+                while (xb >= xa && !inside(xb)) --xb;
+            } else {
+                for (const sw::Edge& e : t.e) {
+                    const std::int64_t r = e.k + std::int64_t(e.dy) * py;  // dx·px ≤ r
+                    if (e.dx > 0)
+                        xb = std::min(xb, floorDiv(r, e.dx));
+                    else if (e.dx < 0)
+                        xa = std::max(xa, -floorDiv(r, -std::int64_t(e.dx)));
+                    else if (r < 0)
+                        xb = xa - 1;
+                }
             }
             if (xa > xb) continue;
             float* row = &depth[std::size_t(py) * std::size_t(width)];
@@ -413,10 +441,11 @@ struct OcclusionCuller::State {
     }
 };
 
-OcclusionTarget occlusionTarget(const Backend& backend, int width, int height) {
+OcclusionTarget occlusionTarget(const Backend& backend, const Settings& settings) {
     OcclusionTarget target;
-    target.width = width;
-    target.height = height;
+    target.width = settings.width;
+    target.height = settings.height;
+    target.threads = settings.threads;
     target.exactRules = backend.followsLlvmpipeRules();
     // What a submitted triangle costs the draw, measured on a dense mesh (docs/occlusion.md).
     target.drawNsPerTriangle = backend.name() == "software" ? kSoftwareNsPerTriangle
@@ -431,6 +460,18 @@ OcclusionCuller::OcclusionCuller(OcclusionCuller&&) noexcept = default;
 OcclusionCuller& OcclusionCuller::operator=(OcclusionCuller&&) noexcept = default;
 
 const OcclusionStats& OcclusionCuller::stats() const { return state_->stats; }
+
+std::uint64_t OcclusionCuller::bytes() const {
+    const State& st = *state_;
+    std::uint64_t total = st.depth.capacity() * sizeof(float) + st.blockMax.capacity() * sizeof(float) +
+                          st.blockDirty.capacity() + st.items.capacity() * sizeof(Item) +
+                          st.slots.capacity() * sizeof(std::uint32_t);
+    for (const State::ClusterVertices& cv : st.meshes)
+        total += cv.positions.capacity() * sizeof(glm::vec3) + cv.firstVertex.capacity() * sizeof(std::uint32_t) +
+                 cv.corners.capacity() * sizeof(std::uint16_t);
+    for (const Band& band : st.bands) total += band.seen.capacity() + band.window.capacity() * sizeof(WindowVertex);
+    return total;
+}
 
 void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, const std::vector<glm::mat4>& world,
                           const View& view, const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
@@ -536,15 +577,20 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         for (std::uint32_t r = 0; r < kc.rangeCount; ++r) n += ranges[kc.firstRange + r].triangleCount;
         st.slots[i + 1] = st.slots[i] + n;
     }
-    st.splitBands(kept, ranges);
+    st.splitBands(target.threads);
 
     // Each band of rows walks every cluster in the order above, with the part of the buffer it owns:
     // what it finds is what one walk over the whole screen finds (State::walk).
     const Walk walk{scene, maps, world, viewProjection, kept, ranges};
-    st.pool().run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
+    st.pool(target.threads).run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
 
     // A triangle is kept when some band may see it (or must keep it); a cluster with nothing left
     // is hidden.
+    std::vector<std::uint8_t>& seen = st.bands.front().seen;
+    for (std::size_t b = 1; b < st.bands.size(); ++b) {
+        const std::uint8_t* other = st.bands[b].seen.data();
+        for (std::size_t slot = 0; slot < seen.size(); ++slot) seen[slot] |= other[slot];
+    }
     out.clear();
     result.assign(kept.size(), KeptCluster{});
     std::size_t left = 0;
@@ -560,9 +606,7 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
             const IndexRange& range = ranges[kc.firstRange + r];
             for (std::uint32_t t = range.firstTriangle; t < range.firstTriangle + range.triangleCount; ++t, ++slot) {
-                bool keep = false;
-                for (const Band& b : st.bands) keep = keep || b.seen[slot] != 0;
-                if (!keep) continue;
+                if (!seen[slot]) continue;
                 if (runLength > 0 && runStart + runLength == t) {
                     ++runLength;
                     continue;

@@ -41,6 +41,7 @@
 
 #include <frugal/Image.h>
 #include <frugal/Scene.h>
+#include <frugal/Settings.h>
 
 #include "cull/SphereMap.h"
 #include "render/Backend.h"
@@ -75,10 +76,12 @@ struct OcclusionTarget {
     double drawNsPerTriangle = 110.0;  // what a submitted triangle costs the draw (llvmpipe's, 2 cores)
     // false: the pass runs on every call, however little it gains (tests, and measuring it).
     bool adaptive = true;
+    int threads = 0;  // the walk's threads; 0: every core
 };
 
-// The target of `backend`: its rules, and its cost of a triangle.
-OcclusionTarget occlusionTarget(const Backend& backend, int width, int height);
+// The target of `backend` for frames of `settings` (size, threads): its rules, and its cost of a
+// triangle.
+OcclusionTarget occlusionTarget(const Backend& backend, const Settings& settings);
 
 class OcclusionCuller {
 public:
@@ -95,6 +98,10 @@ public:
              const std::vector<IndexRange>& ranges, std::vector<KeptCluster>& result, std::vector<IndexRange>& out);
 
     const OcclusionStats& stats() const;
+
+    // Memory it keeps between calls: the buffer, the clusters' vertices side by side, the bands'
+    // flags (0 before the first pass that ran).
+    std::uint64_t bytes() const;
 
     // The last run's buffer as an RGBA8 image (top row first): open pixels blue, covered pixels
     // grey, lighter the nearer. Empty when the last run was skipped.

@@ -14,6 +14,7 @@
 #include "cull/Culling.h"
 #include "hsr/Plan.h"
 #include "render/Frame.h"
+#include "io/ImageIO.h"
 #include "renderer/Oracle.h"
 #include "renderer/Stage.h"
 #include "report/ImageCompare.h"
@@ -37,8 +38,8 @@ struct Timing {
 class ViewMeasure {
 public:
     ViewMeasure(const Scene& scene, const SceneCuller& culler, Stage& stage, const CullMeasureSettings& settings,
-                const std::optional<hsr::Planner>& planner)
-        : scene_(scene), culler_(culler), stage_(stage), s_(settings), planner_(planner) {}
+                const std::optional<hsr::Planner>& planner, std::vector<std::pair<std::string, Bytes>>& images)
+        : scene_(scene), culler_(culler), stage_(stage), s_(settings), planner_(planner), images_(images) {}
 
     Result<ViewResult> run(std::size_t v, const ReportView& reportView, std::string& progressLine);
 
@@ -53,6 +54,7 @@ private:
     Stage& stage_;
     const CullMeasureSettings& s_;
     const std::optional<hsr::Planner>& planner_;
+    std::vector<std::pair<std::string, Bytes>>& images_;  // the occlusion buffers (--masks), as PNG
     std::optional<FrameSetup> setup_;
     std::optional<Oracle> oracle_;
     std::optional<hsr::Planner> oraclePlanner_;
@@ -107,7 +109,9 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     // Timed rounds: the methods asked for, then the baselines (none is the full draw and oracle the
     // oracle's: their rows take the baselines' times).
     std::vector<Timing> timings(methods.size());
-    const OcclusionTarget occlusionTarget = frugal::occlusionTarget(backend, s.width, s.height);
+    std::optional<OcclusionView> occlusionView;
+    std::vector<double> passMs;
+    const OcclusionTarget occlusionTarget = frugal::occlusionTarget(backend, s);
     Timing fullTiming, cullfaceTiming, oracleTiming;
     for (int round = -1; round < s_.repeat; ++round) {  // round -1: warm-up, untimed
         const bool record = round >= 0;
@@ -118,6 +122,12 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
             t.list = culler_.cull(methods[m], scene_, world, setup_->view, occlusionTarget);
             const double cullMs = msSince(t0);
             if (record) t.cull.push_back(cullMs);
+            if (methods[m] == Cull::Occlusion && record) {
+                if (!occlusionView) occlusionView.emplace();
+                const OcclusionStats& o = culler_.occlusion().stats();
+                ++occlusionView->frames;
+                if (o.ran) ++occlusionView->runs, passMs.push_back(o.ms);
+            }
             frame(renderer, &t.list, t, record);
         }
         frame(renderer, nullptr, fullTiming, record);
@@ -128,6 +138,26 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     }
     const double fullMs = median(fullTiming.draw), cullfaceMs = median(cullfaceTiming.draw),
                  oracleMs = median(oracleTiming.draw);
+    if (occlusionView) {
+        // One more pass, untimed, that runs whatever the policy says: what it removes, and its buffer.
+        OcclusionTarget always = occlusionTarget;
+        always.adaptive = false;
+        (void)culler_.cull(Cull::Occlusion, scene_, world, setup_->view, always);
+        const OcclusionStats& o = culler_.occlusion().stats();
+        occlusionView->passMs = passMs.empty() ? 0.0 : median(passMs);
+        occlusionView->trianglesHidden = o.trianglesHidden;
+        occlusionView->clustersHidden = o.clustersHidden;
+        occlusionView->clustersTested = o.clustersTested;
+        occlusionView->savedMs = o.savedMs;
+        if (!s_.masksDir.empty()) {
+            int w = 0, h = 0;
+            const std::vector<std::uint8_t> rgba = culler_.occlusion().image(w, h);
+            Result<Bytes> png = encodePng(w, h, 4, 8, rgba.data());
+            if (!png) return Error{"view " + std::to_string(v) + ": occlusion buffer: " + png.error()};
+            occlusionView->image = s_.masksDir + "/occlusion-view-" + std::to_string(v) + ".png";
+            images_.emplace_back(occlusionView->image, std::move(*png));
+        }
+    }
 
     ViewResult view;
     view.index = int(v);
@@ -171,6 +201,11 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
             progress << "; " << result.method << " x" << fmt(std::round(result.ratioToOracle * 100) / 100)
                      << (result.misses ? " misses " + std::to_string(result.misses) : "");
         view.methods.push_back(std::move(result));
+    }
+    if (occlusionView) {
+        progress << "; occlusion pass " << occlusionView->runs << "/" << occlusionView->frames << " frames, "
+                 << fmt(occlusionView->passMs) << " ms, hides " << occlusionView->trianglesHidden << " triangles";
+        view.occlusion = std::move(occlusionView);
     }
     progressLine = progress.str();
     return view;
@@ -245,7 +280,7 @@ Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportVie
     report.backend = stage->backend().name();
     report.timing = settings.timing;
     for (std::size_t v = 0; v < views.size(); ++v) {
-        ViewMeasure measure(scene, culler, *stage, settings, planner);
+        ViewMeasure measure(scene, culler, *stage, settings, planner, measured.images);
         std::string line;
         Result<ViewResult> view = measure.run(v, views[v], line);
         if (!view) return view.failure();
@@ -274,6 +309,21 @@ std::string cullReportSummary(const CullMeasurement& measured, const std::vector
             s["worst_view"]["class"].get<std::string>().c_str(), s["worst_view"]["ratio_to_oracle"].get<double>());
         out += line;
     }
+    // The occlusion pass over the views: how often it ran, what it cost and what it hides.
+    int runs = 0, frames = 0;
+    std::vector<double> pass, hidden;
+    for (const ViewResult& view : measured.report.views)
+        if (view.occlusion) {
+            runs += view.occlusion->runs;
+            frames += view.occlusion->frames;
+            if (view.occlusion->runs > 0) pass.push_back(view.occlusion->passMs);
+            hidden.push_back(double(view.occlusion->trianglesHidden));
+        }
+    if (frames > 0)
+        out += "\nocclusion: the pass ran in " + std::to_string(runs) + " of " + std::to_string(frames) +
+               " timed frames (median " + fmt(pass.empty() ? 0.0 : median(pass)) +
+               " ms where it ran; it skips itself where it does not pay); run on every view, it hides a median of " +
+               fmt(median(hidden)) + " triangles of conservative's plan\n";
     out += "\nclass     method        views  median pvs of tos   speed-up (full, cullface)  misses\n";
     for (const auto& [viewClass, byMethod] : json["by_class"].items())
         for (Cull method : methods) {

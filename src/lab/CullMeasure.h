@@ -17,6 +17,7 @@
 
 #include "cull/Culling.h"
 #include "cull/Views.h"
+#include "io/ImageIO.h"
 #include "lab/CullReport.h"
 
 namespace frugal {
@@ -31,6 +32,8 @@ struct CullMeasureSettings {
     int repeat = 5;             // timed rounds per view (after one untimed warm-up round)
     double time = 0.0;          // scene time of every view
     std::string timing = "cold";  // "cold" (independent views) or "path" (a camera path, in order)
+    // Not empty: the occlusion buffer of each view goes to MASKS/occlusion-view-<v>.png (images).
+    std::string masksDir;
 };
 
 // The report's JSON document (cullReportJson's, with "preprocess", "repeat", "hsr" and "renderer"
@@ -38,6 +41,7 @@ struct CullMeasureSettings {
 struct CullMeasurement {
     CullReport report;
     std::string json;
+    std::vector<std::pair<std::string, Bytes>> images;  // path (masksDir/...), PNG bytes
 };
 
 // Prepares the culling on `scene` (reordering its meshes), opens the stage, uploads and measures

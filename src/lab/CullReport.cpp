@@ -126,11 +126,21 @@ std::string cullReportJson(const CullReport& report) {
                                    {"ratio_to_oracle", number(m.ratioToOracle)},
                                    {"ratio_to_full", number(m.ratioToFull)},
                                    {"ratio_to_full_cullface", number(m.ratioToFullCullface)}});
-        views.push_back(Json{{"index", view.index},
-                             {"class", view.viewClass},
-                             {"eye", vec3(view.eye)},
-                             {"target", vec3(view.target)},
-                             {"methods", std::move(methods)}});
+        Json v{{"index", view.index},
+               {"class", view.viewClass},
+               {"eye", vec3(view.eye)},
+               {"target", vec3(view.target)},
+               {"methods", std::move(methods)}};
+        if (const std::optional<OcclusionView>& o = view.occlusion)
+            v["occlusion"] = Json{{"runs", o->runs},
+                                  {"frames", o->frames},
+                                  {"pass_ms", number(o->passMs)},
+                                  {"triangles_hidden", o->trianglesHidden},
+                                  {"clusters_hidden", o->clustersHidden},
+                                  {"clusters_tested", o->clustersTested},
+                                  {"saved_ms_estimate", number(o->savedMs)},
+                                  {"image", o->image.empty() ? Json() : Json(o->image)}};
+        views.push_back(std::move(v));
     }
     Json summary = Json::object();
     for (const MethodRows& rows : byMethod(report)) summary[rows.method] = summaryJson(rows);

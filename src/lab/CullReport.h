@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,23 @@ struct MethodResult {
     double ratioToFullCullface = 0.0;  // (cull + draw) / full draw with GL back-face culling on
 };
 
+// What the occlusion pass did on one view (cull/Occlusion.h): over the timed frames, and in one more
+// untimed pass made to run whatever its policy says (what it removes when it runs, and its buffer).
+struct OcclusionView {
+    int runs = 0, frames = 0;          // timed frames in which the pass ran, of all timed frames
+    double passMs = 0.0;               // median time of the pass where it ran (0: never)
+    std::size_t trianglesHidden = 0;   // of the conservative plan (the untimed pass)
+    std::size_t clustersHidden = 0, clustersTested = 0;
+    double savedMs = 0.0;              // its estimate of the draw time it saves (trianglesHidden × cost)
+    std::string image;                 // the buffer's file (--masks), relative to the report; empty: none
+};
+
 struct ViewResult {
     int index = 0;
     std::string viewClass;  // "whole", "partial", "grazing", "inside", "pole", "camera", "path"
     glm::vec3 eye{0.0f}, target{0.0f};
     std::vector<MethodResult> methods;
+    std::optional<OcclusionView> occlusion;  // when the occlusion method was measured
 };
 
 struct CullReport {
@@ -38,7 +51,9 @@ struct CullReport {
 
 // {"scene","size":[w,h],"backend","timing","views":[{"index","class","eye","target","methods":[{
 //   "method","tos","pvs","rvs","misses","waste","pixels_differing","cull_ms","draw_ms",
-//   "ratio_to_oracle","ratio_to_full","ratio_to_full_cullface"}]}],
+//   "ratio_to_oracle","ratio_to_full","ratio_to_full_cullface"}],
+//   "occlusion" (with the occlusion method):{"runs","frames","pass_ms","triangles_hidden",
+//   "clusters_hidden","clusters_tested","saved_ms_estimate","image" (null: none)}}],
 //  "summary":{METHOD:{"views","median_pvs","median_cull_ms","median_draw_ms","median_ratio_to_oracle",
 //   "median_ratio_to_full","median_ratio_to_full_cullface","median_cull_over_draw" (of cull ÷ draw per
 //   view: the share of the frame culling takes),"worst_view":{"index","class","ratio_to_oracle"},

@@ -8,8 +8,10 @@
 
 namespace frugal {
 
-Result<bool> writeReport(const ReportPaths& paths, const ReportTexts& texts) {
+Result<bool> writeReport(const ReportPaths& paths, const ReportTexts& texts,
+                         std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra) {
     OutputSet files;
+    for (auto& [path, bytes] : extra) files.add(path, std::move(bytes));
     if (!paths.json.empty()) {
         const std::string text = texts.json();
         files.add(paths.json, Bytes(text.begin(), text.end()));

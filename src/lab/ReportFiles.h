@@ -2,8 +2,11 @@
 // beside the plot, then gnuplot run on it), all or none.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <frugal/Result.h>
 
@@ -24,7 +27,9 @@ struct ReportTexts {
 // Writes the files asked for, all or none (OutputSet): the JSON, the CSV (at paths.csv, or with a
 // plot alone beside it as FILE.csv) and the script (FILE.gp); then runs gnuplot on the script.
 // Errors: "<path>: <why>" (Io), "plot FILE: <gnuplot's problem>", "csv FILE: a path with a single
-// quote cannot be passed to gnuplot" (both about a setting).
-Result<bool> writeReport(const ReportPaths& paths, const ReportTexts& texts);
+// quote cannot be passed to gnuplot" (both about a setting). `extra` files (path, bytes) are
+// written with them, all or none.
+Result<bool> writeReport(const ReportPaths& paths, const ReportTexts& texts,
+                         std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra = {});
 
 }  // namespace frugal

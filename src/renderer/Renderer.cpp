@@ -205,15 +205,19 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         Result<Oracle> oracle =
             makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, s.background);
         if (!oracle) return Error{scene->source + ": " + oracle.error()};
-        stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0};
+        stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
         t0 = Clock::now();
         oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
     } else if (culler) {
-        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view, occlusionTarget(*backend, s.width, s.height));
+        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view, occlusionTarget(*backend, s));
         const double cullMs = msBetween(t0, Clock::now());
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();
-        stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges};
+        stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges, std::nullopt};
+        if (s.cull == Cull::Occlusion) {
+            const OcclusionStats& o = culler->occlusion().stats();
+            stats.cull->occlusion = OcclusionFrameStats{o.ran, o.ms, o.trianglesHidden};
+        }
         draw(*setup, list, stats);
     } else {
         draw(*setup, renderer->fullList(), stats);
@@ -292,7 +296,7 @@ std::uint64_t Renderer::staticPairBytes() const {
 }
 std::uint64_t Renderer::extraBytes() const {
     return staticPairBytes() + (impl_->cullPreparation ? impl_->cullPreparation->bytes : 0) +
-           (impl_->planner ? impl_->planner->bytes() : 0);
+           (impl_->culler ? impl_->culler->occlusion().bytes() : 0) + (impl_->planner ? impl_->planner->bytes() : 0);
 }
 
 }  // namespace frugal

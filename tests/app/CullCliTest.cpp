@@ -282,6 +282,9 @@ TEST(CullCliTest, BadCullOptionsGetOneLineAndNoFile) {
         {{"cull-report", "--methods", ","}, 2, "error: --methods: ',' names '', not a method " + methods},
         {{"cull-report", "--methods", ""}, 2, "error: --methods: '' is not a list of methods " + methods},
         {{"cull-report", "--views", "0"}, 2, "error: --views: '0' is not a whole number from 1 to 10000"},
+        {{"cull-report", "--methods", "conservative", "--masks", "m"},
+         2,
+         "error: --masks: the occlusion buffers come from the occlusion method; add it to --methods"},
         {{"cull-report", "--views", "3x"}, 2, "error: --views: '3x' is not a whole number from 1 to 10000"},
         {{"cull-report", "--repeat", "0"}, 2, "error: --repeat: '0' is not a whole number from 1 to 10000"},
         {{"cull-report", "--cull-bins", "16"}, 2, "error: --cull-bins: '16" + bins},
@@ -435,6 +438,41 @@ TEST(CullCliTest, CullReportPrintsASummaryLinePerMethod) {
     EXPECT_EQ(j["views"][0]["methods"][0]["method"], "oracle");
     EXPECT_EQ(j["views"][0]["methods"][1]["method"], "conservative");
     EXPECT_EQ(j["summary"].size(), 2u);
+}
+
+// Occlusion's record per view, and its buffers as images (--masks), written with the report.
+TEST(CullCliTest, CullReportGivesTheOcclusionPassAndItsBuffers) {
+    const fs::path dir = test::freshDir("CullCliMasks");
+    const CliRun run =
+        runFrugal(dir, {"cull-report", "builtin:dominoes", "--size", "96x72", "--views", "3", "--repeat", "2",
+                        "--backend", "software", "--methods", "conservative,occlusion", "--json", "r.json",
+                        "--masks", "m"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("\nocclusion: the pass ran in "), std::string::npos) << run.out;
+    EXPECT_NE(run.err.find("; occlusion pass "), std::string::npos) << run.err;
+    const nlohmann::json j = test::readJson(dir / "r.json");
+    ASSERT_EQ(j["views"].size(), 3u);
+    std::size_t hidden = 0;
+    for (std::size_t v = 0; v < 3; ++v) {
+        const nlohmann::json& o = j["views"][v]["occlusion"];
+        ASSERT_TRUE(o.is_object()) << v;
+        EXPECT_EQ(o["frames"], 2);
+        EXPECT_LE(o["runs"].get<int>(), 2);
+        hidden += o["triangles_hidden"].get<std::size_t>();
+        const std::string image = "m/occlusion-view-" + std::to_string(v) + ".png";
+        EXPECT_EQ(o["image"], image);
+        Result<DecodedImage> png = readPng((dir / image).string());
+        ASSERT_TRUE(png) << png.error();
+        EXPECT_EQ(png->width, 96);
+        EXPECT_EQ(png->height, 72);
+        // Each view's conservative plan less what occlusion hides is what the occlusion row submits
+        // when the pass runs (its last timed frame may have skipped it).
+        const nlohmann::json& rows = j["views"][v]["methods"];
+        EXPECT_EQ(rows[0]["method"], "conservative");
+        EXPECT_EQ(rows[1]["misses"], 0);
+        EXPECT_EQ(rows[1]["pixels_differing"], 0);
+    }
+    EXPECT_GT(hidden, 0u) << "the dominoes hide one another";
 }
 
 // --- help -----------------------------------------------------------------------------------------

@@ -66,7 +66,10 @@ public:
 
     // The occlusion pass's target: the software backend's rules, run on every frame.
     OcclusionTarget occlusionTarget() const {
-        OcclusionTarget t = frugal::occlusionTarget(*backend, width, height);
+        Settings settings;
+        settings.width = width;
+        settings.height = height;
+        OcclusionTarget t = frugal::occlusionTarget(*backend, settings);
         t.adaptive = false;
         return t;
     }

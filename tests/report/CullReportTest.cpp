@@ -45,16 +45,16 @@ CullReport fakeReport() {
         row("none", 100, 0, 0, 0.0, 3.0, 3.0),
         row("sphere", 60, 0, 0, 0.25, 2.0, 2.0),
         row("oracle", 40, 0, 0, 0.0, 1.0, 1.0),
-    }});
+    }, std::nullopt});
     r.views.push_back({1, "partial", glm::vec3(1.0f), glm::vec3(0.0f, 0.5f, 0.0f), {
         row("none", 100, 0, 0, 0.0, 5.0, 5.0),
         row("sphere", 30, 2, 7, 0.5, 1.5, 2.5),
-    }});
+    }, std::nullopt});
     r.views.push_back({2, "grazing", glm::vec3(2.0f), glm::vec3(0.0f), {
         row("none", 100, 0, 0, 0.0, 4.0, 4.0),
         row("sphere", 41, 3, 1, 0.125, 1.75, 1.5),
         row("oracle", 45, 0, 0, 0.0, 2.0, 1.0),
-    }});
+    }, OcclusionView{2, 3, 0.75, 59, 4, 9, 1.5, "m/occlusion-view-2.png"}});
     return r;
 }
 
@@ -91,6 +91,12 @@ TEST(CullReportTest, JsonHasTheDocumentedKeys) {
     EXPECT_EQ(m["ratio_to_oracle"].get<double>(), 2.5);
     EXPECT_NEAR(m["ratio_to_full"].get<double>(), 2.5 / 3.0, 1e-15);
     EXPECT_EQ(m["ratio_to_full_cullface"].get<double>(), 1.25);
+
+    // The occlusion pass's record, on the view that has one only.
+    EXPECT_FALSE(j["views"][0].contains("occlusion"));
+    const nlohmann::json& o = j["views"][2]["occlusion"];
+    EXPECT_EQ(o, nlohmann::json::parse(R"({"runs": 2, "frames": 3, "pass_ms": 0.75, "triangles_hidden": 59,
+        "clusters_hidden": 4, "clusters_tested": 9, "saved_ms_estimate": 1.5, "image": "m/occlusion-view-2.png"})"));
 }
 
 TEST(CullReportTest, JsonSummaryHasMediansWorstViewAndTotals) {
