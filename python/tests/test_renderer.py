@@ -21,6 +21,22 @@ def test_settings_round_trip_and_defaults():
     assert frugal.Renderer(scene, size=(64, 48)).extra_bytes == 0
 
 
+def test_occlusion_culling_gives_the_same_image_and_says_what_it_did():
+    import numpy as np
+    scene = frugal.load("builtin:dominoes?polygons=6000")
+    with frugal.Renderer(scene, size=(160, 120), cull="conservative", ids=True) as plain, \
+            frugal.Renderer(scene, size=(160, 120), cull="occlusion", ids=True) as culled:
+        a, b = plain.render(), culled.render()
+        assert np.array_equal(a.color, b.color) and np.array_equal(a.ids, b.ids)
+        assert np.array_equal(a.depth, b.depth)
+        assert set(b.stats["occlusion"]) == {"ran", "ms", "triangles_hidden"}
+        assert b.stats["pvs"] <= a.stats["pvs"]
+        assert "occlusion" not in a.stats
+        assert culled.extra_bytes > plain.extra_bytes or not b.stats["occlusion"]["ran"]
+    with pytest.raises(frugal.InputError, match="reuse with cull occlusion"):
+        frugal.Renderer(scene, size=(32, 24), cull="occlusion", reuse=True)
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

@@ -76,7 +76,6 @@ struct Item {
 // What every band's walk reads.
 struct Walk {
     const Scene& scene;
-    const std::vector<MeshMap>& maps;
     const std::vector<glm::mat4>& world;
     const glm::mat4& viewProjection;
     const std::vector<KeptCluster>& kept;
@@ -581,7 +580,7 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
 
     // Each band of rows walks every cluster in the order above, with the part of the buffer it owns:
     // what it finds is what one walk over the whole screen finds (State::walk).
-    const Walk walk{scene, maps, world, viewProjection, kept, ranges};
+    const Walk walk{scene, world, viewProjection, kept, ranges};
     st.pool(target.threads).run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
 
     // A triangle is kept when some band may see it (or must keep it); a cluster with nothing left
