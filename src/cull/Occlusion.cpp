@@ -11,10 +11,6 @@
 #include "software/Rasterizer.h"
 #include "software/ThreadPool.h"
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
-
 // The vertex transform below reproduces the software backend's (Kernels.inl transform): every
 // product and sum rounded on its own, the viewport fused only where the CPU fuses it.
 #pragma GCC optimize("fp-contract=off")
@@ -55,15 +51,6 @@ struct WindowVertex {
 
 // ⌊a / b⌋ for b > 0.
 inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
-// Round to nearest even as CVTSS2SI does (|f| < 2^26 here).
-inline std::int32_t roundEven(float f) {
-#if defined(__x86_64__)
-    return _mm_cvtss_si32(_mm_set_ss(f));
-#else
-    return std::int32_t(std::nearbyint(f));
-#endif
-}
 
 // A cluster in the order of the pass.
 struct Item {
@@ -291,13 +278,10 @@ struct OcclusionCuller::State {
             v.y = ny * viewport.sy + viewport.ty;
             v.z = nz * viewport.sz + viewport.tz;
         }
-        const float fx = (v.x - 0.5f) * 256.0f, fy = (v.y - 0.5f) * 256.0f;
-        constexpr float kLimit = 67108864.0f;  // 2^26, as setupTriangle
-        v.fixed = std::fabs(fx) < kLimit && std::fabs(fy) < kLimit;
-        if (v.fixed) {
-            v.fx = roundEven(fx);
-            v.fy = roundEven(fy);
-        }
+        std::int64_t fx = 0, fy = 0;
+        v.fixed = sw::fixedPosition(v.x, v.y, &fx, &fy);
+        v.fx = std::int32_t(fx);  // |fx|, |fy| < 2^26 when fixed
+        v.fy = std::int32_t(fy);
         return v;
     }
 
@@ -305,38 +289,19 @@ struct OcclusionCuller::State {
     // it owns no pixel centre, or every pixel it covers already holds an occluder strictly nearer
     // (false: drop it), or it may own a pixel (true: keep it; it then occludes, unless the draw
     // module may drop it, 2a.).
-    // Whether setup would keep the triangle and it covers a pixel centre: setupTriangle's fixed-point
-    // arithmetic (Rasterizer.h 3.) without the depth plane.
-    bool coversPixel(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, bool singleSided, int rowLo,
-                     int rowHi) const {
-        std::int64_t X[3] = {a.fx, b.fx, c.fx}, Y[3] = {a.fy, b.fy, c.fy};
-        const std::int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});
-        const std::int64_t minY = std::min({Y[0], Y[1], Y[2]}), maxY = std::max({Y[0], Y[1], Y[2]});
-        const std::int64_t x0 = std::max<std::int64_t>(-((-minX) >> 8), 0), x1 = std::min<std::int64_t>(maxX >> 8, width - 1);
-        const std::int64_t y0 = std::max<std::int64_t>(-((-minY) >> 8), rowLo), y1 = std::min<std::int64_t>(maxY >> 8, rowHi);
-        if (x0 > x1 || y0 > y1) return false;
-        const std::int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
-        if (area == 0) return false;
-        const bool front = area < 0;
-        if (singleSided && !front) return false;
-        if (front) {
-            std::swap(X[0], X[1]);
-            std::swap(Y[0], Y[1]);
-        }
-        std::int64_t k[3], ex[3], ey[3];
+    // Whether a triangle set up as `t` (its edges and bounds) covers a pixel centre in rows
+    // [rowLo, rowHi]: every k − dx·px + dy·py ≥ 0, i.e. their OR is not negative.
+    static bool coversPixel(const sw::Triangle& t, int rowLo, int rowHi) {
+        const std::int64_t x0 = t.x0, x1 = t.x1, y0 = std::max(t.y0, rowLo), y1 = std::min(t.y1, rowHi);
+        if (y0 > y1) return false;
+        std::int64_t e00[3], ex[3], ey[3];
         for (int i = 0; i < 3; ++i) {
-            const int j = i == 2 ? 0 : i + 1;
-            ex[i] = Y[i] - Y[j];
-            ey[i] = X[i] - X[j];
-            std::int64_t e = ex[i] * X[i] - ey[i] * Y[i];
-            if (ex[i] < 0 || (ex[i] == 0 && ey[i] > 0)) e += 1;
-            k[i] = (e - 1) >> 8;
+            ex[i] = t.e[i].dx;
+            ey[i] = t.e[i].dy;
+            e00[i] = t.e[i].k - ex[i] * x0 + ey[i] * y0;
         }
-        // Pixel (px, py) is covered when every k − dx·px + dy·py ≥ 0, i.e. when the OR of the three
-        // is not negative. Most triangles of a dense mesh span at most 2 × 2 pixel centres: those
-        // are decided without a branch a pixel (the outcome is a coin toss the predictor loses).
-        std::int64_t e00[3];
-        for (int i = 0; i < 3; ++i) e00[i] = k[i] - ex[i] * x0 + ey[i] * y0;
+        // Most triangles of a dense mesh span at most 2 × 2 pixel centres: decided without a
+        // branch a pixel (whether one is covered is a coin toss the branch predictor loses).
         if (x1 - x0 <= 1 && y1 - y0 <= 1) {
             const std::int64_t m00 = e00[0] | e00[1] | e00[2];
             const std::int64_t m10 = (e00[0] - ex[0]) | (e00[1] - ex[1]) | (e00[2] - ex[2]);
@@ -359,10 +324,14 @@ struct OcclusionCuller::State {
 
     bool triangleMaySeen(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, bool singleSided, int rowLo,
                          int rowHi) {
-        // Most triangles of a dense mesh own no pixel centre: setup's own coverage test (Rasterizer.h
-        // 3.), first, on the fixed-point positions kept with the vertices; the depth plane only for
-        // those that cover a pixel.
-        if (a.fixed && b.fixed && c.fixed && !coversPixel(a, b, c, singleSided, rowLo, rowHi)) return false;
+        // Setup's fixed-point part (Rasterizer.h 3.) on the positions kept with the vertices, then
+        // the coverage test: most triangles of a dense mesh far away own no pixel centre. The depth
+        // plane only for those that cover one.
+        if (!(a.fixed && b.fixed && c.fixed)) return true;  // not for an unclipped vertex; kept, hides nothing
+        std::int64_t X[3] = {a.fx, b.fx, c.fx}, Y[3] = {a.fy, b.fy, c.fy};
+        sw::Triangle t;
+        const sw::SetupOrder order = sw::setupEdges(X, Y, singleSided, viewport, &t);
+        if (order == sw::SetupOrder::Dropped || !coversPixel(t, rowLo, rowHi)) return false;  // no pixel
         sw::SetupVertex s[3];
         const WindowVertex* w[3] = {&a, &b, &c};
         for (int i = 0; i < 3; ++i) {
@@ -371,11 +340,11 @@ struct OcclusionCuller::State {
             s[i].z = w[i]->z;
             s[i].oow = 1.0f;
         }
-        sw::Triangle t;
-        if (!sw::setupTriangle(&s[0], &s[1], &s[2], singleSided, viewport, &t)) return false;  // no pixel
         // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
         // triangle is kept but hides nothing.
         const bool occludes = !singleSided || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
+        sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
         // llvmpipe's z at pixel (px, py) is fma(dzdy, py, fma(dzdx, px, z0)) in float, clamped to
         // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes: both
         // are within 4 units of roundoff of the sizes of the terms from the exact plane, so `slack`

@@ -91,26 +91,24 @@ inline std::int64_t ceilDiv256(std::int64_t a) { return -((-a) >> 8); }
 
 }  // namespace
 
-bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, bool cullBack,
-                   const Viewport& viewport, Triangle* out) {
-    const SetupVertex* v[3] = {v0, v1, v2};
-    std::int64_t X[3], Y[3];
+bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y) {
     constexpr float kLimit = 67108864.0f;  // 2^26: see "Where this departs" in Rasterizer.h
-    for (int i = 0; i < 3; ++i) {
-        // lp_setup_tri.c calc_fixed_position: (pos - pixel_offset) * FIXED_ONE, then CVTPS2DQ.
-        const float fx = (v[i]->x - 0.5f) * 256.0f;
-        const float fy = (v[i]->y - 0.5f) * 256.0f;
-        if (!(std::fabs(fx) < kLimit) || !(std::fabs(fy) < kLimit)) return false;  // also NaN
-        X[i] = roundEven(fx);
-        Y[i] = roundEven(fy);
-    }
+    // lp_setup_tri.c calc_fixed_position: (pos - pixel_offset) * FIXED_ONE, then CVTPS2DQ.
+    const float fx = (x - 0.5f) * 256.0f;
+    const float fy = (y - 0.5f) * 256.0f;
+    if (!(std::fabs(fx) < kLimit) || !(std::fabs(fy) < kLimit)) return false;  // also NaN
+    *X = roundEven(fx);
+    *Y = roundEven(fy);
+    return true;
+}
+
+SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport, Triangle* out) {
     const std::int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
-    if (area == 0) return false;
+    if (area == 0) return SetupOrder::Dropped;
     const bool front = area < 0;
-    if (cullBack && !front) return false;
+    if (cullBack && !front) return SetupOrder::Dropped;
     if (front) {
         // lp_setup_tri.c triangle_both/triangle_cw: do_triangle_ccw(v1, v0, v2).
-        std::swap(v[0], v[1]);
         std::swap(X[0], X[1]);
         std::swap(Y[0], Y[1]);
     }
@@ -122,7 +120,7 @@ bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVert
     const std::int64_t x1 = std::min<std::int64_t>(floorDiv256(maxX), viewport.width - 1);
     const std::int64_t y0 = std::max<std::int64_t>(ceilDiv256(minY), 0);
     const std::int64_t y1 = std::min<std::int64_t>(floorDiv256(maxY), viewport.height - 1);
-    if (x0 > x1 || y0 > y1) return false;
+    if (x0 > x1 || y0 > y1) return SetupOrder::Dropped;
 
     Triangle& t = *out;
     for (int i = 0; i < 3; ++i) {
@@ -140,23 +138,38 @@ bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVert
     t.x1 = std::int32_t(x1);
     t.y0 = std::int32_t(y0);
     t.y1 = std::int32_t(y1);
+    t.front = front ? 1u : 0u;
+    return front ? SetupOrder::Swapped : SetupOrder::Given;
+}
 
-    // Depth plane (lp_state_setup.c init_args + calc_coef4), each operation rounded to float.
-    const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;
-    const float dx01 = v[0]->x - v[1]->x, dy01 = v[0]->y - v[1]->y;
-    const float dx20 = v[2]->x - v[0]->x, dy20 = v[2]->y - v[0]->y;
+void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out) {
+    // lp_state_setup.c init_args + calc_coef4, each operation rounded to float.
+    Triangle& t = *out;
+    const float x0c = v0->x - 0.5f, y0c = v0->y - 0.5f;
+    const float dx01 = v0->x - v1->x, dy01 = v0->y - v1->y;
+    const float dx20 = v2->x - v0->x, dy20 = v2->y - v0->y;
     const float e = dx01 * dy20, f = dy01 * dx20;
     const float ooa = 1.0f / (e - f);
     const float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
-    const float da01 = v[0]->z - v[1]->z, da20 = v[2]->z - v[0]->z;
+    const float da01 = v0->z - v1->z, da20 = v2->z - v0->z;
     t.dzdx = da01 * dy20o - da20 * dy01o;
     t.dzdy = da20 * dx01o - da01 * dx20o;
-    t.z0 = v[0]->z - (t.dzdx * x0c + t.dzdy * y0c);
+    t.z0 = v0->z - (t.dzdx * x0c + t.dzdy * y0c);
+}
 
-    t.v[0] = v[0];
-    t.v[1] = v[1];
-    t.v[2] = v[2];
-    t.front = front ? 1u : 0u;
+bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, bool cullBack,
+                   const Viewport& viewport, Triangle* out) {
+    const SetupVertex* v[3] = {v0, v1, v2};
+    std::int64_t X[3], Y[3];
+    for (int i = 0; i < 3; ++i)
+        if (!fixedPosition(v[i]->x, v[i]->y, &X[i], &Y[i])) return false;
+    const SetupOrder order = setupEdges(X, Y, cullBack, viewport, out);
+    if (order == SetupOrder::Dropped) return false;
+    if (order == SetupOrder::Swapped) std::swap(v[0], v[1]);
+    setupDepthPlane(v[0], v[1], v[2], out);
+    out->v[0] = v[0];
+    out->v[1] = v[1];
+    out->v[2] = v[2];
     return true;
 }
 

@@ -167,6 +167,19 @@ inline bool drawModuleKeepsFront(const SetupVertex* v0, const SetupVertex* v1, c
 bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, bool cullBack,
                    const Viewport& viewport, Triangle* out);
 
+// setupTriangle in its three steps, for callers that keep fixed-point positions or need the depth
+// plane only of some triangles (cull/Occlusion.cpp):
+// - fixedPosition: a window position in setup's fixed point, round_even((x − 0.5)·256); false when
+//   it is not representable (|…| ≥ 2^26, or NaN);
+// - setupEdges: from the fixed-point positions in the order given, the edges, bounds and facing
+//   (3. above). Dropped, or the order the edges were set up in: Swapped for a front face (v0 and
+//   v1 exchanged, in X and Y too);
+// - setupDepthPlane: the depth plane (4. above) of the vertices in that order.
+enum class SetupOrder { Dropped, Given, Swapped };
+bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y);
+SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport, Triangle* out);
+void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out);
+
 // Stable storage for vertices made by the clipper (pointers stay valid until clear()).
 class VertexPool {
 public:
