@@ -36,16 +36,18 @@ constexpr std::size_t kMinTriangles = 4096;
 constexpr double kLlvmpipeNsPerTriangle = 110.0;
 constexpr double kSoftwareNsPerTriangle = 30.0;
 constexpr double kGpuNsPerTriangle = 1.0;
-// After a pass that did not pay, the next 1, 2, 4, ... (at most kMaxBackOff) calls skip it.
+// After a pass that did not pay, the next 1, 2, 4, ... (at most kMaxBackOff) calls skip it, unless
+// their plan has more than kBackOffGrowth times its triangles.
 constexpr int kMaxBackOff = 16;
+constexpr double kBackOffGrowth = 1.25;
 
-// A vertex as the occluder pass needs it: window position and clip mask (0xFF: not yet transformed).
+// A vertex as the occluder pass needs it: window position and clip mask.
 struct WindowVertex {
     float x = 0, y = 0, z = 0;
     // Fixed-point position as setup computes it (Rasterizer.h 3.: round_even((x − 0.5)·256)); only
     // meaningful when `fixed`, i.e. |(x − 0.5)·256| < 2^26.
     std::int32_t fx = 0, fy = 0;
-    std::uint8_t mask = 0xFF;
+    std::uint8_t mask = 0;
     bool fixed = false;
 };
 
@@ -76,6 +78,47 @@ struct Band {
     std::vector<WindowVertex> window;   // the current cluster's vertices, transformed
 };
 
+// The vertex stage of the software backend for positions only (Kernels.inl transform): every
+// product and sum rounded on its own; the viewport's multiply-add fused or not as llvmpipe does it
+// on this CPU (`kFused`).
+template <bool kFused>
+inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, const glm::vec3* positions,
+                                                         std::uint32_t count, const sw::Viewport& vp,
+                                                         WindowVertex* out) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const glm::vec3 p = positions[i];
+        glm::vec4 c;
+        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
+        WindowVertex& v = out[i];
+        v.mask = std::uint8_t(sw::clipMask(c, vp.halfZ));
+        const float oow = 1.0f / c.w;
+        const float nx = c.x * oow, ny = c.y * oow, nz = c.z * oow;
+        if constexpr (kFused) {
+            v.x = std::fma(nx, vp.sx, vp.tx);
+            v.y = std::fma(ny, vp.sy, vp.ty);
+            v.z = std::fma(nz, vp.sz, vp.tz);
+        } else {
+            v.x = nx * vp.sx + vp.tx;
+            v.y = ny * vp.sy + vp.ty;
+            v.z = nz * vp.sz + vp.tz;
+        }
+        std::int64_t fx = 0, fy = 0;
+        v.fixed = sw::fixedPosition(v.x, v.y, &fx, &fy);
+        v.fx = std::int32_t(fx);  // |fx|, |fy| < 2^26 when fixed
+        v.fy = std::int32_t(fy);
+    }
+}
+
+// The fused flavour, compiled for FMA so that std::fma is one instruction (it is called only when
+// the CPU has FMA: sw::cpuHasFma()).
+#if defined(__x86_64__)
+__attribute__((target("fma")))
+#endif
+void transformFused(const glm::mat4& m, const glm::vec3* positions, std::uint32_t count, const sw::Viewport& vp,
+                    WindowVertex* out) {
+    transformBody<true>(m, positions, count, vp, out);
+}
+
 }  // namespace
 
 struct OcclusionCuller::State {
@@ -86,6 +129,7 @@ struct OcclusionCuller::State {
     bool fused = sw::cpuHasFma();
     bool exactRules = true;  // the draw rasterizes by llvmpipe's rules: triangles are tested one by one
     int backOff = 0, skipLeft = 0;  // calls to skip after passes that did not pay
+    std::size_t failedPlanned = 0;  // the plan's triangles in the last pass that did not pay
     // Far-ness: window depth for D24 (0 near), its negation for D32F (reversed: 1 near), so that
     // "nearer" is "smaller" for both. depth: per pixel (row 0 at the bottom, window y), an upper
     // bound of what the frame's depth buffer ends with; blockMax: per block, the farthest of those.
@@ -162,7 +206,7 @@ struct OcclusionCuller::State {
             const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
             const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
             band.window.resize(vertexCount);
-            for (std::uint32_t v = 0; v < vertexCount; ++v) band.window[v].mask = 0xFF;
+            transform(m, &cv.positions[firstVertex], vertexCount, band.window.data());
             std::uint32_t slot = slots[i];
             for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
                 const IndexRange& range = w.ranges[kc.firstRange + r];
@@ -172,7 +216,6 @@ struct OcclusionCuller::State {
                     bool clipped = false;
                     for (int c = 0; c < 3; ++c) {
                         v[c] = &band.window[tri[c]];
-                        if (v[c]->mask == 0xFF) *v[c] = transform(m, cv.positions[firstVertex + tri[c]]);
                         clipped = clipped || v[c]->mask != 0;
                     }
                     // A clipped triangle is drawn from rounded new vertices: kept, and hides nothing.
@@ -260,29 +303,13 @@ struct OcclusionCuller::State {
         return true;
     }
 
-    // The window position of vertex `v` of a mesh under `mvp`, as the software backend's vertex
-    // stage computes it (Kernels.inl transform; Rasterizer.h 1.).
-    WindowVertex transform(const glm::mat4& m, const glm::vec3& p) const {
-        glm::vec4 c;
-        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
-        WindowVertex v;
-        v.mask = std::uint8_t(sw::clipMask(c, halfZ));
-        const float oow = 1.0f / c.w;
-        const float nx = c.x * oow, ny = c.y * oow, nz = c.z * oow;
-        if (fused) {
-            v.x = std::fma(nx, viewport.sx, viewport.tx);
-            v.y = std::fma(ny, viewport.sy, viewport.ty);
-            v.z = std::fma(nz, viewport.sz, viewport.tz);
-        } else {
-            v.x = nx * viewport.sx + viewport.tx;
-            v.y = ny * viewport.sy + viewport.ty;
-            v.z = nz * viewport.sz + viewport.tz;
-        }
-        std::int64_t fx = 0, fy = 0;
-        v.fixed = sw::fixedPosition(v.x, v.y, &fx, &fy);
-        v.fx = std::int32_t(fx);  // |fx|, |fy| < 2^26 when fixed
-        v.fy = std::int32_t(fy);
-        return v;
+    // The window positions of `count` vertices under `m`, as the software backend's vertex stage
+    // computes them (Kernels.inl transform; Rasterizer.h 1.), the viewport fused where it fuses.
+    void transform(const glm::mat4& m, const glm::vec3* positions, std::uint32_t count, WindowVertex* out) const {
+        if (fused)
+            transformFused(m, positions, count, viewport, out);
+        else
+            transformBody<false>(m, positions, count, viewport, out);
     }
 
     // One triangle of a cluster that may be seen, as llvmpipe rasterizes it (Rasterizer.h 3. and 5.):
@@ -328,6 +355,11 @@ struct OcclusionCuller::State {
         // the coverage test: most triangles of a dense mesh far away own no pixel centre. The depth
         // plane only for those that cover one.
         if (!(a.fixed && b.fixed && c.fixed)) return true;  // not for an unclipped vertex; kept, hides nothing
+        // First setup's bounds test alone (no pixel centre within the fixed-point bounds): it drops
+        // a fifth of a dense mesh's triangles for a few instructions.
+        const std::int32_t minX = std::min({a.fx, b.fx, c.fx}), maxX = std::max({a.fx, b.fx, c.fx});
+        const std::int32_t minY = std::min({a.fy, b.fy, c.fy}), maxY = std::max({a.fy, b.fy, c.fy});
+        if (-((-minX) >> 8) > (maxX >> 8) || std::max(-((-minY) >> 8), rowLo) > std::min(maxY >> 8, rowHi)) return false;
         std::int64_t X[3] = {a.fx, b.fx, c.fx}, Y[3] = {a.fy, b.fy, c.fy};
         sw::Triangle t;
         const sw::SetupOrder order = sw::setupEdges(X, Y, singleSided, viewport, &t);
@@ -452,10 +484,12 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     st.stats = {};
     std::size_t planned = 0;
     for (const IndexRange& r : ranges) planned += r.triangleCount;
-    const bool skip =
-        width <= 0 || height <= 0 || (target.adaptive && (planned < kMinTriangles || st.skipLeft > 0));
+    // Backing off after a pass that did not pay holds for plans of about that size or smaller: a
+    // plan much larger (a view of more, smaller triangles) is tried again.
+    const bool backingOff = st.skipLeft > 0 && double(planned) <= kBackOffGrowth * double(st.failedPlanned);
+    const bool skip = width <= 0 || height <= 0 || (target.adaptive && (planned < kMinTriangles || backingOff));
     if (skip) {
-        if (target.adaptive && st.skipLeft > 0) --st.skipLeft;
+        if (target.adaptive && backingOff) --st.skipLeft;
         st.width = st.height = 0;
         result = kept;
         out = ranges;
@@ -510,12 +544,14 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         if (testable) {
             // x/w, y/w, z/w of a vertex inside the box lie between the corners' (a ratio of affine
             // functions over a box takes its extremes at corners); the float transform moves them by
-            // at most (e + |ratio|·e_w)/w, and the division and viewport by a few units more.
+            // at most (e + |ratio|·e_w)/w_float, w_float ≥ wMin − e_w > 0, and the division and the
+            // viewport by a few units more.
             const double ratio = std::max({1.0, std::abs(xMin), std::abs(xMax), std::abs(yMin), std::abs(yMax),
                                            std::abs(zMin), std::abs(zMax)});
-            const double ex = (err[0] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
-            const double ey = (err[1] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
-            const double ez = (err[2] + ratio * err[3]) / wMin + 4.0 * kUnit * ratio;
+            const double wLow = wMin - err[3];
+            const double ex = (err[0] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
+            const double ey = (err[1] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
+            const double ez = (err[2] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
             // Window pixels whose centre the box may cover, grown by one pixel.
             const double wx0 = (xMin - ex) * vp.sx + vp.tx - 1.0, wx1 = (xMax + ex) * vp.sx + vp.tx + 1.0;
             const double wy0 = (yMin - ey) * vp.sy + vp.ty - 1.0, wy1 = (yMax + ey) * vp.sy + vp.ty + 1.0;
@@ -596,8 +632,10 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     if (st.stats.savedMs < st.stats.ms) {
         st.backOff = std::min(std::max(1, 2 * st.backOff), kMaxBackOff);
         st.skipLeft = st.backOff;
+        st.failedPlanned = planned;
     } else {
         st.backOff = 0;
+        st.skipLeft = 0;
     }
 }
 

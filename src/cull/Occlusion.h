@@ -29,7 +29,8 @@
 // It pays for itself or turns itself off: a pass is skipped when the conservative plan submits
 // fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped,
 // by what a triangle costs the target) was less than its own time, the next 1, 2, 4, ... 16 calls
-// skip it. A skipped pass leaves the conservative plan as it is.
+// skip it, unless their plan is more than 1.25 times as large (another kind of view). A skipped
+// pass leaves the conservative plan as it is.
 #pragma once
 
 #include <cstddef>

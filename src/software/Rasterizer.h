@@ -97,6 +97,7 @@
 // coordinates: identical images, no crash, no hang.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -104,6 +105,10 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include <frugal/Image.h>
 
@@ -175,9 +180,11 @@ bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVert
 //   (3. above). Dropped, or the order the edges were set up in: Swapped for a front face (v0 and
 //   v1 exchanged, in X and Y too);
 // - setupDepthPlane: the depth plane (4. above) of the vertices in that order.
+// (fixedPosition and setupEdges are inline, below: integer arithmetic and one rounding each.)
 enum class SetupOrder { Dropped, Given, Swapped };
-bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y);
-SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport, Triangle* out);
+inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y);
+inline SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport,
+                             Triangle* out);
 void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out);
 
 // Stable storage for vertices made by the clipper (pointers stay valid until clear()).
@@ -223,6 +230,76 @@ struct Segment {
     void bin(std::uint32_t index, int tilesX);
     void close(int tileCount);
 };
+
+// ---------------------------------------------------------------------------------------------
+// Implementation of setup's fixed-point part (inline: the occlusion pass runs it per triangle).
+
+namespace detail {
+// Round to nearest even, like CVTPS2DQ in calc_fixed_position (|f| < 2^26 here). CVTSS2SI is
+// baseline SSE on x86-64, where nearbyint would be a library call.
+inline std::int64_t roundEven(float f) {
+#if defined(__x86_64__)
+    return _mm_cvtss_si32(_mm_set_ss(f));
+#else
+    return std::int64_t(std::nearbyint(f));
+#endif
+}
+
+// Floor and ceiling of a / 256 for any sign (C++20 >> on negative values is arithmetic).
+inline std::int64_t floorDiv256(std::int64_t a) { return a >> 8; }
+inline std::int64_t ceilDiv256(std::int64_t a) { return -((-a) >> 8); }
+}  // namespace detail
+
+inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y) {
+    constexpr float kLimit = 67108864.0f;  // 2^26: see "Where this departs" in Rasterizer.h
+    // lp_setup_tri.c calc_fixed_position: (pos - pixel_offset) * FIXED_ONE, then CVTPS2DQ.
+    const float fx = (x - 0.5f) * 256.0f;
+    const float fy = (y - 0.5f) * 256.0f;
+    if (!(std::fabs(fx) < kLimit) || !(std::fabs(fy) < kLimit)) return false;  // also NaN
+    *X = detail::roundEven(fx);
+    *Y = detail::roundEven(fy);
+    return true;
+}
+
+inline SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport, Triangle* out) {
+    const std::int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
+    if (area == 0) return SetupOrder::Dropped;
+    const bool front = area < 0;
+    if (cullBack && !front) return SetupOrder::Dropped;
+    if (front) {
+        // lp_setup_tri.c triangle_both/triangle_cw: do_triangle_ccw(v1, v0, v2).
+        std::swap(X[0], X[1]);
+        std::swap(Y[0], Y[1]);
+    }
+
+    // Pixels whose centre sample (256·px, 256·py) lies within the vertices' fixed-point bounds.
+    const std::int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});
+    const std::int64_t minY = std::min({Y[0], Y[1], Y[2]}), maxY = std::max({Y[0], Y[1], Y[2]});
+    const std::int64_t x0 = std::max<std::int64_t>(detail::ceilDiv256(minX), 0);
+    const std::int64_t x1 = std::min<std::int64_t>(detail::floorDiv256(maxX), viewport.width - 1);
+    const std::int64_t y0 = std::max<std::int64_t>(detail::ceilDiv256(minY), 0);
+    const std::int64_t y1 = std::min<std::int64_t>(detail::floorDiv256(maxY), viewport.height - 1);
+    if (x0 > x1 || y0 > y1) return SetupOrder::Dropped;
+
+    Triangle& t = *out;
+    for (int i = 0; i < 3; ++i) {
+        const int j = i == 2 ? 0 : i + 1;
+        const std::int64_t dcdx = Y[i] - Y[j];
+        const std::int64_t dcdy = X[i] - X[j];
+        std::int64_t c = dcdx * X[i] - dcdy * Y[i];
+        if (dcdx < 0 || (dcdx == 0 && dcdy > 0)) c += 1;
+        // c − 256·dcdx·px + 256·dcdy·py ≥ 1  ⇔  dcdx·px − dcdy·py ≤ ⌊(c − 1)/256⌋.
+        t.e[i].k = detail::floorDiv256(c - 1);
+        t.e[i].dx = std::int32_t(dcdx);
+        t.e[i].dy = std::int32_t(dcdy);
+    }
+    t.x0 = std::int32_t(x0);
+    t.x1 = std::int32_t(x1);
+    t.y0 = std::int32_t(y0);
+    t.y1 = std::int32_t(y1);
+    t.front = front ? 1u : 0u;
+    return front ? SetupOrder::Swapped : SetupOrder::Given;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Implementation of the clipper (a template so the emit callback inlines).
