@@ -141,7 +141,8 @@ void BM_CullBunny(benchmark::State& state) {
 BENCHMARK(BM_CullBunny)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
 // The occlusion pass alone (cull/Occlusion.h) on three single-sided bunnies seen whole at 800×600,
-// run on every call, with 1 thread and with every core: its plan against conservative's.
+// run on every call, with 1 thread and with every core, with the scalar loops (simd:0) and the AVX2
+// ones (simd:1, where the CPU has them): its plan against conservative's.
 void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
     if (!std::filesystem::exists(FRUGAL_BUNNY_OBJ)) {
         state.SkipWithError("the bunny is missing (Debian package glmark2-data)");
@@ -160,7 +161,7 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
         return;
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
-                           .threads = int(state.range(0))};
+                           .threads = int(state.range(0)), .simd = state.range(1) != 0};
     std::size_t submitted = 0;
     for (auto _ : state) {
         const DrawList list = culler.cull(Cull::Occlusion, *scene, frame->world, frame->view, target);
@@ -170,7 +171,11 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
     state.counters["conservative_pvs"] =
         double(submittedTriangles(*scene, culler.cull(Cull::Conservative, *scene, frame->world, frame->view)));
 }
-BENCHMARK(BM_CullOcclusionThreeBunnies)->Arg(1)->Arg(kCores)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CullOcclusionThreeBunnies)
+    ->ArgsProduct({{1, kCores}, {0, 1}})
+    ->ArgNames({"threads", "simd"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // Temporal reuse's plan for 100,000 triangles at 1920×1080 (the ⊗ tests' goal: ≤ 5 ms a frame):
 // 50,000 domino quads, 1.34 % of the dominoes falling, at the extent grain of the argument (1 = per

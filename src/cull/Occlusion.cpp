@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "cull/OcclusionKernels.h"
 #include "software/Kernels.h"
 #include "software/Rasterizer.h"
 #include "software/ThreadPool.h"
@@ -41,16 +42,6 @@ constexpr double kGpuNsPerTriangle = 1.0;
 constexpr int kMaxBackOff = 16;
 constexpr double kBackOffGrowth = 1.25;
 
-// A vertex as the occluder pass needs it: window position and clip mask.
-struct WindowVertex {
-    float x = 0, y = 0, z = 0;
-    // Fixed-point position as setup computes it (Rasterizer.h 3.: round_even((x − 0.5)·256)); only
-    // meaningful when `fixed`, i.e. |(x − 0.5)·256| < 2^26.
-    std::int32_t fx = 0, fy = 0;
-    std::uint8_t mask = 0;
-    bool fixed = false;
-};
-
 // ⌊a / b⌋ for b > 0.
 inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -74,38 +65,56 @@ struct Walk {
 // Rows [y0, y1] of the buffer (whole 8-row blocks), walked by one thread.
 struct Band {
     int y0 = 0, y1 = -1;
-    std::vector<std::uint8_t> seen;     // per triangle slot: 1 when this band may see it (or must keep it)
-    std::vector<WindowVertex> window;   // the current cluster's vertices, transformed
+    std::vector<std::uint8_t> seen;  // per triangle slot: 1 when this band may see it (or must keep it)
+    // The current cluster's vertices, transformed (occlusion::WindowArrays), and its triangles'
+    // quick verdicts (occlusion::Verdict).
+    std::vector<float> x, y, z;
+    std::vector<std::int32_t> fx, fy;
+    std::vector<std::uint8_t> verdict;
+    // What the quick test gives of kSmall triangles (occlusion::SmallTriangles).
+    std::vector<std::int32_t> smallX0, smallY0;
+    std::vector<std::uint8_t> covered, occludes;
+    std::vector<float> lo, hi;
+
+    occlusion::WindowArrays window() { return {x.data(), y.data(), z.data(), fx.data(), fy.data()}; }
+    occlusion::SmallTriangles small() {
+        return {smallX0.data(), smallY0.data(), covered.data(), occludes.data(), lo.data(), hi.data(),
+                std::uint32_t(verdict.size())};
+    }
+    void reserve(std::size_t vertices, std::size_t triangles) {
+        if (x.size() < vertices) x.resize(vertices), y.resize(vertices), z.resize(vertices), fx.resize(vertices), fy.resize(vertices);
+        if (verdict.size() < triangles) {
+            verdict.resize(triangles), smallX0.resize(triangles), smallY0.resize(triangles);
+            covered.resize(triangles), occludes.resize(triangles), lo.resize(4 * triangles), hi.resize(4 * triangles);
+        }
+    }
 };
 
 // The vertex stage of the software backend for positions only (Kernels.inl transform): every
 // product and sum rounded on its own; the viewport's multiply-add fused or not as llvmpipe does it
-// on this CPU (`kFused`).
+// on this CPU (`kFused`). occlusion::transformAvx2 is the same, eight at a time.
 template <bool kFused>
-inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, const glm::vec3* positions,
-                                                         std::uint32_t count, const sw::Viewport& vp,
-                                                         WindowVertex* out) {
+inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, const float* px, const float* py,
+                                                         const float* pz, std::uint32_t count, const sw::Viewport& vp,
+                                                         const occlusion::WindowArrays& out) {
     for (std::uint32_t i = 0; i < count; ++i) {
-        const glm::vec3 p = positions[i];
         glm::vec4 c;
-        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * p.x + m[1][r] * p.y) + m[2][r] * p.z) + m[3][r];
-        WindowVertex& v = out[i];
-        v.mask = std::uint8_t(sw::clipMask(c, vp.halfZ));
+        for (int r = 0; r < 4; ++r) c[r] = ((m[0][r] * px[i] + m[1][r] * py[i]) + m[2][r] * pz[i]) + m[3][r];
         const float oow = 1.0f / c.w;
         const float nx = c.x * oow, ny = c.y * oow, nz = c.z * oow;
         if constexpr (kFused) {
-            v.x = std::fma(nx, vp.sx, vp.tx);
-            v.y = std::fma(ny, vp.sy, vp.ty);
-            v.z = std::fma(nz, vp.sz, vp.tz);
+            out.x[i] = std::fma(nx, vp.sx, vp.tx);
+            out.y[i] = std::fma(ny, vp.sy, vp.ty);
+            out.z[i] = std::fma(nz, vp.sz, vp.tz);
         } else {
-            v.x = nx * vp.sx + vp.tx;
-            v.y = ny * vp.sy + vp.ty;
-            v.z = nz * vp.sz + vp.tz;
+            out.x[i] = nx * vp.sx + vp.tx;
+            out.y[i] = ny * vp.sy + vp.ty;
+            out.z[i] = nz * vp.sz + vp.tz;
         }
         std::int64_t fx = 0, fy = 0;
-        v.fixed = sw::fixedPosition(v.x, v.y, &fx, &fy);
-        v.fx = std::int32_t(fx);  // |fx|, |fy| < 2^26 when fixed
-        v.fy = std::int32_t(fy);
+        const bool usable = sw::clipMask(c, vp.halfZ) == 0 && sw::fixedPosition(out.x[i], out.y[i], &fx, &fy);
+        out.fx[i] = usable ? std::int32_t(fx) : occlusion::kUnfixed;  // |fx|, |fy| < 2^26
+        out.fy[i] = usable ? std::int32_t(fy) : occlusion::kUnfixed;
     }
 }
 
@@ -114,9 +123,24 @@ inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, con
 #if defined(__x86_64__)
 __attribute__((target("fma")))
 #endif
-void transformFused(const glm::mat4& m, const glm::vec3* positions, std::uint32_t count, const sw::Viewport& vp,
-                    WindowVertex* out) {
-    transformBody<true>(m, positions, count, vp, out);
+void transformFused(const glm::mat4& m, const float* px, const float* py, const float* pz, std::uint32_t count,
+                    const sw::Viewport& vp, const occlusion::WindowArrays& out) {
+    transformBody<true>(m, px, py, pz, count, vp, out);
+}
+
+// Bit k: flag k of the 64 at `flags` (each 0 or 1) is set.
+inline std::uint64_t keptMask(const std::uint8_t* flags) {
+    std::uint64_t m = 0;
+#if defined(__x86_64__)
+    for (int q = 0; q < 4; ++q) {
+        const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(flags + 16 * q));
+        const int bits = _mm_movemask_epi8(_mm_cmpgt_epi8(bytes, _mm_setzero_si128()));
+        m |= std::uint64_t(std::uint32_t(bits)) << (16 * q);
+    }
+#else
+    for (int k = 0; k < 64; ++k) m |= std::uint64_t(flags[k] != 0) << k;
+#endif
+    return m;
 }
 
 }  // namespace
@@ -127,6 +151,8 @@ struct OcclusionCuller::State {
     bool halfZ = false;
     sw::Viewport viewport;
     bool fused = sw::cpuHasFma();
+    bool avx2 = occlusion::cpuHasAvx2();  // and simd: the AVX2 loops
+    bool simd = true;
     bool exactRules = true;  // the draw rasterizes by llvmpipe's rules: triangles are tested one by one
     int backOff = 0, skipLeft = 0;  // calls to skip after passes that did not pay
     std::size_t failedPlanned = 0;  // the plan's triangles in the last pass that did not pay
@@ -137,12 +163,15 @@ struct OcclusionCuller::State {
     std::vector<std::uint8_t> blockDirty;
     // Per mesh, its clusters' vertices side by side (built on first use): a cluster's triangles then
     // read a few hundred bytes in a row, not vertices scattered over the mesh.
+    // Structure of arrays, each padded with 8 zeros: the AVX2 loops read 8 at a time.
     struct ClusterVertices {
         bool built = false;
-        std::vector<glm::vec3> positions;        // cluster by cluster
+        std::vector<float> x, y, z;              // positions, cluster by cluster
         std::vector<std::uint32_t> firstVertex;  // per cluster, and one past the last
-        std::vector<std::uint16_t> corners;      // per triangle of the mesh: 3 indices into its cluster's vertices
+        std::uint32_t maxVertices = 0;           // of a cluster
+        std::vector<std::uint16_t> c0, c1, c2;   // per triangle of the mesh: its corners in its cluster's vertices
     };
+    std::size_t maxVertices = 0;  // of a cluster of any mesh, rounded up to 8, and 8 more
     std::vector<ClusterVertices> meshes;
     std::vector<std::uint32_t> scratch;    // vertex → index in the cluster being built
     std::vector<Item> items;               // the kept clusters, nearest first
@@ -184,7 +213,7 @@ struct OcclusionCuller::State {
             if (b == count - 1) end = blocksY;
             band.y1 = std::min(end * kBlock, height) - 1;
             row = end;
-            band.seen.assign(slots.back(), 0);
+            band.seen.assign(slots.back() + 64, 0);  // 64 more: read a word at a time (appendRuns)
         }
     }
 
@@ -194,6 +223,7 @@ struct OcclusionCuller::State {
     // the whole screen does at some pixel of the band, and a triangle that a band does not see
     // writes nothing there (every pixel it covers already holds something nearer).
     void walk(const Walk& w, Band& band) {
+        std::fill(depth.begin() + std::ptrdiff_t(band.y0) * width, depth.begin() + std::ptrdiff_t(band.y1 + 1) * width, kOpen);
         for (std::size_t i = 0; i < items.size(); ++i) {
             const Item& it = items[i];
             if (it.testable && (it.x0 > it.x1 || it.y1 < band.y0 || it.y0 > band.y1 || hidden(it, band))) continue;
@@ -205,23 +235,37 @@ struct OcclusionCuller::State {
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
             const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
             const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
-            band.window.resize(vertexCount);
-            transform(m, &cv.positions[firstVertex], vertexCount, band.window.data());
+            band.reserve(maxVertices, 0);
+            const occlusion::WindowArrays window = band.window();
+            transform(m, &cv.x[firstVertex], &cv.y[firstVertex], &cv.z[firstVertex], vertexCount, window);
             std::uint32_t slot = slots[i];
             for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
                 const IndexRange& range = w.ranges[kc.firstRange + r];
-                for (std::uint32_t t = range.firstTriangle; t < range.firstTriangle + range.triangleCount; ++t, ++slot) {
-                    const std::uint16_t* tri = &cv.corners[3 * std::size_t(t)];
-                    WindowVertex* v[3];
-                    bool clipped = false;
-                    for (int c = 0; c < 3; ++c) {
-                        v[c] = &band.window[tri[c]];
-                        clipped = clipped || v[c]->mask != 0;
+                const std::uint32_t first = range.firstTriangle, count = range.triangleCount;
+                // The quick verdict of every triangle; kTest ones are then tested in full. A triangle
+                // with a corner the draw clips is drawn from rounded new vertices: kept, and hides
+                // nothing. Without llvmpipe's rules every triangle is kept, and occludes.
+                band.reserve(0, count + 8);
+                std::uint8_t* verdict = band.verdict.data();
+                if (simd)
+                    occlusion::verdictsAvx2(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
+                                            viewport, band.y0, band.y1, verdict, band.small());
+                else
+                    for (std::uint32_t t = 0; t < count; ++t) {
+                        const std::uint32_t a = cv.c0[first + t], b = cv.c1[first + t], c = cv.c2[first + t];
+                        const bool unfixed = window.fx[a] == occlusion::kUnfixed || window.fx[b] == occlusion::kUnfixed ||
+                                             window.fx[c] == occlusion::kUnfixed;
+                        verdict[t] = unfixed ? occlusion::kKeep : occlusion::kTest;
                     }
-                    // A clipped triangle is drawn from rounded new vertices: kept, and hides nothing.
-                    // Without llvmpipe's rules every triangle is kept, and occludes.
-                    const bool seen = !clipped && triangleMaySeen(*v[0], *v[1], *v[2], singleSided, band.y0, band.y1);
-                    band.seen[slot] = std::uint8_t(clipped || !exactRules || seen);
+                const occlusion::SmallTriangles small = band.small();
+                for (std::uint32_t t = 0; t < count; ++t, ++slot) {
+                    bool seen = verdict[t] == occlusion::kKeep;
+                    if (verdict[t] == occlusion::kTest)
+                        seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t], singleSided,
+                                               band.y0, band.y1);
+                    else if (verdict[t] == occlusion::kSmall)
+                        seen = smallMaySeen(small, t);
+                    band.seen[slot] = std::uint8_t(seen || !exactRules);
                 }
             }
         }
@@ -233,23 +277,31 @@ struct OcclusionCuller::State {
         if (cv.built) return cv;
         cv.built = true;
         scratch.assign(mesh.positions.size(), UINT32_MAX);
-        cv.corners.assign(mesh.indices.size(), 0);
+        const std::size_t triangles = mesh.indices.size() / 3;
+        for (auto* c : {&cv.c0, &cv.c1, &cv.c2}) c->assign(triangles + 8, 0);
         cv.firstVertex.clear();
         for (const Cluster& c : map.clusters) {
-            const auto first = std::uint32_t(cv.positions.size());
+            const auto first = std::uint32_t(cv.x.size());
             cv.firstVertex.push_back(first);
-            for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i) {
-                const std::uint32_t v = mesh.indices[i];
-                if (scratch[v] == UINT32_MAX) {
-                    scratch[v] = std::uint32_t(cv.positions.size()) - first;
-                    cv.positions.push_back(mesh.positions[v]);
+            for (std::size_t t = c.first; t < std::size_t(c.first) + c.count; ++t)
+                for (int k = 0; k < 3; ++k) {
+                    const std::uint32_t v = mesh.indices[3 * t + std::size_t(k)];
+                    if (scratch[v] == UINT32_MAX) {
+                        scratch[v] = std::uint32_t(cv.x.size()) - first;
+                        cv.x.push_back(mesh.positions[v].x);
+                        cv.y.push_back(mesh.positions[v].y);
+                        cv.z.push_back(mesh.positions[v].z);
+                    }
+                    // A cluster has at most 3·124 vertices.
+                    (k == 0 ? cv.c0 : k == 1 ? cv.c1 : cv.c2)[t] = std::uint16_t(scratch[v]);
                 }
-                cv.corners[i] = std::uint16_t(scratch[v]);  // a cluster has at most 3·124 vertices
-            }
             for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i)
                 scratch[mesh.indices[i]] = UINT32_MAX;
+            cv.maxVertices = std::max(cv.maxVertices, std::uint32_t(cv.x.size()) - first);
         }
-        cv.firstVertex.push_back(std::uint32_t(cv.positions.size()));
+        cv.firstVertex.push_back(std::uint32_t(cv.x.size()));
+        for (auto* a : {&cv.x, &cv.y, &cv.z}) a->resize(a->size() + 8, 0.0f);
+        maxVertices = std::max(maxVertices, (std::size_t(cv.maxVertices) + 7) / 8 * 8 + 8);
         return cv;
     }
 
@@ -260,7 +312,7 @@ struct OcclusionCuller::State {
         viewport = sw::makeViewport(w, h, format);
         blocksX = (w + kBlock - 1) / kBlock;
         blocksY = (h + kBlock - 1) / kBlock;
-        depth.assign(std::size_t(w) * std::size_t(h), kOpen);
+        depth.resize(std::size_t(w) * std::size_t(h));  // each band opens its own rows (walk)
         blockMax.assign(std::size_t(blocksX) * std::size_t(blocksY), kOpen);
         blockDirty.assign(blockMax.size(), 0);
     }
@@ -305,11 +357,14 @@ struct OcclusionCuller::State {
 
     // The window positions of `count` vertices under `m`, as the software backend's vertex stage
     // computes them (Kernels.inl transform; Rasterizer.h 1.), the viewport fused where it fuses.
-    void transform(const glm::mat4& m, const glm::vec3* positions, std::uint32_t count, WindowVertex* out) const {
-        if (fused)
-            transformFused(m, positions, count, viewport, out);
+    void transform(const glm::mat4& m, const float* px, const float* py, const float* pz, std::uint32_t count,
+                   const occlusion::WindowArrays& out) const {
+        if (simd)
+            occlusion::transformAvx2(&m[0][0], px, py, pz, count, viewport, out);
+        else if (fused)
+            transformFused(m, px, py, pz, count, viewport, out);
         else
-            transformBody<false>(m, positions, count, viewport, out);
+            transformBody<false>(m, px, py, pz, count, viewport, out);
     }
 
     // One triangle of a cluster that may be seen, as llvmpipe rasterizes it (Rasterizer.h 3. and 5.):
@@ -349,27 +404,47 @@ struct OcclusionCuller::State {
         return false;
     }
 
-    bool triangleMaySeen(const WindowVertex& a, const WindowVertex& b, const WindowVertex& c, bool singleSided, int rowLo,
-                         int rowHi) {
+    // Triangle t of a batch the quick test called kSmall: its covered pixels tested and written as
+    // triangleMaySeen does, with the bounds the quick test computed as it computes them.
+    bool smallMaySeen(const occlusion::SmallTriangles& small, std::uint32_t t) {
+        const int x0 = small.x0[t], y0 = small.y0[t];
+        const unsigned covered = small.covered[t];
+        const bool occludes = small.occludes[t] != 0;
+        bool seen = false;
+        for (unsigned k = 0; k < 4; ++k) {
+            if (!(covered & (1u << k))) continue;
+            const int px = x0 + int(k & 1u), py = y0 + int(k >> 1);
+            float& stored = depth[std::size_t(py) * std::size_t(width) + std::size_t(px)];
+            seen = seen || !(stored < small.lo[k * small.stride + t]);
+            if (occludes) {
+                stored = std::min(stored, small.hi[k * small.stride + t]);
+                blockDirty[std::size_t(py >> kBlockLog2) * std::size_t(blocksX) + std::size_t(px >> kBlockLog2)] = 1;
+            }
+        }
+        return seen;
+    }
+
+    // The triangle with corners a, b, c of `w` (none kUnfixed).
+    bool triangleMaySeen(const occlusion::WindowArrays& w, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                         bool singleSided, int rowLo, int rowHi) {
         // Setup's fixed-point part (Rasterizer.h 3.) on the positions kept with the vertices, then
         // the coverage test: most triangles of a dense mesh far away own no pixel centre. The depth
         // plane only for those that cover one.
-        if (!(a.fixed && b.fixed && c.fixed)) return true;  // not for an unclipped vertex; kept, hides nothing
         // First setup's bounds test alone (no pixel centre within the fixed-point bounds): it drops
         // a fifth of a dense mesh's triangles for a few instructions.
-        const std::int32_t minX = std::min({a.fx, b.fx, c.fx}), maxX = std::max({a.fx, b.fx, c.fx});
-        const std::int32_t minY = std::min({a.fy, b.fy, c.fy}), maxY = std::max({a.fy, b.fy, c.fy});
+        const std::int32_t minX = std::min({w.fx[a], w.fx[b], w.fx[c]}), maxX = std::max({w.fx[a], w.fx[b], w.fx[c]});
+        const std::int32_t minY = std::min({w.fy[a], w.fy[b], w.fy[c]}), maxY = std::max({w.fy[a], w.fy[b], w.fy[c]});
         if (-((-minX) >> 8) > (maxX >> 8) || std::max(-((-minY) >> 8), rowLo) > std::min(maxY >> 8, rowHi)) return false;
-        std::int64_t X[3] = {a.fx, b.fx, c.fx}, Y[3] = {a.fy, b.fy, c.fy};
+        std::int64_t X[3] = {w.fx[a], w.fx[b], w.fx[c]}, Y[3] = {w.fy[a], w.fy[b], w.fy[c]};
         sw::Triangle t;
         const sw::SetupOrder order = sw::setupEdges(X, Y, singleSided, viewport, &t);
         if (order == sw::SetupOrder::Dropped || !coversPixel(t, rowLo, rowHi)) return false;  // no pixel
-        sw::SetupVertex s[3];
-        const WindowVertex* w[3] = {&a, &b, &c};
+        sw::SetupVertex s[3]{};
+        const std::uint32_t corner[3] = {a, b, c};
         for (int i = 0; i < 3; ++i) {
-            s[i].x = w[i]->x;
-            s[i].y = w[i]->y;
-            s[i].z = w[i]->z;
+            s[i].x = w.x[corner[i]];
+            s[i].y = w.y[corner[i]];
+            s[i].z = w.z[corner[i]];
             s[i].oow = 1.0f;
         }
         // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
@@ -378,13 +453,11 @@ struct OcclusionCuller::State {
         if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
         sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
         // llvmpipe's z at pixel (px, py) is fma(dzdy, py, fma(dzdx, px, z0)) in float, clamped to
-        // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes: both
-        // are within 4 units of roundoff of the sizes of the terms from the exact plane, so `slack`
-        // (twice that, and the 24-bit step) bounds the distance between the two.
-        const double slack = 8.0 * kUnit * (std::abs(double(t.z0)) + std::abs(double(t.dzdx)) * width +
-                                            std::abs(double(t.dzdy)) * height) + 2.0 * kUnit;
-        if (!(slack < 1.0)) return true;  // not a number, or a plane too steep to say anything
-        const float s0 = float(slack) * (1.0f + 1e-6f), up = float(2.0 * kUnit);
+        // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes;
+        // `s0` bounds the distance between the two (occlusion::depthSlack).
+        const float s0 = occlusion::depthSlack(t.z0, t.dzdx, t.dzdy, float(width), float(height));
+        if (!(s0 < 1.0f)) return true;  // not a number, or a plane too steep to say anything
+        const float up = float(2.0 * kUnit);
         const float dzdx = t.dzdx;
         bool seen = false;
         for (int py = std::max(t.y0, rowLo); py <= std::min(t.y1, rowHi); ++py) {
@@ -412,11 +485,13 @@ struct OcclusionCuller::State {
             }
             if (xa > xb) continue;
             float* row = &depth[std::size_t(py) * std::size_t(width)];
-            const float zRow = float(double(t.z0) + double(t.dzdy) * py);
+            const float zRow = t.z0 + t.dzdy * float(py);
             // Far-ness bounds of the stored value at each pixel: lo ≤ it ≤ hi (D24 stores the
             // clamped z, D32F is read as its negation).
             bool rowSeen = false;
-            if (!halfZ) {
+            if (simd && xb - xa >= 7) {  // eight pixels at a time, the same arithmetic
+                rowSeen = occlusion::spanAvx2(row, int(xa), int(xb), zRow, dzdx, s0, up, halfZ, occludes);
+            } else if (!halfZ) {
                 for (std::int64_t px = xa; px <= xb; ++px) {
                     const float z = zRow + dzdx * float(px);
                     const float lo = std::clamp(z - s0, 0.0f, 1.0f), hi = std::min(z + s0, 1.0f) + up;
@@ -467,9 +542,13 @@ std::uint64_t OcclusionCuller::bytes() const {
                           st.blockDirty.capacity() + st.items.capacity() * sizeof(Item) +
                           st.slots.capacity() * sizeof(std::uint32_t);
     for (const State::ClusterVertices& cv : st.meshes)
-        total += cv.positions.capacity() * sizeof(glm::vec3) + cv.firstVertex.capacity() * sizeof(std::uint32_t) +
-                 cv.corners.capacity() * sizeof(std::uint16_t);
-    for (const Band& band : st.bands) total += band.seen.capacity() + band.window.capacity() * sizeof(WindowVertex);
+        total += (cv.x.capacity() + cv.y.capacity() + cv.z.capacity()) * sizeof(float) +
+                 cv.firstVertex.capacity() * sizeof(std::uint32_t) +
+                 (cv.c0.capacity() + cv.c1.capacity() + cv.c2.capacity()) * sizeof(std::uint16_t);
+    for (const Band& band : st.bands)
+        total += band.seen.capacity() + band.verdict.capacity() +
+                 (band.x.capacity() + band.y.capacity() + band.z.capacity()) * sizeof(float) +
+                 (band.fx.capacity() + band.fy.capacity()) * sizeof(std::int32_t);
     return total;
 }
 
@@ -497,6 +576,7 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         return;
     }
     st.exactRules = exactRules;
+    st.simd = target.simd && st.avx2;
     st.stats.ran = true;
     st.reset(width, height, view.depthFormat);
 
@@ -609,16 +689,27 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         std::uint32_t slot = st.slots[i], runStart = 0, runLength = 0;
         for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
             const IndexRange& range = ranges[kc.firstRange + r];
-            for (std::uint32_t t = range.firstTriangle; t < range.firstTriangle + range.triangleCount; ++t, ++slot) {
-                if (!seen[slot]) continue;
-                if (runLength > 0 && runStart + runLength == t) {
-                    ++runLength;
-                    continue;
+            // The runs of kept triangles, 64 flags at a time; a run that continues the last one
+            // (across words or ranges) extends it.
+            for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
+                std::uint64_t m = keptMask(&seen[slot + base]);
+                if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
+                while (m != 0) {
+                    const int at = __builtin_ctzll(m);
+                    const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
+                    const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
+                    m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
+                    const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
+                    if (runLength > 0 && runStart + runLength == t) {
+                        runLength += std::uint32_t(length);
+                        continue;
+                    }
+                    if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+                    runStart = t;
+                    runLength = std::uint32_t(length);
                 }
-                if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
-                runStart = t;
-                runLength = 1;
             }
+            slot += range.triangleCount;
         }
         if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
         if (kr.rangeCount == 0) ++st.stats.clustersHidden;

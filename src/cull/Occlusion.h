@@ -78,6 +78,9 @@ struct OcclusionTarget {
     // false: the pass runs on every call, however little it gains (tests, and measuring it).
     bool adaptive = true;
     int threads = 0;  // the walk's threads; 0: every core
+    // The vertex transform and the quick triangle test eight at a time (AVX2) where the CPU has it;
+    // false: the scalar loops (the tests compare the two plans).
+    bool simd = true;
 };
 
 // The target of `backend` for frames of `settings` (size, threads): its rules, and its cost of a

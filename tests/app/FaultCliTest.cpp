@@ -449,7 +449,10 @@ TEST(FaultCliTest, AFrameLargerThanACgroupAllowsIsRefusedUpFront) {
 
 // Whether `--backend NAME` renders here at all; the tests of a broken set-up need the sound one.
 bool backendWorks(const std::string& name) {
-    const fs::path dir = test::freshDir("FaultBackendProbe");
+    // A directory of this test's own: CTest runs the tests of this file side by side, and a shared
+    // one was emptied by one probe while another rendered into it.
+    const fs::path dir =
+        test::freshDir(std::string("FaultBackendProbe-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     return runFrugal(dir, {"render", "--size", "32x24", "--backend", name, "-q"}).status == 0;
 }
 

@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "CullRenderSupport.h"
+#include "cull/OcclusionKernels.h"
 #include "TestSupport.h"
 
 namespace frugal {
@@ -209,37 +210,50 @@ TEST(OcclusionTest, FarFromTheOrigin) {
     check(bench, test::lookAt(origin + glm::vec3(0.1f, 0.2f, 3.0f), origin + glm::vec3(0, 0, -2)), "far from the origin");
 }
 
-// Random scenes of boxes behind boxes: a few occluders in front of the camera and a crowd behind,
+// A random scene of boxes behind boxes: a few occluders in front of the camera and a crowd behind,
 // random sizes, rotations, mirroring, materials, depth formats and target sizes.
+struct RandomBoxes {
+    Scene scene;
+    Camera camera;
+    DepthFormat format = DepthFormat::D24;
+    int width = 0, height = 0;
+};
+RandomBoxes randomBoxes(unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    RandomBoxes r;
+    r.scene = emptyScene("boxes" + std::to_string(seed));
+    const int occluders = 1 + int(seed % 3), crowd = 2 + int(seed % 7);
+    for (int i = 0; i < occluders + crowd; ++i) {
+        const bool front = i < occluders;
+        const glm::vec3 half = front ? glm::vec3(0.6f + 0.8f * unit(rng), 0.6f + 0.8f * unit(rng), 0.1f + 0.5f * unit(rng))
+                                     : glm::vec3(0.1f + 0.4f * unit(rng));
+        const glm::vec3 at = front ? glm::vec3(0.8f * u(rng), 0.8f * u(rng), 1.0f * u(rng))
+                                   : glm::vec3(1.5f * u(rng), 1.5f * u(rng), -2.0f - 3.0f * unit(rng));
+        const glm::quat rotation = glm::angleAxis(0.6f * u(rng), glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f));
+        glm::vec3 scale(1.0f);
+        if (unit(rng) < 0.2f) scale.x = -1.0f;  // mirrored: the other winding is the front
+        addBox(r.scene, half, at, unit(rng) < 0.3f ? 1 : 0, 1 + int(seed % 3), rotation, scale);
+    }
+    r.scene.buildInstances();
+    r.format = seed % 4 == 3 ? DepthFormat::D32F : DepthFormat::D24;
+    r.width = 48 + int(seed % 5) * 16;
+    r.height = 36 + int(seed % 3) * 12;
+    r.camera = test::lookAt(glm::vec3(0.8f * u(rng), 0.8f * u(rng), 4.0f + 3.0f * unit(rng)),
+                            glm::vec3(0.3f * u(rng), 0.3f * u(rng), -2.0f));
+    r.camera.yfovDegrees = 30.0f + 40.0f * unit(rng);
+    return r;
+}
+
 void checkRandomBoxes(unsigned first, unsigned last) {
     std::size_t conservative = 0, occlusion = 0, frames = 0;
     Tallies tallies;
     for (unsigned seed = first; seed <= last; ++seed) {
-        std::mt19937 rng(seed);
-        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-        Scene scene = emptyScene("boxes" + std::to_string(seed));
-        const int occluders = 1 + int(seed % 3), crowd = 2 + int(seed % 7);
-        for (int i = 0; i < occluders + crowd; ++i) {
-            const bool front = i < occluders;
-            const glm::vec3 half = front ? glm::vec3(0.6f + 0.8f * unit(rng), 0.6f + 0.8f * unit(rng), 0.1f + 0.5f * unit(rng))
-                                         : glm::vec3(0.1f + 0.4f * unit(rng));
-            const glm::vec3 at = front ? glm::vec3(0.8f * u(rng), 0.8f * u(rng), 1.0f * u(rng))
-                                       : glm::vec3(1.5f * u(rng), 1.5f * u(rng), -2.0f - 3.0f * unit(rng));
-            const glm::quat rotation = glm::angleAxis(0.6f * u(rng), glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f));
-            glm::vec3 scale(1.0f);
-            if (unit(rng) < 0.2f) scale.x = -1.0f;  // mirrored: the other winding is the front
-            addBox(scene, half, at, unit(rng) < 0.3f ? 1 : 0, 1 + int(seed % 3), rotation, scale);
-        }
-        scene.buildInstances();
-        const DepthFormat format = seed % 4 == 3 ? DepthFormat::D32F : DepthFormat::D24;
-        const int width = 48 + int(seed % 5) * 16, height = 36 + int(seed % 3) * 12;
-        CullBench bench(std::move(scene), width, height, {}, format);
+        RandomBoxes r = randomBoxes(seed);
+        CullBench bench(std::move(r.scene), r.width, r.height, {}, r.format);
         ASSERT_TRUE(bench.canRender()) << bench.uploadError;
-        Camera camera = test::lookAt(glm::vec3(0.8f * u(rng), 0.8f * u(rng), 4.0f + 3.0f * unit(rng)),
-                                     glm::vec3(0.3f * u(rng), 0.3f * u(rng), -2.0f));
-        camera.yfovDegrees = 30.0f + 40.0f * unit(rng);
-        const test::FrameResult f = test::checkFrame(bench, camera, "boxes " + std::to_string(seed));
+        const test::FrameResult f = test::checkFrame(bench, r.camera, "boxes " + std::to_string(seed));
         tallies.add(f);
         conservative += f.count(Cull::Conservative).pvs;
         occlusion += f.count(Cull::Occlusion).pvs;
@@ -304,6 +318,46 @@ TEST(OcclusionTest, BandsOfRowsGiveWhatOneWalkGives) {
                 << bench.scene.source << ", " << threads << " bands";
         }
     }
+}
+
+TEST(OcclusionTest, TheAvx2LoopsGiveTheScalarPlan) {
+    // The vertex transform and the quick triangle test eight at a time (cull/OcclusionKernels.h) give
+    // the plan of the scalar loops: on three bunnies from far away (a few pixels a triangle), near
+    // (triangles tens of pixels wide, many clipped) and from inside, in both depth formats, and on
+    // 200 scenes of random boxes.
+    if (!occlusion::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2 and FMA: only the scalar loops run";
+    std::size_t compared = 0;
+    const auto compare = [&compared](CullBench& bench, const Camera& camera, const std::string& label) {
+        Result<FrameSetup> setup = setUpFrame(bench.scene, camera, 0.0, bench.width, bench.height, true);
+        ASSERT_TRUE(setup) << setup.error();
+        OcclusionTarget target = bench.occlusionTarget();
+        target.simd = false;
+        const DrawList scalar = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+        target.simd = true;
+        const DrawList simd = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+        EXPECT_TRUE(test::sameList(scalar, simd)) << label;
+        ++compared;
+    };
+    if (test::loadBunny(false)) {
+        for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+            Result<Scene> three = makeBuiltin("copies?count=3&of=/usr/share/glmark2/models/bunny.obj");
+            ASSERT_TRUE(three) << three.error();
+            for (Material& m : three->materials) m.doubleSided = false;
+            CullBench bench(std::move(*three), 320, 240, {}, format);
+            const Bounds bounds = bench.scene.bounds(0.0);
+            const glm::vec3 centre = bounds.center();
+            const float radius = bounds.radius();
+            for (const glm::vec3& eye : {centre + glm::vec3(0, 0.4f, 3.0f) * radius, centre + glm::vec3(0.6f, 0.2f, 0.7f) * radius,
+                                         centre + glm::vec3(-0.4f, 0.1f, 0.2f) * radius, centre})
+                compare(bench, test::lookAt(eye, centre + glm::vec3(0.01f, 0, -0.1f) * radius), "three bunnies");
+        }
+    }
+    for (unsigned seed = 1; seed <= 200 && !::testing::Test::HasFailure(); ++seed) {
+        RandomBoxes r = randomBoxes(seed);
+        CullBench bench(std::move(r.scene), r.width, r.height, {}, r.format);
+        compare(bench, r.camera, "boxes " + std::to_string(seed));
+    }
+    EXPECT_GE(compared, 200u);
 }
 
 TEST(OcclusionTest, WithoutLlvmpipesRulesOnlyWholeClustersAreDropped) {

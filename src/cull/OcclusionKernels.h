@@ -1,0 +1,84 @@
+// The occlusion pass's per-vertex and per-triangle loops, eight at a time in AVX2
+// (OcclusionAvx2.cpp), for CPUs with AVX2 and FMA. Occlusion.cpp holds the scalar code they equal
+// bit for bit and decision for decision; OcclusionTest checks the two give the same plan.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "software/Rasterizer.h"
+
+namespace frugal::occlusion {
+
+// A fixed-point coordinate that setup cannot use: the vertex is clipped by the draw (its clip mask
+// is not 0), or its window position is not representable (sw::fixedPosition is false). A triangle
+// with such a corner is kept and hides nothing. Real coordinates are within ±2^26.
+inline constexpr std::int32_t kUnfixed = std::numeric_limits<std::int32_t>::min();
+
+// A cluster's vertices as the pass reads them, structure of arrays: window position, and setup's
+// fixed-point position (Rasterizer.h 3.) or kUnfixed.
+struct WindowArrays {
+    float *x, *y, *z;
+    std::int32_t *fx, *fy;
+};
+
+// What the quick test says of a triangle.
+enum Verdict : std::uint8_t {
+    kDrop = 0,  // owns no pixel centre in the rows looked at (or is degenerate, or a culled back face)
+    kTest = 1,  // may own one: the full test decides (Occlusion.cpp triangleMaySeen)
+    kKeep = 2,  // a corner is kUnfixed, or its depth plane is too steep to bound: kept, hides nothing
+    kSmall = 3,  // owns the pixel centres in SmallTriangles::covered, with the depth bounds given there
+};
+
+// What the quick test gives of a kSmall triangle t (one of at most 2 × 2 pixel centres), structure
+// of arrays: its first pixel (x0, y0), the pixels it covers (bit a + 2b: pixel (x0 + a, y0 + b)),
+// whether it occludes (Occlusion.cpp: not a sliver the draw module may drop), and at each covered
+// pixel k = a + 2b the bounds lo[k·stride + t] ≤ the far-ness the GL draw writes ≤ hi[k·stride + t]
+// (depthBounds).
+struct SmallTriangles {
+    std::int32_t *x0, *y0;
+    std::uint8_t *covered, *occludes;
+    float *lo, *hi;
+    std::uint32_t stride;
+};
+
+// The rounding bound of the depth plane z0 + dzdx·px + dzdy·py on a target of `width` × `height`
+// pixels: both llvmpipe's z (fma(dzdy, py, fma(dzdx, px, z0))) and the pass's ((z0 + dzdy·py) +
+// dzdx·px, rounded as it goes) are within 3 units of roundoff of the sizes of the terms from the
+// exact plane, so 8 units of them bound the distance between the two; 2 more units and the
+// 1 + 10^-6 cover the rounding of this sum itself. Not finite, or 1 or more: the plane says nothing.
+inline float depthSlack(float z0, float dzdx, float dzdy, float width, float height) {
+    constexpr float kUnit = 1.0f / 16777216.0f;  // 2^-24
+    const float size = (std::fabs(z0) + std::fabs(dzdx) * width) + std::fabs(dzdy) * height;
+    return ((8.0f * kUnit) * size + 2.0f * kUnit) * (1.0f + 1e-6f);
+}
+
+// Triangles whose fixed-point extent is below this (in 1/256 pixel) in x and in y are decided in
+// 32-bit arithmetic when they span at most 2 × 2 pixel centres; the others get kTest.
+inline constexpr std::int32_t kQuickExtent = 1 << 12;
+
+// Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
+// llvmpipe fuses it on such a CPU).
+bool cpuHasAvx2();
+
+// The software backend's vertex stage for positions only (Rasterizer.h 1. and 3.), vertices
+// [0, count) rounded up to a multiple of 8: `px`, `py`, `pz` and every array of `out` must hold
+// that many. `m` is column-major.
+void transformAvx2(const float* m, const float* px, const float* py, const float* pz, std::uint32_t count,
+                   const sw::Viewport& viewport, const WindowArrays& out);
+
+// The verdict of triangles [0, count) (rounded up to a multiple of 8; `c0`, `c1`, `c2` hold their
+// corners' indices into `window`, every one valid) on pixel rows [rowLo, rowHi] of `viewport`, and
+// what `small` needs of the kSmall ones (its arrays hold `count` rounded up).
+void verdictsAvx2(const WindowArrays& window, const std::uint16_t* c0, const std::uint16_t* c1, const std::uint16_t* c2,
+                  std::uint32_t count, bool cullBack, const sw::Viewport& viewport, int rowLo, int rowHi,
+                  std::uint8_t* verdict, const SmallTriangles& small);
+
+// One row of a triangle's covered pixels [xa, xb] against the buffer `row` (far-ness; Occlusion.cpp
+// triangleMaySeen): whether some pixel may be seen, and, when `occludes`, each pixel lowered to the
+// triangle's upper bound there. zRow + dzdx·px is the plane, `slack` its rounding bound, `up` the
+// 24-bit step.
+bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes);
+
+}  // namespace frugal::occlusion
