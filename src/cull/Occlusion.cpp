@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <thread>
 
@@ -128,7 +129,7 @@ void transformFused(const glm::mat4& m, const float* px, const float* py, const 
     transformBody<true>(m, px, py, pz, count, vp, out);
 }
 
-// Bit k: flag k of the 64 at `flags` (each 0 or 1) is set.
+// Bit k: byte k of the 64 at `flags` (each below 128) is not 0.
 inline std::uint64_t keptMask(const std::uint8_t* flags) {
     std::uint64_t m = 0;
 #if defined(__x86_64__)
@@ -245,7 +246,7 @@ struct OcclusionCuller::State {
                 // The quick verdict of every triangle; kTest ones are then tested in full. A triangle
                 // with a corner the draw clips is drawn from rounded new vertices: kept, and hides
                 // nothing. Without llvmpipe's rules every triangle is kept, and occludes.
-                band.reserve(0, count + 8);
+                band.reserve(0, count + 64);  // keptMask reads 64 verdicts at a time
                 std::uint8_t* verdict = band.verdict.data();
                 if (simd)
                     occlusion::verdictsAvx2(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
@@ -257,16 +258,26 @@ struct OcclusionCuller::State {
                                              window.fx[c] == occlusion::kUnfixed;
                         verdict[t] = unfixed ? occlusion::kKeep : occlusion::kTest;
                     }
+                // Dropped triangles (about half) are skipped 64 at a time, by the bits of the others:
+                // a branch a triangle on whether it was dropped is one the CPU cannot predict.
                 const occlusion::SmallTriangles small = band.small();
-                for (std::uint32_t t = 0; t < count; ++t, ++slot) {
-                    bool seen = verdict[t] == occlusion::kKeep;
-                    if (verdict[t] == occlusion::kTest)
-                        seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t], singleSided,
-                                               band.y0, band.y1);
-                    else if (verdict[t] == occlusion::kSmall)
-                        seen = smallMaySeen(small, t);
-                    band.seen[slot] = std::uint8_t(seen || !exactRules);
+                std::uint8_t* seenOut = &band.seen[slot];
+                std::memset(seenOut, exactRules ? 0 : 1, count);
+                for (std::uint32_t base = 0; base < count; base += 64) {
+                    std::uint64_t bits = keptMask(verdict + base);  // verdicts other than kDrop
+                    if (count - base < 64) bits &= (std::uint64_t(1) << (count - base)) - 1;
+                    for (; bits != 0; bits &= bits - 1) {
+                        const std::uint32_t t = base + std::uint32_t(__builtin_ctzll(bits));
+                        bool seen = verdict[t] == occlusion::kKeep;
+                        if (verdict[t] == occlusion::kTest)
+                            seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t],
+                                                   singleSided, band.y0, band.y1);
+                        else if (verdict[t] == occlusion::kSmall)
+                            seen = smallMaySeen(small, t);
+                        seenOut[t] = std::uint8_t(seen || !exactRules);
+                    }
                 }
+                slot += count;
             }
         }
     }
