@@ -214,7 +214,7 @@ struct OcclusionCuller::State {
             if (b == count - 1) end = blocksY;
             band.y1 = std::min(end * kBlock, height) - 1;
             row = end;
-            band.seen.assign(slots.back() + 64, 0);  // 64 more: read a word at a time (appendRuns)
+            band.seen.assign(slots.back() + 64, 0);  // 64 more: keptMask reads 64 flags at a time
         }
     }
 
@@ -225,6 +225,7 @@ struct OcclusionCuller::State {
     // writes nothing there (every pixel it covers already holds something nearer).
     void walk(const Walk& w, Band& band) {
         std::fill(depth.begin() + std::ptrdiff_t(band.y0) * width, depth.begin() + std::ptrdiff_t(band.y1 + 1) * width, kOpen);
+        band.reserve(maxVertices, 0);  // every mesh's clusters were built when the items were made
         for (std::size_t i = 0; i < items.size(); ++i) {
             const Item& it = items[i];
             if (it.testable && (it.x0 > it.x1 || it.y1 < band.y0 || it.y0 > band.y1 || hidden(it, band))) continue;
@@ -236,7 +237,6 @@ struct OcclusionCuller::State {
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
             const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
             const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
-            band.reserve(maxVertices, 0);
             const occlusion::WindowArrays window = band.window();
             transform(m, &cv.x[firstVertex], &cv.y[firstVertex], &cv.z[firstVertex], vertexCount, window);
             std::uint32_t slot = slots[i];
@@ -557,9 +557,11 @@ std::uint64_t OcclusionCuller::bytes() const {
                  cv.firstVertex.capacity() * sizeof(std::uint32_t) +
                  (cv.c0.capacity() + cv.c1.capacity() + cv.c2.capacity()) * sizeof(std::uint16_t);
     for (const Band& band : st.bands)
-        total += band.seen.capacity() + band.verdict.capacity() +
-                 (band.x.capacity() + band.y.capacity() + band.z.capacity()) * sizeof(float) +
-                 (band.fx.capacity() + band.fy.capacity()) * sizeof(std::int32_t);
+        total += band.seen.capacity() + band.verdict.capacity() + band.covered.capacity() + band.occludes.capacity() +
+                 (band.x.capacity() + band.y.capacity() + band.z.capacity() + band.lo.capacity() + band.hi.capacity()) *
+                     sizeof(float) +
+                 (band.fx.capacity() + band.fy.capacity() + band.smallX0.capacity() + band.smallY0.capacity()) *
+                     sizeof(std::int32_t);
     return total;
 }
 
