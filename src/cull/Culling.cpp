@@ -134,17 +134,27 @@ struct RangeList {
 // wholly outside that plane and cannot own a pixel.
 class Outcodes {
 public:
-    Outcodes(const Mesh& mesh, const glm::dmat4& mvp) : mesh_(mesh), mvp_(mvp) { codes_.assign(mesh.positions.size(), kUnknown); }
+    Outcodes(const Mesh& mesh, const glm::dmat4& mvp) : Outcodes(mesh, mvp, own_) {}
+    // Kept in `cache` (reused from instance to instance without clearing).
+    Outcodes(const Mesh& mesh, const glm::dmat4& mvp, SceneCuller::OutcodeCache& cache)
+        : mesh_(mesh), mvp_(mvp), cache_(cache) {
+        const std::size_t n = mesh.positions.size();
+        if (cache_.codes.size() < n) cache_.codes.resize(n), cache_.epochOf.resize(n, 0);
+        if (++cache_.epoch == 0) {  // wrapped: every stamp is stale again
+            std::fill(cache_.epochOf.begin(), cache_.epochOf.end(), 0u);
+            cache_.epoch = 1;
+        }
+    }
 
     std::uint8_t operator[](std::uint32_t v) {
-        std::uint8_t& code = codes_[v];
-        if (code == kUnknown) code = compute(mesh_.positions[v]);
-        return code;
+        if (cache_.epochOf[v] != cache_.epoch) {
+            cache_.epochOf[v] = cache_.epoch;
+            cache_.codes[v] = compute(mesh_.positions[v]);
+        }
+        return cache_.codes[v];
     }
 
 private:
-    static constexpr std::uint8_t kUnknown = 0x80;
-
     std::uint8_t compute(const glm::vec3& p) const {
         const glm::dvec4 c = mvp_ * glm::dvec4(glm::dvec3(p), 1.0);
         if (!std::isfinite(c.x + c.y + c.z + c.w)) return 0;  // not a number: outside of nothing, kept
@@ -159,7 +169,8 @@ private:
 
     const Mesh& mesh_;
     glm::dmat4 mvp_;
-    std::vector<std::uint8_t> codes_;
+    SceneCuller::OutcodeCache own_;
+    SceneCuller::OutcodeCache& cache_;
 };
 
 bool isSingleSided(const Scene& scene, const Mesh& mesh) {
@@ -301,24 +312,60 @@ SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::v
 DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
                                     const OcclusionTarget& target) const {
     // The conservative plan, cluster by cluster, then what the occlusion pass leaves of it.
-    std::vector<KeptCluster> kept;
-    std::vector<IndexRange> ranges;
+    // The conservative plan is made in pieces of kPieceClusters clusters (counting
+    // over every instance's clusters in order) side by side, joined in order: when the occlusion
+    // pass is likely to run and its threads are awake. Otherwise in one piece, on this thread (a
+    // piece costs the set-up of each instance it starts in).
+    constexpr std::size_t kPieceClusters = 128;
+    const bool sideBySide = occlusion_.prepare(target);
+    clusterStart_.assign(scene.instances.size() + 1, 0);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
-        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
-        if (mesh.triangleCount() == 0) continue;
-        const MeshMap& map = maps_[std::size_t(instance.mesh)];
-        const InstanceView iv(world[std::size_t(instance.node)], view);
-        Outcodes vertices(mesh, iv.mvp);
-        const bool singleSided = isSingleSided(scene, mesh);
-        for (std::size_t c = 0; c < map.clusters.size(); ++c) {
-            RangeList out;
-            conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, out);
-            if (out.ranges.empty()) continue;
-            kept.push_back({std::uint32_t(i), std::uint32_t(c), std::uint32_t(ranges.size()),
-                            std::uint32_t(out.ranges.size())});
-            ranges.insert(ranges.end(), out.ranges.begin(), out.ranges.end());
+        const bool empty = scene.meshes[std::size_t(instance.mesh)].triangleCount() == 0;
+        clusterStart_[i + 1] = clusterStart_[i] + (empty ? 0 : maps_[std::size_t(instance.mesh)].clusters.size());
+    }
+    const std::size_t pieceClusters = sideBySide ? kPieceClusters : std::max<std::size_t>(clusterStart_.back(), 1);
+    const std::size_t pieceCount = (clusterStart_.back() + pieceClusters - 1) / pieceClusters;
+    if (pieces_.size() < pieceCount) pieces_.resize(pieceCount);
+    outcodes_.resize(std::size_t(occlusion_.threads(target)));
+    occlusion_.parallel(target, pieceCount, [&](std::size_t p, int worker) {
+        ConservativePiece& piece = pieces_[p];
+        piece.kept.clear();
+        piece.ranges.clear();
+        const std::size_t first = p * pieceClusters, last = std::min(first + pieceClusters, clusterStart_.back());
+        // The instance of cluster `first`: the last one starting at or before it (empty ones start
+        // where the next one does).
+        std::size_t i = std::size_t(std::upper_bound(clusterStart_.begin(), clusterStart_.end(), first) - clusterStart_.begin()) - 1;
+        RangeList out;
+        for (std::size_t at = first; at < last; ++i) {
+            if (clusterStart_[i + 1] <= at) continue;
+            const Instance& instance = scene.instances[i];
+            const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+            const MeshMap& map = maps_[std::size_t(instance.mesh)];
+            const InstanceView iv(world[std::size_t(instance.node)], view);
+            Outcodes vertices(mesh, iv.mvp, outcodes_[std::size_t(worker)]);
+            const bool singleSided = isSingleSided(scene, mesh);
+            for (; at < std::min(last, clusterStart_[i + 1]); ++at) {
+                const std::size_t c = at - clusterStart_[i];
+                out.ranges.clear();
+                conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, out);
+                if (out.ranges.empty()) continue;
+                piece.kept.push_back({std::uint32_t(i), std::uint32_t(c), std::uint32_t(piece.ranges.size()),
+                                      std::uint32_t(out.ranges.size())});
+                piece.ranges.insert(piece.ranges.end(), out.ranges.begin(), out.ranges.end());
+            }
         }
+    });
+    std::vector<KeptCluster> kept;
+    std::vector<IndexRange> ranges;
+    for (std::size_t p = 0; p < pieceCount; ++p) {
+        const ConservativePiece& piece = pieces_[p];
+        const auto offset = std::uint32_t(ranges.size());
+        for (KeptCluster k : piece.kept) {
+            k.firstRange += offset;
+            kept.push_back(k);
+        }
+        ranges.insert(ranges.end(), piece.ranges.begin(), piece.ranges.end());
     }
     std::vector<KeptCluster> left;
     std::vector<IndexRange> leftRanges;

@@ -70,6 +70,14 @@ public:
     const std::vector<MeshMap>& maps() const { return maps_; }
     PrepStats totals() const;  // summed over meshes
 
+    // Per vertex of a mesh, its clip outcode under the instance view it was last computed for
+    // (`epoch` tells which view: a new one needs no clearing).
+    struct alignas(64) OutcodeCache {
+        std::vector<std::uint32_t> epochOf;
+        std::vector<std::uint8_t> codes;
+        std::uint32_t epoch = 0;
+    };
+
 private:
     DrawList cullOcclusion(const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
                            const OcclusionTarget& target) const;
@@ -81,6 +89,15 @@ private:
     // The occlusion pass's buffers, kept from view to view (cull is const: one culler serves one
     // renderer, which calls it from one thread at a time).
     mutable OcclusionCuller occlusion_;
+    // The conservative plan that occlusion starts from, made in pieces side by side (cullOcclusion);
+    // each on cache lines of its own.
+    struct alignas(64) ConservativePiece {
+        std::vector<KeptCluster> kept;
+        std::vector<IndexRange> ranges;
+    };
+    mutable std::vector<ConservativePiece> pieces_;
+    mutable std::vector<OutcodeCache> outcodes_;  // one per thread of the pieces
+    mutable std::vector<std::size_t> clusterStart_;  // per instance: its first cluster, counting over all
 };
 
 // Triangles a list submits, counted as the backends execute ranges (render/IndexRanges.h).

@@ -42,6 +42,9 @@ constexpr double kGpuNsPerTriangle = 1.0;
 // their plan has more than kBackOffGrowth times its triangles.
 constexpr int kMaxBackOff = 16;
 constexpr double kBackOffGrowth = 1.25;
+// How long the threads prepare() wakes wait for the pass: making the conservative plan of a large
+// scene takes about a millisecond.
+constexpr std::chrono::microseconds kWarmFor{3000};
 
 // ⌊a / b⌋ for b > 0.
 inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
@@ -52,6 +55,17 @@ struct Item {
     std::int32_t x0, y0, x1, y1;  // pixels it may reach, inclusive; x0 > x1: none
     std::uint32_t kept = 0;      // index into the kept clusters
     bool testable = false;       // false: reaches the near plane or is not finite, always kept
+};
+
+// Items are gathered into the plan in pieces of this many, side by side.
+constexpr std::size_t kPieceItems = 64;
+
+// What one piece of the items leaves of the plan: its ranges (firstRange of its clusters counts
+// from the piece's first range) and its counts. A cache line of its own: pieces are filled side by
+// side, and a vector's end pointer shared with another thread's costs more than the gathering.
+struct alignas(64) Piece {
+    std::vector<IndexRange> ranges;
+    std::size_t tested = 0, hidden = 0, triangles = 0;
 };
 
 // What every band's walk reads.
@@ -157,6 +171,8 @@ struct OcclusionCuller::State {
     bool exactRules = true;  // the draw rasterizes by llvmpipe's rules: triangles are tested one by one
     int backOff = 0, skipLeft = 0;  // calls to skip after passes that did not pay
     std::size_t failedPlanned = 0;  // the plan's triangles in the last pass that did not pay
+    std::size_t lastPlanned = 0;    // the plan's triangles in the last call
+    bool warm = false;              // prepare() woke the threads, which spin until run() ends
     // Far-ness: window depth for D24 (0 near), its negation for D32F (reversed: 1 near), so that
     // "nearer" is "smaller" for both. depth: per pixel (row 0 at the bottom, window y), an upper
     // bound of what the frame's depth buffer ends with; blockMax: per block, the farthest of those.
@@ -178,11 +194,20 @@ struct OcclusionCuller::State {
     std::vector<Item> items;               // the kept clusters, nearest first
     std::vector<std::uint32_t> slots;      // per item: its first triangle slot (and one past the last)
     std::vector<Band> bands;
+    std::vector<Piece> pieces;             // the plan, gathered piece by piece (gather)
     std::unique_ptr<sw::ThreadPool> threads;
+
+    // The threads prepare() woke go back to sleep.
+    void rest() {
+        if (warm && threads) threads->rest();
+        warm = false;
+    }
 
     // The walk's threads: `count`, or every core (at most 8) for 0.
     sw::ThreadPool& pool(int count) {
-        const int wanted = count > 0 ? std::min(count, 64) : int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+        // (hardware_concurrency() reads a file on Linux: tens of microseconds, asked once.)
+        static const int cores = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+        const int wanted = count > 0 ? std::min(count, 64) : cores;
         if (!threads || threads->size() != wanted) threads = std::make_unique<sw::ThreadPool>(wanted);
         return *threads;
     }
@@ -282,6 +307,125 @@ struct OcclusionCuller::State {
         }
     }
 
+    // Bit k: some band may see (or must keep) the triangle in slot `slot` + k.
+    std::uint64_t seenMask(std::size_t slot) const {
+        std::uint64_t m = 0;
+#if defined(__x86_64__)
+        for (int q = 0; q < 4; ++q) {
+            __m128i any = _mm_setzero_si128();
+            for (const Band& band : bands)
+                any = _mm_or_si128(any, _mm_loadu_si128(reinterpret_cast<const __m128i*>(&band.seen[slot + 16 * std::size_t(q)])));
+            const int bits = _mm_movemask_epi8(_mm_cmpgt_epi8(any, _mm_setzero_si128()));
+            m |= std::uint64_t(std::uint32_t(bits)) << (16 * q);
+        }
+#else
+        for (const Band& band : bands) m |= keptMask(&band.seen[slot]);
+#endif
+        return m;
+    }
+
+    // Piece p of the items: the runs of their triangles that some band kept, into pieces[p], and
+    // each one's entry of `result` (its firstRange counted from the piece's first range).
+    void gather(const std::vector<KeptCluster>& kept, const std::vector<IndexRange>& ranges, std::size_t p,
+                std::vector<KeptCluster>& result) {
+        Piece& piece = pieces[p];
+        piece.ranges.clear();
+        piece.tested = piece.hidden = piece.triangles = 0;
+        std::vector<IndexRange>& out = piece.ranges;
+        for (std::size_t i = p * kPieceItems; i < std::min(items.size(), (p + 1) * kPieceItems); ++i) {
+            const Item& it = items[i];
+            const KeptCluster& kc = kept[it.kept];
+            KeptCluster& kr = result[it.kept];
+            kr = kc;
+            kr.firstRange = std::uint32_t(out.size());
+            kr.rangeCount = 0;
+            if (it.testable) ++piece.tested;
+            std::uint32_t slot = slots[i], runStart = 0, runLength = 0;
+            for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
+                const IndexRange& range = ranges[kc.firstRange + r];
+                // The runs of kept triangles, 64 flags at a time; a run that continues the last one
+                // (across words or ranges) extends it.
+                for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
+                    std::uint64_t m = seenMask(slot + base);
+                    if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
+                    while (m != 0) {
+                        const int at = __builtin_ctzll(m);
+                        const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
+                        const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
+                        m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
+                        const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
+                        if (runLength > 0 && runStart + runLength == t) {
+                            runLength += std::uint32_t(length);
+                            continue;
+                        }
+                        if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+                        runStart = t;
+                        runLength = std::uint32_t(length);
+                    }
+                }
+                slot += range.triangleCount;
+            }
+            if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+            if (kr.rangeCount == 0) ++piece.hidden;
+            for (std::uint32_t r = 0; r < kr.rangeCount; ++r) piece.triangles += out[kr.firstRange + r].triangleCount;
+        }
+    }
+
+    // Item `k` of the pass: cluster `c` under `mvp` (the float product of the view-projection and
+    // the instance's world matrix, in double), its box on the screen: the pixels it may reach and
+    // its nearest far-ness.
+    Item boxItem(const Cluster& c, const glm::dmat4& mvp, std::uint32_t k) const {
+        Item it{};
+        it.kept = k;
+        // Bound of the float vertex transform's error per clip coordinate: four rounded terms.
+        const glm::dvec3 reach = glm::max(glm::abs(glm::dvec3(c.boxMin)), glm::abs(glm::dvec3(c.boxMax)));
+        double err[4];
+        for (int r = 0; r < 4; ++r)
+            err[r] = 4.0 * kUnit *
+                     (std::abs(mvp[0][r]) * reach.x + std::abs(mvp[1][r]) * reach.y + std::abs(mvp[2][r]) * reach.z +
+                      std::abs(mvp[3][r]));
+        double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY, zMin = INFINITY, zMax = -INFINITY;
+        double wMin = INFINITY;
+        bool testable = true;
+        for (int corner = 0; corner < 8 && testable; ++corner) {
+            const glm::dvec3 p(corner & 1 ? c.boxMax.x : c.boxMin.x, corner & 2 ? c.boxMax.y : c.boxMin.y,
+                               corner & 4 ? c.boxMax.z : c.boxMin.z);
+            const glm::dvec4 q = mvp * glm::dvec4(p, 1.0);
+            // In front of the near plane by more than the rounding of both sides.
+            const double nearSide = halfZ ? q.z - err[2] : q.z + q.w - err[2] - err[3];
+            if (!std::isfinite(q.x + q.y + q.z + q.w) || !(q.w - err[3] > 0.0) || !(nearSide > 0.0)) testable = false;
+            xMin = std::min(xMin, q.x / q.w), xMax = std::max(xMax, q.x / q.w);
+            yMin = std::min(yMin, q.y / q.w), yMax = std::max(yMax, q.y / q.w);
+            zMin = std::min(zMin, q.z / q.w), zMax = std::max(zMax, q.z / q.w);
+            wMin = std::min(wMin, q.w);
+        }
+        if (testable) {
+            // x/w, y/w, z/w of a vertex inside the box lie between the corners' (a ratio of affine
+            // functions over a box takes its extremes at corners); the float transform moves them by
+            // at most (e + |ratio|·e_w)/w_float, w_float ≥ wMin − e_w > 0, and the division and the
+            // viewport by a few units more.
+            const double ratio = std::max({1.0, std::abs(xMin), std::abs(xMax), std::abs(yMin), std::abs(yMax),
+                                           std::abs(zMin), std::abs(zMax)});
+            const double wLow = wMin - err[3];
+            const double ex = (err[0] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
+            const double ey = (err[1] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
+            const double ez = (err[2] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
+            // Window pixels whose centre the box may cover, grown by one pixel.
+            const double wx0 = (xMin - ex) * viewport.sx + viewport.tx - 1.0, wx1 = (xMax + ex) * viewport.sx + viewport.tx + 1.0;
+            const double wy0 = (yMin - ey) * viewport.sy + viewport.ty - 1.0, wy1 = (yMax + ey) * viewport.sy + viewport.ty + 1.0;
+            it.x0 = std::int32_t(std::clamp(std::ceil(wx0 - 0.5), 0.0, double(width)));
+            it.x1 = std::int32_t(std::clamp(std::floor(wx1 - 0.5), -1.0, double(width - 1)));
+            it.y0 = std::int32_t(std::clamp(std::ceil(wy0 - 0.5), 0.0, double(height)));
+            it.y1 = std::int32_t(std::clamp(std::floor(wy1 - 0.5), -1.0, double(height - 1)));
+            // The nearest window depth a fragment may get, less its rounding and the 24-bit step.
+            const double slack = 4.0 * kUnit;
+            const double nearest = halfZ ? -(zMax + ez) - slack : 0.5 * (zMin - ez) + 0.5 - slack;
+            it.nearest = float(nearest) - float(2.0 * kUnit);
+            it.testable = std::isfinite(nearest);
+        }
+        return it;
+    }
+
     const ClusterVertices& clusterVertices(const Mesh& mesh, const MeshMap& map, std::size_t index) {
         if (meshes.size() <= index) meshes.resize(index + 1);
         ClusterVertices& cv = meshes[index];
@@ -336,10 +480,24 @@ struct OcclusionCuller::State {
             const int x0 = bx * kBlock, y0 = by * kBlock;
             const int x1 = std::min(x0 + kBlock, width), y1 = std::min(y0 + kBlock, height);
             float m = -kOpen;
-            for (int y = y0; y < y1; ++y) {
-                const float* row = &depth[std::size_t(y) * std::size_t(width)];
-                for (int x = x0; x < x1; ++x) m = std::max(m, row[x]);
-            }
+#if defined(__x86_64__)
+            if (x1 - x0 == kBlock) {  // a whole row of the block is two SSE registers (no NaN is stored)
+                __m128 a = _mm_set1_ps(-kOpen), c = a;
+                for (int y = y0; y < y1; ++y) {
+                    const float* row = &depth[std::size_t(y) * std::size_t(width) + std::size_t(x0)];
+                    a = _mm_max_ps(a, _mm_loadu_ps(row));
+                    c = _mm_max_ps(c, _mm_loadu_ps(row + 4));
+                }
+                a = _mm_max_ps(a, c);
+                a = _mm_max_ps(a, _mm_movehl_ps(a, a));
+                a = _mm_max_ss(a, _mm_shuffle_ps(a, a, 1));
+                m = _mm_cvtss_f32(a);
+            } else
+#endif
+                for (int y = y0; y < y1; ++y) {
+                    const float* row = &depth[std::size_t(y) * std::size_t(width)];
+                    for (int x = x0; x < x1; ++x) m = std::max(m, row[x]);
+                }
             blockMax[b] = m;
             blockDirty[b] = 0;
         }
@@ -547,6 +705,24 @@ OcclusionCuller& OcclusionCuller::operator=(OcclusionCuller&&) noexcept = defaul
 
 const OcclusionStats& OcclusionCuller::stats() const { return state_->stats; }
 
+void OcclusionCuller::parallel(const OcclusionTarget& target, std::size_t count,
+                               const std::function<void(std::size_t, int)>& fn) {
+    if (state_->warm)
+        state_->pool(target.threads).run(count, fn);
+    else
+        for (std::size_t i = 0; i < count; ++i) fn(i, 0);
+}
+
+int OcclusionCuller::threads(const OcclusionTarget& target) { return state_->pool(target.threads).size(); }
+
+bool OcclusionCuller::prepare(const OcclusionTarget& target) {
+    State& st = *state_;
+    // Likely skipped: backing off, or the last plan was too small to pay.
+    st.warm = !(target.adaptive && (st.skipLeft > 0 || st.lastPlanned < kMinTriangles));
+    if (st.warm) st.pool(target.threads).warm(kWarmFor);
+    return st.warm;
+}
+
 std::uint64_t OcclusionCuller::bytes() const {
     const State& st = *state_;
     std::uint64_t total = st.depth.capacity() * sizeof(float) + st.blockMax.capacity() * sizeof(float) +
@@ -576,11 +752,13 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     st.stats = {};
     std::size_t planned = 0;
     for (const IndexRange& r : ranges) planned += r.triangleCount;
+    st.lastPlanned = planned;
     // Backing off after a pass that did not pay holds for plans of about that size or smaller: a
     // plan much larger (a view of more, smaller triangles) is tried again.
     const bool backingOff = st.skipLeft > 0 && double(planned) <= kBackOffGrowth * double(st.failedPlanned);
     const bool skip = width <= 0 || height <= 0 || (target.adaptive && (planned < kMinTriangles || backingOff));
     if (skip) {
+        st.rest();
         if (target.adaptive && backingOff) --st.skipLeft;
         st.width = st.height = 0;
         result = kept;
@@ -595,71 +773,31 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
 
     // Every kept cluster's box on the screen: the pixels it may reach and its nearest far-ness.
     const glm::mat4 viewProjection = view.projection * view.view;  // as the backends compute it
-    const sw::Viewport& vp = st.viewport;
-    st.items.clear();
-    st.items.reserve(kept.size());
+    // Every kept cluster's mesh has its clusters' vertices side by side; then every kept
+    // cluster's box on the screen, in pieces side by side.
     std::uint32_t lastInstance = std::numeric_limits<std::uint32_t>::max();
-    glm::dmat4 mvp(1.0);
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-        const KeptCluster& kc = kept[k];
-        const Instance& instance = scene.instances[kc.instance];
+    for (const KeptCluster& kc : kept)
         if (kc.instance != lastInstance) {
-            mvp = glm::dmat4(viewProjection * world[std::size_t(instance.node)]);  // the float product, exactly
             lastInstance = kc.instance;
+            const Instance& instance = scene.instances[kc.instance];
             st.clusterVertices(scene.meshes[std::size_t(instance.mesh)], maps[std::size_t(instance.mesh)],
                                std::size_t(instance.mesh));
         }
-        const Cluster& c = maps[std::size_t(instance.mesh)].clusters[kc.cluster];
-        Item it{};
-        it.kept = std::uint32_t(k);
-        // Bound of the float vertex transform's error per clip coordinate: four rounded terms.
-        const glm::dvec3 reach = glm::max(glm::abs(glm::dvec3(c.boxMin)), glm::abs(glm::dvec3(c.boxMax)));
-        double err[4];
-        for (int r = 0; r < 4; ++r)
-            err[r] = 4.0 * kUnit *
-                     (std::abs(mvp[0][r]) * reach.x + std::abs(mvp[1][r]) * reach.y + std::abs(mvp[2][r]) * reach.z +
-                      std::abs(mvp[3][r]));
-        double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY, zMin = INFINITY, zMax = -INFINITY;
-        double wMin = INFINITY;
-        bool testable = true;
-        for (int corner = 0; corner < 8 && testable; ++corner) {
-            const glm::dvec3 p(corner & 1 ? c.boxMax.x : c.boxMin.x, corner & 2 ? c.boxMax.y : c.boxMin.y,
-                               corner & 4 ? c.boxMax.z : c.boxMin.z);
-            const glm::dvec4 q = mvp * glm::dvec4(p, 1.0);
-            // In front of the near plane by more than the rounding of both sides.
-            const double nearSide = st.halfZ ? q.z - err[2] : q.z + q.w - err[2] - err[3];
-            if (!std::isfinite(q.x + q.y + q.z + q.w) || !(q.w - err[3] > 0.0) || !(nearSide > 0.0)) testable = false;
-            xMin = std::min(xMin, q.x / q.w), xMax = std::max(xMax, q.x / q.w);
-            yMin = std::min(yMin, q.y / q.w), yMax = std::max(yMax, q.y / q.w);
-            zMin = std::min(zMin, q.z / q.w), zMax = std::max(zMax, q.z / q.w);
-            wMin = std::min(wMin, q.w);
+    st.items.resize(kept.size());
+    st.pool(target.threads).run((kept.size() + kPieceItems - 1) / kPieceItems, [&](std::size_t p, int) {
+        std::uint32_t instanceOf = std::numeric_limits<std::uint32_t>::max();
+        glm::dmat4 mvp(1.0);
+        for (std::size_t k = p * kPieceItems; k < std::min(kept.size(), (p + 1) * kPieceItems); ++k) {
+            const KeptCluster& kc = kept[k];
+            const Instance& instance = scene.instances[kc.instance];
+            if (kc.instance != instanceOf) {
+                mvp = glm::dmat4(viewProjection * world[std::size_t(instance.node)]);  // the float product, exactly
+                instanceOf = kc.instance;
+            }
+            st.items[k] = st.boxItem(maps[std::size_t(instance.mesh)].clusters[kc.cluster], mvp, std::uint32_t(k));
         }
-        if (testable) {
-            // x/w, y/w, z/w of a vertex inside the box lie between the corners' (a ratio of affine
-            // functions over a box takes its extremes at corners); the float transform moves them by
-            // at most (e + |ratio|·e_w)/w_float, w_float ≥ wMin − e_w > 0, and the division and the
-            // viewport by a few units more.
-            const double ratio = std::max({1.0, std::abs(xMin), std::abs(xMax), std::abs(yMin), std::abs(yMax),
-                                           std::abs(zMin), std::abs(zMax)});
-            const double wLow = wMin - err[3];
-            const double ex = (err[0] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
-            const double ey = (err[1] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
-            const double ez = (err[2] + ratio * err[3]) / wLow + 4.0 * kUnit * ratio;
-            // Window pixels whose centre the box may cover, grown by one pixel.
-            const double wx0 = (xMin - ex) * vp.sx + vp.tx - 1.0, wx1 = (xMax + ex) * vp.sx + vp.tx + 1.0;
-            const double wy0 = (yMin - ey) * vp.sy + vp.ty - 1.0, wy1 = (yMax + ey) * vp.sy + vp.ty + 1.0;
-            it.x0 = std::int32_t(std::clamp(std::ceil(wx0 - 0.5), 0.0, double(width)));
-            it.x1 = std::int32_t(std::clamp(std::floor(wx1 - 0.5), -1.0, double(width - 1)));
-            it.y0 = std::int32_t(std::clamp(std::ceil(wy0 - 0.5), 0.0, double(height)));
-            it.y1 = std::int32_t(std::clamp(std::floor(wy1 - 0.5), -1.0, double(height - 1)));
-            // The nearest window depth a fragment may get, less its rounding and the 24-bit step.
-            const double slack = 4.0 * kUnit;
-            const double nearest = st.halfZ ? -(zMax + ez) - slack : 0.5 * (zMin - ez) + 0.5 - slack;
-            it.nearest = float(nearest) - float(2.0 * kUnit);
-            it.testable = std::isfinite(nearest);
-        }
-        st.items.push_back(it);
-    }
+    });
+
     // Nearest first; boxes that cannot be tested first of all (they are drawn, and hide things).
     std::sort(st.items.begin(), st.items.end(), [](const Item& a, const Item& b) {
         if (a.testable != b.testable) return !a.testable;
@@ -682,52 +820,25 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     st.pool(target.threads).run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
 
     // A triangle is kept when some band may see it (or must keep it); a cluster with nothing left
-    // is hidden.
-    std::vector<std::uint8_t>& seen = st.bands.front().seen;
-    for (std::size_t b = 1; b < st.bands.size(); ++b) {
-        const std::uint8_t* other = st.bands[b].seen.data();
-        for (std::size_t slot = 0; slot < seen.size(); ++slot) seen[slot] |= other[slot];
-    }
-    out.clear();
+    // is hidden. The plan's ranges are gathered in chunks of items side by side, then joined in
+    // item order.
+    const std::size_t pieceCount = (st.items.size() + kPieceItems - 1) / kPieceItems;
+    st.pieces.resize(pieceCount);
     result.assign(kept.size(), KeptCluster{});
+    st.pool(target.threads).run(pieceCount, [&](std::size_t p, int) { st.gather(kept, ranges, p, result); });
+    out.clear();
     std::size_t left = 0;
-    for (std::size_t i = 0; i < st.items.size(); ++i) {
-        const Item& it = st.items[i];
-        const KeptCluster& kc = kept[it.kept];
-        KeptCluster& kr = result[it.kept];
-        kr = kc;
-        kr.firstRange = std::uint32_t(out.size());
-        kr.rangeCount = 0;
-        if (it.testable) ++st.stats.clustersTested;
-        std::uint32_t slot = st.slots[i], runStart = 0, runLength = 0;
-        for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
-            const IndexRange& range = ranges[kc.firstRange + r];
-            // The runs of kept triangles, 64 flags at a time; a run that continues the last one
-            // (across words or ranges) extends it.
-            for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
-                std::uint64_t m = keptMask(&seen[slot + base]);
-                if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
-                while (m != 0) {
-                    const int at = __builtin_ctzll(m);
-                    const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
-                    const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
-                    m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
-                    const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
-                    if (runLength > 0 && runStart + runLength == t) {
-                        runLength += std::uint32_t(length);
-                        continue;
-                    }
-                    if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
-                    runStart = t;
-                    runLength = std::uint32_t(length);
-                }
-            }
-            slot += range.triangleCount;
-        }
-        if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
-        if (kr.rangeCount == 0) ++st.stats.clustersHidden;
-        for (std::uint32_t r = 0; r < kr.rangeCount; ++r) left += out[kr.firstRange + r].triangleCount;
+    for (std::size_t p = 0; p < pieceCount; ++p) {
+        const Piece& piece = st.pieces[p];
+        const auto offset = std::uint32_t(out.size());
+        for (std::size_t i = p * kPieceItems; i < std::min(st.items.size(), (p + 1) * kPieceItems); ++i)
+            result[st.items[i].kept].firstRange += offset;
+        out.insert(out.end(), piece.ranges.begin(), piece.ranges.end());
+        st.stats.clustersTested += piece.tested;
+        st.stats.clustersHidden += piece.hidden;
+        left += piece.triangles;
     }
+    st.rest();
     st.stats.trianglesHidden = planned - left;
     st.stats.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     // Did it pay? The draw it saved, by the target's cost of a triangle, against its own time.

@@ -35,6 +35,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -100,6 +101,20 @@ public:
     void run(const Scene& scene, const std::vector<MeshMap>& maps, const std::vector<glm::mat4>& world,
              const View& view, const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
              const std::vector<IndexRange>& ranges, std::vector<KeptCluster>& result, std::vector<IndexRange>& out);
+
+    // Called before the conservative plan that run() will get is made: wakes the pass's threads,
+    // so that their wake-up (a tenth of a millisecond in a virtual machine) overlaps making it, and
+    // they wait for the pass spinning until run() ends. Not when the next run() is likely to skip
+    // the pass (the last plan was small, or it is backing off).
+    // Returns whether it woke them.
+    bool prepare(const OcclusionTarget& target);
+
+    // fn(i, worker) for i in [0, count), in any order: for making the plan run() gets. On the pass's
+    // threads side by side when prepare() woke them; otherwise on the caller in order (waking
+    // sleeping threads would cost more than a small plan).
+    // `worker` is in [0, threads(target)): the thread's number.
+    void parallel(const OcclusionTarget& target, std::size_t count, const std::function<void(std::size_t, int)>& fn);
+    int threads(const OcclusionTarget& target);
 
     const OcclusionStats& stats() const;
 

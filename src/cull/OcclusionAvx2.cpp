@@ -179,8 +179,10 @@ void verdictsAvx2(const WindowArrays& w, const std::uint16_t* c0, const std::uin
             const __m256i steep = _mm256_castps_si256(_mm256_cmp_ps(slack, fone, _CMP_NLT_UQ));
             // The draw module's cull stage on the given order (sw::drawModuleKeepsFront): a sliver it
             // may drop hides nothing.
-            const __m256 xa = _mm256_i32gather_ps(w.x, i0, 4), ya = _mm256_i32gather_ps(w.y, i0, 4);
-            const __m256 xb = _mm256_i32gather_ps(w.x, i1, 4), yb = _mm256_i32gather_ps(w.y, i1, 4);
+            // (v0 and v1 in the given order: swapped back where setup swapped them.)
+            const __m256 swapped = _mm256_castsi256_ps(front);
+            const __m256 xa = _mm256_blendv_ps(x0f, x1f, swapped), ya = _mm256_blendv_ps(y0f, y1f, swapped);
+            const __m256 xb = _mm256_blendv_ps(x1f, x0f, swapped), yb = _mm256_blendv_ps(y1f, y0f, swapped);
             const __m256 det = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(xa, x2f), _mm256_sub_ps(yb, y2f)),
                                              _mm256_mul_ps(_mm256_sub_ps(ya, y2f), _mm256_sub_ps(xb, x2f)));
             __m256i occludes = _mm256_castps_si256(_mm256_cmp_ps(det, fzero, _CMP_NLE_UQ));
