@@ -658,7 +658,7 @@ struct OcclusionCuller::State {
             // Far-ness bounds of the stored value at each pixel: lo ≤ it ≤ hi (D24 stores the
             // clamped z, D32F is read as its negation).
             bool rowSeen = false;
-            if (simd && xb - xa >= 7) {  // eight pixels at a time, the same arithmetic
+            if (simd) {  // eight pixels at a time, the same arithmetic
                 rowSeen = occlusion::spanAvx2(row, int(xa), int(xb), zRow, dzdx, s0, up, halfZ, occludes);
             } else if (!halfZ) {
                 for (std::int64_t px = xa; px <= xb; ++px) {

@@ -232,14 +232,12 @@ void verdictsAvx2(const WindowArrays& w, const std::uint16_t* c0, const std::uin
 bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes) {
     const __m256 vz = _mm256_set1_ps(zRow), vdz = _mm256_set1_ps(dzdx), vs = _mm256_set1_ps(slack), vup = _mm256_set1_ps(up);
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-    __m256 seen = zero;
-    int px = xa;
-    for (; px + 7 <= xb; px += 8) {
-        // z = zRow + dzdx·px, rounded twice; std::clamp(v, 0, 1) is min(1, max(0, v)) in this
-        // operand order (a NaN stays), and std::min(a, b) is _mm256_min_ps(b, a).
-        const __m256 z = _mm256_add_ps(vz, _mm256_mul_ps(vdz, _mm256_cvtepi32_ps(_mm256_add_epi32(
-                                                            _mm256_set1_epi32(px), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)))));
-        __m256 lo, hi;
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    // Far-ness bounds lo ≤ the stored value ≤ hi at pixels px … px + 7: z = zRow + dzdx·px, rounded
+    // twice; std::clamp(v, 0, 1) is min(1, max(0, v)) in this operand order (a NaN stays), as the
+    // scalar loops compute it.
+    const auto bounds = [&](int px, __m256& lo, __m256& hi) {
+        const __m256 z = _mm256_add_ps(vz, _mm256_mul_ps(vdz, _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(px), lane))));
         if (!halfZ) {
             lo = _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)));
             hi = _mm256_add_ps(_mm256_min_ps(one, _mm256_add_ps(z, vs)), vup);
@@ -247,27 +245,27 @@ bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, f
             lo = _mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_add_ps(z, vs))));
             hi = _mm256_add_ps(_mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)))), vup);
         }
+    };
+    // Seen where !(stored < lo); stored lowered to hi where hi < stored (std::min(stored, hi) is
+    // _mm256_min_ps(hi, stored)).
+    __m256 seen = zero;
+    int px = xa;
+    for (; px + 7 <= xb; px += 8) {
+        __m256 lo, hi;
+        bounds(px, lo, hi);
         const __m256 stored = _mm256_loadu_ps(row + px);
         seen = _mm256_or_ps(seen, _mm256_cmp_ps(stored, lo, _CMP_NLT_UQ));
         if (occludes) _mm256_storeu_ps(row + px, _mm256_min_ps(hi, stored));
     }
-    bool rowSeen = _mm256_movemask_ps(seen) != 0;
-    // The rest one by one, as std::clamp and std::min compute (written out: no standard function is
-    // instantiated for AVX2 here).
-    const auto clamp01 = [](float v) { return v < 0.0f ? 0.0f : 1.0f < v ? 1.0f : v; };
-    for (; px <= xb; ++px) {
-        const float z = zRow + dzdx * float(px);
-        float lo, hi;
-        if (!halfZ) {
-            const float top = z + slack;
-            lo = clamp01(z - slack), hi = (1.0f < top ? 1.0f : top) + up;
-        } else {
-            lo = -clamp01(z + slack), hi = -clamp01(z - slack) + up;
-        }
-        rowSeen = rowSeen || !(row[px] < lo);
-        if (occludes && hi < row[px]) row[px] = hi;
+    if (px <= xb) {  // the last 1 to 7 pixels, with loads and stores masked to them
+        const __m256i mask = _mm256_cmpgt_epi32(_mm256_set1_epi32(xb - px + 1), lane);
+        __m256 lo, hi;
+        bounds(px, lo, hi);
+        const __m256 stored = _mm256_maskload_ps(row + px, mask);
+        seen = _mm256_or_ps(seen, _mm256_and_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ), _mm256_castsi256_ps(mask)));
+        if (occludes) _mm256_maskstore_ps(row + px, mask, _mm256_min_ps(hi, stored));
     }
-    return rowSeen;
+    return _mm256_movemask_ps(seen) != 0;
 }
 
 bool cpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }

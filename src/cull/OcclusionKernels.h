@@ -75,10 +75,11 @@ void verdictsAvx2(const WindowArrays& window, const std::uint16_t* c0, const std
                   std::uint32_t count, bool cullBack, const sw::Viewport& viewport, int rowLo, int rowHi,
                   std::uint8_t* verdict, const SmallTriangles& small);
 
-// One row of a triangle's covered pixels [xa, xb] against the buffer `row` (far-ness; Occlusion.cpp
-// triangleMaySeen): whether some pixel may be seen, and, when `occludes`, each pixel lowered to the
-// triangle's upper bound there. zRow + dzdx·px is the plane, `slack` its rounding bound, `up` the
-// 24-bit step.
+// One row of a triangle's covered pixels [xa, xb] (xa ≤ xb) against the buffer `row` (far-ness;
+// Occlusion.cpp triangleMaySeen): whether some pixel may be seen, and, when `occludes`, each pixel
+// lowered to the triangle's upper bound there. zRow + dzdx·px is the plane, `slack` its rounding
+// bound, `up` the 24-bit step. Eight pixels at a time; the last few with masked loads and stores,
+// which touch nothing past xb.
 bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes);
 
 }  // namespace frugal::occlusion
