@@ -1,6 +1,7 @@
 #include "cull/Culling.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -23,18 +24,26 @@ struct Plane {
     double eval(const glm::dvec3& x) const { return p.x * x.x + p.y * x.y + p.z * x.z + p.w; }
 };
 
+// At most six planes, in place (an instance's view is made per instance and frame: no allocation).
+struct Planes {
+    std::array<Plane, 6> at;
+    std::size_t count = 0;
+    const Plane* begin() const { return at.data(); }
+    const Plane* end() const { return at.data() + count; }
+};
+
 // The six clip planes (-w ≤ x, y ≤ w; -w ≤ z ≤ w for D24, 0 ≤ z ≤ w for D32F's zero-to-one clip
 // space) of `m` (clip = m · point) in the point's space (Gribb & Hartmann). A plane with no normal
 // (the far plane of an infinite projection) is dropped when it holds everywhere.
-std::vector<Plane> clipPlanes(const glm::dmat4& m, DepthFormat format) {
+Planes clipPlanes(const glm::dmat4& m, DepthFormat format) {
     auto row = [&m](int i) { return glm::dvec4(m[0][i], m[1][i], m[2][i], m[3][i]); };
     const glm::dvec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
     const glm::dvec4 zLow = format == DepthFormat::D32F ? r2 : r3 + r2;
-    std::vector<Plane> planes;
+    Planes planes;
     for (const glm::dvec4& p : {r3 + r0, r3 - r0, r3 + r1, r3 - r1, zLow, r3 - r2}) {
         const double n = glm::length(glm::dvec3(p));
         if (n == 0.0 && p.w >= 0.0) continue;
-        planes.push_back(Plane{p});
+        planes.at[planes.count++] = Plane{p};
     }
     return planes;
 }
@@ -42,7 +51,7 @@ std::vector<Plane> clipPlanes(const glm::dmat4& m, DepthFormat format) {
 // The part of a box outside one plane, all of it or some of it.
 enum class Side { Outside, Straddles, Inside };
 
-Side boxSide(const std::vector<Plane>& planes, const glm::vec3& lo, const glm::vec3& hi) {
+Side boxSide(const Planes& planes, const glm::vec3& lo, const glm::vec3& hi) {
     const glm::dvec3 dlo(lo), dhi(hi);
     if (!std::isfinite(dlo.x + dlo.y + dlo.z + dhi.x + dhi.y + dhi.z)) return Side::Straddles;
     bool inside = true;
@@ -64,7 +73,7 @@ Side boxSide(const std::vector<Plane>& planes, const glm::vec3& lo, const glm::v
 // What a frame looks like from one instance's object space.
 struct InstanceView {
     glm::dmat4 mvp{1.0};
-    std::vector<Plane> planes;  // clip planes in object space
+    Planes planes;              // clip planes in object space
     glm::dvec4 eye{0.0};        // homogeneous: (eye, 1) for perspective, (towards the viewer, 0) for ortho
     bool mirrored = false;      // window-space winding is the opposite of object space
     double eyeScale = 0.0;      // |eye.xyz|: the size of the numbers in the cone tests (their margin)
@@ -249,7 +258,7 @@ SphereClass classifySphere(const Sphere& sphere, const glm::mat4& model, const V
     const double scale = std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])),
                                    glm::length(glm::dvec3(m[2]))});
     const double radius = sphere.radius * scale;
-    const std::vector<Plane> planes =
+    const Planes planes =
         clipPlanes(glm::dmat4(view.givenProjection) * glm::dmat4(view.view), view.depthFormat);
     bool whole = true;
     for (const Plane& plane : planes) {

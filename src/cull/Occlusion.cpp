@@ -50,12 +50,18 @@ constexpr std::chrono::microseconds kWarmFor{3000};
 inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 // A cluster in the order of the pass.
+// A cluster in the order of the pass, or all the kept clusters of an instance of a small mesh
+// (kGroupTriangles): one box, one test and one matrix for a domino, not one for each of its faces.
 struct Item {
     float nearest = 0;           // far-ness bound of the box's nearest point (less every margin)
-    std::int32_t x0, y0, x1, y1;  // pixels it may reach, inclusive; x0 > x1: none
-    std::uint32_t kept = 0;      // index into the kept clusters
+    std::int32_t x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // pixels it may reach, inclusive; x0 > x1: none
+    std::uint32_t kept = 0;      // its first kept cluster (index into them)
+    std::uint32_t count = 1;     // and how many, all of one instance
     bool testable = false;       // false: reaches the near plane or is not finite, always kept
 };
+
+// An instance of a mesh of at most this many triangles is one item, whatever its clusters.
+constexpr std::size_t kGroupTriangles = 256;
 
 // Items are gathered into the plan in pieces of this many, side by side.
 constexpr std::size_t kPieceItems = 64;
@@ -254,57 +260,66 @@ struct OcclusionCuller::State {
         for (std::size_t i = 0; i < items.size(); ++i) {
             const Item& it = items[i];
             if (it.testable && (it.x0 > it.x1 || it.y1 < band.y0 || it.y0 > band.y1 || hidden(it, band))) continue;
-            const KeptCluster& kc = w.kept[it.kept];
-            const Instance& instance = w.scene.instances[kc.instance];
+            const Instance& instance = w.scene.instances[w.kept[it.kept].instance];
             const Mesh& mesh = w.scene.meshes[std::size_t(instance.mesh)];
             const bool singleSided = mesh.material < 0 || !w.scene.materials[std::size_t(mesh.material)].doubleSided;
             const ClusterVertices& cv = meshes[std::size_t(instance.mesh)];
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
-            const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
-            const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
-            const occlusion::WindowArrays window = band.window();
-            transform(m, &cv.x[firstVertex], &cv.y[firstVertex], &cv.z[firstVertex], vertexCount, window);
             std::uint32_t slot = slots[i];
-            for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
-                const IndexRange& range = w.ranges[kc.firstRange + r];
-                const std::uint32_t first = range.firstTriangle, count = range.triangleCount;
-                // The quick verdict of every triangle; kTest ones are then tested in full. A triangle
-                // with a corner the draw clips is drawn from rounded new vertices: kept, and hides
-                // nothing. Without llvmpipe's rules every triangle is kept, and occludes.
-                band.reserve(0, count + 64);  // keptMask reads 64 verdicts at a time
-                std::uint8_t* verdict = band.verdict.data();
-                if (simd)
-                    occlusion::verdictsAvx2(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
-                                            viewport, band.y0, band.y1, verdict, band.small());
-                else
-                    for (std::uint32_t t = 0; t < count; ++t) {
-                        const std::uint32_t a = cv.c0[first + t], b = cv.c1[first + t], c = cv.c2[first + t];
-                        const bool unfixed = window.fx[a] == occlusion::kUnfixed || window.fx[b] == occlusion::kUnfixed ||
-                                             window.fx[c] == occlusion::kUnfixed;
-                        verdict[t] = unfixed ? occlusion::kKeep : occlusion::kTest;
-                    }
-                // Dropped triangles (about half) are skipped 64 at a time, by the bits of the others:
-                // a branch a triangle on whether it was dropped is one the CPU cannot predict.
-                const occlusion::SmallTriangles small = band.small();
-                std::uint8_t* seenOut = &band.seen[slot];
-                std::memset(seenOut, exactRules ? 0 : 1, count);
-                for (std::uint32_t base = 0; base < count; base += 64) {
-                    std::uint64_t bits = keptMask(verdict + base);  // verdicts other than kDrop
-                    if (count - base < 64) bits &= (std::uint64_t(1) << (count - base)) - 1;
-                    for (; bits != 0; bits &= bits - 1) {
-                        const std::uint32_t t = base + std::uint32_t(__builtin_ctzll(bits));
-                        bool seen = verdict[t] == occlusion::kKeep;
-                        if (verdict[t] == occlusion::kTest)
-                            seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t],
-                                                   singleSided, band.y0, band.y1);
-                        else if (verdict[t] == occlusion::kSmall)
-                            seen = smallMaySeen(small, t);
-                        seenOut[t] = std::uint8_t(seen || !exactRules);
-                    }
-                }
-                slot += count;
-            }
+            for (std::uint32_t k = it.kept; k < it.kept + it.count; ++k)
+                slot = walkCluster(w, band, cv, m, w.kept[k], singleSided, slot);
         }
+    }
+
+    // Kept cluster `kc` (of mesh vertices `cv`, under `m`) of an item that `band` does not find
+    // hidden: each triangle tested (and occluding) on the band's rows, its flags from `slot` on.
+    // Returns the slot after its triangles.
+    std::uint32_t walkCluster(const Walk& w, Band& band, const ClusterVertices& cv, const glm::mat4& m,
+                              const KeptCluster& kc, bool singleSided, std::uint32_t slot) {
+        const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
+        const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
+        const occlusion::WindowArrays window = band.window();
+        transform(m, &cv.x[firstVertex], &cv.y[firstVertex], &cv.z[firstVertex], vertexCount, window);
+        for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
+            const IndexRange& range = w.ranges[kc.firstRange + r];
+            const std::uint32_t first = range.firstTriangle, count = range.triangleCount;
+            // The quick verdict of every triangle; kTest ones are then tested in full. A triangle
+            // with a corner the draw clips is drawn from rounded new vertices: kept, and hides
+            // nothing. Without llvmpipe's rules every triangle is kept, and occludes.
+            band.reserve(0, count + 64);  // keptMask reads 64 verdicts at a time
+            std::uint8_t* verdict = band.verdict.data();
+            if (simd)
+                occlusion::verdictsAvx2(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
+                                        viewport, band.y0, band.y1, verdict, band.small());
+            else
+                for (std::uint32_t t = 0; t < count; ++t) {
+                    const std::uint32_t a = cv.c0[first + t], b = cv.c1[first + t], c = cv.c2[first + t];
+                    const bool unfixed = window.fx[a] == occlusion::kUnfixed || window.fx[b] == occlusion::kUnfixed ||
+                                         window.fx[c] == occlusion::kUnfixed;
+                    verdict[t] = unfixed ? occlusion::kKeep : occlusion::kTest;
+                }
+            // Dropped triangles (about half) are skipped 64 at a time, by the bits of the others:
+            // a branch a triangle on whether it was dropped is one the CPU cannot predict.
+            const occlusion::SmallTriangles small = band.small();
+            std::uint8_t* seenOut = &band.seen[slot];
+            std::memset(seenOut, exactRules ? 0 : 1, count);
+            for (std::uint32_t base = 0; base < count; base += 64) {
+                std::uint64_t bits = keptMask(verdict + base);  // verdicts other than kDrop
+                if (count - base < 64) bits &= (std::uint64_t(1) << (count - base)) - 1;
+                for (; bits != 0; bits &= bits - 1) {
+                    const std::uint32_t t = base + std::uint32_t(__builtin_ctzll(bits));
+                    bool seen = verdict[t] == occlusion::kKeep;
+                    if (verdict[t] == occlusion::kTest)
+                        seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t],
+                                               singleSided, band.y0, band.y1);
+                    else if (verdict[t] == occlusion::kSmall)
+                        seen = smallMaySeen(small, t);
+                    seenOut[t] = std::uint8_t(seen || !exactRules);
+                }
+            }
+            slot += count;
+        }
+        return slot;
     }
 
     // Bit k: some band may see (or must keep) the triangle in slot `slot` + k.
@@ -334,51 +349,52 @@ struct OcclusionCuller::State {
         std::vector<IndexRange>& out = piece.ranges;
         for (std::size_t i = p * kPieceItems; i < std::min(items.size(), (p + 1) * kPieceItems); ++i) {
             const Item& it = items[i];
-            const KeptCluster& kc = kept[it.kept];
-            KeptCluster& kr = result[it.kept];
-            kr = kc;
-            kr.firstRange = std::uint32_t(out.size());
-            kr.rangeCount = 0;
-            if (it.testable) ++piece.tested;
-            std::uint32_t slot = slots[i], runStart = 0, runLength = 0;
-            for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
-                const IndexRange& range = ranges[kc.firstRange + r];
-                // The runs of kept triangles, 64 flags at a time; a run that continues the last one
-                // (across words or ranges) extends it.
-                for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
-                    std::uint64_t m = seenMask(slot + base);
-                    if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
-                    while (m != 0) {
-                        const int at = __builtin_ctzll(m);
-                        const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
-                        const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
-                        m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
-                        const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
-                        if (runLength > 0 && runStart + runLength == t) {
-                            runLength += std::uint32_t(length);
-                            continue;
+            std::uint32_t slot = slots[i];
+            for (std::uint32_t k = it.kept; k < it.kept + it.count; ++k) {
+                const KeptCluster& kc = kept[k];
+                KeptCluster& kr = result[k];
+                kr = kc;
+                kr.firstRange = std::uint32_t(out.size());
+                kr.rangeCount = 0;
+                if (it.testable) ++piece.tested;
+                std::uint32_t runStart = 0, runLength = 0;
+                for (std::uint32_t r = 0; r < kc.rangeCount; ++r) {
+                    const IndexRange& range = ranges[kc.firstRange + r];
+                    // The runs of kept triangles, 64 flags at a time; a run that continues the last
+                    // one (across words or ranges) extends it.
+                    for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
+                        std::uint64_t m = seenMask(slot + base);
+                        if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
+                        while (m != 0) {
+                            const int at = __builtin_ctzll(m);
+                            const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
+                            const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
+                            m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
+                            const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
+                            if (runLength > 0 && runStart + runLength == t) {
+                                runLength += std::uint32_t(length);
+                                continue;
+                            }
+                            if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+                            runStart = t;
+                            runLength = std::uint32_t(length);
                         }
-                        if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
-                        runStart = t;
-                        runLength = std::uint32_t(length);
                     }
+                    slot += range.triangleCount;
                 }
-                slot += range.triangleCount;
+                if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
+                if (kr.rangeCount == 0) ++piece.hidden;
+                for (std::uint32_t r = 0; r < kr.rangeCount; ++r) piece.triangles += out[kr.firstRange + r].triangleCount;
             }
-            if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
-            if (kr.rangeCount == 0) ++piece.hidden;
-            for (std::uint32_t r = 0; r < kr.rangeCount; ++r) piece.triangles += out[kr.firstRange + r].triangleCount;
         }
     }
 
-    // Item `k` of the pass: cluster `c` under `mvp` (the float product of the view-projection and
-    // the instance's world matrix, in double), its box on the screen: the pixels it may reach and
-    // its nearest far-ness.
-    Item boxItem(const Cluster& c, const glm::dmat4& mvp, std::uint32_t k) const {
-        Item it{};
-        it.kept = k;
+    // The box [boxMin, boxMax] under `mvp` (the float product of the view-projection and the
+    // instance's world matrix, in double) on the screen: `it`'s pixels it may reach and nearest
+    // far-ness.
+    void boxOnScreen(const glm::vec3& boxMin, const glm::vec3& boxMax, const glm::dmat4& mvp, Item& it) const {
         // Bound of the float vertex transform's error per clip coordinate: four rounded terms.
-        const glm::dvec3 reach = glm::max(glm::abs(glm::dvec3(c.boxMin)), glm::abs(glm::dvec3(c.boxMax)));
+        const glm::dvec3 reach = glm::max(glm::abs(glm::dvec3(boxMin)), glm::abs(glm::dvec3(boxMax)));
         double err[4];
         for (int r = 0; r < 4; ++r)
             err[r] = 4.0 * kUnit *
@@ -388,8 +404,8 @@ struct OcclusionCuller::State {
         double wMin = INFINITY;
         bool testable = true;
         for (int corner = 0; corner < 8 && testable; ++corner) {
-            const glm::dvec3 p(corner & 1 ? c.boxMax.x : c.boxMin.x, corner & 2 ? c.boxMax.y : c.boxMin.y,
-                               corner & 4 ? c.boxMax.z : c.boxMin.z);
+            const glm::dvec3 p(corner & 1 ? boxMax.x : boxMin.x, corner & 2 ? boxMax.y : boxMin.y,
+                               corner & 4 ? boxMax.z : boxMin.z);
             const glm::dvec4 q = mvp * glm::dvec4(p, 1.0);
             // In front of the near plane by more than the rounding of both sides.
             const double nearSide = halfZ ? q.z - err[2] : q.z + q.w - err[2] - err[3];
@@ -423,7 +439,6 @@ struct OcclusionCuller::State {
             it.nearest = float(nearest) - float(2.0 * kUnit);
             it.testable = std::isfinite(nearest);
         }
-        return it;
     }
 
     const ClusterVertices& clusterVertices(const Mesh& mesh, const MeshMap& map, std::size_t index) {
@@ -783,18 +798,34 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
             st.clusterVertices(scene.meshes[std::size_t(instance.mesh)], maps[std::size_t(instance.mesh)],
                                std::size_t(instance.mesh));
         }
-    st.items.resize(kept.size());
-    st.pool(target.threads).run((kept.size() + kPieceItems - 1) / kPieceItems, [&](std::size_t p, int) {
+    // The items: a cluster each, or an instance of a small mesh whole.
+    st.items.clear();
+    for (std::uint32_t k = 0; k < kept.size();) {
+        Item it{};
+        it.kept = k;
+        const std::uint32_t instance = kept[k].instance;
+        const bool whole = scene.meshes[std::size_t(scene.instances[instance].mesh)].triangleCount() <= kGroupTriangles;
+        for (++k; whole && k < kept.size() && kept[k].instance == instance; ++k) ++it.count;
+        st.items.push_back(it);
+    }
+    st.pool(target.threads).run((st.items.size() + kPieceItems - 1) / kPieceItems, [&](std::size_t p, int) {
         std::uint32_t instanceOf = std::numeric_limits<std::uint32_t>::max();
         glm::dmat4 mvp(1.0);
-        for (std::size_t k = p * kPieceItems; k < std::min(kept.size(), (p + 1) * kPieceItems); ++k) {
-            const KeptCluster& kc = kept[k];
-            const Instance& instance = scene.instances[kc.instance];
-            if (kc.instance != instanceOf) {
-                mvp = glm::dmat4(viewProjection * world[std::size_t(instance.node)]);  // the float product, exactly
-                instanceOf = kc.instance;
+        for (std::size_t i = p * kPieceItems; i < std::min(st.items.size(), (p + 1) * kPieceItems); ++i) {
+            Item& it = st.items[i];
+            const std::uint32_t instance = kept[it.kept].instance;
+            if (instance != instanceOf) {
+                const Instance& in = scene.instances[instance];
+                mvp = glm::dmat4(viewProjection * world[std::size_t(in.node)]);  // the float product, exactly
+                instanceOf = instance;
             }
-            st.items[k] = st.boxItem(maps[std::size_t(instance.mesh)].clusters[kc.cluster], mvp, std::uint32_t(k));
+            const std::vector<Cluster>& clusters = maps[std::size_t(scene.instances[instance].mesh)].clusters;
+            glm::vec3 boxMin = clusters[kept[it.kept].cluster].boxMin, boxMax = clusters[kept[it.kept].cluster].boxMax;
+            for (std::uint32_t k = it.kept + 1; k < it.kept + it.count; ++k) {
+                boxMin = glm::min(boxMin, clusters[kept[k].cluster].boxMin);
+                boxMax = glm::max(boxMax, clusters[kept[k].cluster].boxMax);
+            }
+            st.boxOnScreen(boxMin, boxMax, mvp, it);
         }
     });
 
@@ -807,9 +838,9 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     // Triangle slots: item i's triangles are [slot[i], slot[i + 1]) of every band's flags.
     st.slots.assign(st.items.size() + 1, 0);
     for (std::size_t i = 0; i < st.items.size(); ++i) {
-        const KeptCluster& kc = kept[st.items[i].kept];
         std::uint32_t n = 0;
-        for (std::uint32_t r = 0; r < kc.rangeCount; ++r) n += ranges[kc.firstRange + r].triangleCount;
+        for (std::uint32_t k = st.items[i].kept; k < st.items[i].kept + st.items[i].count; ++k)
+            for (std::uint32_t r = 0; r < kept[k].rangeCount; ++r) n += ranges[kept[k].firstRange + r].triangleCount;
         st.slots[i + 1] = st.slots[i] + n;
     }
     st.splitBands(target.threads);
@@ -832,7 +863,8 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
         const Piece& piece = st.pieces[p];
         const auto offset = std::uint32_t(out.size());
         for (std::size_t i = p * kPieceItems; i < std::min(st.items.size(), (p + 1) * kPieceItems); ++i)
-            result[st.items[i].kept].firstRange += offset;
+            for (std::uint32_t k = st.items[i].kept; k < st.items[i].kept + st.items[i].count; ++k)
+                result[k].firstRange += offset;
         out.insert(out.end(), piece.ranges.begin(), piece.ranges.end());
         st.stats.clustersTested += piece.tested;
         st.stats.clustersHidden += piece.hidden;
