@@ -224,9 +224,12 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
 
 // Conservative culling of one cluster: dropped whole when its box is outside the frustum or its
 // cone faces away, kept whole when inside and facing, tested triangle by triangle otherwise.
+// `whole` is the side of the box of all the mesh's clusters (meshBox): a box inside it is inside
+// the frustum too when that box is (and outside when it is), margins included; only a box that
+// straddles a plane needs its clusters tested one by one.
 void conservativeCluster(const Mesh& mesh, const MeshMap& map, const Cluster& c, const InstanceView& iv,
-                         Outcodes& vertices, bool singleSided, RangeList& out) {
-    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
+                         Outcodes& vertices, bool singleSided, Side whole, RangeList& out) {
+    const Side side = whole == Side::Straddles ? boxSide(iv.planes, c.boxMin, c.boxMax) : whole;
     if (side == Side::Outside) return;
     if (singleSided && !c.hasDegenerate && iv.coneAway(c, false)) return;
     const bool allFacing = !singleSided || iv.coneAway(c, true);
@@ -281,6 +284,15 @@ SceneCuller SceneCuller::prepare(Scene& scene, const MapParams& params) {
         std::vector<std::uint32_t> order;
         culler.maps_.push_back(buildMeshMap(mesh, params, order));
         reorderTriangles(mesh, order);
+        // A cluster box that is not finite makes the mesh's not finite: it straddles every plane, and
+        // each cluster is tested on its own (no cluster at all: the same).
+        glm::vec3 lo(NAN), hi(NAN);
+        bool finite = !culler.maps_.back().clusters.empty();
+        for (const Cluster& c : culler.maps_.back().clusters) {
+            finite = finite && std::isfinite(c.boxMin.x + c.boxMin.y + c.boxMin.z + c.boxMax.x + c.boxMax.y + c.boxMax.z);
+            lo = glm::min(c.boxMin, lo), hi = glm::max(c.boxMax, hi);
+        }
+        culler.meshBoxes_.emplace_back(finite ? lo : glm::vec3(NAN), finite ? hi : glm::vec3(NAN));
     }
     // The bins' sample directions depend on the bin counts only: one set for every mesh.
     const double pi = std::numbers::pi;
@@ -352,12 +364,18 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
             const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
             const MeshMap& map = maps_[std::size_t(instance.mesh)];
             const InstanceView iv(world[std::size_t(instance.node)], view);
+            const Side whole = boxSide(iv.planes, meshBoxes_[std::size_t(instance.mesh)].first,
+                                       meshBoxes_[std::size_t(instance.mesh)].second);
+            if (whole == Side::Outside) {
+                at = std::min(last, clusterStart_[i + 1]);
+                continue;
+            }
             Outcodes vertices(mesh, iv.mvp, outcodes_[std::size_t(worker)]);
             const bool singleSided = isSingleSided(scene, mesh);
             for (; at < std::min(last, clusterStart_[i + 1]); ++at) {
                 const std::size_t c = at - clusterStart_[i];
                 out.ranges.clear();
-                conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, out);
+                conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, whole, out);
                 if (out.ranges.empty()) continue;
                 piece.kept.push_back({std::uint32_t(i), std::uint32_t(c), std::uint32_t(piece.ranges.size()),
                                       std::uint32_t(out.ranges.size())});
@@ -433,7 +451,10 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
             case Cull::Conservative: {
                 const InstanceView iv(model, view);
                 Outcodes vertices(mesh, iv.mvp);
-                for (const Cluster& c : map.clusters) conservativeCluster(mesh, map, c, iv, vertices, singleSided, out);
+                const Side whole = boxSide(iv.planes, meshBoxes_[std::size_t(instance.mesh)].first,
+                                           meshBoxes_[std::size_t(instance.mesh)].second);
+                if (whole == Side::Outside) break;
+                for (const Cluster& c : map.clusters) conservativeCluster(mesh, map, c, iv, vertices, singleSided, whole, out);
                 break;
             }
 

@@ -31,6 +31,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -83,6 +84,9 @@ private:
                            const OcclusionTarget& target) const;
 
     std::vector<MeshMap> maps_;
+    // Per mesh, the union of its clusters' boxes: an instance inside the frustum (or outside) with
+    // it needs no test of its clusters' boxes.
+    std::vector<std::pair<glm::vec3, glm::vec3>> meshBoxes_;
     // Per bin: sample directions of the bin's cell (unit vectors, kBinSamples each); the same for
     // every mesh, since they depend on the bin counts only.
     std::vector<glm::vec3> binSamples_;
