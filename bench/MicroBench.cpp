@@ -163,11 +163,14 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
                            .threads = int(state.range(0)), .simd = state.range(1) != 0};
     std::size_t submitted = 0;
+    double passMs = 0.0;
     for (auto _ : state) {
         const DrawList list = culler.cull(Cull::Occlusion, *scene, frame->world, frame->view, target);
         submitted += submittedTriangles(*scene, list);
+        passMs += culler.occlusion().stats().ms;
     }
     state.counters["pvs"] = benchmark::Counter(double(submitted), benchmark::Counter::kAvgIterations);
+    state.counters["pass_ms"] = benchmark::Counter(passMs, benchmark::Counter::kAvgIterations);
     state.counters["conservative_pvs"] =
         double(submittedTriangles(*scene, culler.cull(Cull::Conservative, *scene, frame->world, frame->view)));
 }
@@ -195,14 +198,20 @@ void BM_CullOcclusionDominoes(benchmark::State& state) {
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
                            .threads = int(state.range(0))};
-    std::size_t submitted = 0;
+    std::size_t submitted = 0, draws = 0;
+    double passMs = 0.0;
     for (auto _ : state) {
         const DrawList list = culler.cull(Cull::Occlusion, *scene, frame->world, frame->view, target);
         submitted += submittedTriangles(*scene, list);
+        draws += list.size();
+        passMs += culler.occlusion().stats().ms;
     }
+    state.counters["pass_ms"] = benchmark::Counter(passMs, benchmark::Counter::kAvgIterations);
     state.counters["pvs"] = benchmark::Counter(double(submitted), benchmark::Counter::kAvgIterations);
-    state.counters["conservative_pvs"] =
-        double(submittedTriangles(*scene, culler.cull(Cull::Conservative, *scene, frame->world, frame->view)));
+    state.counters["draws"] = benchmark::Counter(double(draws), benchmark::Counter::kAvgIterations);
+    const DrawList conservative = culler.cull(Cull::Conservative, *scene, frame->world, frame->view);
+    state.counters["conservative_pvs"] = double(submittedTriangles(*scene, conservative));
+    state.counters["conservative_draws"] = double(conservative.size());
 }
 BENCHMARK(BM_CullOcclusionDominoes)->Arg(1)->Arg(kCores)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -450,10 +450,10 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
 
             case Cull::Conservative: {
                 const InstanceView iv(model, view);
-                Outcodes vertices(mesh, iv.mvp);
                 const Side whole = boxSide(iv.planes, meshBoxes_[std::size_t(instance.mesh)].first,
                                            meshBoxes_[std::size_t(instance.mesh)].second);
                 if (whole == Side::Outside) break;
+                Outcodes vertices(mesh, iv.mvp);
                 for (const Cluster& c : map.clusters) conservativeCluster(mesh, map, c, iv, vertices, singleSided, whole, out);
                 break;
             }

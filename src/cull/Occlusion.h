@@ -7,8 +7,9 @@
 // The occlusion buffer holds, per pixel, an upper bound on the depth the frame's z-buffer ends with
 // there: the nearest occluder's depth plane at the pixel plus the bound of its float rounding (or
 // "open" where no occluder covers the pixel), and per 8 × 8 block the farthest of those. Clusters are
-// visited nearest first (by the nearest corner of their box); each is tested, and when it may be
-// seen it is kept and rasterized into the buffer as an occluder. A cluster is hidden when every
+// visited nearest first (by the nearest corner of their box; an instance of a small mesh is taken
+// whole, under the box of its kept clusters); each is tested, and when it may be seen it is kept
+// and rasterized into the buffer as an occluder. A cluster is hidden when every
 // pixel its box can reach (its screen rectangle, grown by one pixel and by the bound of the float
 // vertex transform) holds an occluder strictly nearer than the box's nearest point (less a margin
 // for rounding and the 24-bit quantization). Then each of its fragments fails the depth test
@@ -24,7 +25,9 @@
 // Every triangle of a cluster that is not hidden whole is set up on the CPU: on llvmpipe's rules,
 // one that owns no pixel centre (most of a dense mesh far away) or whose pixels all hold something
 // nearer is dropped, and so the plan comes close to the oracle's. The walk is split into bands of
-// rows, one per core; each band sees exactly what one walk over the whole screen sees there.
+// rows, one per core; each band sees exactly what one walk over the whole screen sees there. The
+// rest (the conservative plan, the boxes, gathering the plan) is done in pieces side by side on the
+// same threads, woken before the conservative plan is made (prepare), and joined in order.
 //
 // It pays for itself or turns itself off: a pass is skipped when the conservative plan submits
 // fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped,

@@ -3,6 +3,8 @@
 // warm() never lose a job, run one twice, or keep the pool from shutting down.
 #include <atomic>
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -74,6 +76,26 @@ TEST(ThreadPoolTest, WorkersShareTheWork) {
         while (std::chrono::steady_clock::now() < until && workerTook.load() == 0) std::this_thread::yield();
     });
     EXPECT_EQ(workerTook.load(), 1);
+}
+
+TEST(ThreadPoolTest, ALateWorkerNeverTouchesAFinishedJob) {
+    // The workers sleep; the caller takes both indices at once and returns before they wake. The
+    // job (a lambda on the heap, freed as run() returns) must not be called again, nor read: a
+    // late worker that did would count twice here, or read freed memory (which ASan reports).
+    ThreadPool pool(4);
+    for (int repeat = 0; repeat < 50; ++repeat) {
+        if (repeat % 10 == 0) std::this_thread::sleep_for(2ms);  // let the workers fall asleep
+        auto hits = std::make_unique<std::atomic<int>[]>(2);
+        {
+            auto job = std::make_unique<std::function<void(std::size_t, int)>>(
+                [&hits](std::size_t i, int) { hits[i].fetch_add(1); });
+            pool.run(2, *job);
+        }  // the job is freed here
+        EXPECT_EQ(hits[0].load(), 1);
+        EXPECT_EQ(hits[1].load(), 1);
+        std::this_thread::sleep_for(std::chrono::microseconds(200));  // room for a late worker to misbehave
+        EXPECT_EQ(hits[0].load() + hits[1].load(), 2);
+    }
 }
 
 TEST(ThreadPoolTest, ShutsDownWhileWarmOrSpinning) {
