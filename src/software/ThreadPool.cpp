@@ -111,8 +111,8 @@ void ThreadPool::work(int worker) {
     Clock::time_point spinUntil = Clock::now();  // nothing to spin for before the first job
     bool warmed = false;
     for (;;) {
-        // Spin a while for the next job (after a job, or when warmed), then sleep until one comes
-        // or warm() wakes this thread to spin again.
+        // While warm (between warm() and rest()), spin for the next job; then sleep until one
+        // comes or warm() wakes this thread to spin again.
         if (!spinFor(seen, spinUntil, warmed)) {
             std::unique_lock<std::mutex> lock(mutex_);
             wake_.wait(lock, [&] {
