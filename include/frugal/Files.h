@@ -11,17 +11,32 @@
 // File too large", with nothing left behind.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <frugal/Image.h>
 #include <frugal/Result.h>
 
 namespace frugal {
 
-Result<bool> writePng(const std::string& path, const ColorImage& image);
-Result<bool> writePng(const std::string& path, const DepthImage& image);
+// PNG compression level, 0 to 12: 0 stores the pixels uncompressed (fastest to write, largest);
+// 1 is frugal's run-length deflate (src/io/RunDeflate.h: matches that repeat the pixel to the
+// left only, several times faster than a general deflate, files somewhat larger); 2 to 12 are
+// libdeflate's levels (smaller files, slower; 12 the smallest). kAutoPngLevel, the default, gives
+// each kind of image the fastest level whose files stayed within 1.1 times those of frugal's old
+// zlib encoder on every scene measured (docs/writing.md, at 1080p): colour 3, depth 1, ids 6.
+inline constexpr int kMaxPngLevel = 12;
+inline constexpr int kRunLengthPngLevel = 1;
+inline constexpr int kAutoPngLevel = -1;
+inline constexpr int kDefaultPngLevel = kAutoPngLevel;
+
+// Error for a level out of range: "PNG encoder: the level must be 0 to 12 (or -1: auto), got 13" (BadInput).
+Result<bool> writePng(const std::string& path, const ColorImage& image, int level = kDefaultPngLevel);
+Result<bool> writePng(const std::string& path, const DepthImage& image, int level = kDefaultPngLevel);
 Result<bool> writePfm(const std::string& path, const DepthImage& image);
-Result<bool> writePng(const std::string& path, const IdImage& image);
+Result<bool> writePng(const std::string& path, const IdImage& image, int level = kDefaultPngLevel);
 
 // A frame's files as `frugal render` writes them, as one set: each to a temporary name, then all
 // renamed together (a set is never half renamed, and on an error none of it is left). An empty path
@@ -31,6 +46,65 @@ struct FramePaths {
     std::string color, depth, ids;
 };
 struct Frame;
-Result<bool> writeFrame(const FramePaths& paths, const Frame& frame);
+Result<bool> writeFrame(const FramePaths& paths, const Frame& frame, int pngLevel = kDefaultPngLevel);
+
+// Writes frames' files on threads of its own while the caller renders the next frame: the PNG
+// encoder, not the renderer, would otherwise set the pace of a sequence (a 1080p colour PNG takes
+// about as long to encode as the frame takes to draw).
+//
+//   FrameWriter writer;
+//   Frame frame;
+//   for (int i = 0; i < 100; ++i) {
+//       renderer.render(Camera::orbit(...), 0.0, frame);
+//       if (Result<bool> queued = writer.write({"out_" + std::to_string(i) + ".png"}, frame); !queued) ...
+//   }
+//   if (Result<bool> done = writer.finish(); !done) ...
+//
+// Each frame's files are written as writeFrame() writes them (a set, all or nothing), and frames
+// reach the disk in the order they were given: when frame N's files exist, so do those of every
+// frame before it. At most `queue` frames are held at once (write() waits for room), so memory
+// stays flat however long the sequence. The first error (a full disk, a folder that is not there)
+// stops the writer: the frames after it are not written, and write() and finish() return it. The
+// destructor waits for the frames given (their errors unreported: call finish() to see them).
+// A FrameWriter is used from one thread at a time.
+class FrameWriter {
+public:
+    struct Options {
+        int threads = 0;  // encoding threads; 0: one per core, at most 4
+        int queue = 0;    // frames held at once, rendered but not yet written; 0: threads + 1
+        int pngLevel = kDefaultPngLevel;
+    };
+    // Errors (BadInput): "png-level 13: must be 0 (fastest, largest) to 12 (smallest, slowest), or
+    // auto (-1)", "writer threads 65: ...", "writer queue 0: ...".
+    static Result<FrameWriter> create(const Options& options);
+    FrameWriter();  // the default options
+    FrameWriter(FrameWriter&& other) noexcept;
+    FrameWriter& operator=(FrameWriter&& other) noexcept;
+    FrameWriter(const FrameWriter&) = delete;
+    FrameWriter& operator=(const FrameWriter&) = delete;
+    ~FrameWriter();
+
+    // Queues `frame`'s files for `paths`, taking its images; `frame` is left holding the images of
+    // a frame already written (or none), memory to render the next frame into, so that a loop of
+    // render() and write() allocates nothing a frame. Waits while `queue` frames are held. Errors:
+    // writeFrame's for a frame without ids asked for ids; an earlier frame's write error.
+    Result<bool> write(const FramePaths& paths, Frame& frame);
+    // Waits until every frame given is written; the first error, if any.
+    Result<bool> finish();
+
+    // The frames written since the last call, in the order given: the how-manieth write() each
+    // came from (0 first) and what encoding and writing its files took, in milliseconds.
+    struct Written {
+        std::size_t index = 0;
+        double encodeMs = 0.0, writeMs = 0.0;
+    };
+    std::vector<Written> takeWritten();
+    int threads() const;
+
+private:
+    struct Impl;
+    explicit FrameWriter(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace frugal

@@ -20,6 +20,7 @@ from ._frugal import (  # noqa: F401
     OutOfMemory,
     Renderer,
     Scene,
+    Writer,
     __version__,
     default_settings,
     load,
@@ -28,5 +29,5 @@ from ._frugal import (  # noqa: F401
 
 __all__ = [
     "BackendUnavailable", "Camera", "Error", "Frame", "InputError", "Interrupted", "IoError", "OutOfMemory",
-    "Renderer", "Scene", "__version__", "default_settings", "load", "settings_names",
+    "Renderer", "Scene", "Writer", "__version__", "default_settings", "load", "settings_names",
 ]

@@ -85,14 +85,97 @@ py::array depthArray(py::object self) {
 
 py::object jsonLoads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
-void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
-                const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath) {
+// png_level="auto" or 0..12 (frugal/Files.h).
+int pngLevelFrom(const py::object& level) {
+    if (py::isinstance<py::str>(level) && level.cast<std::string>() == "auto") return kAutoPngLevel;
+    if (py::isinstance<py::int_>(level) && !py::isinstance<py::bool_>(level)) {
+        const long long value = level.cast<long long>();
+        if (value >= 0 && value <= kMaxPngLevel) return int(value);
+    }
+    throw InputError{"png_level: " + py::repr(level).cast<std::string>() + " must be 0 to " +
+                     std::to_string(kMaxPngLevel) + " or 'auto'"};
+}
+
+// The files of Frame.write and Writer.write; an ids file asked of a frame without ids is refused.
+FramePaths framePaths(const PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
+                      const std::optional<std::filesystem::path>& depthPath,
+                      const std::optional<std::filesystem::path>& idsPath) {
     if (idsPath && f.frame.ids.ids.empty())
         throw InputError{"ids: the frame has no ids (make the renderer with ids=True)"};
     const auto text = [](const std::optional<std::filesystem::path>& p) { return p ? p->string() : std::string(); };
-    py::gil_scoped_release unlocked;
-    take(writeFrame({text(colorPath), text(depthPath), text(idsPath)}, f.frame));
+    return {text(colorPath), text(depthPath), text(idsPath)};
 }
+
+void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
+                const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath,
+                const py::object& pngLevel) {
+    const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath);
+    const int level = pngLevelFrom(pngLevel);
+    py::gil_scoped_release unlocked;
+    take(writeFrame(paths, f.frame, level));
+}
+
+// --- the writer --------------------------------------------------------------------------------
+
+// A frugal::FrameWriter: each frame's files encoded and written on threads of their own while
+// Python goes on. write() copies the frame's images (its arrays may be changed or kept meanwhile).
+struct PyWriter {
+    std::optional<FrameWriter> writer;
+    Frame spare;  // the memory of a frame written, filled again by the next copy
+
+    PyWriter(int threads, int queue, const py::object& level) {
+        writer.emplace(take(FrameWriter::create({.threads = threads, .queue = queue, .pngLevel = pngLevelFrom(level)})));
+    }
+    ~PyWriter() {
+        py::gil_scoped_release unlocked;
+        writer.reset();  // waits for the frames given
+    }
+
+    FrameWriter& live() {
+        if (!writer) throw InputError{"the writer is closed"};
+        return *writer;
+    }
+
+    void write(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
+               const std::optional<std::filesystem::path>& depthPath,
+               const std::optional<std::filesystem::path>& idsPath) {
+        FrameWriter& w = live();
+        const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath);
+        py::gil_scoped_release unlocked;
+        Frame copy = std::move(spare);
+        copy.color.width = f.frame.color.width;
+        copy.color.height = f.frame.color.height;
+        copy.color.rgba.assign(f.frame.color.rgba.begin(), f.frame.color.rgba.end());
+        copy.depth = DepthImage{f.frame.depth.width, f.frame.depth.height, std::move(copy.depth.values),
+                                f.frame.depth.format, f.frame.depth.znear, f.frame.depth.zfar,
+                                f.frame.depth.perspective};
+        copy.depth.values.assign(f.frame.depth.values.begin(), f.frame.depth.values.end());
+        copy.ids.width = f.frame.ids.width;
+        copy.ids.height = f.frame.ids.height;
+        copy.ids.ids.assign(f.frame.ids.ids.begin(), f.frame.ids.ids.end());
+        Result<bool> queued = w.write(paths, copy);
+        spare = std::move(copy);  // what came back: a written frame's memory, or nothing
+        take(std::move(queued));
+    }
+
+    void finish() {
+        FrameWriter& w = live();
+        py::gil_scoped_release unlocked;
+        take(w.finish());
+    }
+
+    // Waits for the frames given; raises their error unless one is already on its way.
+    void close(bool raise) {
+        if (!writer) return;
+        Result<bool> finished = true;
+        {
+            py::gil_scoped_release unlocked;
+            finished = writer->finish();
+            writer.reset();
+        }
+        if (raise) take(std::move(finished));
+    }
+};
 
 // --- the renderer ------------------------------------------------------------------------------
 
@@ -249,9 +332,9 @@ void bindFrame(py::module_& m) {
             },
             "The camera as resolved for this frame (the render JSON's 'camera') and its 4x4 matrices.")
         .def("write", &writeFiles, py::kw_only(), py::arg("color") = py::none(), py::arg("depth") = py::none(),
-             py::arg("ids") = py::none(),
+             py::arg("ids") = py::none(), py::arg("png_level") = "auto",
              "Writes the images as frugal render does, as one set (all of them or, on an error, none):\n"
-             "colour PNG, depth (.png 16-bit or .pfm float32), ids PNG.");
+             "colour PNG, depth (.png 16-bit or .pfm float32), ids PNG; png_level as frugal.Writer's.");
 }
 
 void bindRenderer(py::module_& m) {
@@ -293,6 +376,27 @@ void bindRenderer(py::module_& m) {
             const Settings& s = r.renderer->settings();
             return "<frugal.Renderer " + std::to_string(s.width) + "x" + std::to_string(s.height) + " on " +
                    r.renderer->backendName() + ">";
+        });
+    py::class_<PyWriter>(m, "Writer",
+                         "Writer(threads=0, queue=0, png_level='auto'): writes frames' files on threads of its own\n"
+                         "while Python renders the next frame, each frame's files as Frame.write does (a set, all or\n"
+                         "nothing), in the order given. write() copies the frame's images and returns at once (it waits\n"
+                         "only while `queue` frames are held: memory stays flat). The first error (a full disk, a folder\n"
+                         "that is not there) stops it and is raised by the next write(), finish() or close(). threads:\n"
+                         "0 = one per core (at most 4); queue: 0 = threads + 1; png_level: 0 (stored) to 12, 1 the\n"
+                         "run-length encoder, 'auto' the level measured best for each kind of image (docs/writing.md).\n"
+                         "Usable as a context manager: leaving the block waits for every frame.")
+        .def(py::init<int, int, const py::object&>(), py::kw_only(), py::arg("threads") = 0, py::arg("queue") = 0,
+             py::arg("png_level") = "auto")
+        .def("write", &PyWriter::write, py::arg("frame"), py::kw_only(), py::arg("color") = py::none(),
+             py::arg("depth") = py::none(), py::arg("ids") = py::none(),
+             "Queues the frame's files: colour PNG, depth (.png 16-bit or .pfm float32), ids PNG.")
+        .def("finish", &PyWriter::finish, "Waits until every frame given is written; raises the first error.")
+        .def("close", [](PyWriter& w) { w.close(true); },
+             "finish(), then frees the threads; later calls raise InputError.")
+        .def("__enter__", [](py::object self) { return self; })
+        .def("__exit__", [](PyWriter& w, const py::object& type, const py::object&, const py::object&) {
+            w.close(type.is_none());  // an exception already leaving the block is not replaced
         });
     m.def("_cpp_loop", &cppLoop, py::arg("renderer"), py::arg("camera"), py::arg("time"), py::arg("frames"));
 }

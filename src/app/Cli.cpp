@@ -25,6 +25,7 @@ usage:
   frugal order-bench [SCENE] [options]            a frame in every draw order: time, state changes, ties
   frugal hsr-bench [SCENE] [options]              depth sort and the adaptive z-buffer against the z-buffer
   frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
+  frugal write-bench [--scene SCENE ...] [opts]   PNG levels and filters: time against size; sequence wall time
   frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
   frugal soak [SCENE] [options]                   100,000 frames and 1,000 create/destroy cycles: memory, images
   frugal batch MANIFEST [--shard I/N] [options]   the jobs of a manifest, or shard I of N of them; status, merge
@@ -64,7 +65,7 @@ const CommandEntry kCommands[] = {
     {"compare", runCompare},         {"diff", runDiff},         {"cull-report", runCullReport},
     {"reuse-bench", runReuseBench},  {"hsr-bench", runHsrBench}, {"order-bench", runOrderBench},
     {"span-bench", runSpanBench},    {"state-sim", runStateSim}, {"soak", runSoak},
-    {"batch", runBatch},
+    {"batch", runBatch},             {"write-bench", runWriteBench},
 };
 
 std::string commandNames() {

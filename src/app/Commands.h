@@ -21,6 +21,7 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
 int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* renderHelp();
 const char* reportHelp();
@@ -36,5 +37,6 @@ const char* spanBenchHelp();
 const char* stateSimHelp();
 const char* soakHelp();
 const char* batchHelp();
+const char* writeBenchHelp();
 
 }  // namespace frugal

@@ -1,11 +1,13 @@
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <ostream>
 #include <regex>
 
 #include <nlohmann/json.hpp>
+
+#include <frugal/Files.h>
 
 #include "app/Cli.h"
 #include "app/Command.h"
@@ -35,6 +37,7 @@ namespace {
 struct Outputs {
     std::string color = "frame.png";
     std::string depth, ids, json;
+    int pngLevel = kDefaultPngLevel;
 };
 
 // The file name of frame `frame`: the pattern's single %d/%0Nd, or "_%04d" before the extension.
@@ -122,8 +125,26 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
                        "reversed, 1 near, 0 far)", files.depth),
             flag::text("--ids", "FILE", "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
                        "byte); 0 = background", files.ids),
+            {"--png-level", "N|auto", "PNG compression: 0 (stored: fastest, largest files), 1 (frugal's run-length "
+             "deflate: several times faster, files somewhat larger), 2 to 12 (libdeflate: smaller, slower), or auto "
+             "(default): per kind of image the fastest level whose files stayed within 1.1x those of the old encoder "
+             "on every scene measured (colour 3, depth 1, ids 6; docs/writing.md). Files are encoded on threads of "
+             "their own while the next frame renders",
+             [&files](const std::string& text) -> std::string {
+                 if (text == "auto") {
+                     files.pngLevel = kAutoPngLevel;
+                     return {};
+                 }
+                 const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+                 if (text.empty() || text.size() > 2 || !std::all_of(text.begin(), text.end(), digit) ||
+                     std::stoi(text) > kMaxPngLevel)
+                     return "must be 0 to " + std::to_string(kMaxPngLevel) + " or auto";
+                 files.pngLevel = std::stoi(text);
+                 return {};
+             }},
             flag::text("--json", "FILE", "metadata: scene counts, camera (the planes drawn with and the given ones, the "
-                       "aspect ratios, the depth format), backend, GL renderer, per-frame timings (with --cull: "
+                       "aspect ratios, the depth format), backend, GL renderer, per-frame timings (render_ms, readback_ms; "
+                       "write_ms: encoding and writing the frame's files on the writer's threads, encode_ms of it; with --cull: "
                        "per-frame tos, pvs and cull_ms too), and per frame the state changes the backend issued, by "
                        "kind (\"state_changes\": draws, programs, meshes, textures, toggles, uniforms; software: draws "
                        "only)", files.json),
@@ -242,10 +263,10 @@ private:
     bool first_ = true;
 };
 
-// The frame's files, all or none.
-Result<bool> writeFrameFiles(const Outputs& o, const Frame& frame, int index, bool sequence) {
+// The frame's files (FrameWriter writes them as one set).
+FramePaths framePaths(const Outputs& o, int index, bool sequence) {
     const auto path = [&](const std::string& given) { return given.empty() ? given : framePath(given, index, sequence); };
-    return writeFrame({path(o.color), path(o.depth), path(o.ids)}, frame);
+    return {path(o.color), path(o.depth), path(o.ids)};
 }
 
 // "frame 3 (4/10): 8.2 ms (conservative: 31000 of 69666 triangles) -> out_0003.png".
@@ -291,29 +312,57 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     // SIGINT, SIGTERM and SIGHUP stop the sequence between frames: the frames written stay, the
     // JSON is not written (io/Interrupt.h).
     InterruptPoints interrupts;
-    Frame frame;  // one for the whole sequence: its images' memory is used again every frame
+    // Files are encoded and written on the writer's threads while the next frame renders; a frame's
+    // record and progress line wait until its files exist (in order: FrameWriter).
+    Result<FrameWriter> madeWriter = FrameWriter::create({.threads = 0, .queue = 0, .pngLevel = r.outputs.pngLevel});
+    if (!madeWriter) return fail(err, madeWriter.failure());
+    FrameWriter& writer = *madeWriter;
+    struct Waiting {
+        nlohmann::json record;
+        FrameStats stats;
+        std::string progress;
+    };
+    std::deque<Waiting> waiting;
+    int framesWritten = 0;
+    const auto report = [&](const std::vector<FrameWriter::Written>& done) -> Result<bool> {
+        for (const FrameWriter::Written& w : done) {
+            Waiting next = std::move(waiting.front());
+            waiting.pop_front();
+            next.record.update({{"write_ms", w.encodeMs + w.writeMs}, {"encode_ms", w.encodeMs}});
+            if (Result<bool> kept = json.add(std::move(next.record), next.stats); !kept) return kept;
+            if (!options.quiet) err << next.progress << "\n";
+            ++framesWritten;
+        }
+        return true;
+    };
+    Frame frame;  // the memory of a frame already written comes back here (FrameWriter::write)
     for (int index = range.first; index <= range.last; ++index) {
-        if (const int caught = interrupts.arrived())
-            return fail(err, Error{interruptedAfter(caught, index - range.first, frameCount), ErrorKind::Interrupted});
+        if (const int caught = interrupts.arrived()) {
+            // The frames rendered are written first; then the run stops.
+            const Result<bool> finished = writer.finish();
+            if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
+            if (!finished) return fail(err, finished.failure());
+            return fail(err, Error{interruptedAfter(caught, framesWritten, frameCount), ErrorKind::Interrupted});
+        }
         Result<bool> rendered =
             renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index), frame);
         if (!rendered) return fail(err, rendered.failure());
-        const auto writeStart = std::chrono::steady_clock::now();
-        if (Result<bool> written = writeFrameFiles(r.outputs, frame, index, range.sequence); !written)
-            return fail(err, written.failure());
-        const double writeMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - writeStart).count();
         const std::string file = framePath(r.outputs.color, index, range.sequence);
         if (index == range.first) camera = viewJson(frame.view, s);
         nlohmann::json record = frameStatsJson(frame.stats, s);
-        record.update({{"frame", index}, {"write_ms", writeMs}, {"file", file}});
-        if (Result<bool> kept = json.add(std::move(record), frame.stats); !kept) return fail(err, kept.failure());
+        record.update({{"frame", index}, {"file", file}});
         if (frame.stats.interp) overflow += frame.stats.interp->overflow;
-        if (!options.quiet)
-            err << progressLine(s, renderer.scene().triangleCount(), frame.stats, index, index - range.first + 1,
-                                frameCount, file)
-                << "\n";
+        waiting.push_back({std::move(record), frame.stats,
+                           options.quiet ? std::string()
+                                         : progressLine(s, renderer.scene().triangleCount(), frame.stats, index,
+                                                        index - range.first + 1, frameCount, file)});
+        if (Result<bool> queued = writer.write(framePaths(r.outputs, index, range.sequence), frame); !queued)
+            return fail(err, queued.failure());
+        if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
     }
+    const Result<bool> finished = writer.finish();
+    if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
+    if (!finished) return fail(err, finished.failure());
     if (overflow > 0)
         err << "warning: --interp " << toString(s.interp) << ": " << overflow
             << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";

@@ -1,8 +1,11 @@
 #include "io/ImageIO.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -17,29 +20,223 @@
 #include <unistd.h>
 
 #include <stb_image.h>
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <frugal/Files.h>
 #include <frugal/Renderer.h>
 
 #include "base/Format.h"
 #include "io/Interrupt.h"
+#include "io/RunDeflate.h"
 #include "scene/ImageCheck.h"
 
 namespace frugal {
 
 namespace {
 
-void put32(Bytes& out, std::uint32_t v) {
-    for (int shift = 24; shift >= 0; shift -= 8) out.push_back(std::uint8_t(v >> shift));
+void put32(std::uint8_t* at, std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) at[k] = std::uint8_t(v >> (24 - 8 * k));
 }
 
-void chunk(Bytes& out, const char type[4], const Bytes& data) {
-    put32(out, std::uint32_t(data.size()));
+// Appends a chunk: length, type, data, and the CRC of type and data.
+void chunk(Bytes& out, const char type[4], const std::uint8_t* data, std::size_t size) {
     const std::size_t start = out.size();
-    out.insert(out.end(), type, type + 4);
-    out.insert(out.end(), data.begin(), data.end());
-    put32(out, std::uint32_t(crc32(0, out.data() + start, uInt(out.size() - start))));
+    out.resize(start + 12 + size);
+    put32(&out[start], std::uint32_t(size));
+    std::memcpy(&out[start + 4], type, 4);
+    if (size > 0) std::memcpy(&out[start + 8], data, size);
+    put32(&out[start + 8 + size], std::uint32_t(libdeflate_crc32(0, &out[start + 4], 4 + size)));
+}
+
+// One compressor per level and thread, made when first used: a compressor holds up to a few
+// megabytes of tables, and one may not be used by two threads at once.
+libdeflate_compressor* compressorFor(int level) {
+    struct Compressors {
+        std::array<libdeflate_compressor*, kMaxPngLevel + 1> byLevel{};
+        ~Compressors() {
+            for (libdeflate_compressor* c : byLevel)
+                if (c != nullptr) libdeflate_free_compressor(c);
+        }
+    };
+    thread_local Compressors compressors;
+    libdeflate_compressor*& slot = compressors.byLevel[std::size_t(level)];
+    if (slot == nullptr) slot = libdeflate_alloc_compressor(level);
+    return slot;
+}
+
+
+// The PNG of `height` rows of `stride` bytes each, already in PNG sample order (16-bit samples
+// big-endian); rowOf(y, scratch) gives row y counting from the top, either a pointer into the
+// caller's pixels or `scratch` (stride bytes) filled. Two scratch rows alternate, so the row above
+// stays readable for the Up filter.
+// Each kind of image's level under kAutoPngLevel and its filter at each level, as measured
+// (docs/writing.md: `frugal write-bench` on the bunny, the engine and the dominoes at 1080p).
+// Up suits colour and depth at every level (a rendered image's rows are alike); ids gain from it
+// only at the levels that find few matches (1 to 3): from 4 on, unfiltered ids, whose runs repeat
+// along a row, compress better.
+enum class Plane : std::uint8_t { Color, Depth, Ids };
+
+PngOptions resolved(Plane plane, const PngOptions& given) {
+    PngOptions options = given;
+    if (options.level == kAutoPngLevel) options.level = plane == Plane::Color ? 3 : plane == Plane::Depth ? 1 : 6;
+    if (!options.filter)
+        options.filter = plane == Plane::Ids && options.level >= 4 ? PngFilter::None : PngFilter::Up;
+    return options;
+}
+
+// PNG's filters (the PNG specification, section 9): each byte minus a prediction from the byte to
+// its left (a, `step` bytes back), above (b) and above-left (c), each 0 outside the image. `above`
+// is null on the first row.
+void filterRow(PngFilter filter, const std::uint8_t* row, const std::uint8_t* above, std::size_t size,
+               std::size_t step, std::uint8_t* out) {
+    const std::size_t lead = std::min(step, size);
+    switch (filter) {
+        case PngFilter::None:
+            std::memcpy(out, row, size);
+            return;
+        case PngFilter::Sub:
+            std::memcpy(out, row, lead);
+            for (std::size_t i = lead; i < size; ++i) out[i] = std::uint8_t(row[i] - row[i - step]);
+            return;
+        case PngFilter::Up:
+            if (above == nullptr) {
+                std::memcpy(out, row, size);
+            } else {
+                for (std::size_t i = 0; i < size; ++i) out[i] = std::uint8_t(row[i] - above[i]);
+            }
+            return;
+        case PngFilter::Paeth:
+            for (std::size_t i = 0; i < size; ++i) {
+                const int a = i >= step ? row[i - step] : 0, b = above ? above[i] : 0,
+                          c = (above && i >= step) ? above[i - step] : 0;
+                const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+                const int predicted = (pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c);
+                out[i] = std::uint8_t(row[i] - predicted);
+            }
+            return;
+    }
+}
+
+// Buffers kept per thread from one image to the next: the filtered rows and the compressor's
+// output. A 1080p frame's 8 MB, taken fresh (and zeroed) each time, cost more in page faults than
+// the filter itself. Images beyond 64 MB give their memory back.
+class ThreadBuffer {
+public:
+    ThreadBuffer(Bytes& kept, std::size_t size) : kept_(kept), bytes_(std::move(kept)) {
+        if (bytes_.size() < size) bytes_.resize(size);  // never shrunk: only grown, and then once
+    }
+    ~ThreadBuffer() {
+        if (bytes_.capacity() <= kKeep) kept_ = std::move(bytes_);
+    }
+    ThreadBuffer(const ThreadBuffer&) = delete;
+    ThreadBuffer& operator=(const ThreadBuffer&) = delete;
+    std::uint8_t* data() { return bytes_.data(); }
+
+private:
+    static constexpr std::size_t kKeep = std::size_t(64) << 20;
+    Bytes& kept_;
+    Bytes bytes_;
+};
+thread_local Bytes tRows, tPacked;
+
+// Appends the zlib stream of `rows` to `out`: the caller's compressor, the run-length encoder
+// (level 1: io/RunDeflate.h) or libdeflate's.
+Result<bool> compressRows(std::span<const std::uint8_t> rows, std::size_t pixelBytes, const PngOptions& options,
+                          Bytes& out) {
+    if (options.compress) {
+        Result<Bytes> packed = options.compress(rows);
+        if (!packed) return packed.failure();
+        out.insert(out.end(), packed->begin(), packed->end());
+        return true;
+    }
+    if (options.level == kRunLengthPngLevel) {
+        ThreadBuffer packed(tPacked, runDeflateBound(rows.size()));
+        const std::size_t size = runDeflateZlib(rows, pixelBytes, packed.data());
+        out.insert(out.end(), packed.data(), packed.data() + size);
+        return true;
+    }
+    libdeflate_compressor* compressor = compressorFor(options.level);
+    if (compressor == nullptr)
+        return Error{"PNG encoder: out of memory for libdeflate's level " + std::to_string(options.level) + " tables",
+                     ErrorKind::OutOfMemory};
+    const std::size_t bound = libdeflate_zlib_compress_bound(compressor, rows.size());
+    ThreadBuffer packed(tPacked, bound);
+    const std::size_t size = libdeflate_zlib_compress(compressor, rows.data(), rows.size(), packed.data(), bound);
+    if (size == 0)  // cannot happen with a buffer of the bound's size
+        return Error{"PNG encoder: libdeflate could not compress " + std::to_string(rows.size()) + " bytes"};
+    out.insert(out.end(), packed.data(), packed.data() + size);
+    return true;
+}
+
+template <class RowOf>
+Result<Bytes> encodeRows(int width, int height, int channels, int bitDepth, PngFilter filter,
+                         const PngOptions& options, const PngText& text, RowOf rowOf) {
+    const int level = options.level;
+    if (channels < 1 || channels > 4) return Error{"PNG encoder: channels must be 1 to 4, got " + std::to_string(channels)};
+    if (bitDepth != 8 && bitDepth != 16) return Error{"PNG encoder: bit depth must be 8 or 16, got " + std::to_string(bitDepth)};
+    if (width < 1 || height < 1)
+        return Error{"PNG encoder: width and height must be at least 1, got " + std::to_string(width) + "x" +
+                     std::to_string(height)};
+    if (level < 0 || level > kMaxPngLevel)
+        return Error{"PNG encoder: the level must be 0 to " + std::to_string(kMaxPngLevel) + " (or -1: auto), got " +
+                     std::to_string(level)};
+    for (const auto& [keyword, value] : text) {
+        const bool printable = std::all_of(keyword.begin(), keyword.end(), [](char c) { return c >= 32 && c <= 126; });
+        if (keyword.empty() || keyword.size() > 79 || !printable || keyword.front() == ' ' || keyword.back() == ' ')
+            return Error{"PNG encoder: a tEXt keyword is 1 to 79 printable characters, got '" + keyword + "'"};
+    }
+    const std::size_t pixelBytes = std::size_t(channels) * std::size_t(bitDepth / 8);
+    const std::size_t stride = std::size_t(width) * pixelBytes;
+    const std::size_t rawSize = (stride + 1) * std::size_t(height);
+    ThreadBuffer raw(tRows, rawSize);
+    std::vector<std::uint8_t> scratch(2 * stride);
+    const std::uint8_t* above = nullptr;
+    for (int y = 0; y < height; ++y) {
+        std::uint8_t* out = raw.data() + (stride + 1) * std::size_t(y);
+        const std::uint8_t* row = rowOf(y, &scratch[stride * std::size_t(y & 1)]);
+        out[0] = std::uint8_t(filter);
+        filterRow(filter, row, above, stride, pixelBytes, out + 1);
+        above = row;
+    }
+
+    static const std::uint8_t kColorType[5] = {0, 0, 4, 2, 6};  // by channels: grey, grey+alpha, RGB, RGBA
+    Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    std::uint8_t header[13];
+    put32(header, std::uint32_t(width));
+    put32(header + 4, std::uint32_t(height));
+    header[8] = std::uint8_t(bitDepth);
+    header[9] = kColorType[channels];
+    header[10] = 0;  // deflate
+    header[11] = 0;  // adaptive filtering (a filter type per row)
+    header[12] = 0;  // no interlace
+    chunk(out, "IHDR", header, sizeof header);
+    for (const auto& [keyword, value] : text) {
+        Bytes data(keyword.begin(), keyword.end());
+        data.push_back(0);
+        data.insert(data.end(), value.begin(), value.end());
+        chunk(out, "tEXt", data.data(), data.size());
+    }
+    // The zlib stream goes straight into the file's bytes, after room for the IDAT chunk's length
+    // and type; a stream over 1 GiB (a huge image at level 0) is cut into several chunks.
+    const std::size_t idat = out.size();
+    out.resize(idat + 8);
+    if (Result<bool> packed = compressRows({raw.data(), rawSize}, pixelBytes, options, out); !packed) return packed.failure();
+    const std::size_t packedSize = out.size() - idat - 8;
+    constexpr std::size_t kMaxIdat = std::size_t(1) << 30;  // a chunk holds at most 2^31 - 1 bytes
+    if (packedSize <= kMaxIdat) {
+        put32(&out[idat], std::uint32_t(packedSize));
+        std::memcpy(&out[idat + 4], "IDAT", 4);
+        const std::uint32_t crc = std::uint32_t(libdeflate_crc32(0, &out[idat + 4], 4 + packedSize));
+        out.resize(out.size() + 4);
+        put32(&out[out.size() - 4], crc);
+    } else {
+        const Bytes packed(out.begin() + std::ptrdiff_t(idat + 8), out.end());
+        out.resize(idat);
+        for (std::size_t at = 0; at < packedSize; at += kMaxIdat)
+            chunk(out, "IDAT", packed.data() + at, std::min(kMaxIdat, packedSize - at));
+    }
+    chunk(out, "IEND", nullptr, 0);
+    return out;
 }
 
 }  // namespace
@@ -52,85 +249,42 @@ std::vector<std::uint8_t> flipRows(const std::uint8_t* rows, int width, int heig
 }
 
 Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst,
-                        const PngText& text) {
-    if (channels < 1 || channels > 4) return Error{"PNG encoder: channels must be 1 to 4, got " + std::to_string(channels)};
-    if (bitDepth != 8 && bitDepth != 16) return Error{"PNG encoder: bit depth must be 8 or 16, got " + std::to_string(bitDepth)};
-    if (width < 1 || height < 1)
-        return Error{"PNG encoder: width and height must be at least 1, got " + std::to_string(width) + "x" +
-                     std::to_string(height)};
-    for (const auto& [keyword, value] : text) {
-        const bool printable = std::all_of(keyword.begin(), keyword.end(), [](char c) { return c >= 32 && c <= 126; });
-        if (keyword.empty() || keyword.size() > 79 || !printable || keyword.front() == ' ' || keyword.back() == ' ')
-            return Error{"PNG encoder: a tEXt keyword is 1 to 79 printable characters, got '" + keyword + "'"};
-    }
-    const std::size_t sampleBytes = bitDepth / 8;
-    const std::size_t stride = std::size_t(width) * channels * sampleBytes;
-    // Filter type 0 (none) per row; PNG stores 16-bit samples big-endian.
-    Bytes raw((stride + 1) * height);
-    const auto* src = static_cast<const std::uint8_t*>(rowsTopFirst);
-    for (int y = 0; y < height; ++y) {
-        std::uint8_t* row = &raw[(stride + 1) * y];
-        row[0] = 0;
-        const std::uint8_t* in = src + stride * y;
-        if (bitDepth == 8) {
-            std::memcpy(row + 1, in, stride);
-        } else {
-            for (std::size_t i = 0; i < stride; i += 2) {
-                std::uint16_t v;
-                std::memcpy(&v, in + i, 2);
-                row[1 + i] = std::uint8_t(v >> 8);
-                row[2 + i] = std::uint8_t(v & 0xFF);
-            }
-        }
-    }
-    if (raw.size() > std::numeric_limits<uLong>::max() / 2)
-        return Error{"PNG encoder: " + std::to_string(raw.size()) + " bytes of pixels is more than zlib takes at once"};
-    uLongf packedSize = compressBound(uLong(raw.size()));
-    Bytes packed(packedSize);
-    if (const int z = compress2(packed.data(), &packedSize, raw.data(), uLong(raw.size()), 6); z != Z_OK)
-        return Error{"PNG encoder: zlib compress2 failed on " + std::to_string(raw.size()) + " bytes: " + zError(z)};
-    packed.resize(packedSize);
-
-    static const std::uint8_t kColorType[5] = {0, 0, 4, 2, 6};  // by channels: grey, grey+alpha, RGB, RGBA
-    Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-    Bytes header;
-    put32(header, std::uint32_t(width));
-    put32(header, std::uint32_t(height));
-    header.push_back(std::uint8_t(bitDepth));
-    header.push_back(kColorType[channels]);
-    header.push_back(0);  // deflate
-    header.push_back(0);  // adaptive filtering
-    header.push_back(0);  // no interlace
-    chunk(out, "IHDR", header);
-    for (const auto& [keyword, value] : text) {
-        Bytes data(keyword.begin(), keyword.end());
-        data.push_back(0);
-        data.insert(data.end(), value.begin(), value.end());
-        chunk(out, "tEXt", data);
-    }
-    chunk(out, "IDAT", packed);
-    chunk(out, "IEND", {});
-    return out;
+                        const PngText& text, const PngOptions& options) {
+    const auto* pixels = static_cast<const std::uint8_t*>(rowsTopFirst);
+    const std::size_t stride = std::size_t(std::max(width, 0)) * std::size_t(std::clamp(channels, 0, 4)) * 2;
+    const PngOptions resolvedOptions = resolved(Plane::Color, options);
+    return encodeRows(width, height, channels, bitDepth, *resolvedOptions.filter, resolvedOptions, text,
+                      [&](int y, std::uint8_t* scratch) -> const std::uint8_t* {
+                          const std::size_t rowBytes = bitDepth == 8 ? stride / 2 : stride;
+                          const std::uint8_t* in = pixels + rowBytes * std::size_t(y);
+                          if (bitDepth == 8) return in;
+                          for (std::size_t i = 0; i < rowBytes; i += 2) {  // host order to big-endian
+                              std::uint16_t v;
+                              std::memcpy(&v, in + i, 2);
+                              scratch[i] = std::uint8_t(v >> 8);
+                              scratch[i + 1] = std::uint8_t(v & 0xFF);
+                          }
+                          return scratch;
+                      });
 }
 
 namespace {
 
-// The encoders on one plane each (rows bottom-up), for Buffers and for the images alike.
-Result<Bytes> colorPng(int width, int height, const std::uint8_t* rgba) {
-    const std::vector<std::uint8_t> rows = flipRows(rgba, width, height, 4);
-    return encodePng(width, height, 4, 8, rows.data());
+// The encoders on one plane each (rows bottom-up, as the buffers hold them), for Buffers and for
+// the images alike, at the level and filter resolved() gives.
+Result<Bytes> colorPng(int width, int height, const std::uint8_t* rgba, const PngOptions& given) {
+    const std::size_t stride = std::size_t(width) * 4;
+    const PngOptions options = resolved(Plane::Color, given);
+    return encodeRows(width, height, 4, 8, *options.filter, options, {}, [&](int y, std::uint8_t*) {
+        return rgba + stride * std::size_t(height - 1 - y);
+    });
 }
 
 Result<Bytes> depthPng(int width, int height, const std::uint32_t* values, DepthFormat format,
-                       const std::optional<DepthInfo>& info) {
-    std::vector<std::uint16_t> depth16(std::size_t(width) * std::size_t(height));
-    const bool reversed = format == DepthFormat::D32F;
-    for (std::size_t i = 0; i < depth16.size(); ++i)
-        depth16[i] = reversed ? std::uint16_t(std::lround((1.0 - double(windowDepth(format, values[i]))) * 65535.0))
-                              : std::uint16_t(values[i] >> 8);
-    const std::vector<std::uint8_t> rows =
-        flipRows(reinterpret_cast<const std::uint8_t*>(depth16.data()), width, height, 2);
+                       const std::optional<DepthInfo>& info, const PngOptions& given) {
+    const PngOptions options = resolved(Plane::Depth, given);
     PngText text;
+    const bool reversed = format == DepthFormat::D32F;
     if (info) {
         const auto number = [](float v) {
             char s[32];
@@ -145,7 +299,17 @@ Result<Bytes> depthPng(int width, int height, const std::uint32_t* values, Depth
             {"depth_encoding", reversed ? "(1 - window z) * 65535, rounded: 0 near, 65535 far (window z 1 near, 0 far)"
                                         : "the top 16 bits of the 24-bit window z: 0 near, 65535 far"}};
     }
-    return encodePng(width, height, 1, 16, rows.data(), text);
+    return encodeRows(width, height, 1, 16, *options.filter, options, text, [&](int y, std::uint8_t* scratch) {
+        const std::uint32_t* in = values + std::size_t(width) * std::size_t(height - 1 - y);
+        for (int x = 0; x < width; ++x) {
+            const std::uint16_t v = reversed
+                                        ? std::uint16_t(std::lround((1.0 - double(windowDepth(format, in[x]))) * 65535.0))
+                                        : std::uint16_t(in[x] >> 8);
+            scratch[2 * x] = std::uint8_t(v >> 8);
+            scratch[2 * x + 1] = std::uint8_t(v & 0xFF);
+        }
+        return static_cast<const std::uint8_t*>(scratch);
+    });
 }
 
 Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat format) {
@@ -163,33 +327,46 @@ Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat f
     return out;
 }
 
-Result<Bytes> idPng(int width, int height, const std::uint32_t* ids) {
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    std::vector<std::uint8_t> bytes(pixels * 4);
-    for (std::size_t i = 0; i < pixels; ++i)
-        for (int k = 0; k < 4; ++k) bytes[4 * i + k] = std::uint8_t(ids[i] >> (8 * k));
-    const std::vector<std::uint8_t> rows = flipRows(bytes.data(), width, height, 4);
-    return encodePng(width, height, 4, 8, rows.data());
+Result<Bytes> idPng(int width, int height, const std::uint32_t* ids, const PngOptions& given) {
+    const PngOptions options = resolved(Plane::Ids, given);
+    return encodeRows(width, height, 4, 8, *options.filter, options, {}, [&](int y, std::uint8_t* scratch) {
+        const std::uint32_t* in = ids + std::size_t(width) * std::size_t(height - 1 - y);
+        if constexpr (std::endian::native == std::endian::little) {
+            return reinterpret_cast<const std::uint8_t*>(in);  // the bytes are the id, little-endian already
+        } else {
+            for (int x = 0; x < width; ++x)
+                for (int k = 0; k < 4; ++k) scratch[4 * x + k] = std::uint8_t(in[x] >> (8 * k));
+            return static_cast<const std::uint8_t*>(scratch);
+        }
+    });
 }
 
 }  // namespace
 
-Result<Bytes> encodeColorPng(const Buffers& b) { return colorPng(b.width, b.height, b.rgba.data()); }
-Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info) {
-    return depthPng(b.width, b.height, b.depth.data(), b.depthFormat, info);
+Result<Bytes> encodeColorPng(const Buffers& b, const PngOptions& options) {
+    return colorPng(b.width, b.height, b.rgba.data(), options);
+}
+Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info, const PngOptions& options) {
+    return depthPng(b.width, b.height, b.depth.data(), b.depthFormat, info, options);
 }
 Bytes encodeDepthPfm(const Buffers& b) { return depthPfm(b.width, b.height, b.depth.data(), b.depthFormat); }
-Result<Bytes> encodeIdPng(const Buffers& b) { return idPng(b.width, b.height, b.ids.data()); }
+Result<Bytes> encodeIdPng(const Buffers& b, const PngOptions& options) {
+    return idPng(b.width, b.height, b.ids.data(), options);
+}
 
-Result<Bytes> encodeColorPng(const ColorImage& image) { return colorPng(image.width, image.height, image.rgba.data()); }
-Result<Bytes> encodeDepthPng(const DepthImage& image) {
+Result<Bytes> encodeColorPng(const ColorImage& image, const PngOptions& options) {
+    return colorPng(image.width, image.height, image.rgba.data(), options);
+}
+Result<Bytes> encodeDepthPng(const DepthImage& image, const PngOptions& options) {
     return depthPng(image.width, image.height, image.values.data(), image.format,
-                    DepthInfo{image.znear, image.zfar, image.perspective});
+                    DepthInfo{image.znear, image.zfar, image.perspective}, options);
 }
 Bytes encodeDepthPfm(const DepthImage& image) {
     return depthPfm(image.width, image.height, image.values.data(), image.format);
 }
-Result<Bytes> encodeIdPng(const IdImage& image) { return idPng(image.width, image.height, image.ids.data()); }
+Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options) {
+    return idPng(image.width, image.height, image.ids.data(), options);
+}
 
 bool hasExtension(const std::string& path, const std::string& extension) {
     std::string e = std::filesystem::path(path).extension().string();
@@ -197,17 +374,17 @@ bool hasExtension(const std::string& path, const std::string& extension) {
     return e == extension;
 }
 
-Result<bool> writePng(const std::string& path, const ColorImage& image) {
-    return writeFileAtomic(path, encodeColorPng(image));
+Result<bool> writePng(const std::string& path, const ColorImage& image, int level) {
+    return writeFileAtomic(path, encodeColorPng(image, PngOptions::atLevel(level)));
 }
-Result<bool> writePng(const std::string& path, const DepthImage& image) {
-    return writeFileAtomic(path, encodeDepthPng(image));
+Result<bool> writePng(const std::string& path, const DepthImage& image, int level) {
+    return writeFileAtomic(path, encodeDepthPng(image, PngOptions::atLevel(level)));
 }
 Result<bool> writePfm(const std::string& path, const DepthImage& image) {
     return writeFileAtomic(path, encodeDepthPfm(image));
 }
-Result<bool> writePng(const std::string& path, const IdImage& image) {
-    return writeFileAtomic(path, encodeIdPng(image));
+Result<bool> writePng(const std::string& path, const IdImage& image, int level) {
+    return writeFileAtomic(path, encodeIdPng(image, PngOptions::atLevel(level)));
 }
 
 namespace {
@@ -330,7 +507,7 @@ void OutputSet::add(std::string path, Result<Content> content) {
 
 Result<bool> OutputSet::commit() {
     for (const auto& [path, bytes] : files_)
-        if (!bytes) return Error{path + ": cannot encode: " + bytes.error()};
+        if (!bytes) return Error{path + ": cannot encode: " + bytes.error(), bytes.failure().kind};
 
     // Devices and pipes first: what they took cannot be taken back.
     struct Replaced {
@@ -348,6 +525,10 @@ Result<bool> OutputSet::commit() {
     // however this returns (an error, an exception), the temporary and backup files it still holds
     // are removed.
     const SignalsHeld held;
+    const WriteWindow window;
+    if (!window.open())
+        return Error{files_[replaced.front().file].first + ": not written: the process is ending by a signal",
+                     ErrorKind::Interrupted};
     struct Scratch {
         std::vector<std::string> temps, backups;  // by position in `replaced`; "" when there is none
         ~Scratch() {
@@ -495,18 +676,6 @@ Result<bool> Spool::append(std::string_view bytes) {
     }
     size_ += bytes.size();
     return true;
-}
-
-Result<bool> writeFrame(const FramePaths& paths, const Frame& frame) {
-    if (!paths.ids.empty() && frame.ids.ids.empty())
-        return Error{"ids " + paths.ids + ": the frame has no ids (Settings::ids)"};
-    OutputSet files;
-    if (!paths.color.empty()) files.add(paths.color, encodeColorPng(frame.color));
-    if (!paths.depth.empty())
-        files.add(paths.depth, hasExtension(paths.depth, ".pfm") ? Result<Content>(Content(encodeDepthPfm(frame.depth)))
-                                                                 : Result<Content>(encodeDepthPng(frame.depth)));
-    if (!paths.ids.empty()) files.add(paths.ids, encodeIdPng(frame.ids));
-    return files.commit();
 }
 
 }  // namespace frugal

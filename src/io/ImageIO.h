@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,12 +33,34 @@ using Bytes = std::vector<std::uint8_t>;
 // A PNG tEXt chunk: keyword (1–79 printable Latin-1 characters) and text.
 using PngText = std::vector<std::pair<std::string, std::string>>;
 
-// PNG encoder (zlib). `channels` 1..4, `bitDepth` 8 or 16 (16-bit samples given as uint16 in host
-// order), rows given top row first, 1 to 2^31 − 1 pixels a side (the PNG limit), `text` as tEXt
-// chunks after the header. Errors: "PNG encoder: <what>, got <value>" for a format PNG cannot hold or
-// a keyword PNG does not allow, or zlib's failure.
+// PNG's row filters (the specification's section 9): each byte stored as its difference from a
+// prediction. Each kind of image has the filter measured best for it at each level
+// (docs/writing.md): Up for colour and depth, for ids Up at levels 1 to 3 and None from 4.
+enum class PngFilter : std::uint8_t { None = 0, Sub = 1, Up = 2, Paeth = 4 };
+
+// How a PNG is compressed: the level (frugal/Files.h: kAutoPngLevel, 0 stored, 1 run-length, 2-12
+// libdeflate) and, when given, a filter other than the one measured best for the image's kind.
+struct PngOptions {
+    int level = kDefaultPngLevel;
+    std::optional<PngFilter> filter;
+    // When given, makes the zlib stream of the filtered rows instead of libdeflate (`level` unread):
+    // the lab's baseline, the zlib encoder frugal had before (lab/WriteBench.h).
+    std::function<Result<Bytes>(std::span<const std::uint8_t> rows)> compress;
+
+    static PngOptions atLevel(int level) {
+        PngOptions options;
+        options.level = level;
+        return options;
+    }
+};
+
+// PNG encoder. `channels` 1..4, `bitDepth` 8 or 16 (16-bit samples given as uint16 in host order),
+// rows given top row first, 1 to 2^31 − 1 pixels a side (the PNG limit), `text` as tEXt chunks
+// after the header; compressed as a colour image (auto: level 3, filter Up) unless `options` says
+// otherwise. Errors: "PNG encoder: <what>,
+// got <value>" for a format PNG cannot hold, a keyword PNG does not allow or a level out of range.
 Result<Bytes> encodePng(int width, int height, int channels, int bitDepth, const void* rowsTopFirst,
-                        const PngText& text = {});
+                        const PngText& text = {}, const PngOptions& options = {});
 
 // How a depth image was drawn: its format, planes (zfar 0 = infinite) and projection. A depth PNG
 // carries them as the tEXt chunks depth_format ("d24", "d32f"), depth_znear, depth_zfar ("inf" when
@@ -50,15 +73,16 @@ struct DepthInfo {
 // Whether `path` ends in `extension` (".png"), in any case.
 bool hasExtension(const std::string& path, const std::string& extension);
 
-Result<Bytes> encodeColorPng(const Buffers& buffers);
-Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt);
+Result<Bytes> encodeColorPng(const Buffers& buffers, const PngOptions& options = {});
+Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt,
+                             const PngOptions& options = {});
 Bytes encodeDepthPfm(const Buffers& buffers);
-Result<Bytes> encodeIdPng(const Buffers& buffers);
+Result<Bytes> encodeIdPng(const Buffers& buffers, const PngOptions& options = {});
 // The same for one image each (a depth PNG with the image's planes as its text).
-Result<Bytes> encodeColorPng(const ColorImage& image);
-Result<Bytes> encodeDepthPng(const DepthImage& image);
+Result<Bytes> encodeColorPng(const ColorImage& image, const PngOptions& options = {});
+Result<Bytes> encodeDepthPng(const DepthImage& image, const PngOptions& options = {});
 Bytes encodeDepthPfm(const DepthImage& image);
-Result<Bytes> encodeIdPng(const IdImage& image);
+Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options = {});
 
 // A file's bytes held outside memory while a long run writes them piece by piece (the frames of a
 // render JSON): an anonymous file in the folder of `near` (O_TMPFILE: no name, gone when the process

@@ -3,8 +3,10 @@
 #include <pthread.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <ctime>
 
 namespace frugal {
 namespace {
@@ -21,6 +23,25 @@ sigset_t handledSet() {
     sigemptyset(&set);
     for (int signal : kHandled) sigaddset(&set, signal);
     return set;
+}
+
+// Open WriteWindows, and whether the process is ending (then none opens). Lock-free atomics, so
+// the handler may read and write them (signal-safety(7)).
+std::atomic<int> gWriting{0};
+std::atomic<bool> gEnding{false};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free);
+
+// Waits until no WriteWindow is open, at most two seconds (a write that hangs, on a dead network
+// file system, must not keep the process alive). clock_gettime is async-signal-safe.
+void waitForWrites() {
+    gEnding.store(true);
+    timespec start {};
+    clock_gettime(CLOCK_MONOTONIC, &start);
+    while (gWriting.load() > 0) {
+        timespec now {};
+        clock_gettime(CLOCK_MONOTONIC, &now);
+        if (now.tv_sec - start.tv_sec >= 2) break;
+    }
 }
 
 // The default action of the three signals handled ends the process; a caught signal cannot be
@@ -41,6 +62,7 @@ sigset_t handledSet() {
 // "error: interrupted by SIGTERM", then the signal. Async-signal-safe: the line is copied into a
 // buffer on the stack and written with one write(2).
 [[noreturn]] void stopNow(int signal) {
+    waitForWrites();
     char line[64];
     std::size_t length = 0;
     for (const char* part : {"error: interrupted by ", signalName(signal), "\n"})
@@ -90,6 +112,13 @@ SignalsHeld::SignalsHeld() {
 }
 
 SignalsHeld::~SignalsHeld() { pthread_sigmask(SIG_SETMASK, &previous_, nullptr); }
+
+WriteWindow::WriteWindow() {
+    gWriting.fetch_add(1);
+    open_ = !gEnding.load();  // seq_cst both here and in waitForWrites: one of the two sees the other
+}
+
+WriteWindow::~WriteWindow() { gWriting.fetch_sub(1); }
 
 InterruptPoints::InterruptPoints() { gPolling = 1; }
 

@@ -5,7 +5,8 @@
 // Why it is safe at any instant (signal-safety(7)):
 // - the files are written with the signals blocked on the writing thread (SignalsHeld, taken by
 //   OutputSet::commit for its temporary files and renames), so a temporary file exists only while
-//   no handler can run on that thread, and a set of files is never half renamed;
+//   no handler can run on that thread, and a set of files is never half renamed; a write on another
+//   thread (FrameWriter) holds a WriteWindow, which the handler waits for before it ends the process;
 // - the handler acts only on the main thread, the one that writes: a signal the kernel hands to
 //   another thread (llvmpipe's, the software backend's pool) is passed on with pthread_kill, and
 //   waits there while a write holds it;
@@ -43,6 +44,22 @@ public:
 
 private:
     sigset_t previous_;
+};
+
+// OutputSet::commit's temporary files on any thread (FrameWriter's write on threads of their own):
+// while one lives, a handler that ends the process at once (stopNow: a second signal, or one outside
+// InterruptPoints) waits for it to end, at most two seconds, so that the files it writes are renamed
+// or removed first. Once the process is ending no new one opens (open() false: write nothing).
+class WriteWindow {
+public:
+    WriteWindow();
+    ~WriteWindow();
+    WriteWindow(const WriteWindow&) = delete;
+    WriteWindow& operator=(const WriteWindow&) = delete;
+    bool open() const { return open_; }
+
+private:
+    bool open_ = false;
 };
 
 // A stretch of work on the main thread that stops at points of its own choosing: while one lives, a

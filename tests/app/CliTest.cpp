@@ -134,7 +134,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help render')"},
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
-        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, report, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, order-bench, span-bench, state-sim, soak, batch, help)"},
+        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, report, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, order-bench, span-bench, state-sim, soak, batch, write-bench, help)"},
         {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"render", "--near", "5", "--far", "1"}, 2, "error: --far 1: must exceed --near 5"},
         // Only --near given: the library names the values, and which one it fitted.
