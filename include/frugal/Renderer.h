@@ -72,6 +72,13 @@ public:
     // pages, about 0.5 ms of page faults and zeroing on every frame). On an error `frame` holds
     // nothing of use.
     Result<bool> render(const Camera& camera, double seconds, Frame& frame);
+    // Which images render() reads back besides the colour: an image no file or caller needs is
+    // left out (Frame::depth stays empty), sparing its read-back (the depth of a 1080p frame: a
+    // few milliseconds on llvmpipe; docs/writing.md). Ids are read whenever Settings::ids drew them.
+    struct ReadBack {
+        bool depth = true;
+    };
+    Result<bool> render(const Camera& camera, double seconds, Frame& frame, ReadBack readBack);
 
     // Moves node `node` for the frames that follow: its local transform becomes `transform`
     // (Scene::setTransform, whose errors it returns). Temporal reuse sees the instances it places

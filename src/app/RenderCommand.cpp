@@ -344,8 +344,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             if (!finished) return fail(err, finished.failure());
             return fail(err, Error{interruptedAfter(caught, framesWritten, frameCount), ErrorKind::Interrupted});
         }
-        Result<bool> rendered =
-            renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index), frame);
+        // The depth is read back only for a file that holds it.
+        Result<bool> rendered = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index),
+                                                frame, {.depth = !r.outputs.depth.empty()});
         if (!rendered) return fail(err, rendered.failure());
         const std::string file = framePath(r.outputs.color, index, range.sequence);
         if (index == range.first) camera = viewJson(frame.view, s);

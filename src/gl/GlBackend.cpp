@@ -228,7 +228,7 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     check("copy");
 }
 
-void GlBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) {
+void GlBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
     GlTarget* t = targets_.find(target);
     assert(t != nullptr && "readBack: no such target");
     if (t == nullptr) {
@@ -239,17 +239,19 @@ void GlBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) {
     out.width = t->width;
     out.height = t->height;
     out.rgba.resize(out.pixelCount() * 4);
-    out.ids.resize(ids ? out.pixelCount() : 0);
-    out.depth.resize(out.pixelCount());
+    out.ids.resize(planes.ids ? out.pixelCount() : 0);
+    out.depth.resize(planes.depth ? out.pixelCount() : 0);
     // Rows come bottom-up (window origin bottom-left), as Buffers wants. Pack alignment is 1.
     state_.readFrom(*t, GL_COLOR_ATTACHMENT0);
     gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
-    if (ids) {
+    if (planes.ids) {
         state_.readFrom(*t, GL_COLOR_ATTACHMENT1);
         gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
     }
     out.depthFormat = t->depthFormat;
-    if (t->depthFormat == DepthFormat::D32F) {
+    if (!planes.depth) {
+        // no depth asked for
+    } else if (t->depthFormat == DepthFormat::D32F) {
         gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());  // the floats' bits
     } else {
         gl_.ReadPixels(0, 0, t->width, t->height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());

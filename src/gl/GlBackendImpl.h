@@ -117,7 +117,7 @@ public:
     void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range) override;
     void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
     void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
-    void readBackInto(TargetHandle target, Buffers& out, bool ids) override;
+    void readBackInto(TargetHandle target, Buffers& out, Planes planes) override;
     void finish() override {
         activate();
         gl_.Finish();

@@ -18,6 +18,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <system_error>
 #include <thread>
 
 #include <frugal/Files.h>
@@ -55,7 +56,11 @@ Result<Content> encodeFile(const std::string& path, Plane plane, const Frame& fr
         case Plane::Color:
             return encodeColorPng(frame.color, PngOptions::atLevel(level));
         case Plane::Depth:
-            if (hasExtension(path, ".pfm")) return Content(encodeDepthPfm(frame.depth));
+            if (hasExtension(path, ".pfm")) {
+                Result<Bytes> pfm = encodeDepthPfm(frame.depth);
+                if (!pfm) return pfm.failure();
+                return Content(std::move(*pfm));
+            }
             return encodeDepthPng(frame.depth, PngOptions::atLevel(level));
         case Plane::Ids:
             return encodeIdPng(frame.ids, PngOptions::atLevel(level));
@@ -63,10 +68,13 @@ Result<Content> encodeFile(const std::string& path, Plane plane, const Frame& fr
     return Error{"unreachable"};
 }
 
-// An ids file asked of a frame drawn without ids.
-std::optional<Error> missingIds(const FramePaths& paths, const Frame& frame) {
-    if (paths.ids.empty() || !frame.ids.ids.empty()) return std::nullopt;
-    return Error{"ids " + paths.ids + ": the frame has no ids (Settings::ids)"};
+// A file asked of an image the frame does not hold: ids drawn without, depth not read back.
+std::optional<Error> missingImage(const FramePaths& paths, const Frame& frame) {
+    if (!paths.ids.empty() && frame.ids.ids.empty())
+        return Error{"ids " + paths.ids + ": the frame has no ids (Settings::ids)"};
+    if (!paths.depth.empty() && frame.depth.values.empty())
+        return Error{"depth " + paths.depth + ": the frame has no depth (rendered with ReadBack{.depth = false})"};
+    return std::nullopt;
 }
 
 int defaultThreads() {
@@ -91,10 +99,18 @@ struct FrameWriter::Impl {
     std::vector<std::thread> threads;
 
     explicit Impl(const Options& o) : options(o) {
-        for (int i = 0; i < options.threads; ++i) threads.emplace_back([this] { run(); });
+        try {
+            for (int i = 0; i < options.threads; ++i) threads.emplace_back([this] { run(); });
+        } catch (...) {  // the threads started stop before the error leaves
+            stop();
+            throw;
+        }
     }
 
-    ~Impl() {
+    ~Impl() { stop(); }
+
+    // Waits for every job given, then ends the threads.
+    void stop() {
         {
             std::unique_lock lock(mutex);
             moved.wait(lock, [&] { return allDone(); });
@@ -136,6 +152,8 @@ struct FrameWriter::Impl {
             return encodeFile(path, plane, job.frame, options.pngLevel);
         } catch (const std::bad_alloc&) {
             return Error{"out of memory while encoding it", ErrorKind::OutOfMemory};
+        } catch (const std::exception& e) {  // nothing else is thrown; a thread must not end by one
+            return Error{std::string("cannot encode it: ") + e.what()};
         }
     }
 
@@ -193,7 +211,12 @@ Result<FrameWriter> FrameWriter::create(const Options& options) {
         return Error{"writer queue " + std::to_string(o.queue) + ": must be 1 to 1024 frames, or 0 for threads + 1"};
     if (o.threads == 0) o.threads = defaultThreads();
     if (o.queue == 0) o.queue = o.threads + 1;
-    return FrameWriter(std::make_unique<Impl>(o));
+    try {
+        return FrameWriter(std::make_unique<Impl>(o));
+    } catch (const std::system_error& e) {  // no thread could be started (ulimit -u, a container's pids limit)
+        return Error{"writer threads " + std::to_string(o.threads) + ": cannot start them: " + e.what(),
+                     ErrorKind::Io};
+    }
 }
 
 FrameWriter::FrameWriter() : FrameWriter(std::move(*create({}))) {}
@@ -205,7 +228,7 @@ FrameWriter::~FrameWriter() = default;
 int FrameWriter::threads() const { return impl_->options.threads; }
 
 Result<bool> FrameWriter::write(const FramePaths& paths, Frame& frame) {
-    if (std::optional<Error> missing = missingIds(paths, frame)) return *missing;
+    if (std::optional<Error> missing = missingImage(paths, frame)) return *missing;
     Impl& w = *impl_;
     auto job = std::make_unique<Job>();
     for (const auto& [path, plane] :
@@ -258,7 +281,7 @@ std::vector<FrameWriter::Written> FrameWriter::takeWritten() {
 }
 
 Result<bool> writeFrame(const FramePaths& paths, const Frame& frame, int pngLevel) {
-    if (std::optional<Error> missing = missingIds(paths, frame)) return *missing;
+    if (std::optional<Error> missing = missingImage(paths, frame)) return *missing;
     OutputSet files;
     if (!paths.color.empty()) files.add(paths.color, encodeFile(paths.color, Plane::Color, frame, pngLevel));
     if (!paths.depth.empty()) files.add(paths.depth, encodeFile(paths.depth, Plane::Depth, frame, pngLevel));

@@ -343,28 +343,53 @@ Result<Bytes> idPng(int width, int height, const std::uint32_t* ids, const PngOp
 
 }  // namespace
 
+namespace {
+
+// An image whose vector does not hold its width x height values (a caller's mistake, or a plane
+// not read back): an error instead of a read past its end.
+std::optional<Error> sizeProblem(const char* what, int width, int height, std::size_t values, std::size_t perPixel) {
+    if (width <= 0 || height <= 0) return std::nullopt;  // the encoder's own error
+    const std::size_t needed = std::size_t(width) * std::size_t(height) * perPixel;
+    if (values == needed) return std::nullopt;
+    return Error{std::string("PNG encoder: the ") + what + " image holds " + std::to_string(values) + " values, " +
+                 std::to_string(width) + "x" + std::to_string(height) + " needs " + std::to_string(needed)};
+}
+
+}  // namespace
+
 Result<Bytes> encodeColorPng(const Buffers& b, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("colour", b.width, b.height, b.rgba.size(), 4)) return *problem;
     return colorPng(b.width, b.height, b.rgba.data(), options);
 }
 Result<Bytes> encodeDepthPng(const Buffers& b, const std::optional<DepthInfo>& info, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("depth", b.width, b.height, b.depth.size(), 1)) return *problem;
     return depthPng(b.width, b.height, b.depth.data(), b.depthFormat, info, options);
 }
 Bytes encodeDepthPfm(const Buffers& b) { return depthPfm(b.width, b.height, b.depth.data(), b.depthFormat); }
 Result<Bytes> encodeIdPng(const Buffers& b, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("id", b.width, b.height, b.ids.size(), 1)) return *problem;
     return idPng(b.width, b.height, b.ids.data(), options);
 }
 
 Result<Bytes> encodeColorPng(const ColorImage& image, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("colour", image.width, image.height, image.rgba.size(), 4))
+        return *problem;
     return colorPng(image.width, image.height, image.rgba.data(), options);
 }
 Result<Bytes> encodeDepthPng(const DepthImage& image, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("depth", image.width, image.height, image.values.size(), 1))
+        return *problem;
     return depthPng(image.width, image.height, image.values.data(), image.format,
                     DepthInfo{image.znear, image.zfar, image.perspective}, options);
 }
-Bytes encodeDepthPfm(const DepthImage& image) {
+Result<Bytes> encodeDepthPfm(const DepthImage& image) {
+    if (std::optional<Error> problem = sizeProblem("depth", image.width, image.height, image.values.size(), 1))
+        return Error{"PFM encoder: " + problem->message.substr(std::string("PNG encoder: ").size())};
     return depthPfm(image.width, image.height, image.values.data(), image.format);
 }
 Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("id", image.width, image.height, image.ids.size(), 1))
+        return *problem;
     return idPng(image.width, image.height, image.ids.data(), options);
 }
 
@@ -381,7 +406,9 @@ Result<bool> writePng(const std::string& path, const DepthImage& image, int leve
     return writeFileAtomic(path, encodeDepthPng(image, PngOptions::atLevel(level)));
 }
 Result<bool> writePfm(const std::string& path, const DepthImage& image) {
-    return writeFileAtomic(path, encodeDepthPfm(image));
+    Result<Bytes> pfm = encodeDepthPfm(image);
+    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.failure()));
+    return writeFileAtomic(path, std::move(*pfm));
 }
 Result<bool> writePng(const std::string& path, const IdImage& image, int level) {
     return writeFileAtomic(path, encodeIdPng(image, PngOptions::atLevel(level)));

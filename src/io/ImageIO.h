@@ -81,7 +81,7 @@ Result<Bytes> encodeIdPng(const Buffers& buffers, const PngOptions& options = {}
 // The same for one image each (a depth PNG with the image's planes as its text).
 Result<Bytes> encodeColorPng(const ColorImage& image, const PngOptions& options = {});
 Result<Bytes> encodeDepthPng(const DepthImage& image, const PngOptions& options = {});
-Bytes encodeDepthPfm(const DepthImage& image);
+Result<Bytes> encodeDepthPfm(const DepthImage& image);  // an error when its values do not fill it
 Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options = {});
 
 // A file's bytes held outside memory while a long run writes them piece by piece (the frames of a

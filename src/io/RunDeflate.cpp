@@ -5,6 +5,7 @@
 #include <bit>
 #include <cassert>
 #include <cstring>
+#include <vector>
 
 #include <libdeflate.h>
 
@@ -133,6 +134,7 @@ public:
     }
     void bytes(const std::uint8_t* data, std::size_t size) {
         assert(count_ == 0);
+        if (size == 0) return;  // an empty input may come as a null pointer
         std::memcpy(at_, data, size);
         at_ += size;
     }

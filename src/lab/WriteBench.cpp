@@ -221,8 +221,11 @@ Result<bool> sequence(const std::string& name, const Scene& scene, const WriteBe
         std::map<std::string, std::vector<double>> perFrame, cpuPerFrame;
         std::vector<double> renderMs, readbackMs;
         Frame frame;
+        // As `frugal render` does, the depth is read back only when a file holds it.
+        const Renderer::ReadBack readBack{.depth = planes.all};
         for (int warm = 0; warm < 3; ++warm)  // llvmpipe compiles its shaders on the first frames
-            if (Result<bool> rendered = renderer.render(Camera::automatic(), 0.0, frame); !rendered) return rendered;
+            if (Result<bool> rendered = renderer.render(Camera::automatic(), 0.0, frame, readBack); !rendered)
+                return rendered;
         for (int round = 0; round < s.rounds; ++round)
             for (const std::string& variant : variants) {
                 progress("write-bench: " + name + " " + planes.name + ", round " + std::to_string(round + 1) + " of " +
@@ -233,7 +236,7 @@ Result<bool> sequence(const std::string& name, const Scene& scene, const WriteBe
                 if (variant == "async") writer.emplace();
                 if (variant == "async level 1") writer.emplace(std::move(*FrameWriter::create({.pngLevel = 1})));
                 for (int i = 0; i < s.frames; ++i) {
-                    if (Result<bool> rendered = renderer.render(Camera::automatic(), 0.0, frame); !rendered)
+                    if (Result<bool> rendered = renderer.render(Camera::automatic(), 0.0, frame, readBack); !rendered)
                         return rendered;
                     Result<bool> written = true;
                     if (variant == "render") {

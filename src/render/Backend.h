@@ -158,14 +158,18 @@ public:
     // Copies a rectangle (same position) from one target to another of the same size and depth format.
     virtual void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color,
                       bool depth, bool ids) = 0;
+    // Which planes readBackInto reads besides the colour; one left out stays empty in Buffers.
+    struct Planes {
+        bool depth = true, ids = true;
+    };
     // Reads the whole target back into `out`, in the memory its vectors already hold when they are
     // large enough (a frame loop that passes the same Buffers allocates, and faults in, nothing);
-    // `ids` false leaves out.ids empty and reads no ids. Waits for the rendering to finish.
-    virtual void readBackInto(TargetHandle target, Buffers& out, bool ids) = 0;
+    // the colour always, depth and ids as `planes` says. Waits for the rendering to finish.
+    virtual void readBackInto(TargetHandle target, Buffers& out, Planes planes) = 0;
     // Every plane into new buffers.
     Buffers readBack(TargetHandle target) {
         Buffers out;
-        readBackInto(target, out, true);
+        readBackInto(target, out, {});
         return out;
     }
     // Waits until all submitted work is done (for timing).

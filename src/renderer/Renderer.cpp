@@ -84,7 +84,7 @@ struct Renderer::Impl {
 
     Result<bool> open();
     void draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats);
-    Result<bool> render(const Camera& camera, double seconds, Frame& frame);
+    Result<bool> render(const Camera& camera, double seconds, Frame& frame, Renderer::ReadBack readBack);
     void growEnvelope();
 };
 
@@ -178,7 +178,7 @@ void Renderer::Impl::growEnvelope() {
     envelope.add(now.max);
 }
 
-Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame) {
+Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame, Renderer::ReadBack readBack) {
     const Settings& s = settings;
     if (moved) growEnvelope();
     if (!stillBounds && scene->animations.empty() && (!camera.eye || !camera.target))
@@ -229,7 +229,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     buffers.rgba = std::move(frame.color.rgba);
     buffers.depth = std::move(frame.depth.values);
     buffers.ids = std::move(frame.ids.ids);
-    backend->readBackInto(target, buffers, s.ids);
+    backend->readBackInto(target, buffers, {.depth = readBack.depth, .ids = s.ids});
     const auto t2 = Clock::now();
     stats.renderMs = msBetween(t0, t1);
     stats.readbackMs = msBetween(t1, t2);
@@ -267,11 +267,14 @@ Renderer::~Renderer() = default;
 
 Result<Frame> Renderer::render(const Camera& camera, double seconds) {
     Frame frame;
-    if (Result<bool> rendered = impl_->render(camera, seconds, frame); !rendered) return rendered.failure();
+    if (Result<bool> rendered = impl_->render(camera, seconds, frame, {}); !rendered) return rendered.failure();
     return frame;
 }
 Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame) {
-    return impl_->render(camera, seconds, frame);
+    return impl_->render(camera, seconds, frame, {});
+}
+Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame, ReadBack readBack) {
+    return impl_->render(camera, seconds, frame, readBack);
 }
 Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {
     Result<bool> set = impl_->scene->setTransform(node, transform);

@@ -71,7 +71,7 @@ public:
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;
     void clear(TargetHandle target, const Rect& rect, const glm::vec4& color, float depth) override;
     void copy(TargetHandle from, TargetHandle to, const Rect& rect, bool color, bool depth, bool ids) override;
-    void readBackInto(TargetHandle target, Buffers& out, bool ids) override;
+    void readBackInto(TargetHandle target, Buffers& out, Planes planes) override;
     void finish() override { flush(); }
     StateChanges stateChanges() const override { return changes_; }
 
@@ -264,7 +264,7 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
     if (ids) rows(source->ids, dest->ids);
 }
 
-void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) {
+void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
     SwTarget* t = targets_.find(target);
     assert(t != nullptr && "readBack: no such target");
     if (t == nullptr) {
@@ -276,13 +276,13 @@ void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, bool ids) 
     out.height = t->height;
     out.depthFormat = t->depthFormat;
     out.rgba.resize(out.pixelCount() * 4);
-    out.depth.resize(out.pixelCount());
-    out.ids.resize(ids ? out.pixelCount() : 0);
+    out.depth.resize(planes.depth ? out.pixelCount() : 0);
+    out.ids.resize(planes.ids ? out.pixelCount() : 0);
     for (int y = 0; y < t->height; ++y) {
         const std::size_t from = std::size_t(y) * std::size_t(t->stride), to = std::size_t(y) * std::size_t(t->width);
         std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
-        std::memcpy(out.depth.data() + to, t->depth.data() + from, std::size_t(t->width) * 4);
-        if (ids) std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
+        if (planes.depth) std::memcpy(out.depth.data() + to, t->depth.data() + from, std::size_t(t->width) * 4);
+        if (planes.ids) std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
     }
 }
 

@@ -101,6 +101,38 @@ TEST(FaultCliTest, SigintMidSequenceOnGlKeepsTheFinishedFramesAndNoTemporaryFile
     expectSequencesStopCleanly("FaultSigintGl", "auto", SIGINT, 8);
 }
 
+// A second signal while the first waits for the frames queued to be written ends the process at
+// once: whatever the writer's threads were writing is renamed or removed first (WriteWindow), so
+// the files are still a prefix of the frames, each whole, and no temporary file is left. Slow
+// files (640x480 colour and ids at level 9) keep frames queued when the signals come.
+TEST(FaultCliTest, ASecondSignalWhileFramesAreWrittenLeavesWholeFilesOnly) {
+    std::mt19937 random(5);
+    for (int t = 0; t < 6; ++t) {
+        const int gapUs = std::uniform_int_distribution<int>(0, 20000)(random);
+        SCOPED_TRACE("try " + std::to_string(t) + ", " + std::to_string(gapUs) + " us between the signals");
+        Background run(test::freshDir("FaultSecondSignal"),
+                       {"render", "builtin:cubes", "--frames", "0:99999", "--size", "640x480", "--png-level", "9",
+                        "-o", "f_%04d.png", "--ids", "i_%04d.png", "-q", "--backend", "software"});
+        ASSERT_TRUE(run.waitUntil([&run] { return fs::exists(run.work() / "f_0001.png"); })) << run.err();
+        run.send(SIGTERM);
+        std::this_thread::sleep_for(std::chrono::microseconds(gapUs));
+        run.send(SIGTERM);
+        EXPECT_EQ(run.wait(), 128 + SIGTERM);
+        const std::vector<std::string> files = filesIn(run.work());
+        for (const std::string& file : files) EXPECT_FALSE(isLeftover(file)) << file;
+        const std::size_t frames = files.size() / 2;
+        std::vector<std::string> expected;
+        for (int frame = 0; frame < int(frames); ++frame) expected.push_back(frameName("f", frame));
+        for (int frame = 0; frame < int(frames); ++frame) expected.push_back(frameName("i", frame));
+        EXPECT_EQ(files, expected) << "whole sets of a prefix of the frames";
+        for (const std::string& file : files) {
+            Result<DecodedImage> image = readPng((run.work() / file).string());
+            ASSERT_TRUE(image) << file << ": " << image.error();
+            EXPECT_EQ(image->width * 1000 + image->height, 640480) << file;
+        }
+    }
+}
+
 TEST(FaultCliTest, SigtermMidDiffSequenceKeepsWholeImageSets) {
     std::mt19937 random(12);
     const std::regex line("error: interrupted by SIGTERM after ([0-9]+) of 100000 frames");

@@ -139,6 +139,31 @@ TEST(FrameWriterTest, BadRequestsGetOneLine) {
     EXPECT_TRUE(test::filesIn(dir).empty());
 }
 
+TEST(FrameWriterTest, AnImageTheFrameDoesNotHoldIsOneLineAndNoFile) {
+    const auto dir = test::freshDir("FrameWriterNoDepth");
+    Frame frame = numbered(0);
+    frame.depth.values.clear();  // rendered with ReadBack{.depth = false}
+    FrameWriter writer;
+    const Result<bool> queued = writer.write(pathsOf(dir, 0), frame);
+    ASSERT_FALSE(queued);
+    EXPECT_EQ(queued.error(),
+              "depth " + pathsOf(dir, 0).depth + ": the frame has no depth (rendered with ReadBack{.depth = false})");
+    const Result<bool> direct = writeFrame({"", (dir / "d.pfm").string(), ""}, frame);
+    ASSERT_FALSE(direct);
+    EXPECT_EQ(direct.error(), "depth " + (dir / "d.pfm").string() +
+                                  ": the frame has no depth (rendered with ReadBack{.depth = false})");
+    // An image whose values do not fill it (a library caller's mistake) is refused, never read past.
+    Frame short_ = numbered(1);
+    short_.color.rgba.resize(10);
+    short_.depth.values.resize(7);
+    EXPECT_EQ(writePng((dir / "c.png").string(), short_.color).error(),
+              (dir / "c.png").string() + ": cannot encode: PNG encoder: the colour image holds 10 values, 40x30 needs 4800");
+    EXPECT_EQ(writePfm((dir / "d.pfm").string(), short_.depth).error(),
+              (dir / "d.pfm").string() + ": cannot encode: PFM encoder: the depth image holds 7 values, 40x30 needs 1200");
+    EXPECT_TRUE(writer.finish());
+    EXPECT_TRUE(test::filesIn(dir).empty());
+}
+
 TEST(FrameWriterTest, TheDestructorFinishesTheFramesGiven) {
     const auto dir = test::freshDir("FrameWriterDestructor");
     {

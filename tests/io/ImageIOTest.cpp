@@ -107,8 +107,9 @@ TEST(ImageIOTest, WriteFrameWritesTheSetOrNothing) {
     const Result<Bytes> png = encodeColorPng(frame.color);
     ASSERT_TRUE(png);
     EXPECT_EQ(test::readAll(color), std::string(png->begin(), png->end()));
-    const Bytes pfm = encodeDepthPfm(frame.depth);
-    EXPECT_EQ(test::readAll(depth), std::string(pfm.begin(), pfm.end()));
+    const Result<Bytes> pfm = encodeDepthPfm(frame.depth);
+    ASSERT_TRUE(pfm);
+    EXPECT_EQ(test::readAll(depth), std::string(pfm->begin(), pfm->end()));
 
     const std::string other = (dir / "other.png").string(), ids = (dir / "i.png").string();
     Result<bool> noIds = writeFrame({other, "", ids}, frame);

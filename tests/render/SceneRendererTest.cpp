@@ -49,7 +49,7 @@ public:
     }
     void clear(TargetHandle, const Rect&, const glm::vec4&, float) override { calls.push_back("clear"); }
     void copy(TargetHandle, TargetHandle, const Rect&, bool, bool, bool) override { calls.push_back("copy"); }
-    void readBackInto(TargetHandle, Buffers& out, bool) override { out = Buffers{}; }
+    void readBackInto(TargetHandle, Buffers& out, Planes) override { out = Buffers{}; }
     void finish() override {}
     StateChanges stateChanges() const override { return {}; }
 
