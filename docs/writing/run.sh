@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The figures of docs/writing.md: `frugal write-bench` on the bunny, the engine and the dominoes at
-# 1920x1080 (the encoder table and a 30-frame sequence of the bunny, 3 rounds), and one frame in
-# one process, `frugal render` of each scene, ROUNDS times, against OLD_FRUGAL when given (a build
-# from before the frame writer; the runs alternate).
+# 1920x1080 (the encoder table and a 30-frame sequence of the bunny, 3 rounds), the read-back
+# experiment on the bunny (30 frames a variant, 9 rounds: readback.json), and one frame in one
+# process, `frugal render` of each scene, ROUNDS times, against OLD_FRUGAL when given (a build from
+# before the frame writer; the runs alternate).
 #
 #   docs/writing/run.sh FRUGAL OUT_DIR [OLD_FRUGAL] [ROUNDS]
 set -euo pipefail
@@ -13,7 +14,9 @@ engine=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngin
 mkdir -p "$out"
 "$frugal" write-bench --scene "$bunny" --scene "$engine" --scene builtin:dominoes --size 1920x1080 \
   --levels 1,2,3,4,5,6,9 --repeat 7 --json "$out/write-bench.json" --csv "$out/write-bench.csv" \
-  --plot "$out/write-bench.svg" -q
+  --plot "$out/write-bench.svg" --readback-frames 0 -q
+"$frugal" write-bench --scene "$bunny" --size 1920x1080 --levels 2 --repeat 1 --frames 0 \
+  --readback-frames 30 --rounds 9 --json "$out/readback.json" -q
 
 # One frame, one process: the whole run's wall time, median of the rounds.
 [ -n "$old" ] || exit 0

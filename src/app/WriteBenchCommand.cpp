@@ -33,7 +33,15 @@ turns for --rounds rounds, wall ms per frame: render (render and read back only:
 encoder after each frame), baseline (the old encoder after each frame: what `frugal render` did
 before) and one-frame async (a writer made, one frame written, finished: a one-frame run); once
 with the colour file and once with colour, depth and ids. Files go to a temporary folder, removed
-after. Timings are printed, never asserted.
+after.
+
+Part three (--readback-frames N, 0 skips it; GL backends and scenes the bench's minimal frame
+draws: no textures, no vertex colours): the first scene's frame drawn by the fewest GL calls and
+read back four ways, in turns for --rounds rounds, wall ms per frame: draw (nothing read: the
+floor), readpixels (glFinish, then glReadPixels: what frugal does), pbo (glReadPixels into a pixel
+buffer object, then copied out) and pbo, a frame late (frame N read into one of two buffers while
+frame N-1 is copied out of the other); once with the colour and once with colour and depth, each
+way's images checked equal to glReadPixels'. Timings are printed, never asserted.
 )";
 }
 
@@ -49,7 +57,7 @@ int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::
     FlagGroup shared = someFlags(renderFlags(options), {"--size", "--backend", "--threads", "--quiet"});
     command.flags = {shared, {"", {
         {"--scene", "SCENE", "a scene as the other commands take it (builtin:cubes, a .obj, .gltf or .glb file); may be "
-         "given several times (default builtin:default); part two renders the first",
+         "given several times (default builtin:default); parts two and three render the first",
          [&scenes](const std::string& text) -> std::string {
              if (text.empty()) return "is not a scene (builtin:NAME or a file)";
              scenes.push_back(text);
@@ -63,12 +71,16 @@ int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::
                      settings.sizeLimit, 0.01, 100.0),
         flag::whole("--frames", "N", "part two: frames per variant and round (default 30; 0 skips part two)",
                     settings.frames, 0, 100000),
-        flag::whole("--rounds", "N", "part two: rounds of the variants in turn (default 3)", settings.rounds, 1, 1000),
+        flag::whole("--rounds", "N", "parts two and three: rounds of the variants in turn (default 3)", settings.rounds,
+                    1, 1000),
+        flag::whole("--readback-frames", "N", "part three: frames per variant and round (default 30; 0 skips part "
+                    "three)", settings.readbackFrames, 0, 100000),
     }}};
     for (Flag& f : reportFlags(outputs,
                                "{\"encodes\":[{scene,plane,encoder,level,filter,median_ms,min_ms,bytes,size_over_baseline,"
                                "speedup_over_baseline,pixels_equal}],\"choices\":[...],\"sequence\":{\"results\":[{planes,"
-                               "variant,median_ms_per_frame,ms_per_frame,over_render,over_baseline}]}}",
+                               "variant,median_ms_per_frame,ms_per_frame,over_render,over_baseline}]},\"readback\":{\"results\":[{planes,"
+                               "variant,median_ms_per_frame,ms_per_frame,over_draw,over_readpixels,pixels_equal}]}}",
                                "the encoder table, one row per scene, image, level and filter",
                                "size against time per image kind, drawn by gnuplot from the CSV (--csv, or FILE.csv "
                                "beside the plot); the script is written as FILE.gp"))

@@ -34,6 +34,7 @@ class GlContext;
     X(PFNGLVIEWPORTPROC, Viewport)                               \
     X(PFNGLSCISSORPROC, Scissor)                                 \
     X(PFNGLFINISHPROC, Finish)                                   \
+    X(PFNGLFLUSHPROC, Flush)                                     \
     X(PFNGLCLEARPROC, Clear)                                     \
     X(PFNGLCLEARCOLORPROC, ClearColor)                           \
     X(PFNGLCLEARDEPTHPROC, ClearDepth)                           \

@@ -44,6 +44,12 @@ const char* contextKindName(ContextKind kind) {
     return "unknown";
 }
 
+std::optional<ContextKind> contextKindNamed(const std::string& name) {
+    for (ContextKind kind : {ContextKind::EglDevice, ContextKind::EglSurfaceless, ContextKind::OsMesa})
+        if (name == contextKindName(kind)) return kind;
+    return std::nullopt;
+}
+
 Result<std::unique_ptr<GlContext>> createContext(ContextKind kind) {
     switch (kind) {
         case ContextKind::EglDevice:

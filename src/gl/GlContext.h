@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@ enum class ContextKind {
 };
 
 const char* contextKindName(ContextKind kind);  // "egl-device", "egl-surfaceless", "osmesa"
+// The kind contextKindName names (a GL backend's name()), or nullopt ("software", anything else).
+std::optional<ContextKind> contextKindNamed(const std::string& name);
 
 class GlContext {
 public:

@@ -34,6 +34,7 @@ public:
         gl_.DeleteProgram(program_);
         gl_.DeleteFramebuffers(1, &fbo_);
         gl_.DeleteRenderbuffers(2, renderbuffers_);
+        gl_.DeleteBuffers(2, packBuffers_);  // names of 0 are ignored
     }
 
     // "" or why the frame cannot be drawn.
@@ -50,9 +51,15 @@ public:
             assert(ok && "MinimalFrame: could not make the context current");
         }
     }
-    Buffers readBack() override;
+    void readBackInto(Buffers& out, bool depth) override;
+    void startReadBack(int slot, bool depth) override;
+    void endReadBack(int slot, Buffers& out, bool depth) override;
 
 private:
+    std::size_t pixels() const { return std::size_t(width_) * std::size_t(height_); }
+    // Sizes `out` for the frame, the depth only when asked for.
+    void sizeBuffers(Buffers& out, bool depth) const;
+
     struct MeshObjects {
         GLuint vao = 0, vbo = 0, ibo = 0;
         GLsizei indices = 0;
@@ -67,6 +74,7 @@ private:
     DepthFormat format_ = DepthFormat::D24;
     GLuint program_ = 0, fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
+    GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
     GLint mvp_ = -1, normalMatrix_ = -1, factor_ = -1, toLight_ = -1, ambient_ = -1, diffuse_ = -1;
     std::vector<MeshObjects> meshes_;  // one per scene mesh
     int cullOn_ = -1;
@@ -197,22 +205,63 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     }
 }
 
-Buffers Minimal::readBack() {
-    activate();
-    Buffers out;
+void Minimal::sizeBuffers(Buffers& out, bool depth) const {
     out.width = width_;
     out.height = height_;
-    out.rgba.resize(out.pixelCount() * 4);
-    out.depth.resize(out.pixelCount());
+    out.rgba.resize(pixels() * 4);
+    out.depth.resize(depth ? pixels() : 0);
+    out.ids.clear();
     out.depthFormat = format_;
+}
+
+// The depth as glReadPixels gives it → the stored value (GlBackend.cpp): D32F's float bits as they
+// are, D24's 32-bit normalised value shifted to the stored 24 bits.
+void toStoredDepth(std::vector<std::uint32_t>& depth, DepthFormat format) {
+    if (format == DepthFormat::D24)
+        for (std::uint32_t& d : depth) d >>= 8;
+}
+
+void Minimal::readBackInto(Buffers& out, bool depth) {
+    activate();
+    sizeBuffers(out, depth);
     gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
-    if (format_ == DepthFormat::D32F) {
-        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data());
-    } else {
-        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, out.depth.data());
-        for (std::uint32_t& d : out.depth) d >>= 8;  // the stored 24-bit value (GlBackend.cpp)
+    if (depth) {
+        const GLenum type = format_ == DepthFormat::D32F ? GL_FLOAT : GL_UNSIGNED_INT;
+        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, type, out.depth.data());
+        toStoredDepth(out.depth, format_);
     }
-    return out;
+}
+
+void Minimal::startReadBack(int slot, bool depth) {
+    assert(slot == 0 || slot == 1);
+    activate();
+    if (packBuffers_[slot] == 0) {
+        gl_.GenBuffers(1, &packBuffers_[slot]);
+        gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, packBuffers_[slot]);
+        gl_.BufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(pixels() * 8), nullptr, GL_STREAM_READ);
+    }
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, packBuffers_[slot]);
+    // With a pack buffer bound, the last argument is an offset into it.
+    gl_.ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    if (depth) {
+        const GLenum type = format_ == DepthFormat::D32F ? GL_FLOAT : GL_UNSIGNED_INT;
+        gl_.ReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, type, reinterpret_cast<void*>(pixels() * 4));
+    }
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    gl_.Flush();  // the read starts now, not when the next frame flushes
+}
+
+void Minimal::endReadBack(int slot, Buffers& out, bool depth) {
+    assert((slot == 0 || slot == 1) && packBuffers_[slot] != 0);
+    activate();
+    sizeBuffers(out, depth);
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, packBuffers_[slot]);
+    gl_.GetBufferSubData(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(pixels() * 4), out.rgba.data());
+    if (depth) {
+        gl_.GetBufferSubData(GL_PIXEL_PACK_BUFFER, GLintptr(pixels() * 4), GLsizeiptr(pixels() * 4), out.depth.data());
+        toStoredDepth(out.depth, format_);
+    }
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
 }  // namespace

@@ -38,8 +38,22 @@ public:
     virtual void finish() = 0;
     // Makes the context current (before a timed frame, so the switch is not timed).
     virtual void activate() = 0;
-    // Colour and depth (ids empty), rows bottom-up as Backend::readBack gives them.
-    virtual Buffers readBack() = 0;
+    // Colour and, with `depth`, the depth (ids empty), rows bottom-up as Backend::readBack gives
+    // them: glReadPixels into memory, as the GL backend reads. `out`'s vectors are reused (resized,
+    // never reallocated when already of the size), as the backend reuses a frame's.
+    virtual void readBackInto(Buffers& out, bool depth) = 0;
+    Buffers readBack(bool depth = true) {
+        Buffers out;
+        readBackInto(out, depth);
+        return out;
+    }
+    // The same images through pixel buffer objects, in two steps (write-bench's read-back
+    // experiment): startReadBack queues glReadPixels of the colour (and the depth) into the buffer
+    // of `slot` (0 or 1) and returns without waiting for the frame; endReadBack copies the buffer
+    // out (glGetBufferSubData) into `out`, waiting for what it holds. Between the two, the next
+    // frame may be drawn: a slot's images are those of the frame drawn before its startReadBack.
+    virtual void startReadBack(int slot, bool depth) = 0;
+    virtual void endReadBack(int slot, Buffers& out, bool depth) = 0;
 };
 
 // "" when MinimalFrame can draw `scene`, else why not: "mesh 0 'x' has vertex colours" or

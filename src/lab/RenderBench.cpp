@@ -34,13 +34,6 @@ DepthFormat otherFormat(DepthFormat format) {
     return format == DepthFormat::D24 ? DepthFormat::D32F : DepthFormat::D24;
 }
 
-// The context kind of a GL backend, by its name() ("egl-surfaceless", ...).
-std::optional<ContextKind> contextKindNamed(const std::string& name) {
-    for (ContextKind kind : {ContextKind::EglDevice, ContextKind::EglSurfaceless, ContextKind::OsMesa})
-        if (name == contextKindName(kind)) return kind;
-    return std::nullopt;
-}
-
 // The floor of batching (issue 10): the frame's instances pre-transformed into one mesh per
 // material, drawn with one node and no per-instance state. Positions by the world matrix, normals by
 // its inverse transpose, in float as the backends would; so its pixels may differ from the frame's

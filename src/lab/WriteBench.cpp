@@ -22,7 +22,10 @@
 
 #include "base/Format.h"
 #include "base/Stats.h"
+#include "gl/GlContext.h"
 #include "io/ImageIO.h"
+#include "lab/MinimalFrame.h"
+#include "render/Frame.h"
 
 namespace frugal {
 
@@ -277,6 +280,81 @@ Result<bool> sequence(const std::string& name, const Scene& scene, const WriteBe
     return true;
 }
 
+// Part three: the minimal frame of `scene` (MinimalFrame: the fewest GL calls that draw it) read
+// back four ways, the variants taking turns for s.rounds rounds of s.readbackFrames frames.
+Result<bool> readBackRun(const std::string& name, const Scene& scene, const WriteBenchSettings& s, WriteBench& bench,
+                         const std::function<void(const std::string&)>& progress) {
+    const Settings& r = s.render;
+    std::optional<ContextKind> kind;
+    {
+        Result<Renderer> renderer = Renderer::create(scene, r);  // which context `frugal render` would use
+        if (!renderer) return renderer.failure();
+        kind = contextKindNamed(renderer->backendName());
+        if (!kind) {
+            bench.readbackSkipped = "the " + renderer->backendName() + " backend reads no GL framebuffer";
+            return true;
+        }
+    }
+    if (std::string unsupported = minimalFrameUnsupported(scene); !unsupported.empty()) {
+        bench.readbackSkipped = name + ": " + unsupported;
+        return true;
+    }
+    Result<std::unique_ptr<MinimalFrame>> made = createMinimalFrame(*kind, scene, r.width, r.height, r.depthFormat);
+    if (!made) return made.failure();
+    MinimalFrame& minimal = **made;
+    Result<FrameSetup> setup = setUpFrame(scene, Camera::automatic(), 0.0, r.width, r.height, false, r.depthFormat);
+    if (!setup) return Error{name + ": " + setup.error()};
+    const auto draw = [&] { minimal.render(setup->params, setup->world, r.background); };
+    const std::vector<std::string> variants = {"draw", "readpixels", "pbo", "pbo, a frame late"};
+    for (const bool depth : {false, true}) {
+        const char* planes = depth ? "color+depth" : "color";
+        // Each way's images against glReadPixels' (the same frame every time: a static camera).
+        draw();
+        minimal.finish();
+        const Buffers reference = minimal.readBack(depth);
+        std::map<std::string, std::vector<double>> perFrame;
+        std::map<std::string, bool> equal;
+        std::map<std::string, Buffers> images;
+        for (int round = 0; round < s.rounds; ++round)
+            for (const std::string& variant : variants) {
+                progress("write-bench: read-back of " + name + " " + planes + ", round " + std::to_string(round + 1) +
+                         " of " + std::to_string(s.rounds) + ": " + variant);
+                Buffers& last = images[variant];  // kept across rounds: its memory is used again
+                const auto start = Clock::now();
+                for (int i = 0; i < s.readbackFrames; ++i) {
+                    draw();
+                    if (variant == "draw") {
+                        minimal.finish();
+                    } else if (variant == "readpixels") {
+                        minimal.finish();
+                        minimal.readBackInto(last, depth);
+                    } else if (variant == "pbo") {
+                        minimal.startReadBack(0, depth);
+                        minimal.endReadBack(0, last, depth);
+                    } else {  // frame i's read queued, frame i - 1's copied out while frame i is read
+                        minimal.startReadBack(i % 2, depth);
+                        if (i > 0) minimal.endReadBack((i - 1) % 2, last, depth);
+                    }
+                }
+                if (variant == "pbo, a frame late") minimal.endReadBack((s.readbackFrames - 1) % 2, last, depth);
+                perFrame[variant].push_back(msSince(start) / s.readbackFrames);
+                if (variant != "draw")
+                    equal[variant] = last.rgba == reference.rgba && last.depth == reference.depth &&
+                                     (round == 0 || equal[variant]);
+            }
+        const double floor = median(perFrame["draw"]), readPixels = median(perFrame["readpixels"]);
+        for (const std::string& variant : variants) {
+            ReadBackRow row{planes, variant, perFrame[variant], median(perFrame[variant]), 0.0, 0.0, std::nullopt};
+            row.overDraw = row.medianMs / floor;
+            row.overReadPixels = row.medianMs / readPixels;
+            if (variant != "draw") row.pixelsEqual = equal[variant];
+            bench.readback.push_back(std::move(row));
+        }
+    }
+    bench.readbackScene = name;
+    return true;
+}
+
 }  // namespace
 
 Result<WriteBench> measureWriteBench(const std::vector<std::pair<std::string, Scene>>& scenes,
@@ -291,6 +369,10 @@ Result<WriteBench> measureWriteBench(const std::vector<std::pair<std::string, Sc
         if (Result<bool> run = sequence(scenes.front().first, scenes.front().second, settings, bench, progress); !run)
             return run.failure();
     }
+    if (settings.readbackFrames > 0 && !scenes.empty())
+        if (Result<bool> run = readBackRun(scenes.front().first, scenes.front().second, settings, bench, progress);
+            !run)
+            return run.failure();
     return bench;
 }
 
@@ -350,6 +432,28 @@ std::string writeBenchJson(const WriteBench& bench) {
         }
         seq["results"] = seqRows;
         j["sequence"] = seq;
+    }
+    if (!bench.readback.empty() || !bench.readbackSkipped.empty()) {
+        nlohmann::ordered_json part;
+        if (!bench.readbackSkipped.empty()) part["skipped"] = bench.readbackSkipped;
+        if (!bench.readback.empty()) {
+            part["scene"] = bench.readbackScene;
+            part["frames"] = s.readbackFrames;
+            part["rounds"] = s.rounds;
+            nlohmann::ordered_json readRows = nlohmann::ordered_json::array();
+            for (const ReadBackRow& r : bench.readback) {
+                nlohmann::ordered_json row = {{"planes", r.planes},
+                                              {"variant", r.variant},
+                                              {"median_ms_per_frame", r.medianMs},
+                                              {"ms_per_frame", r.msPerFrame},
+                                              {"over_draw", r.overDraw},
+                                              {"over_readpixels", r.overReadPixels}};
+                if (r.pixelsEqual) row["pixels_equal"] = *r.pixelsEqual;
+                readRows.push_back(row);
+            }
+            part["results"] = readRows;
+        }
+        j["readback"] = part;
     }
     return j.dump(2) + "\n";
 }
@@ -412,6 +516,15 @@ std::string writeBenchText(const WriteBench& bench) {
         for (const SequenceRow& r : bench.sequence)
             out << "  " << r.planes << " " << r.variant << ": " << fmt(r.medianMs) << " ms (" << fmt(r.overRender)
                 << "x render, " << fmt(r.overBaseline) << "x baseline; CPU " << fmt(r.cpuMs) << " ms)\n";
+    }
+    if (!bench.readbackSkipped.empty()) out << "Read-back: skipped: " << bench.readbackSkipped << "\n";
+    if (!bench.readback.empty()) {
+        out << "Read-back of the minimal frame (" << bench.readbackScene << "), wall ms per frame, median of "
+            << bench.settings.rounds << " rounds of " << bench.settings.readbackFrames << " frames:\n";
+        for (const ReadBackRow& r : bench.readback)
+            out << "  " << r.planes << " " << r.variant << ": " << fmt(r.medianMs) << " ms (" << fmt(r.overDraw)
+                << "x draw, " << fmt(r.overReadPixels) << "x readpixels"
+                << (r.pixelsEqual && !*r.pixelsEqual ? "; IMAGES DIFFER" : "") << ")\n";
     }
     return out.str();
 }

@@ -18,9 +18,20 @@
 //   baseline  the baseline encoder after each frame: what `frugal render` did before
 // once with the colour file alone and once with colour, depth and ids; and one frame at a time
 // ("one frame": a writer made, one frame written, finished), async against baseline.
+//
+// Part three, the read-back (GL backends; a scene the minimal frame draws, lab/MinimalFrame.h):
+// the first scene's frame drawn by the fewest GL calls, `readbackFrames` frames per variant, in
+// turns for `rounds` rounds, with the colour alone and with colour and depth:
+//   draw        drawn and finished, nothing read: the floor
+//   readpixels  glFinish, then glReadPixels into memory: what the GL backend does
+//   pbo         glReadPixels into a pixel buffer object, then copied out of it
+//   pbo, a frame late  frame N read into one of two buffers while frame N-1 is copied out of the
+//               other: what a renderer handing frames over one frame late would do
+// Each variant's last images are checked equal to glReadPixels'.
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,7 +48,8 @@ struct WriteBenchSettings {
     int repeat = 5;                             // encodings per row (the median is reported)
     double sizeLimit = 1.1;                     // the choice's largest file ÷ the baseline's
     int frames = 30;                            // part two: frames per variant and round; 0 skips it
-    int rounds = 3;
+    int rounds = 3;                             // parts two and three
+    int readbackFrames = 30;                    // part three: frames per variant and round; 0 skips it
     std::string dir;  // where part two writes its files, removed after; "": a new folder in the temporary one
 };
 
@@ -71,6 +83,16 @@ struct SequenceRow {
     double renderMs = 0.0, readbackMs = 0.0;  // the frames' own medians (render row)
 };
 
+struct ReadBackRow {
+    std::string planes;              // "color" or "color+depth"
+    std::string variant;             // "draw", "readpixels", "pbo", "pbo, a frame late"
+    std::vector<double> msPerFrame;  // one per round
+    double medianMs = 0.0;
+    double overDraw = 0.0;              // medianMs ÷ the draw row's of the same planes
+    double overReadPixels = 0.0;        // medianMs ÷ the readpixels row's
+    std::optional<bool> pixelsEqual;    // the last frame's images equal glReadPixels' (not for draw)
+};
+
 struct WriteBench {
     WriteBenchSettings settings;
     std::vector<std::string> scenes;
@@ -78,6 +100,8 @@ struct WriteBench {
     std::vector<EncodeChoice> choices;
     std::string sequenceScene;
     std::vector<SequenceRow> sequence;
+    std::string readbackScene, readbackSkipped;  // skipped: why part three did not run
+    std::vector<ReadBackRow> readback;
 };
 
 // Scenes by name, loaded. `progress` gets a line per scene and variant. Errors: the renderer's,

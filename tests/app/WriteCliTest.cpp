@@ -110,6 +110,34 @@ TEST(WriteCliTest, WriteBenchMeasuresEveryLevelAndTheSequence) {
         EXPECT_GT(row["cpu_ms_per_frame"].get<double>(), 0.0);
     }
     EXPECT_NE(run.err.find("the fastest level and filter within 1.1x"), std::string::npos) << run.err;
+    EXPECT_EQ(j["readback"]["skipped"], "the software backend reads no GL framebuffer");
+}
+
+TEST(WriteCliTest, WriteBenchReadsBackFourWaysOnGl) {
+    const fs::path dir = test::freshDir("WriteBenchReadBack");
+    const CliRun run = runFrugal(dir, {"write-bench", "--scene", "builtin:cubes", "--size", "64x48", "--levels", "2",
+                                       "--repeat", "1", "--frames", "0", "--readback-frames", "3", "--rounds", "2",
+                                       "--json", "w.json"});
+    if (run.status == 3) GTEST_SKIP() << run.err;  // no GL here
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json j = test::readJson(dir / "w.json");
+    EXPECT_FALSE(j.contains("sequence")) << "--frames 0 skips part two";
+    ASSERT_EQ(j["readback"]["results"].size(), 2u * 4u) << j["readback"].dump();
+    for (const nlohmann::json& row : j["readback"]["results"]) {
+        SCOPED_TRACE(row.dump());
+        EXPECT_EQ(row["ms_per_frame"].size(), 2u);
+        EXPECT_GT(row["median_ms_per_frame"].get<double>(), 0.0);
+        if (row["variant"] == "draw")
+            EXPECT_FALSE(row.contains("pixels_equal"));
+        else
+            EXPECT_TRUE(row["pixels_equal"].get<bool>());
+    }
+    // A scene the minimal frame does not draw skips part three with the reason.
+    const CliRun textured = runFrugal(dir, {"write-bench", "--size", "64x48", "--levels", "2", "--repeat", "1",
+                                            "--frames", "0", "--json", "t.json"});
+    ASSERT_EQ(textured.status, 0) << textured.err;
+    const std::string skipped = test::readJson(dir / "t.json")["readback"]["skipped"];
+    EXPECT_EQ(skipped.rfind("builtin:default: material ", 0), 0u) << skipped;
 }
 
 }  // namespace

@@ -116,6 +116,48 @@ TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
     EXPECT_EQ(minimalFrameUnsupported(*cubes), "");
 }
 
+// write-bench's read-back experiment: through pixel buffer objects, in one step or a frame late,
+// the images are glReadPixels' own, in both depth formats.
+TEST_P(MinimalFrameGLTest, PixelBuffersReadWhatReadPixelsReads) {
+    Result<Scene> scene = loadScene("builtin:cubes");
+    ASSERT_TRUE(scene) << scene.error();
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        SCOPED_TRACE(depthFormatName(format));
+        Result<std::unique_ptr<MinimalFrame>> made = createMinimalFrame(GetParam(), *scene, 64, 48, format);
+        if (!made && format == DepthFormat::D32F) continue;  // no glClipControl
+        ASSERT_TRUE(made) << made.error();
+        MinimalFrame& minimal = **made;
+        const auto draw = [&](double time) {
+            Result<FrameSetup> setup = setUpFrame(*scene, Camera{}, time, 64, 48, false, format);
+            ASSERT_TRUE(setup) << setup.error();
+            minimal.render(setup->params, setup->world, kBackground);
+        };
+        draw(0.0);
+        const Buffers first = minimal.readBack();
+        draw(2.5);
+        const Buffers second = minimal.readBack();
+        ASSERT_NE(first.rgba, second.rgba) << "two different frames";
+        EXPECT_TRUE(minimal.readBack(false).depth.empty());
+
+        minimal.startReadBack(0, true);
+        Buffers read;
+        minimal.endReadBack(0, read, true);
+        EXPECT_EQ(read.rgba, second.rgba);
+        EXPECT_EQ(read.depth, second.depth);
+        // A frame late: each slot keeps the frame drawn before its read, whatever is drawn after.
+        draw(0.0);
+        minimal.startReadBack(1, true);
+        draw(2.5);
+        minimal.startReadBack(0, false);
+        minimal.endReadBack(1, read, true);
+        EXPECT_EQ(read.rgba, first.rgba);
+        EXPECT_EQ(read.depth, first.depth);
+        minimal.endReadBack(0, read, false);
+        EXPECT_EQ(read.rgba, second.rgba);
+        EXPECT_TRUE(read.depth.empty());
+    }
+}
+
 std::string kindName(const ::testing::TestParamInfo<ContextKind>& info) {
     std::string name = contextKindName(info.param);
     std::replace(name.begin(), name.end(), '-', '_');
