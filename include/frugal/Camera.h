@@ -87,6 +87,7 @@ struct View {
     float givenNear = 0.0f, givenFar = 0.0f;  // the camera's or the user's planes, before the fit
     DepthRange depthRange = DepthRange::Fit;
     DepthFormat depthFormat = DepthFormat::D24;
+    int width = 0, height = 0;  // the target's pixels (0: not known; culling then decides no facing)
     std::string source;  // "scene camera 0 'name'", "eye/target", "auto (fit bounds)"
 };
 

@@ -18,6 +18,11 @@ constexpr int kBinSamples = kSampleSide * kSampleSide;
 // Relative margins: a test drops something only when it is outside by more than float rounding.
 constexpr double kPlaneMargin = 1e-5;
 constexpr float kConeMargin = 1e-4f;
+// How far GL may move a vertex's window position, per axis, in pixels: llvmpipe snaps it to the
+// nearest 1/256 pixel (half a step), after a float transform whose rounding stays far below 1/4096
+// pixel at the sizes drawn. Facing is decided by the sign of the snapped triangle's area, so a
+// triangle seen nearly edge-on may come out front-facing though it faces away (InstanceView).
+constexpr double kSnap = 1.0 / 512.0 + 1.0 / 4096.0;
 
 struct Plane {
     glm::dvec4 p{0.0};  // a·x + b·y + c·z + d ≥ 0 inside
@@ -70,6 +75,26 @@ Side boxSide(const Planes& planes, const glm::vec3& lo, const glm::vec3& hi) {
     return inside ? Side::Inside : Side::Straddles;
 }
 
+// The largest singular value of `m` (its largest stretch of a vector), from above: the largest
+// eigenvalue of mᵀm in closed form (Smith's trigonometric solution of the symmetric 3×3 case), with
+// a relative margin for its rounding, and never more than the Frobenius norm, which also bounds it.
+double largestStretch(const glm::dmat3& m) {
+    const glm::dmat3 a = glm::transpose(m) * m;
+    const double frobenius = std::sqrt(a[0][0] + a[1][1] + a[2][2]);
+    const double p1 = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const double q = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
+    const double p2 = (a[0][0] - q) * (a[0][0] - q) + (a[1][1] - q) * (a[1][1] - q) + (a[2][2] - q) * (a[2][2] - q) + 2.0 * p1;
+    double largest = q;
+    if (p2 > 0.0) {
+        const double p = std::sqrt(p2 / 6.0);
+        const glm::dmat3 b = (a - q * glm::dmat3(1.0)) / p;
+        const double phi = std::acos(std::clamp(glm::determinant(b) / 2.0, -1.0, 1.0)) / 3.0;
+        largest = q + 2.0 * p * std::cos(phi);
+    }
+    const double stretch = std::sqrt(std::max(largest, 0.0)) * (1.0 + 1e-6) + 1e-12 * frobenius;
+    return std::isfinite(stretch) ? std::min(stretch, frobenius * (1.0 + 1e-12)) : frobenius;
+}
+
 // What a frame looks like from one instance's object space.
 struct InstanceView {
     glm::dmat4 mvp{1.0};
@@ -84,6 +109,54 @@ struct InstanceView {
     glm::vec4 eyeFloat{0.0f};
     float facingSign = 1.0f;    // −1 when mirrored
     float marginBase = 0.0f, marginPerD = 0.0f;
+    // GL decides facing from the snapped window positions (kSnap), and that can turn a triangle
+    // seen nearly edge-on: the margin above covers the float test, not this. Twice the area is
+    // e1 × e2 for the two shorter edges; with every vertex moved by at most s per axis, it changes
+    // by at most 2s·(|Δx| + |Δy| of e1 and of e2) + 8s².
+    // In exact terms twice the area is fx·fy·|det L|·2A·|f| ÷ (Z0·Z1·Z2) (perspective; fx, fy pixels
+    // per unit at depth 1, L the linear part of view·model, A the triangle's area and f the facing
+    // value above, both in object units, Z the vertices' depths), and fx·fy·|det L|·2A·|f|·|u| for
+    // orthographic views (u = L⁻¹·ẑ). An edge of an unclipped triangle spans at most
+    // fmax·g·‖L‖·length ÷ Zmin pixels in |Δx| + |Δy| (a vertex inside the frustum has |x/z| ≤
+    // 1/|P00| and |y/z| ≤ 1/|P11|, so |Δx| + |Δy| ≤ fmax·(|ΔX| + |ΔY| + (1/|P00| + 1/|P11|)·|ΔZ|) ÷
+    // Zmin, and g = √(2 + (1/|P00| + 1/|P11|)²) by Cauchy–Schwarz; orthographic: g = √2 and no Z;
+    // ‖L‖ its largest stretch). So a triangle faces away after snapping too when
+    // f < −(K1·(|e1| + |e2|)/(2A) + K2/(2A)), with, for a depth range [Zmin, Zmax],
+    //   K1 = 2s·fmax·g·‖L‖·Zmax³ ÷ (Zmin·fx·fy·|det L|),   K2 = 8s²·Zmax³ ÷ (fx·fy·|det L|)
+    // (orthographic: Zmax³/Zmin and Zmax³ become 1/|u|). Per triangle, (|e1| + |e2|)/(2A) and 1/(2A)
+    // are MeshMap::facingSlack; facingK gives K1, K2 for a cluster's sphere. A triangle that GL clips
+    // is fanned into new triangles that may be thinner than it: those are never dropped for facing.
+    glm::dmat4 viewModel{1.0};
+    double fx = 0.0, fy = 0.0, fmax = 0.0, g = 0.0, detL = 0.0, normL = 0.0, zRow = 0.0, uLength = 0.0;
+    bool perspective = true, sizeKnown = false;
+
+    // K1, K2 for the triangles of a sphere (object space); +inf when nothing can be said (the sphere
+    // reaches the eye's plane, the size of the target is not known, a degenerate transform).
+    glm::vec2 facingK(const glm::dvec3& center, double radius) const {
+        constexpr float kNone = INFINITY;
+        const double area = fx * fy * detL;
+        if (!sizeKnown || !(area > 0.0) || !std::isfinite(area)) return glm::vec2(kNone);
+        double depthFactor = 1.0, perimeterFactor = 1.0;  // Zmax³ and Zmax³/Zmin; 1/|u| twice, orthographic
+        if (perspective) {
+            const double zc = -(viewModel * glm::dvec4(center, 1.0)).z;
+            const double reach = radius * zRow * (1.0 + 1e-6);
+            const double zmin = zc - reach, zmax = zc + reach;
+            if (!(zmin > 0.0) || !std::isfinite(zmax)) return glm::vec2(kNone);
+            depthFactor = zmax * zmax * zmax;
+            perimeterFactor = depthFactor / zmin;
+        } else {
+            if (!(uLength > 0.0)) return glm::vec2(kNone);
+            depthFactor = perimeterFactor = 1.0 / uLength;
+        }
+        const double k1 = 2.0 * kSnap * fmax * g * normL * perimeterFactor / area;
+        const double k2 = 8.0 * kSnap * kSnap * depthFactor / area;
+        const auto up = [](double x) {
+            if (!(x >= 0.0)) return INFINITY;  // not a number: no bound
+            const float f = float(x);
+            return double(f) >= x ? f : std::nextafter(f, INFINITY);
+        };
+        return {up(k1), up(k2)};
+    }
 
     InstanceView(const glm::mat4& model, const View& view) {
         // The frustum of the given planes (render/Camera.h): the fit moves them only where no
@@ -94,7 +167,23 @@ struct InstanceView {
         planes = clipPlanes(mvp, view.depthFormat);
         const glm::dmat4 toObject = glm::inverse(v * m);
         eye = toObject * (view.perspective ? glm::dvec4(0, 0, 0, 1) : glm::dvec4(0, 0, 1, 0));
-        if (!view.perspective) eye = glm::dvec4(glm::normalize(glm::dvec3(eye)), 0.0);
+        if (!view.perspective) {
+            uLength = glm::length(glm::dvec3(eye));
+            eye = glm::dvec4(glm::normalize(glm::dvec3(eye)), 0.0);
+        }
+        viewModel = v * m;
+        const glm::dmat3 linear(viewModel);
+        perspective = view.perspective;
+        sizeKnown = view.width > 0 && view.height > 0;
+        const glm::dmat4 drawn(view.projection);
+        fx = std::abs(drawn[0][0]) * 0.5 * double(view.width);
+        fy = std::abs(drawn[1][1]) * 0.5 * double(view.height);
+        fmax = std::max(fx, fy);
+        const double spread = perspective ? 1.0 / std::abs(drawn[0][0]) + 1.0 / std::abs(drawn[1][1]) : 0.0;
+        g = std::sqrt(2.0 + spread * spread);
+        detL = std::abs(glm::determinant(linear));
+        normL = largestStretch(linear);
+        zRow = glm::length(glm::dvec3(linear[0][2], linear[1][2], linear[2][2]));
         const double det = glm::determinant(glm::dmat3(v * m));
         mirrored = (det < 0.0) != (p[0][0] * p[1][1] < 0.0);
         eyeScale = glm::length(glm::dvec3(eye));
@@ -115,6 +204,28 @@ struct InstanceView {
         const bool flip = towardEye != mirrored;
         const glm::dvec3 axis = glm::dvec3(c.coneAxis) * (flip ? -1.0 : 1.0);
         const double cutoff = std::min(double(c.coneCutoff) + kConeMargin, 1.0);
+        if (!coneTest(c, axis, cutoff)) return false;
+        if (towardEye) return true;
+        // Faces away after snapping too: every triangle at least the facing margin away from
+        // edge-on (facingK), i.e. the cone widened by α, sin α = the cluster's largest margin ÷ its
+        // nearest distance (the same value f, in cosines for orthographic views). Any normal within
+        // α of one of the cone's still faces away, so each triangle's f ≤ −distance·sin α. The
+        // widened cutoff is sin(h + α) for cutoff = sin h, while h + α < 90°, i.e. sin α < cos h.
+        const glm::vec2 k = facingK(glm::dvec3(c.center), double(c.radius));
+        const double slack = double(k.x) * double(c.slack.x) + double(k.y) * double(c.slack.y);
+        const double distance =
+            eye.w != 0.0 ? glm::length(glm::dvec3(c.center) - glm::dvec3(eye)) - double(c.radius) : 1.0;
+        if (!(distance > 0.0) || !(slack < distance)) return false;
+        const double sinA = slack / distance, sinH = std::clamp(cutoff, -1.0, 1.0);
+        const double cosH = std::sqrt(1.0 - sinH * sinH);
+        if (!(sinA < cosH)) return false;
+        // Rounded up a little: the widened cone may only be wider.
+        const double widened = std::min(sinH * std::sqrt(1.0 - sinA * sinA) + cosH * sinA + 1e-12, 1.0);
+        return widened < 1.0 && coneTest(c, axis, widened);
+    }
+
+    // meshoptimizer's test of a cone (axis, cutoff) against the eye, with the margins of its rounding.
+    bool coneTest(const Cluster& c, const glm::dvec3& axis, double cutoff) const {
         if (eye.w != 0.0) {
             const glm::dvec3 toCenter = glm::dvec3(c.center) - glm::dvec3(eye);
             const double distance = glm::length(toCenter);
@@ -139,8 +250,12 @@ struct RangeList {
 };
 
 // Per vertex of one instance, which clip planes it is outside of (bit k: plane k of -w ≤ x, y, z ≤ w),
-// by more than rounding; computed on first use. A triangle whose three vertices share a bit lies
-// wholly outside that plane and cannot own a pixel.
+// by more than rounding, and kMayClip when it is not inside all of them by more than rounding;
+// computed on first use. A triangle whose three vertices share a bit of the six lies wholly outside
+// that plane and cannot own a pixel; one without kMayClip on any vertex is drawn unclipped.
+constexpr std::uint8_t kMayClip = 1u << 6;
+constexpr std::uint8_t kOutside = 0x3f;
+
 class Outcodes {
 public:
     Outcodes(const Mesh& mesh, const glm::dmat4& mvp) : Outcodes(mesh, mvp, own_) {}
@@ -168,10 +283,12 @@ private:
         const glm::dvec4 c = mvp_ * glm::dvec4(glm::dvec3(p), 1.0);
         if (!std::isfinite(c.x + c.y + c.z + c.w)) return 0;  // not a number: outside of nothing, kept
         auto out = [](double x, double w) { return x + w < -kPlaneMargin * (std::abs(x) + std::abs(w)); };
+        auto near = [](double x, double w) { return x + w <= kPlaneMargin * (std::abs(x) + std::abs(w)); };
         std::uint8_t code = 0;
         for (int axis = 0; axis < 3; ++axis) {
             if (out(c[axis], c.w)) code |= std::uint8_t(1u << (2 * axis));
             if (out(-c[axis], c.w)) code |= std::uint8_t(2u << (2 * axis));
+            if (near(c[axis], c.w) || near(-c[axis], c.w)) code |= kMayClip;
         }
         return code;
     }
@@ -189,8 +306,10 @@ bool isSingleSided(const Scene& scene, const Mesh& mesh) {
 // The exact per-triangle tests over [first, first + count): frustum (unless `inside`) and facing
 // (when `singleSided`).
 void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv, Outcodes& vertices,
-                   std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, RangeList& out) {
-    // Facing first, a batch of triangles at a time in one loop that vectorizes (InstanceView's test).
+                   std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, glm::vec2 k,
+                   RangeList& out) {
+    // Facing first, a batch of triangles at a time in one loop that vectorizes (InstanceView's test,
+    // with the snapping margin K1·slack.x + K2·slack.y: `k` is facingK of what is tested).
     constexpr std::uint32_t kBatch = 128;
     std::uint8_t facing[kBatch];
     const glm::vec4 e = iv.eyeFloat;
@@ -199,16 +318,24 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
     for (std::uint32_t batch = first; batch < first + count; batch += kBatch) {
         const std::uint32_t n = std::min(kBatch, first + count - batch);
         const glm::vec4* planes = map.planes.data() + batch;
+        const glm::vec2* slack = map.facingSlack.data() + batch;
         for (std::uint32_t i = 0; i < n; ++i) {
             const glm::vec4& p = planes[i];
             const float f = p.x * e.x + p.y * e.y + p.z * e.z - p.w * e.w;
-            facing[i] = !singleSided || sign * f > -(m0 + m1 * std::abs(p.w));
+            // Written so that a margin that is not a number keeps the triangle.
+            facing[i] = !singleSided || !(sign * f <= -(m0 + m1 * std::abs(p.w) + k.x * slack[i].x + k.y * slack[i].y));
         }
         for (std::uint32_t t = batch; t < batch + n; ++t) {
             bool keep = facing[t - batch] != 0;
-            if (keep && !inside) {
+            if (!inside && (keep || singleSided)) {
                 const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
-                keep = (vertices[tri[0]] & vertices[tri[1]] & vertices[tri[2]]) == 0;
+                const std::uint8_t a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
+                // Outside a plane: dropped. Clipped by GL: its new triangles may turn, so facing
+                // does not drop it.
+                if ((a & b & c & kOutside) != 0)
+                    keep = false;
+                else if (((a | b | c) & kMayClip) != 0)
+                    keep = true;
             }
             if (keep) {
                 if (runLength == 0) runStart = t;
@@ -231,12 +358,15 @@ void conservativeCluster(const Mesh& mesh, const MeshMap& map, const Cluster& c,
                          Outcodes& vertices, bool singleSided, Side whole, RangeList& out) {
     const Side side = whole == Side::Straddles ? boxSide(iv.planes, c.boxMin, c.boxMax) : whole;
     if (side == Side::Outside) return;
-    if (singleSided && !c.hasDegenerate && iv.coneAway(c, false)) return;
+    // A cone drops only a cluster that GL draws unclipped (its triangles' margins hold; a clipped one
+    // goes to the triangle tests).
+    if (singleSided && side == Side::Inside && !c.hasDegenerate && iv.coneAway(c, false)) return;
     const bool allFacing = !singleSided || iv.coneAway(c, true);
     if (side == Side::Inside && allFacing)
         out.add(c.first, c.count);
     else
-        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided && !allFacing, out);
+        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided && !allFacing,
+                      singleSided && !allFacing ? iv.facingK(glm::dvec3(c.center), double(c.radius)) : glm::vec2(0.0f), out);
 }
 
 // Adds every non-empty bin of `map` one of whose sample directions (`samples`, kBinSamples a bin)
@@ -433,16 +563,25 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
 
             case Cull::Backface: {
                 const InstanceView iv(model, view);
+                // Every triangle tested, cluster by cluster: the facing margin of a cluster's depth
+                // range (the whole mesh's would be wider), and no clip test for a cluster whose box
+                // is inside (GL clips none of it).
                 Outcodes vertices(mesh, iv.mvp);
-                testTriangles(mesh, map, iv, vertices, 0, triangles, false, singleSided, out);
+                for (const Cluster& c : map.clusters) {
+                    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
+                    testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided,
+                                  singleSided ? iv.facingK(glm::dvec3(c.center), double(c.radius)) : glm::vec2(0.0f),
+                                  out);
+                }
                 break;
             }
 
             case Cull::Cones: {
                 const InstanceView iv(model, view);
                 for (const Cluster& c : map.clusters) {
-                    if (boxSide(iv.planes, c.boxMin, c.boxMax) == Side::Outside) continue;
-                    if (singleSided && iv.coneAway(c, false)) continue;
+                    const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
+                    if (side == Side::Outside) continue;
+                    if (singleSided && side == Side::Inside && iv.coneAway(c, false)) continue;
                     out.add(c.first, c.count);
                 }
                 break;

@@ -21,7 +21,8 @@ double msSince(Clock::time_point start) {
 // Splits one bin's triangles (consecutive in `indices`, vertex-cache order) into meshoptimizer
 // meshlets by scanning (meshopt_buildMeshletsScan keeps the order: each meshlet is a run of the
 // input), and appends a Cluster with meshoptimizer's bounds for each run.
-void clusterBin(const Mesh& mesh, const std::vector<glm::vec4>& planes, const std::uint32_t* indices,
+void clusterBin(const Mesh& mesh, const std::vector<glm::vec4>& planes, const std::vector<glm::vec2>& slack,
+                const std::uint32_t* indices,
                 std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& localIndex, std::vector<std::uint32_t>& scratch,
                 std::vector<Cluster>& clusters) {
     // Bin-local vertex numbering keeps meshoptimizer's per-vertex tables as small as the bin.
@@ -60,8 +61,10 @@ void clusterBin(const Mesh& mesh, const std::vector<glm::vec4>& planes, const st
             cluster.boxMin = glm::min(cluster.boxMin, p);
             cluster.boxMax = glm::max(cluster.boxMax, p);
         }
-        for (std::uint32_t t = cluster.first; t < cluster.first + cluster.count; ++t)
+        for (std::uint32_t t = cluster.first; t < cluster.first + cluster.count; ++t) {
             cluster.hasDegenerate = cluster.hasDegenerate || planes[t] == glm::vec4(0.0f);
+            cluster.slack = glm::max(cluster.slack, slack[t]);
+        }
         if (allFinite) {
             const meshopt_Bounds bounds = meshopt_computeClusterBounds(
                 tri, std::size_t(cluster.count) * 3, &mesh.positions[0].x, mesh.positions.size(), sizeof(glm::vec3));
@@ -177,6 +180,7 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
                   [](const MapEntry& x, const MapEntry& y) { return x.r > y.r || (x.r == y.r && x.triangle < y.triangle); });
     }
     map.planes.resize(triangles);
+    map.facingSlack.assign(triangles, glm::vec2(INFINITY));
     for (std::size_t t = 0; t < triangles; ++t) {
         const glm::vec3 a = mesh.positions[reordered[3 * t]], b = mesh.positions[reordered[3 * t + 1]],
                         c = mesh.positions[reordered[3 * t + 2]];
@@ -186,6 +190,16 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
         if (!(length > 0.0) || !std::isfinite(length)) continue;
         const glm::dvec3 unit = n / length;
         map.planes[t] = glm::vec4(glm::vec3(unit), float(glm::dot(unit, glm::dvec3(a))));
+        // The two shorter edges: twice the area is their cross product (from the vertex between them).
+        const double ab = glm::length(glm::dvec3(b) - glm::dvec3(a)), bc = glm::length(glm::dvec3(c) - glm::dvec3(b)),
+                     ca = glm::length(glm::dvec3(a) - glm::dvec3(c));
+        const double shorter = ab + bc + ca - std::max({ab, bc, ca});
+        // Rounded up to float (a margin may only grow): an area too small for a float stays +inf.
+        const auto up = [](double x) {
+            const float f = float(x);
+            return double(f) >= x ? f : std::nextafter(f, INFINITY);
+        };
+        map.facingSlack[t] = glm::vec2(up(shorter / length), up(1.0 / length));
     }
     map.stats.mapMs = msSince(start);
 
@@ -195,7 +209,7 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
     for (Bin& bin : map.bins) {
         bin.firstCluster = std::uint32_t(map.clusters.size());
         if (bin.count > 0)
-            clusterBin(mesh, map.planes, reordered.data() + 3 * std::size_t(bin.first), bin.first, bin.count,
+            clusterBin(mesh, map.planes, map.facingSlack, reordered.data() + 3 * std::size_t(bin.first), bin.first, bin.count,
                        localIndex, scratch, map.clusters);
         bin.clusterCount = std::uint32_t(map.clusters.size()) - bin.firstCluster;
     }
@@ -203,7 +217,7 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
 
     map.stats.mapBytes = map.entries.size() * sizeof(MapEntry);
     map.stats.accessBytes = map.bins.size() * sizeof(Bin) + map.clusters.size() * sizeof(Cluster) +
-                            map.planes.size() * sizeof(glm::vec4);
+                            map.planes.size() * sizeof(glm::vec4) + map.facingSlack.size() * sizeof(glm::vec2);
     map.stats.hullBytes = map.hull.vertices.size() * sizeof(glm::vec3);
     return map;
 }

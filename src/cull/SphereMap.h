@@ -55,6 +55,9 @@ struct Cluster {
     // triangles out of the cone, but after GL's float transform and snapping one may still own a
     // pixel: conservative culling never drops this cluster on its cone alone.
     bool hasDegenerate = false;
+    // The largest facingSlack (MeshMap) of its triangles: how near edge-on a triangle of it may be
+    // seen and still be drawn front-facing after GL's rounding and snapping (Culling.cpp).
+    glm::vec2 slack{0.0f};
 };
 
 struct Bin {
@@ -86,6 +89,10 @@ struct MeshMap {
     // Per triangle of the reordered buffer: unit face normal n and n · (first vertex), for exact
     // facing tests; a degenerate (zero-area) triangle has n = 0.
     std::vector<glm::vec4> planes;
+    // Per triangle of the reordered buffer, in object units: (its two shorter edges' lengths ÷ twice
+    // the area, 1 ÷ twice the area); +inf for zero area. The facing margin of a triangle is K1·x + K2·y (Culling.cpp),
+    // K1 and K2 from the view.
+    std::vector<glm::vec2> facingSlack;
     Hull hull;                       // of the used vertices
     PrepStats stats;
 

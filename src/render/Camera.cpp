@@ -119,6 +119,8 @@ Result<View> resolveCamera(const Scene& scene, const std::vector<glm::mat4>& wor
     const float viewportAspect = float(width) / float(std::max(height, 1));
     View v;
     v.aspect = viewportAspect;
+    v.width = width;
+    v.height = height;
 
     std::optional<int> cameraIndex = spec.sceneCamera;
     if (!cameraIndex && !spec.eye && !scene.cameras.empty()) cameraIndex = 0;

@@ -311,12 +311,30 @@ MeshMap buildAndCheck(const Mesh& given, const MapParams& params, Mesh* out = nu
         EXPECT_NEAR(glm::length(n), 1.0, 1e-5) << "triangle " << t;
         EXPECT_GT(glm::dot(n, cross / area2), 1.0 - 1e-4) << "triangle " << t;
         EXPECT_NEAR(double(plane.w), glm::dot(n, a), 1e-5 * std::max(1.0, glm::length(a))) << "triangle " << t;
+        // The facing slack: the two shorter edges over twice the area, and one over it, rounded up.
+        const double ab = glm::length(b - a), bc = glm::length(c - b), ca = glm::length(a - c);
+        const glm::vec2 slack = t < map.facingSlack.size() ? map.facingSlack[t] : glm::vec2(0.0f);
+        EXPECT_GE(double(slack.x), (ab + bc + ca - std::max({ab, bc, ca})) / area2) << "triangle " << t;
+        EXPECT_LE(double(slack.x), (ab + bc + ca - std::max({ab, bc, ca})) / area2 * (1.0 + 1e-6)) << "triangle " << t;
+        EXPECT_GE(double(slack.y), 1.0 / area2) << "triangle " << t;
+        EXPECT_LE(double(slack.y), 1.0 / area2 * (1.0 + 1e-6)) << "triangle " << t;
     }
+    EXPECT_EQ(map.facingSlack.size(), map.planes.size());
+    for (std::size_t t = 0; t < map.planes.size() && t < map.facingSlack.size(); ++t) {
+        if (map.planes[t] == glm::vec4(0.0f)) {
+            EXPECT_TRUE(std::isinf(map.facingSlack[t].x) && std::isinf(map.facingSlack[t].y))
+                << "a triangle without a plane has no facing margin: " << t;
+        }
+    }
+    for (const Cluster& cluster : map.clusters)
+        for (std::uint32_t t = cluster.first; t < cluster.first + cluster.count && t < map.facingSlack.size(); ++t)
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(map.facingSlack[t], cluster.slack))) << "cluster's largest, " << t;
 
     // Stats.
     EXPECT_EQ(map.stats.mapBytes, map.entries.size() * sizeof(MapEntry));
     EXPECT_EQ(map.stats.accessBytes, map.bins.size() * sizeof(Bin) + map.clusters.size() * sizeof(Cluster) +
-                                         map.planes.size() * sizeof(glm::vec4));
+                                         map.planes.size() * sizeof(glm::vec4) +
+                                         map.facingSlack.size() * sizeof(glm::vec2));
     for (double ms : {map.stats.sphereMs, map.stats.mapMs, map.stats.clusterMs, map.stats.hullMs}) {
         EXPECT_TRUE(std::isfinite(ms));
         EXPECT_GE(ms, 0.0);
