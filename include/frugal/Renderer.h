@@ -80,6 +80,14 @@ public:
     };
     Result<bool> render(const Camera& camera, double seconds, Frame& frame, ReadBack readBack);
 
+    // The frame render() will be asked for after the next call (a sequence knows it). With cull
+    // occlusion-ahead, the next render() makes that frame's plan on a thread of its own while its
+    // own frame draws (and waits for it before it returns: no thread outlives a call), and the
+    // render() of that frame takes the plan instead of culling. The plan is used only when that
+    // frame's transforms and view are exactly the ones it was made for; otherwise the frame is
+    // culled as usual, so a wrong guess costs time, never an image. Any other cull ignores it.
+    void setNextFrame(const Camera& camera, double seconds);
+
     // Moves node `node` for the frames that follow: its local transform becomes `transform`
     // (Scene::setTransform, whose errors it returns). Temporal reuse sees the instances it places
     // as moved in the next frame, and only them. The scene's envelope grows to hold them where

@@ -29,7 +29,9 @@ enum class BackendKind : std::uint8_t { Auto, Egl, EglDevice, EglSurfaceless, Os
 enum class DepthInterp : std::uint8_t { Exact, Span, Dda };
 
 // Culling: which triangles are submitted (see the renderer's documentation for each method).
-enum class Cull : std::uint8_t { None, Sphere, Backface, Cones, Paper, Conservative, Occlusion, Oracle };
+// OcclusionAhead is occlusion's plan, made on a sequence while the frame before draws
+// (Renderer::setNextFrame); it comes last so that the others keep their values.
+enum class Cull : std::uint8_t { None, Sphere, Backface, Cones, Paper, Conservative, Occlusion, Oracle, OcclusionAhead };
 
 // Draw order: submit (as listed), key (texture, program, mesh, as bgfx sorts), or by state-change
 // costs measured on the backend: paper (paper 004's id sort), greedy, best.
@@ -43,8 +45,9 @@ inline constexpr std::array<BackendKind, 6> kBackendKinds{BackendKind::Auto,    
                                                           BackendKind::EglDevice, BackendKind::EglSurfaceless,
                                                           BackendKind::OsMesa,    BackendKind::Software};
 inline constexpr std::array<DepthInterp, 3> kDepthInterps{DepthInterp::Exact, DepthInterp::Span, DepthInterp::Dda};
-inline constexpr std::array<Cull, 8> kCulls{Cull::None,  Cull::Sphere,       Cull::Backface, Cull::Cones,
-                                            Cull::Paper, Cull::Conservative, Cull::Occlusion, Cull::Oracle};
+inline constexpr std::array<Cull, 9> kCulls{Cull::None,         Cull::Sphere,    Cull::Backface,
+                                            Cull::Cones,        Cull::Paper,     Cull::Conservative,
+                                            Cull::Occlusion,    Cull::OcclusionAhead, Cull::Oracle};
 inline constexpr std::array<Order, 5> kOrders{Order::Submit, Order::Key, Order::Paper, Order::Greedy, Order::Best};
 inline constexpr std::array<Hsr, 4> kHsrs{Hsr::ZBuffer, Hsr::DepthSort, Hsr::Adaptive, Hsr::AdaptiveConvex};
 inline constexpr std::array<DepthRange, 2> kDepthRanges{DepthRange::Fit, DepthRange::File};
@@ -59,9 +62,11 @@ inline const char* toString(DepthInterp v) {
     return names[std::size_t(v)];
 }
 inline const char* toString(Cull v) {
-    constexpr const char* names[] = {"none", "sphere", "backface", "cones", "paper", "conservative", "occlusion", "oracle"};
+    constexpr const char* names[] = {"none", "sphere", "backface", "cones", "paper", "conservative", "occlusion", "oracle", "occlusion-ahead"};
     return names[std::size_t(v)];
 }
+// The methods whose plan the occlusion pass makes.
+inline bool usesOcclusion(Cull v) { return v == Cull::Occlusion || v == Cull::OcclusionAhead; }
 inline const char* toString(Order v) {
     constexpr const char* names[] = {"submit", "key", "paper", "greedy", "best"};
     return names[std::size_t(v)];

@@ -34,10 +34,15 @@ struct StateChanges {
 // Culling in one frame.
 // The occlusion pass of one frame (cull occlusion): whether it ran (it skips itself where it does not
 // pay), its time (within CullStats::ms) and the triangles of the conservative plan it dropped.
+// cull occlusion-ahead: `ahead`, the plan was made while the frame before drew (its pass's time is
+// then not within CullStats::ms); aheadWaitMs, what this frame waited after its draw for the next
+// frame's plan (within FrameStats::renderMs).
 struct OcclusionFrameStats {
     bool ran = false;
     double ms = 0.0;
     std::size_t trianglesHidden = 0;
+    bool ahead = false;
+    double aheadWaitMs = 0.0;
 };
 
 struct CullStats {
@@ -45,7 +50,7 @@ struct CullStats {
     std::size_t pvs = 0;     // the triangles submitted (the oracle: its visible set)
     double ms = 0.0;         // culling (the oracle: its id pass, read-back and scene; not in renderMs)
     std::size_t ranges = 0;  // index ranges submitted (none for the oracle)
-    std::optional<OcclusionFrameStats> occlusion;  // cull occlusion only
+    std::optional<OcclusionFrameStats> occlusion;  // cull occlusion and occlusion-ahead only
 };
 
 // Temporal reuse in one frame (paper 000): the mode, its reason, and what was copied, cleared and

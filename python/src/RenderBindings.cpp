@@ -209,13 +209,18 @@ struct PyRenderer {
         return *renderer;
     }
 
-    PyFrame render(const std::optional<Camera>& camera, double time) {
+    PyFrame render(const std::optional<Camera>& camera, double time, const std::optional<Camera>& nextCamera,
+                   const std::optional<double>& nextTime) {
         if (!std::isfinite(time)) throw InputError{"time: " + std::to_string(time) + " is not finite"};
+        if (nextTime && !std::isfinite(*nextTime))
+            throw InputError{"next_time: " + std::to_string(*nextTime) + " is not finite"};
         PyFrame out;
         {
             py::gil_scoped_release unlocked;
             std::lock_guard<std::mutex> held(lock);
             Renderer& r = live();
+            if (nextCamera || nextTime)
+                r.setNextFrame(nextCamera.value_or(camera.value_or(Camera{})), nextTime.value_or(time));
             out.frame = pool->take();
             Result<bool> rendered = r.render(camera.value_or(Camera{}), time, out.frame);
             r.releaseThread();
@@ -345,9 +350,13 @@ void bindRenderer(py::module_& m) {
                            "and settings='settings.json' to start from a settings file (the others win over it).\n"
                            "Usable as a context manager: leaving the block closes it.")
         .def(py::init<PyScene&, const py::kwargs&>(), py::arg("scene"))
-        .def("render", &PyRenderer::render, py::arg("camera") = py::none(), py::arg("time") = 0.0,
+        .def("render", &PyRenderer::render, py::arg("camera") = py::none(), py::arg("time") = 0.0, py::kw_only(),
+             py::arg("next_camera") = py::none(), py::arg("next_time") = py::none(),
              "The frame at scene time `time` (seconds) through `camera` (default: the scene's first camera,\n"
-             "else a view that fits the scene). The GIL is released while it renders.")
+             "else a view that fits the scene). The GIL is released while it renders.\n"
+             "next_camera, next_time: the frame the next call will ask for (either; the other as this one's).\n"
+             "With cull='occlusion-ahead' its plan is then made while this frame draws; a next call that asks\n"
+             "for another frame is culled as usual (the images never depend on it).")
         .def("set_transform", &PyRenderer::setTransform, py::arg("node"), py::arg("transform"),
              "Moves node `node` (an add_instance result) for the frames that follow; reuse redraws only it.")
         .def("close", &PyRenderer::close, "Frees the backend, its context and uploads now; later calls raise InputError.")

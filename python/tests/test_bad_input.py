@@ -88,7 +88,7 @@ def test_bad_files():
 def test_bad_settings():
     scene = frugal.load("builtin:cubes?count=2")
     refused(frugal.InputError, r"unknown setting 'colour' \(.*background", frugal.Renderer, scene, colour=1)
-    refused(frugal.InputError, r"cull: 'x' is not a method \(none, sphere, backface, cones, paper, conservative, occlusion, oracle\)",
+    refused(frugal.InputError, r"cull: 'x' is not a method \(none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle\)",
             frugal.Renderer, scene, cull="x")
     refused(frugal.InputError, r"size: expected \(width, height\) or 'WxH', got 'big'", frugal.Renderer, scene,
             size="big")

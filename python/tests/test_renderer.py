@@ -37,6 +37,27 @@ def test_occlusion_culling_gives_the_same_image_and_says_what_it_did():
         frugal.Renderer(scene, size=(32, 24), cull="occlusion", reuse=True)
 
 
+def test_occlusion_ahead_makes_the_next_frames_plan_and_changes_no_image():
+    import numpy as np
+    scene = frugal.load("builtin:dominoes?polygons=6000")
+    cameras = [frugal.Camera.look_at((x, 3.0, 40.0), (0.0, 2.0, 0.0)) for x in (-2.0, 0.0, 2.0)]
+    with frugal.Renderer(scene, size=(160, 120), ids=True) as plain, \
+            frugal.Renderer(scene, size=(160, 120), cull="occlusion-ahead", ids=True) as ahead:
+        for i, camera in enumerate(cameras):
+            following = cameras[i + 1] if i + 1 < len(cameras) else None
+            a, b = plain.render(camera), ahead.render(camera, next_camera=following)
+            assert np.array_equal(a.color, b.color) and np.array_equal(a.ids, b.ids)
+            assert np.array_equal(a.depth, b.depth)
+            assert b.stats["occlusion"]["ahead"] == (i > 0)
+        # A wrong guess costs a plan, not an image.
+        b = ahead.render(cameras[0], next_camera=cameras[2])
+        b = ahead.render(cameras[1])
+        assert not b.stats["occlusion"]["ahead"]
+        assert np.array_equal(b.color, plain.render(cameras[1]).color)
+        with pytest.raises(frugal.InputError, match="next_time: .* is not finite"):
+            ahead.render(cameras[0], next_time=float("nan"))
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

@@ -37,7 +37,8 @@ struct Outputs : ReportPaths {
 
 // --methods A,B,...: the methods, each once, in the order given.
 Flag methodsFlag(std::vector<Cull>& methods) {
-    return {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, occlusion, oracle (default all)",
+    return {"--methods", "A,B,...", "among none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle "
+            "(default all; occlusion-ahead makes each frame's plan while the frame before draws)",
             [&methods](const std::string& list) -> std::string {
                 methods.clear();
                 std::stringstream items(list);

@@ -9,10 +9,12 @@ std::vector<Flag> cullFlags(CullOptions& options, bool withMethod) {
     if (withMethod)
         flags.push_back(flag::choice(
             "--cull", "METHOD", "a method",
-            "none (default), sphere, backface, cones, paper, conservative, occlusion or oracle. conservative never "
+            "none (default), sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead or oracle. "
+            "conservative never "
             "drops a triangle that owns a pixel; occlusion is conservative less what is hidden behind what is drawn "
             "anyway and, on llvmpipe's rules, the triangles that own no pixel centre, found on the CPU (the same "
-            "pixels; it skips itself where it does not pay; not with --reuse); paper reproduces paper 002 and misses "
+            "pixels; it skips itself where it does not pay; not with --reuse); occlusion-ahead is occlusion's "
+            "plan, made on a sequence (--frames) on a thread of its own while the frame before draws; paper reproduces paper 002 and misses "
             "some; oracle draws exactly the visible set found by an id pass (a lower bound, not a shortcut). See "
             "'frugal cull-report' and docs/occlusion.md.",
             options.method, kCulls));

@@ -2,7 +2,7 @@
 // how it sets its value. The argument loop (app/Command.h) parses with it and the help is printed
 // from it, so every command refuses a bad value with the same shape of line,
 //
-//   error: --cull: 'x' is not a method (none, sphere, backface, cones, paper, conservative, occlusion, oracle)
+//   error: --cull: 'x' is not a method (none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle)
 //
 // and lists its flags the same way. Why not CLI11 (Debian libcli11-dev): a parser made with it
 // compiles many times slower and its object is many times larger (docs/architecture.md), and its

@@ -166,8 +166,8 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
         const Cull method = r.cull.method.value_or(Cull::None);
         if (r.reuse.enabled && method == Cull::Oracle)
             cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (r.reuse.enabled && method == Cull::Occlusion)
-            cursor.fail("--reuse with --cull occlusion: a static part hidden behind a moving one would be missing from "
+        else if (r.reuse.enabled && usesOcclusion(method))
+            cursor.fail(std::string("--reuse with --cull ") + toString(method) + ": a static part hidden behind a moving one would be missing from "
                         "the static image once it moves away; use --cull conservative with --reuse");
         else if (r.hsr != hsr::Mode::ZBuffer && r.reuse.enabled)
             cursor.fail(std::string("--hsr ") + toString(r.hsr) +
@@ -344,6 +344,9 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
             if (!finished) return fail(err, finished.failure());
             return fail(err, Error{interruptedAfter(caught, framesWritten, frameCount), ErrorKind::Interrupted});
         }
+        // With --cull occlusion-ahead, the next frame's plan is made while this one draws.
+        if (index < range.last)
+            renderer.setNextFrame(cameraOf(options, index + 1), frameTimeOf(options, renderer.scene(), index + 1));
         // The depth is read back only for a file that holds it.
         Result<bool> rendered = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index),
                                                 frame, {.depth = !r.outputs.depth.empty()});

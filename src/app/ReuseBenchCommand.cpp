@@ -82,8 +82,8 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
             cursor.fail("--frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)");
         else if (a.cull.method == Cull::Oracle)
             cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (a.cull.method == Cull::Occlusion)
-            cursor.fail("--cull occlusion: a static part hidden behind a moving one would be missing from the static "
+        else if (a.cull.method && usesOcclusion(*a.cull.method))
+            cursor.fail(std::string("--cull ") + toString(*a.cull.method) + ": a static part hidden behind a moving one would be missing from the static "
                         "image once it moves away; use --cull conservative with reuse");
         else if (const std::string problem = plotProblem(a.outputs); !problem.empty())
             cursor.fail(problem);

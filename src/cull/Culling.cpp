@@ -545,7 +545,7 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
                            const View& view, const OcclusionTarget& target) const {
     DrawList list;
     if (method == Cull::None || method == Cull::Oracle) return fullDrawList(scene);
-    if (method == Cull::Occlusion) return cullOcclusion(scene, world, view, target);
+    if (method == Cull::Occlusion || method == Cull::OcclusionAhead) return cullOcclusion(scene, world, view, target);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
@@ -647,6 +647,7 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
 
             case Cull::None:
             case Cull::Occlusion:
+            case Cull::OcclusionAhead:
             case Cull::Oracle:
                 break;
         }

@@ -18,6 +18,8 @@
 //                 tested against a depth buffer of occluders rasterized on the CPU (cull/Occlusion.h);
 //                 exact like conservative. It needs the target (cull's `target`); without one it
 //                 is conservative.
+//   occlusion-ahead  occlusion's plan; on a sequence the renderer makes it on a thread of its own
+//                 while the frame before draws (cull/CullAhead.h). cull() makes it as occlusion does.
 //   oracle        exactly the frame's really visible set; it needs the frame's id image, so it is not
 //                 a plan made here (renderer/Oracle.h: makeOracle). cull() gives the full list.
 // Facing follows GL: a triangle of a single-sided material is drawn when counter-clockwise in window

@@ -11,6 +11,7 @@
 
 #include "base/Format.h"
 #include "base/Stats.h"
+#include "cull/CullAhead.h"
 #include "cull/Culling.h"
 #include "hsr/Plan.h"
 #include "render/Frame.h"
@@ -58,6 +59,7 @@ private:
     std::optional<FrameSetup> setup_;
     std::optional<Oracle> oracle_;
     std::optional<hsr::Planner> oraclePlanner_;
+    CullAhead ahead_;  // occlusion-ahead: the next round's plan
 };
 
 void ViewMeasure::draw(SceneRenderer& r, const DrawList* list) {
@@ -118,6 +120,20 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Timing& t = timings[m];
             if (methods[m] == Cull::None || methods[m] == Cull::Oracle) continue;
+            if (methods[m] == Cull::OcclusionAhead) {
+                // As a sequence runs it: this frame's plan was made while the frame before it drew
+                // (the warm-up frame makes its own), and the next frame's (this view's next round)
+                // is made while this one draws. The row's cull time is what the frame then waits for
+                // that plan after its draw.
+                std::optional<DrawList> made = ahead_.take(methods[m], world, setup_->view, occlusionTarget);
+                t.list = made ? std::move(*made) : culler_.cull(methods[m], scene_, world, setup_->view, occlusionTarget);
+                ahead_.start(culler_, methods[m], scene_, world, setup_->view, aheadTarget(occlusionTarget));
+                frame(renderer, &t.list, t, record);
+                const auto t0 = Clock::now();
+                ahead_.wait();  // nothing else may use the culler while it runs
+                if (record) t.cull.push_back(msSince(t0));
+                continue;
+            }
             const auto t0 = Clock::now();
             t.list = culler_.cull(methods[m], scene_, world, setup_->view, occlusionTarget);
             const double cullMs = msSince(t0);
@@ -136,6 +152,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         renderer.setCullAllBackFaces(false);
         frame(*oracle_->renderer, nullptr, oracleTiming, record);
     }
+    ahead_.settle();  // the plan of a round after the last
     const double fullMs = median(fullTiming.draw), cullfaceMs = median(cullfaceTiming.draw),
                  oracleMs = median(oracleTiming.draw);
     if (occlusionView) {

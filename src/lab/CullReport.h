@@ -12,7 +12,7 @@
 namespace frugal {
 
 struct MethodResult {
-    std::string method;  // none, sphere, backface, cones, paper, conservative, occlusion, oracle
+    std::string method;  // none, sphere, ..., occlusion, occlusion-ahead, oracle
     std::size_t tos = 0, pvs = 0, rvs = 0, misses = 0, waste = 0;
     std::size_t pixelsDiffering = 0;   // colour, against the full render of the view, tolerance 0
     double cullMs = 0.0;               // CPU time to make the plan (median of the repeats)

@@ -184,6 +184,8 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
         s.order = Order::Key;
     }));
     if (sequence) {
+        // Occlusion's plan made while the frame before draws: only a sequence knows its next frame.
+        out.push_back(with(base, "cull occlusion-ahead", "cull", [](Settings& s) { s.cull = Cull::OcclusionAhead; }));
         out.push_back(with(base, "reuse", "reuse", [](Settings& s) { s.reuse = true; }));
         out.push_back(with(base, "cull conservative + reuse", "combination", [](Settings& s) {
             s.cull = Cull::Conservative;
@@ -238,6 +240,8 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
         for (int r = 0; r < repeat; ++r)
             for (std::size_t k = 0; k < candidates.size(); ++k) {
                 const std::size_t i = (k + s + std::size_t(r)) % candidates.size();  // the order rotates
+                if (settings.sequence && s + 1 < settings.shots.size())  // occlusion-ahead's next frame
+                    renderers[i].setNextFrame(settings.shots[s + 1].camera, settings.shots[s + 1].time);
                 if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
                 note(report.rows[i], frames[i].stats, triangles);
             }

@@ -4,6 +4,7 @@
 
 #include <frugal/Renderer.h>
 
+#include "cull/CullAhead.h"
 #include "cull/Culling.h"
 #include "hsr/Plan.h"
 #include "render/Frame.h"
@@ -41,8 +42,8 @@ std::optional<Error> settingsProblem(const Settings& s) {
                        std::to_string(s.reuseSettings.cell) + ": a grain of 0 or more, a cell of 1 to 4096 pixels");
     if (s.reuse && s.cull == Cull::Oracle)
         return problem("reuse with cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-    if (s.reuse && s.cull == Cull::Occlusion)
-        return problem("reuse with cull occlusion: a static part hidden behind a moving one would be missing from the "
+    if (s.reuse && usesOcclusion(s.cull))
+        return problem(std::string("reuse with cull ") + toString(s.cull) + ": a static part hidden behind a moving one would be missing from the "
                        "static image once it moves away; use cull conservative with reuse");
     if (s.hsr != Hsr::ZBuffer && s.reuse)
         return problem(std::string("hsr ") + toString(s.hsr) +
@@ -77,6 +78,10 @@ struct Renderer::Impl {
     // A scene without animations has the same bounds at every time: kept from the first frame that
     // needs them (automatic views, default targets) until a node moves.
     std::optional<Bounds> stillBounds;
+    // cull occlusion-ahead: the frame after this one (setNextFrame), and its plan, made while this
+    // one draws and waited for before render() returns. Declared last: destroyed first.
+    std::optional<std::pair<Camera, double>> nextFrame;
+    CullAhead ahead;
 
     ~Impl() {
         if (backend && staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
@@ -209,20 +214,37 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         t0 = Clock::now();
         oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
     } else if (culler) {
-        const DrawList list = culler->cull(s.cull, *scene, setup->world, setup->view, occlusionTarget(*backend, s));
+        const OcclusionTarget cullTarget = occlusionTarget(*backend, s);
+        std::optional<DrawList> madeAhead = ahead.take(s.cull, setup->world, setup->view, cullTarget);
+        const DrawList list = madeAhead ? std::move(*madeAhead) : culler->cull(s.cull, *scene, setup->world, setup->view, cullTarget);
         const double cullMs = msBetween(t0, Clock::now());
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();
         stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges, std::nullopt};
-        if (s.cull == Cull::Occlusion) {
+        if (usesOcclusion(s.cull)) {
             const OcclusionStats& o = culler->occlusion().stats();
-            stats.cull->occlusion = OcclusionFrameStats{o.ran, o.ms, o.trianglesHidden};
+            stats.cull->occlusion = OcclusionFrameStats{o.ran, o.ms, o.trianglesHidden, madeAhead.has_value(), 0.0};
         }
+        // The next frame's plan, made while this one draws (its set-up is this thread's: the same
+        // calls render() makes; a frame that cannot be set up is culled, and its error given, then).
+        if (s.cull == Cull::OcclusionAhead && nextFrame) {
+            Result<FrameSetup> next = setUpFrame(*scene, nextFrame->first, nextFrame->second, s.width, s.height, s.ids,
+                                                 s.depthFormat, stillBounds ? &*stillBounds : nullptr);
+            if (next) ahead.start(*culler, s.cull, *scene, std::move(next->world), next->view, aheadTarget(cullTarget));
+        }
+        nextFrame.reset();
         draw(*setup, list, stats);
     } else {
         draw(*setup, renderer->fullList(), stats);
     }
     backend->finish();
+    if (ahead.pending()) {
+        // The next frame's plan, made while this one drew: the frame ends when both are done (its
+        // time holds the wait), and no thread of it outlives render().
+        const auto waitStart = Clock::now();
+        ahead.wait();
+        stats.cull->occlusion->aheadWaitMs = msBetween(waitStart, Clock::now());
+    }
     const auto t1 = Clock::now();
     // The frame's own vectors, read into and given back (their memory used again).
     Buffers buffers;
@@ -276,6 +298,10 @@ Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame
 Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame, ReadBack readBack) {
     return impl_->render(camera, seconds, frame, readBack);
 }
+void Renderer::setNextFrame(const Camera& camera, double seconds) {
+    if (impl_->settings.cull == Cull::OcclusionAhead) impl_->nextFrame.emplace(camera, seconds);
+}
+
 Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {
     Result<bool> set = impl_->scene->setTransform(node, transform);
     if (set) {

@@ -55,8 +55,11 @@ nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings)
     if (stats.cull) {
         j.update({{"tos", stats.cull->tos}, {"pvs", stats.cull->pvs}, {"cull_ms", stats.cull->ms}});
         if (settings.cull != Cull::Oracle) j["ranges"] = stats.cull->ranges;
-        if (const std::optional<OcclusionFrameStats>& o = stats.cull->occlusion)
+        if (const std::optional<OcclusionFrameStats>& o = stats.cull->occlusion) {
             j["occlusion"] = {{"ran", o->ran}, {"ms", o->ms}, {"triangles_hidden", o->trianglesHidden}};
+            if (settings.cull == Cull::OcclusionAhead)
+                j["occlusion"].update({{"ahead", o->ahead}, {"ahead_wait_ms", o->aheadWaitMs}});
+        }
     }
     if (stats.reuse) j["reuse"] = reuseStatsJson(*stats.reuse);
     if (stats.hsr) j["hsr"] = hsrJson(settings.hsr, *stats.hsr);

@@ -74,9 +74,9 @@ TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
     ASSERT_EQ(runFrugal(dir, {"batch", "merge", "four"}).status, 0);
     EXPECT_EQ(readAll(dir / "one" / "merged.json"), readAll(dir / "four" / "merged.json"));
     EXPECT_EQ(test::lines(readAll(dir / "four" / "times.csv")).size(), 8u);
-    // The reports' tables joined, a row each led by the job: cull-report's 3 views x 8 methods.
+    // The reports' tables joined, a row each led by the job: cull-report's 3 views x 9 methods.
     const std::vector<std::string> cull = test::lines(readAll(dir / "four" / "merged-cull-report.csv"));
-    ASSERT_EQ(cull.size(), 1u + 3 * 8);
+    ASSERT_EQ(cull.size(), 1u + 3 * 9);
     EXPECT_EQ(cull[0], "job," + test::lines(readAll(dir / "four" / "cull" / "cull-report.csv"))[0]);
     EXPECT_EQ(cull[1].rfind("cull,", 0), 0u) << cull[1];
     EXPECT_TRUE(fs::exists(dir / "four" / "merged-report.csv"));

@@ -25,7 +25,7 @@ using test::filesIn;
 using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
-const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, occlusion, oracle";
+const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle";
 
 // The number of distinct triangle ids (background 0 excluded) in frugal's id PNG.
 std::size_t distinctIds(const fs::path& path) {
@@ -224,6 +224,44 @@ TEST(CullCliTest, ConservativeMethodsLeaveTheImageUnchanged) {
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
+}
+
+TEST(CullCliTest, OcclusionAheadRendersASequenceAsNoneDoes) {
+    // Each frame's plan made while the frame before draws: the same colour, depth and id files as a
+    // plain render, and the JSON tells which frames took a plan made ahead (all but the first).
+    const fs::path dir = test::freshDir("CullCliAhead");
+    test::writeFile(dir / "path.json", R"([{"eye": [0, 2, 11.5], "target": [0, 0, 0]},
+                                           {"eye": [2, 2, 11.3], "target": [0, 0, 0]},
+                                           {"eye": [4, 2, 10.8], "target": [0, 0, 0]}])");
+    const std::string scene = std::string("builtin:copies?count=3&of=") + FRUGAL_BUNNY_OBJ;
+    for (const char* method : {"none", "occlusion-ahead"}) {
+        const std::string m = method;
+        const CliRun run = runFrugal(dir, {"render", scene, "--camera-path", "path.json", "--frames", "0:2", "--size",
+                                           "96x72", "--backend", "software", "--cull-backfaces", "--cull", m, "-o",
+                                           m + "-%d.png", "--depth", m + "-%d.pfm", "--ids", m + "-ids-%d.png",
+                                           "--json", m + ".json", "-q"});
+        ASSERT_EQ(run.status, 0) << run.err;
+    }
+    for (int i = 0; i < 3; ++i) {
+        const std::string n = std::to_string(i);
+        for (const std::string& file : {"%-" + n + ".png", "%-" + n + ".pfm", "%-ids-" + n + ".png"}) {
+            std::string none = file, ahead = file;
+            none.replace(0, 1, "none");
+            ahead.replace(0, 1, "occlusion-ahead");
+            ASSERT_TRUE(fs::exists(dir / ahead)) << ahead;
+            EXPECT_TRUE(readAll(dir / none) == readAll(dir / ahead)) << ahead << " differs from " << none;
+        }
+    }
+    const nlohmann::json report = test::readJson(dir / "occlusion-ahead.json");
+    ASSERT_EQ(report["frames"].size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const nlohmann::json& frame = report["frames"][i];
+        ASSERT_TRUE(frame.contains("occlusion")) << frame.dump();
+        EXPECT_EQ(frame["occlusion"]["ahead"], i > 0) << frame.dump();
+        EXPECT_TRUE(frame["occlusion"]["ahead_wait_ms"].is_number()) << frame.dump();
+        EXPECT_LT(frame["pvs"].get<std::size_t>(), frame["tos"].get<std::size_t>()) << frame.dump();
+    }
+    EXPECT_FALSE(test::readJson(dir / "none.json")["frames"][0].contains("occlusion"));
 }
 
 // --- errors ---------------------------------------------------------------------------------------

@@ -34,9 +34,10 @@ using test::filesIn;
 using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
-const std::vector<std::string> kMethods = {"none", "sphere", "backface", "cones", "paper", "conservative", "occlusion", "oracle"};
+const std::vector<std::string> kMethods = {"none",         "sphere",    "backface",        "cones", "paper",
+                                           "conservative", "occlusion", "occlusion-ahead", "oracle"};
 // Methods that never drop a triangle owning a pixel (src/cull/Culling.h).
-const std::set<std::string> kConservative = {"sphere", "backface", "cones", "conservative", "occlusion"};
+const std::set<std::string> kConservative = {"sphere", "backface", "cones", "conservative", "occlusion", "occlusion-ahead"};
 const std::vector<std::string> kMethodKeys = {"method",
                                               "tos",
                                               "pvs",

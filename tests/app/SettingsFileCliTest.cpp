@@ -68,7 +68,7 @@ TEST(SettingsFileTest, BadFilesAreOneLineNamingTheKey) {
     const auto error = [](const std::string& text) { return parseSettingsJson(text, "s.json").error(); };
     EXPECT_EQ(error(R"({"cull": "x"})"),
               "settings s.json: key 'cull': \"x\" is not a method (none, sphere, backface, cones, paper, conservative, "
-              "occlusion, oracle)");
+              "occlusion, occlusion-ahead, oracle)");
     EXPECT_EQ(error(R"({"reuse": 1})"), "settings s.json: key 'reuse': 1 is not true or false");
     EXPECT_EQ(error(R"({"threads": 2.5})"), "settings s.json: key 'threads': 2.5 is not a whole number");
     EXPECT_EQ(error(R"({"size": "80x"})"), "settings s.json: key 'size': \"80x\" is not [width, height] or \"WxH\"");

@@ -5,7 +5,8 @@
 // What a frame check proves, for each method:
 //   none, oracle                  the plan is fullDrawList;
 //   sphere, backface, cones,      misses == 0 (RVS ⊆ PVS), and the plan rendered is the full render,
-//   conservative, occlusion       colour, depth and ids byte for byte (occlusion runs on every frame here:
+//   conservative, occlusion,      colour, depth and ids byte for byte (occlusion runs on every frame here:
+//   occlusion-ahead
 //                                 target(), not its pays-or-skips policy);
 //   paper                         the plan is well-formed (PVS ⊆ TOS); misses are counted, not judged.
 // Every plan: instances in scene order, each once, ranges non-empty, ascending, disjoint and inside

@@ -40,7 +40,7 @@ TEST(CullMethodsTest, NamesParseBack) {
     }
     EXPECT_FALSE(fromString("Conservative", kCulls));
     EXPECT_FALSE(fromString("", kCulls));
-    EXPECT_EQ(namesOf(kCulls), "none, sphere, backface, cones, paper, conservative, occlusion, oracle");
+    EXPECT_EQ(namesOf(kCulls), "none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle");
 }
 
 TEST(CullMethodsTest, NoneAndOracleGiveTheFullList) {
