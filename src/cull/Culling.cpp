@@ -19,10 +19,13 @@ constexpr int kBinSamples = kSampleSide * kSampleSide;
 constexpr double kPlaneMargin = 1e-5;
 constexpr float kConeMargin = 1e-4f;
 // How far GL may move a vertex's window position, per axis, in pixels: llvmpipe snaps it to the
-// nearest 1/256 pixel (half a step), after a float transform whose rounding stays far below 1/4096
-// pixel at the sizes drawn. Facing is decided by the sign of the snapped triangle's area, so a
-// triangle seen nearly edge-on may come out front-facing though it faces away (InstanceView).
+// nearest 1/256 pixel (half a step), with 1/4096 pixel to spare; InstanceView::facingK adds the
+// float transform's rounding (small near the origin, not a million units away). Facing is decided
+// by the sign of the snapped triangle's area, so a triangle seen nearly edge-on may come out
+// front-facing though it faces away (InstanceView).
 constexpr double kSnap = 1.0 / 512.0 + 1.0 / 4096.0;
+// A unit of float roundoff.
+constexpr double kFloatUnit = 1.0 / 16777216.0;
 
 struct Plane {
     glm::dvec4 p{0.0};  // a·x + b·y + c·z + d ≥ 0 inside
@@ -111,8 +114,9 @@ struct InstanceView {
     float marginBase = 0.0f, marginPerD = 0.0f;
     // GL decides facing from the snapped window positions (kSnap), and that can turn a triangle
     // seen nearly edge-on: the margin above covers the float test, not this. Twice the area is
-    // e1 × e2 for the two shorter edges; with every vertex moved by at most s per axis, it changes
-    // by at most 2s·(|Δx| + |Δy| of e1 and of e2) + 8s².
+    // e1 × e2 for the two shorter edges; with every vertex moved by at most s per axis (the snap,
+    // and the float transform's rounding for the cluster's sphere), it changes by at most
+    // 2s·(|Δx| + |Δy| of e1 and of e2) + 8s².
     // In exact terms twice the area is fx·fy·|det L|·2A·|f| ÷ (Z0·Z1·Z2) (perspective; fx, fy pixels
     // per unit at depth 1, L the linear part of view·model, A the triangle's area and f the facing
     // value above, both in object units, Z the vertices' depths), and fx·fy·|det L|·2A·|f|·|u| for
@@ -128,6 +132,8 @@ struct InstanceView {
     // is fanned into new triangles that may be thinner than it: those are never dropped for facing.
     glm::dmat4 viewModel{1.0};
     double fx = 0.0, fy = 0.0, fmax = 0.0, g = 0.0, detL = 0.0, normL = 0.0, zRow = 0.0, uLength = 0.0;
+    double projX = 1.0, projY = 1.0;  // P00, P11: fx / |P00| is half the width in pixels
+    int width = 0, height = 0;
     bool perspective = true, sizeKnown = false;
 
     // K1, K2 for the triangles of a sphere (object space); +inf when nothing can be said (the sphere
@@ -137,6 +143,7 @@ struct InstanceView {
         const double area = fx * fy * detL;
         if (!sizeKnown || !(area > 0.0) || !std::isfinite(area)) return glm::vec2(kNone);
         double depthFactor = 1.0, perimeterFactor = 1.0;  // Zmax³ and Zmax³/Zmin; 1/|u| twice, orthographic
+        double wmin = 1.0;                                 // clip w: the depth Z, or 1 (orthographic)
         if (perspective) {
             const double zc = -(viewModel * glm::dvec4(center, 1.0)).z;
             const double reach = radius * zRow * (1.0 + 1e-6);
@@ -144,12 +151,27 @@ struct InstanceView {
             if (!(zmin > 0.0) || !std::isfinite(zmax)) return glm::vec2(kNone);
             depthFactor = zmax * zmax * zmax;
             perimeterFactor = depthFactor / zmin;
+            wmin = zmin;
         } else {
             if (!(uLength > 0.0)) return glm::vec2(kNone);
             depthFactor = perimeterFactor = 1.0 / uLength;
         }
-        const double k1 = 2.0 * kSnap * fmax * g * normL * perimeterFactor / area;
-        const double k2 = 8.0 * kSnap * kSnap * depthFactor / area;
+        // The float transform: each clip coordinate within eight units of roundoff of the sizes of
+        // its terms (the matrix is itself a float product), so x/w moves by at most (ex + ew)/w
+        // inside the frustum (|x/w| ≤ 1); the viewport and the snap's own float steps add 4u·size.
+        const auto termSizes = [&](int row) {
+            double size = std::abs(mvp[3][row]);
+            for (int j = 0; j < 3; ++j) size += std::abs(mvp[j][row]) * (std::abs(center[j]) + radius);
+            return size;
+        };
+        const double ew = 8.0 * kFloatUnit * termSizes(3);
+        const double moved = std::max(fx / std::abs(projX) * (8.0 * kFloatUnit * termSizes(0) + ew),
+                                      fy / std::abs(projY) * (8.0 * kFloatUnit * termSizes(1) + ew)) / wmin +
+                             4.0 * kFloatUnit * double(std::max(width, height));
+        const double snap = kSnap + moved;
+        if (!std::isfinite(snap)) return glm::vec2(kNone);
+        const double k1 = 2.0 * snap * fmax * g * normL * perimeterFactor / area;
+        const double k2 = 8.0 * snap * snap * depthFactor / area;
         const auto up = [](double x) {
             if (!(x >= 0.0)) return INFINITY;  // not a number: no bound
             const float f = float(x);
@@ -178,6 +200,10 @@ struct InstanceView {
         const glm::dmat4 drawn(view.projection);
         fx = std::abs(drawn[0][0]) * 0.5 * double(view.width);
         fy = std::abs(drawn[1][1]) * 0.5 * double(view.height);
+        projX = drawn[0][0];
+        projY = drawn[1][1];
+        width = view.width;
+        height = view.height;
         fmax = std::max(fx, fy);
         const double spread = perspective ? 1.0 / std::abs(drawn[0][0]) + 1.0 / std::abs(drawn[1][1]) : 0.0;
         g = std::sqrt(2.0 + spread * spread);
