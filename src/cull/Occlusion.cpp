@@ -202,6 +202,9 @@ struct OcclusionCuller::State {
     std::vector<Band> bands;
     std::vector<Piece> pieces;             // the plan, gathered piece by piece (gather)
     std::unique_ptr<sw::ThreadPool> threads;
+    // For one thread (occlusion-ahead's pass, beside the draw): the caller alone, kept apart so that
+    // alternating with the pass on every core does not start and stop the other pool's threads.
+    std::unique_ptr<sw::ThreadPool> single;
 
     // The threads prepare() woke go back to sleep.
     void rest() {
@@ -214,6 +217,10 @@ struct OcclusionCuller::State {
         // (hardware_concurrency() reads a file on Linux: tens of microseconds, asked once.)
         static const int cores = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
         const int wanted = count > 0 ? std::min(count, 64) : cores;
+        if (wanted == 1) {
+            if (!single) single = std::make_unique<sw::ThreadPool>(1);
+            return *single;
+        }
         if (!threads || threads->size() != wanted) threads = std::make_unique<sw::ThreadPool>(wanted);
         return *threads;
     }
