@@ -141,8 +141,10 @@ void BM_CullBunny(benchmark::State& state) {
 BENCHMARK(BM_CullBunny)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
 // The occlusion pass alone (cull/Occlusion.h) on three single-sided bunnies seen whole at 800×600,
-// run on every call, with 1 thread and with every core, with the scalar loops (simd:0) and the AVX2
-// ones (simd:1, where the CPU has them): its plan against conservative's.
+// run on every call, with 1 thread and with every core, with the scalar loops (simd:0), the AVX2 ones
+// (simd:1, where the CPU has them; the quick test gathers each corner) and the AVX2 ones whose quick
+// test looks the corners up with AVX-512 permutes (simd:2, where the CPU has AVX-512): its plan
+// against conservative's.
 void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
     if (!std::filesystem::exists(FRUGAL_BUNNY_OBJ)) {
         state.SkipWithError("the bunny is missing (Debian package glmark2-data)");
@@ -161,7 +163,7 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
         return;
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
-                           .threads = int(state.range(0)), .simd = state.range(1) != 0};
+                           .threads = int(state.range(0)), .simd = state.range(1) != 0, .avx512 = state.range(1) == 2};
     std::size_t submitted = 0;
     double passMs = 0.0;
     for (auto _ : state) {
@@ -175,7 +177,7 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
         double(submittedTriangles(*scene, culler.cull(Cull::Conservative, *scene, frame->world, frame->view)));
 }
 BENCHMARK(BM_CullOcclusionThreeBunnies)
-    ->ArgsProduct({{1, kCores}, {0, 1}})
+    ->ArgsProduct({{1, kCores}, {0, 1, 2}})
     ->ArgNames({"threads", "simd"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

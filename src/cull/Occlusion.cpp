@@ -174,6 +174,9 @@ struct OcclusionCuller::State {
     bool fused = sw::cpuHasFma();
     bool avx2 = occlusion::cpuHasAvx2();  // and simd: the AVX2 loops
     bool simd = true;
+    // And the quick test looks the corners up with AVX-512 permutes (clusters of at most 64 vertices).
+    bool avx512 = occlusion::cpuHasAvx512();
+    bool lookups = true;
     bool exactRules = true;  // the draw rasterizes by llvmpipe's rules: triangles are tested one by one
     int backOff = 0, skipLeft = 0;  // calls to skip after passes that did not pay
     std::size_t failedPlanned = 0;  // the plan's triangles in the last pass that did not pay
@@ -295,7 +298,10 @@ struct OcclusionCuller::State {
             // nothing. Without llvmpipe's rules every triangle is kept, and occludes.
             band.reserve(0, count + 64);  // keptMask reads 64 verdicts at a time
             std::uint8_t* verdict = band.verdict.data();
-            if (simd)
+            if (simd && lookups && vertexCount <= occlusion::kLookupVertices)
+                occlusion::verdictsAvx512(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
+                                          viewport, band.y0, band.y1, verdict, band.small());
+            else if (simd)
                 occlusion::verdictsAvx2(window, &cv.c0[first], &cv.c1[first], &cv.c2[first], count, singleSided,
                                         viewport, band.y0, band.y1, verdict, band.small());
             else
@@ -478,7 +484,9 @@ struct OcclusionCuller::State {
         }
         cv.firstVertex.push_back(std::uint32_t(cv.x.size()));
         for (auto* a : {&cv.x, &cv.y, &cv.z}) a->resize(a->size() + 8, 0.0f);
-        maxVertices = std::max(maxVertices, (std::size_t(cv.maxVertices) + 7) / 8 * 8 + 8);
+        // (At least 64: the AVX-512 quick test reads 64 of each array.)
+        maxVertices = std::max({maxVertices, (std::size_t(cv.maxVertices) + 7) / 8 * 8 + 8,
+                                std::size_t(occlusion::kLookupVertices)});
         return cv;
     }
 
@@ -790,6 +798,7 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     }
     st.exactRules = exactRules;
     st.simd = target.simd && st.avx2;
+    st.lookups = target.avx512 && st.avx512;
     st.stats.ran = true;
     st.reset(width, height, view.depthFormat);
 

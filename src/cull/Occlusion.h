@@ -85,6 +85,9 @@ struct OcclusionTarget {
     // The vertex transform and the quick triangle test eight at a time (AVX2) where the CPU has it;
     // false: the scalar loops (the tests compare the two plans).
     bool simd = true;
+    // With simd, the quick test looks up each corner with AVX-512 permutes where the CPU has them;
+    // false: it gathers them with AVX2 (the tests compare the plans).
+    bool avx512 = true;
 };
 
 // The target of `backend` for frames of `settings` (size, threads): its rules, and its cost of a

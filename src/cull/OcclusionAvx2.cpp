@@ -65,168 +65,23 @@ void transformAvx2(const float* m, const float* px, const float* py, const float
 }
 
 namespace {
-inline __m256i load8(const std::uint16_t* p) {
-    return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-inline __m256i gather(const std::int32_t* base, __m256i index) { return _mm256_i32gather_epi32(base, index, 4); }
-// ⌈a / 256⌉ and ⌊a / 256⌋, arithmetic shifts (Rasterizer.h detail::ceilDiv256, floorDiv256).
-inline __m256i ceil256(__m256i a) { return _mm256_sub_epi32(_mm256_setzero_si256(), _mm256_srai_epi32(_mm256_sub_epi32(_mm256_setzero_si256(), a), 8)); }
-inline __m256i floor256(__m256i a) { return _mm256_srai_epi32(a, 8); }
-inline __m256i lessThan(__m256i a, __m256i b) { return _mm256_cmpgt_epi32(b, a); }
+#include "cull/OcclusionVerdicts.inl"
+
+// The corners' attributes gathered from the window arrays.
+struct Gather {
+    const WindowArrays& w;
+    __m256i fx(__m256i i) const { return _mm256_i32gather_epi32(w.fx, i, 4); }
+    __m256i fy(__m256i i) const { return _mm256_i32gather_epi32(w.fy, i, 4); }
+    __m256 x(__m256i i) const { return _mm256_i32gather_ps(w.x, i, 4); }
+    __m256 y(__m256i i) const { return _mm256_i32gather_ps(w.y, i, 4); }
+    __m256 z(__m256i i) const { return _mm256_i32gather_ps(w.z, i, 4); }
+};
 }  // namespace
 
 void verdictsAvx2(const WindowArrays& w, const std::uint16_t* c0, const std::uint16_t* c1, const std::uint16_t* c2,
                   std::uint32_t count, bool cullBack, const sw::Viewport& vp, int rowLo, int rowHi, std::uint8_t* verdict,
                   const SmallTriangles& out) {
-    const int width = vp.width;
-    const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
-    const __m256 fzero = _mm256_setzero_ps(), fone = _mm256_set1_ps(1.0f), fhalf = _mm256_set1_ps(0.5f);
-    const __m256 absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-    const __m256 targetW = _mm256_set1_ps(float(vp.width)), targetH = _mm256_set1_ps(float(vp.height));
-    constexpr float kUnit = 1.0f / 16777216.0f;
-    const __m256 slackScale = _mm256_set1_ps(8.0f * kUnit), slackAdd = _mm256_set1_ps(2.0f * kUnit);
-    const __m256 slackGrow = _mm256_set1_ps(1.0f + 1e-6f), step24 = _mm256_set1_ps(2.0f * kUnit);
-    const __m256i unfixed = _mm256_set1_epi32(kUnfixed), quick = _mm256_set1_epi32(kQuickExtent);
-    const __m256i lastX = _mm256_set1_epi32(width - 1), rowFirst = _mm256_set1_epi32(rowLo), rowLast = _mm256_set1_epi32(rowHi);
-    for (std::uint32_t i = 0; i < count; i += 8) {
-        const __m256i i0 = load8(c0 + i), i1 = load8(c1 + i), i2 = load8(c2 + i);
-        __m256i X0 = gather(w.fx, i0), X1 = gather(w.fx, i1), X2 = gather(w.fx, i2);
-        __m256i Y0 = gather(w.fy, i0), Y1 = gather(w.fy, i1), Y2 = gather(w.fy, i2);
-        const __m256i keep = _mm256_or_si256(
-            _mm256_or_si256(_mm256_cmpeq_epi32(X0, unfixed), _mm256_cmpeq_epi32(X1, unfixed)),
-            _mm256_or_si256(_mm256_cmpeq_epi32(X2, unfixed),
-                            _mm256_or_si256(_mm256_cmpeq_epi32(Y0, unfixed),
-                                            _mm256_or_si256(_mm256_cmpeq_epi32(Y1, unfixed), _mm256_cmpeq_epi32(Y2, unfixed)))));
-        // Setup's bounds (Rasterizer.h setupEdges), on the target's columns and the rows looked at.
-        const __m256i minX = _mm256_min_epi32(X0, _mm256_min_epi32(X1, X2)), maxX = _mm256_max_epi32(X0, _mm256_max_epi32(X1, X2));
-        const __m256i minY = _mm256_min_epi32(Y0, _mm256_min_epi32(Y1, Y2)), maxY = _mm256_max_epi32(Y0, _mm256_max_epi32(Y1, Y2));
-        const __m256i x0 = _mm256_max_epi32(ceil256(minX), zero), x1 = _mm256_min_epi32(floor256(maxX), lastX);
-        const __m256i y0 = _mm256_max_epi32(ceil256(minY), rowFirst), y1 = _mm256_min_epi32(floor256(maxY), rowLast);
-        const __m256i empty = _mm256_or_si256(_mm256_cmpgt_epi32(x0, x1), _mm256_cmpgt_epi32(y0, y1));
-        // Small enough for 32 bits (the extent is exact: |X| < 2^26), and at most 2 × 2 pixel centres.
-        const __m256i dx = _mm256_sub_epi32(x1, x0), dy = _mm256_sub_epi32(y1, y0);
-        const __m256i small = _mm256_and_si256(
-            _mm256_and_si256(lessThan(_mm256_sub_epi32(maxX, minX), quick), lessThan(_mm256_sub_epi32(maxY, minY), quick)),
-            _mm256_and_si256(lessThan(dx, _mm256_set1_epi32(2)), lessThan(dy, _mm256_set1_epi32(2))));
-        // Area and facing; a front face swaps v0 and v1 (setupEdges). On small lanes nothing overflows:
-        // differences are below 2^12, products below 2^24.
-        const __m256i area = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(X0, X1), _mm256_sub_epi32(Y2, Y0)),
-                                              _mm256_mullo_epi32(_mm256_sub_epi32(X2, X0), _mm256_sub_epi32(Y0, Y1)));
-        const __m256i front = lessThan(area, zero);
-        __m256i culled = _mm256_cmpeq_epi32(area, zero);
-        if (cullBack) culled = _mm256_or_si256(culled, _mm256_andnot_si256(front, _mm256_set1_epi32(-1)));
-        {
-            const __m256i sx = _mm256_blendv_epi8(X0, X1, front), sy = _mm256_blendv_epi8(Y0, Y1, front);
-            X1 = _mm256_blendv_epi8(X1, X0, front), Y1 = _mm256_blendv_epi8(Y1, Y0, front);
-            X0 = sx, Y0 = sy;
-        }
-        // Edges relative to the first pixel centre (256·x0, 256·y0), within the extent of the
-        // vertices: pixel (x0 + a, y0 + b) is inside edge i when
-        // dcdx·(X_i − 256·x0) − dcdy·(Y_i − 256·y0) + tie − 1 − 256·dcdx·a + 256·dcdy·b ≥ 0
-        // (Rasterizer.h 3., the same inequality as k − dx·px + dy·py ≥ 0 with k from absolute c).
-        const __m256i ox = _mm256_slli_epi32(x0, 8), oy = _mm256_slli_epi32(y0, 8);
-        const __m256i Xs[3] = {X0, X1, X2}, Ys[3] = {Y0, Y1, Y2};
-        __m256i m00 = zero, m10 = zero, m01 = zero, m11 = zero;
-        for (int e = 0; e < 3; ++e) {
-            const int f = e == 2 ? 0 : e + 1;
-            const __m256i dcdx = _mm256_sub_epi32(Ys[e], Ys[f]), dcdy = _mm256_sub_epi32(Xs[e], Xs[f]);
-            const __m256i tie = _mm256_or_si256(lessThan(dcdx, zero),
-                                                _mm256_and_si256(_mm256_cmpeq_epi32(dcdx, zero), _mm256_cmpgt_epi32(dcdy, zero)));
-            // tie is −1 (all ones) where the rule adds 1; c − 1 is then c − tie − 1.
-            __m256i c = _mm256_sub_epi32(_mm256_mullo_epi32(dcdx, _mm256_sub_epi32(Xs[e], ox)),
-                                         _mm256_mullo_epi32(dcdy, _mm256_sub_epi32(Ys[e], oy)));
-            c = _mm256_sub_epi32(_mm256_sub_epi32(c, tie), one);
-            const __m256i stepX = _mm256_slli_epi32(dcdx, 8), stepY = _mm256_slli_epi32(dcdy, 8);
-            m00 = _mm256_or_si256(m00, c);
-            m10 = _mm256_or_si256(m10, _mm256_sub_epi32(c, stepX));
-            m01 = _mm256_or_si256(m01, _mm256_add_epi32(c, stepY));
-            m11 = _mm256_or_si256(m11, _mm256_add_epi32(_mm256_sub_epi32(c, stepX), stepY));
-        }
-        // A sample is inside every edge when the OR of the three is not negative.
-        const __m256i right = _mm256_cmpgt_epi32(dx, zero), up = _mm256_cmpgt_epi32(dy, zero);
-        __m256i covered = _mm256_cmpgt_epi32(m00, _mm256_set1_epi32(-1));
-        covered = _mm256_or_si256(covered, _mm256_and_si256(right, _mm256_cmpgt_epi32(m10, _mm256_set1_epi32(-1))));
-        covered = _mm256_or_si256(covered, _mm256_and_si256(up, _mm256_cmpgt_epi32(m01, _mm256_set1_epi32(-1))));
-        covered = _mm256_or_si256(covered, _mm256_and_si256(_mm256_and_si256(right, up),
-                                                            _mm256_cmpgt_epi32(m11, _mm256_set1_epi32(-1))));
-        // kKeep over everything; then an empty box drops; then a lane too large for the quick test is
-        // tested in full; a small one drops when degenerate, culled or covering no centre, and is
-        // kSmall otherwise (kKeep when its depth plane is too steep).
-        const __m256i smallSeen = _mm256_andnot_si256(empty, _mm256_and_si256(small, _mm256_andnot_si256(culled, covered)));
-        const __m256i large = _mm256_andnot_si256(empty, _mm256_andnot_si256(small, _mm256_set1_epi32(-1)));
-        __m256i v = _mm256_and_si256(large, one);
-        if (_mm256_movemask_epi8(_mm256_andnot_si256(keep, smallSeen)) != 0) {
-            // The depth plane in setup order (sw::setupDepthPlane: a front face swaps v0 and v1), every
-            // operation rounded to float.
-            const __m256i j0 = _mm256_blendv_epi8(i0, i1, front), j1 = _mm256_blendv_epi8(i1, i0, front);
-            const __m256 x0f = _mm256_i32gather_ps(w.x, j0, 4), y0f = _mm256_i32gather_ps(w.y, j0, 4), z0f = _mm256_i32gather_ps(w.z, j0, 4);
-            const __m256 x1f = _mm256_i32gather_ps(w.x, j1, 4), y1f = _mm256_i32gather_ps(w.y, j1, 4), z1f = _mm256_i32gather_ps(w.z, j1, 4);
-            const __m256 x2f = _mm256_i32gather_ps(w.x, i2, 4), y2f = _mm256_i32gather_ps(w.y, i2, 4), z2f = _mm256_i32gather_ps(w.z, i2, 4);
-            const __m256 x0c = _mm256_sub_ps(x0f, fhalf), y0c = _mm256_sub_ps(y0f, fhalf);
-            const __m256 dx01 = _mm256_sub_ps(x0f, x1f), dy01 = _mm256_sub_ps(y0f, y1f);
-            const __m256 dx20 = _mm256_sub_ps(x2f, x0f), dy20 = _mm256_sub_ps(y2f, y0f);
-            const __m256 ooa = _mm256_div_ps(fone, _mm256_sub_ps(_mm256_mul_ps(dx01, dy20), _mm256_mul_ps(dy01, dx20)));
-            const __m256 dx20o = _mm256_mul_ps(dx20, ooa), dy20o = _mm256_mul_ps(dy20, ooa);
-            const __m256 dx01o = _mm256_mul_ps(dx01, ooa), dy01o = _mm256_mul_ps(dy01, ooa);
-            const __m256 da01 = _mm256_sub_ps(z0f, z1f), da20 = _mm256_sub_ps(z2f, z0f);
-            const __m256 dzdx = _mm256_sub_ps(_mm256_mul_ps(da01, dy20o), _mm256_mul_ps(da20, dy01o));
-            const __m256 dzdy = _mm256_sub_ps(_mm256_mul_ps(da20, dx01o), _mm256_mul_ps(da01, dx20o));
-            const __m256 plane0 = _mm256_sub_ps(z0f, _mm256_add_ps(_mm256_mul_ps(dzdx, x0c), _mm256_mul_ps(dzdy, y0c)));
-            // depthSlack, in the same order.
-            const __m256 size = _mm256_add_ps(_mm256_add_ps(_mm256_and_ps(plane0, absMask), _mm256_mul_ps(_mm256_and_ps(dzdx, absMask), targetW)),
-                                              _mm256_mul_ps(_mm256_and_ps(dzdy, absMask), targetH));
-            const __m256 slack = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(slackScale, size), slackAdd), slackGrow);
-            const __m256i steep = _mm256_castps_si256(_mm256_cmp_ps(slack, fone, _CMP_NLT_UQ));
-            // The draw module's cull stage on the given order (sw::drawModuleKeepsFront): a sliver it
-            // may drop hides nothing.
-            // (v0 and v1 in the given order: swapped back where setup swapped them.)
-            const __m256 swapped = _mm256_castsi256_ps(front);
-            const __m256 xa = _mm256_blendv_ps(x0f, x1f, swapped), ya = _mm256_blendv_ps(y0f, y1f, swapped);
-            const __m256 xb = _mm256_blendv_ps(x1f, x0f, swapped), yb = _mm256_blendv_ps(y1f, y0f, swapped);
-            const __m256 det = _mm256_sub_ps(_mm256_mul_ps(_mm256_sub_ps(xa, x2f), _mm256_sub_ps(yb, y2f)),
-                                             _mm256_mul_ps(_mm256_sub_ps(ya, y2f), _mm256_sub_ps(xb, x2f)));
-            __m256i occludes = _mm256_castps_si256(_mm256_cmp_ps(det, fzero, _CMP_NLE_UQ));
-            if (!cullBack) occludes = _mm256_set1_epi32(-1);
-            // Far-ness bounds at the four pixel centres (Occlusion.cpp triangleMaySeen):
-            // z = (plane0 + dzdy·py) + dzdx·px.
-            const __m256 px0 = _mm256_cvtepi32_ps(x0), px1 = _mm256_cvtepi32_ps(_mm256_add_epi32(x0, one));
-            const __m256 py0 = _mm256_cvtepi32_ps(y0), py1 = _mm256_cvtepi32_ps(_mm256_add_epi32(y0, one));
-            const __m256 row0 = _mm256_add_ps(plane0, _mm256_mul_ps(dzdy, py0)), row1 = _mm256_add_ps(plane0, _mm256_mul_ps(dzdy, py1));
-            const __m256 zs[4] = {_mm256_add_ps(row0, _mm256_mul_ps(dzdx, px0)), _mm256_add_ps(row0, _mm256_mul_ps(dzdx, px1)),
-                                  _mm256_add_ps(row1, _mm256_mul_ps(dzdx, px0)), _mm256_add_ps(row1, _mm256_mul_ps(dzdx, px1))};
-            for (int k = 0; k < 4; ++k) {
-                const __m256 z = zs[k];
-                __m256 lo, hi;
-                if (!vp.halfZ) {
-                    lo = _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_sub_ps(z, slack)));
-                    hi = _mm256_add_ps(_mm256_min_ps(fone, _mm256_add_ps(z, slack)), step24);
-                } else {
-                    lo = _mm256_sub_ps(fzero, _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_add_ps(z, slack))));
-                    hi = _mm256_add_ps(_mm256_sub_ps(fzero, _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_sub_ps(z, slack)))), step24);
-                }
-                _mm256_storeu_ps(out.lo + std::size_t(k) * out.stride + i, lo);
-                _mm256_storeu_ps(out.hi + std::size_t(k) * out.stride + i, hi);
-            }
-            // Covered pixels: bit a + 2b.
-            const __m256i notNegative = _mm256_set1_epi32(-1);
-            __m256i bitsCovered = _mm256_and_si256(_mm256_cmpgt_epi32(m00, notNegative), one);
-            bitsCovered = _mm256_or_si256(bitsCovered, _mm256_and_si256(_mm256_and_si256(right, _mm256_cmpgt_epi32(m10, notNegative)), _mm256_set1_epi32(2)));
-            bitsCovered = _mm256_or_si256(bitsCovered, _mm256_and_si256(_mm256_and_si256(up, _mm256_cmpgt_epi32(m01, notNegative)), _mm256_set1_epi32(4)));
-            bitsCovered = _mm256_or_si256(bitsCovered, _mm256_and_si256(_mm256_and_si256(_mm256_and_si256(right, up), _mm256_cmpgt_epi32(m11, notNegative)), _mm256_set1_epi32(8)));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.x0 + i), x0);
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.y0 + i), y0);
-            const __m128i bits16 = _mm_packus_epi32(_mm256_castsi256_si128(bitsCovered), _mm256_extracti128_si256(bitsCovered, 1));
-            _mm_storel_epi64(reinterpret_cast<__m128i*>(out.covered + i), _mm_packus_epi16(bits16, bits16));
-            const __m256i occ = _mm256_and_si256(occludes, one);
-            const __m128i occ16 = _mm_packus_epi32(_mm256_castsi256_si128(occ), _mm256_extracti128_si256(occ, 1));
-            _mm_storel_epi64(reinterpret_cast<__m128i*>(out.occludes + i), _mm_packus_epi16(occ16, occ16));
-            v = _mm256_blendv_epi8(v, _mm256_blendv_epi8(_mm256_set1_epi32(3), _mm256_set1_epi32(2), steep), smallSeen);
-        }
-        v = _mm256_blendv_epi8(v, _mm256_set1_epi32(2), keep);
-        // Eight 32-bit verdicts to eight bytes.
-        const __m128i packed16 = _mm_packus_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(verdict + i), _mm_packus_epi16(packed16, packed16));
-    }
+    verdictsBody(Gather{w}, c0, c1, c2, count, cullBack, vp, rowLo, rowHi, verdict, out);
 }
 
 bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes) {

@@ -75,6 +75,16 @@ void verdictsAvx2(const WindowArrays& window, const std::uint16_t* c0, const std
                   std::uint32_t count, bool cullBack, const sw::Viewport& viewport, int rowLo, int rowHi,
                   std::uint8_t* verdict, const SmallTriangles& small);
 
+// verdictsAvx2's verdicts and outputs, bit for bit, with each corner's attributes looked up by
+// AVX-512 permutes instead of gathered: every index in `c0`, `c1`, `c2` is below kLookupVertices, and
+// every array of `window` holds at least kLookupVertices values (those past the cluster's vertices
+// are read and never used). Called only when cpuHasAvx512().
+inline constexpr std::uint32_t kLookupVertices = 64;
+bool cpuHasAvx512();
+void verdictsAvx512(const WindowArrays& window, const std::uint16_t* c0, const std::uint16_t* c1,
+                    const std::uint16_t* c2, std::uint32_t count, bool cullBack, const sw::Viewport& viewport,
+                    int rowLo, int rowHi, std::uint8_t* verdict, const SmallTriangles& small);
+
 // One row of a triangle's covered pixels [xa, xb] (xa ≤ xb) against the buffer `row` (far-ness;
 // Occlusion.cpp triangleMaySeen): whether some pixel may be seen, and, when `occludes`, each pixel
 // lowered to the triangle's upper bound there. zRow + dzdx·px is the plane, `slack` its rounding

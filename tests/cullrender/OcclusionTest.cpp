@@ -321,8 +321,9 @@ TEST(OcclusionTest, BandsOfRowsGiveWhatOneWalkGives) {
 }
 
 TEST(OcclusionTest, TheAvx2LoopsGiveTheScalarPlan) {
-    // The vertex transform and the quick triangle test eight at a time (cull/OcclusionKernels.h) give
-    // the plan of the scalar loops: on three bunnies from far away (a few pixels a triangle), near
+    // The vertex transform and the quick triangle test eight at a time (cull/OcclusionKernels.h),
+    // with the corners gathered (AVX2) and looked up (AVX-512, where the CPU has it), give the plan
+    // of the scalar loops: on three bunnies from far away (a few pixels a triangle), near
     // (triangles tens of pixels wide, many clipped) and from inside, in both depth formats, and on
     // 200 scenes of random boxes.
     if (!occlusion::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2 and FMA: only the scalar loops run";
@@ -334,8 +335,14 @@ TEST(OcclusionTest, TheAvx2LoopsGiveTheScalarPlan) {
         target.simd = false;
         const DrawList scalar = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
         target.simd = true;
-        const DrawList simd = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
-        EXPECT_TRUE(test::sameList(scalar, simd)) << label;
+        target.avx512 = false;
+        const DrawList gathers = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+        EXPECT_TRUE(test::sameList(scalar, gathers)) << label << ": AVX2";
+        if (occlusion::cpuHasAvx512()) {
+            target.avx512 = true;
+            const DrawList lookups = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+            EXPECT_TRUE(test::sameList(scalar, lookups)) << label << ": AVX-512 lookups";
+        }
         ++compared;
     };
     if (test::loadBunny(false)) {
