@@ -355,24 +355,19 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
             // Inside the frustum the facing test alone decides: its runs, 64 flags at a time (a
             // branch a triangle on whether it faces the eye is one the CPU cannot predict). Runs that
             // touch are merged by `out`.
-            if (runLength > 0) out.add(runStart, runLength), runLength = 0;
             for (std::uint32_t base = 0; base < n; base += 64) {
                 const std::uint32_t len = std::min<std::uint32_t>(64, n - base);
                 std::uint64_t m = 0;
                 for (std::uint32_t i = 0; i < len; ++i) m |= std::uint64_t(facing[base + i] != 0) << i;
-                while (m != 0) {
-                    const int at = __builtin_ctzll(m);
-                    const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
-                    const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
-                    m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
-                    out.add(batch + base + std::uint32_t(at), std::uint32_t(length));
-                }
+                forEachRun(m, [&](std::uint32_t at, std::uint32_t length) { out.add(batch + base + at, length); });
             }
             continue;
         }
+        // Across the frustum, triangle by triangle: there the kept runs are long and the branch is
+        // predicted (the 64-flag runs above measured slower here).
         for (std::uint32_t t = batch; t < batch + n; ++t) {
             bool keep = facing[t - batch] != 0;
-            if (!inside && (keep || singleSided)) {
+            if (keep || singleSided) {
                 const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
                 const std::uint8_t a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
                 // Outside a plane: dropped. Clipped by GL: its new triangles may turn, so facing

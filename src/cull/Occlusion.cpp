@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cull/OcclusionKernels.h"
+#include "render/IndexRanges.h"
 #include "software/Kernels.h"
 #include "software/Rasterizer.h"
 #include "software/ThreadPool.h"
@@ -378,20 +379,16 @@ struct OcclusionCuller::State {
                     for (std::uint32_t base = 0; base < range.triangleCount; base += 64) {
                         std::uint64_t m = seenMask(slot + base);
                         if (range.triangleCount - base < 64) m &= (std::uint64_t(1) << (range.triangleCount - base)) - 1;
-                        while (m != 0) {
-                            const int at = __builtin_ctzll(m);
-                            const std::uint64_t rest = ~(m >> at);  // 0 when the run reaches bit 63
-                            const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
-                            m &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
-                            const std::uint32_t t = range.firstTriangle + base + std::uint32_t(at);
+                        forEachRun(m, [&](std::uint32_t at, std::uint32_t length) {
+                            const std::uint32_t t = range.firstTriangle + base + at;
                             if (runLength > 0 && runStart + runLength == t) {
-                                runLength += std::uint32_t(length);
-                                continue;
+                                runLength += length;
+                                return;
                             }
                             if (runLength > 0) out.push_back({runStart, runLength}), ++kr.rangeCount;
                             runStart = t;
-                            runLength = std::uint32_t(length);
-                        }
+                            runLength = length;
+                        });
                     }
                     slot += range.triangleCount;
                 }

@@ -26,7 +26,8 @@ namespace {
 #include "cull/OcclusionVerdicts.inl"
 
 // Entry i (< 64) of the 64 at `t`, for eight indices: the two halves of 32 permuted, then the half
-// bit 5 names. Only the low eight lanes of each 16 are used.
+// bit 5 names. Only the low eight lanes of each 16 are used. The permutes move bits, so floats are
+// looked up as their bits.
 inline __m256i lookup(const std::int32_t* t, __m256i index) {
     const __m512i i = _mm512_zextsi256_si512(index);
     const __m512i low = _mm512_permutex2var_epi32(_mm512_loadu_si512(t), i, _mm512_loadu_si512(t + 16));
@@ -34,10 +35,7 @@ inline __m256i lookup(const std::int32_t* t, __m256i index) {
     return _mm512_castsi512_si256(_mm512_mask_blend_epi32(_mm512_test_epi32_mask(i, _mm512_set1_epi32(32)), low, high));
 }
 inline __m256 lookup(const float* t, __m256i index) {
-    const __m512i i = _mm512_zextsi256_si512(index);
-    const __m512 low = _mm512_permutex2var_ps(_mm512_loadu_ps(t), i, _mm512_loadu_ps(t + 16));
-    const __m512 high = _mm512_permutex2var_ps(_mm512_loadu_ps(t + 32), i, _mm512_loadu_ps(t + 48));
-    return _mm512_castps512_ps256(_mm512_mask_blend_ps(_mm512_test_epi32_mask(i, _mm512_set1_epi32(32)), low, high));
+    return _mm256_castsi256_ps(lookup(reinterpret_cast<const std::int32_t*>(t), index));
 }
 
 // The corners' attributes looked up in the window arrays' first 64 entries.

@@ -18,6 +18,20 @@ namespace frugal {
 std::uint64_t normalizeRanges(std::span<const IndexRange> ranges, std::uint32_t meshTriangles,
                               std::vector<IndexRange>& out);
 
+// Calls f(at, length) for each run of set bits of `bits`, lowest first: bits [at, at + length) are
+// set, the bits around them are not. The plans that keep triangles by 64-bit masks (culling) turn
+// them into ranges with it.
+template <class F>
+inline void forEachRun(std::uint64_t bits, F&& f) {
+    while (bits != 0) {
+        const int at = __builtin_ctzll(bits);
+        const std::uint64_t rest = ~(bits >> at);  // 0 when the run reaches bit 63
+        const int length = rest == 0 ? 64 - at : __builtin_ctzll(rest);
+        bits &= length + at >= 64 ? 0 : ~std::uint64_t(0) << (at + length);
+        f(std::uint32_t(at), std::uint32_t(length));
+    }
+}
+
 // A mesh's triangle → source-primitive table (render/Backend.h, DrawParams::firstId): its own
 // triangleSource, or t for triangle t when it has none.
 std::vector<std::uint32_t> triangleSources(const Mesh& mesh);
