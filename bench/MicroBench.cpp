@@ -140,18 +140,15 @@ void BM_CullBunny(benchmark::State& state) {
 }
 BENCHMARK(BM_CullBunny)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
-// The occlusion pass alone (cull/Occlusion.h) on three single-sided bunnies seen whole at 800×600,
-// run on every call, with 1 thread and with every core, with the scalar loops (simd:0), the AVX2 ones
-// (simd:1, where the CPU has them; the quick test gathers each corner) and the AVX2 ones whose quick
-// test looks the corners up with AVX-512 permutes (simd:2, where the CPU has AVX-512): its plan
-// against conservative's.
-void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
+// The occlusion pass alone (cull/Occlusion.h) on `scene`'s single-sided meshes seen whole at 800×600,
+// run on every call (not adaptive), with `threads` threads (0: every core) and the loops of `simd`:
+// its plan against conservative's.
+void occlusionPass(benchmark::State& state, const std::string& scenePath, int threads, int simd) {
     if (!std::filesystem::exists(FRUGAL_BUNNY_OBJ)) {
         state.SkipWithError("the bunny is missing (Debian package glmark2-data)");
         return;
     }
-    Result<Scene> scene = loadScene(std::string("builtin:copies?count=3&of=") + FRUGAL_BUNNY_OBJ,
-                                    LoadOptions{.objDoubleSided = false});
+    Result<Scene> scene = loadScene(scenePath, LoadOptions{.objDoubleSided = false});
     if (!scene) {
         state.SkipWithError(scene.error().c_str());
         return;
@@ -163,7 +160,7 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
         return;
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
-                           .threads = int(state.range(0)), .simd = state.range(1) != 0, .avx512 = state.range(1) == 2};
+                           .threads = threads, .simd = simd != 0, .avx512 = simd == 2};
     std::size_t submitted = 0;
     double passMs = 0.0;
     for (auto _ : state) {
@@ -176,11 +173,26 @@ void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
     state.counters["conservative_pvs"] =
         double(submittedTriangles(*scene, culler.cull(Cull::Conservative, *scene, frame->world, frame->view)));
 }
+
+// Three bunnies, with 1 thread and with every core, with the scalar loops (simd:0), the AVX2 ones
+// (simd:1, where the CPU has them; the quick test gathers each corner) and the AVX2 ones whose quick
+// test looks the corners up with AVX-512 permutes (simd:2, where the CPU has AVX-512).
+void BM_CullOcclusionThreeBunnies(benchmark::State& state) {
+    occlusionPass(state, std::string("builtin:copies?count=3&of=") + FRUGAL_BUNNY_OBJ, int(state.range(0)),
+                  int(state.range(1)));
+}
 BENCHMARK(BM_CullOcclusionThreeBunnies)
     ->ArgsProduct({{1, kCores}, {0, 1, 2}})
     ->ArgNames({"threads", "simd"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// One bunny filling the screen, where the pass has larger triangles to draw into its buffer and
+// fewer to hide; with the fastest loops. Argument: threads.
+void BM_CullOcclusionBunny(benchmark::State& state) {
+    occlusionPass(state, FRUGAL_BUNNY_OBJ, int(state.range(0)), 2);
+}
+BENCHMARK(BM_CullOcclusionBunny)->Arg(1)->Arg(kCores)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The occlusion pass on 4,000 dominoes seen low from the front (docs/occlusion.md's dominoes goal):
 // 13,589 clusters of one triangle or two left by the conservative plan, most hidden behind the

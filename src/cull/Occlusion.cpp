@@ -97,17 +97,21 @@ struct Band {
     std::vector<std::int32_t> smallX0, smallY0;
     std::vector<std::uint8_t> covered, occludes;
     std::vector<float> lo, hi;
+    // And of kMedium ones.
+    std::vector<std::int32_t> smallX1, smallY1, edge;
+    std::vector<float> plane;
 
     occlusion::WindowArrays window() { return {x.data(), y.data(), z.data(), fx.data(), fy.data()}; }
     occlusion::SmallTriangles small() {
         return {smallX0.data(), smallY0.data(), covered.data(), occludes.data(), lo.data(), hi.data(),
-                std::uint32_t(verdict.size())};
+                std::uint32_t(verdict.size()), smallX1.data(), smallY1.data(), edge.data(), plane.data()};
     }
     void reserve(std::size_t vertices, std::size_t triangles) {
         if (x.size() < vertices) x.resize(vertices), y.resize(vertices), z.resize(vertices), fx.resize(vertices), fy.resize(vertices);
         if (verdict.size() < triangles) {
             verdict.resize(triangles), smallX0.resize(triangles), smallY0.resize(triangles);
             covered.resize(triangles), occludes.resize(triangles), lo.resize(4 * triangles), hi.resize(4 * triangles);
+            smallX1.resize(triangles), smallY1.resize(triangles), edge.resize(9 * triangles), plane.resize(4 * triangles);
         }
     }
 };
@@ -328,6 +332,8 @@ struct OcclusionCuller::State {
                                                singleSided, band.y0, band.y1);
                     else if (verdict[t] == occlusion::kSmall)
                         seen = smallMaySeen(small, t);
+                    else if (verdict[t] == occlusion::kMedium)
+                        seen = mediumMaySeen(small, t);
                     seenOut[t] = std::uint8_t(seen || !exactRules);
                 }
             }
@@ -600,6 +606,50 @@ struct OcclusionCuller::State {
         return false;
     }
 
+    // The edges of `t` at pixel (t.x0, y0) and their steps, for occlusion::narrowAvx2: false when a
+    // value at a corner of columns t.x0 … t.x0 + 7 and rows y0 … y1 is not within ±2^30.
+    static bool narrowEdges(const sw::Triangle& t, int y0, int y1, std::int32_t e00[3], std::int32_t ex[3],
+                            std::int32_t ey[3]) {
+        constexpr std::int64_t kLimit = std::int64_t(1) << 30;
+        const auto fits = [](std::int64_t v) { return v > -kLimit && v < kLimit; };
+        for (int i = 0; i < 3; ++i) {
+            const std::int64_t dx = t.e[i].dx, dy = t.e[i].dy;
+            const std::int64_t e = t.e[i].k - dx * t.x0 + dy * y0, right = e - 7 * dx, up = dy * (y1 - y0);
+            if (!fits(e) || !fits(right) || !fits(e + up) || !fits(right + up)) return false;
+            e00[i] = std::int32_t(e), ex[i] = std::int32_t(dx), ey[i] = std::int32_t(dy);
+        }
+        return true;
+    }
+
+    // The blocks of rows [y0, y1] and of the columns x0 + i of bit i of `columns` are dirty (a block
+    // marked where nothing was lowered is only read again).
+    void markColumns(int x0, int y0, int y1, std::uint32_t columns) {
+        if (columns == 0) return;
+        const int bx0 = (x0 + __builtin_ctz(columns)) >> kBlockLog2, bx1 = (x0 + 31 - __builtin_clz(columns)) >> kBlockLog2;
+        for (int by = y0 >> kBlockLog2; by <= y1 >> kBlockLog2; ++by)
+            for (int bx = bx0; bx <= bx1; ++bx) blockDirty[std::size_t(by) * std::size_t(blocksX) + std::size_t(bx)] = 1;
+    }
+
+    // Triangle t of a batch the quick test called kMedium: tested and written as triangleMaySeen
+    // does (its narrow path), with the edges and plane the quick test computed as setup computes them.
+    bool mediumMaySeen(const occlusion::SmallTriangles& small, std::uint32_t t) {
+        const std::size_t stride = small.stride;
+        std::int32_t e[3], ex[3], ey[3];
+        for (std::size_t k = 0; k < 3; ++k) {
+            e[k] = small.edge[k * stride + t];
+            ex[k] = small.edge[(3 + k) * stride + t];
+            ey[k] = small.edge[(6 + k) * stride + t];
+        }
+        const int x0 = small.x0[t], y0 = small.y0[t];
+        const bool occludes = small.occludes[t] != 0;
+        std::uint32_t columns = 0;
+        const bool seen = occlusion::narrowAvx2(depth.data(), width, x0, small.x1[t], y0, small.y1[t], e, ex, ey,
+                                                small.plane[t], small.plane[stride + t], small.plane[2 * stride + t],
+                                                small.plane[3 * stride + t], float(2.0 * kUnit), halfZ, occludes, &columns);
+        if (occludes) markColumns(x0, y0, small.y1[t], columns);
+        return seen;
+    }
+
     // Triangle t of a batch the quick test called kSmall: its covered pixels tested and written as
     // triangleMaySeen does, with the bounds the quick test computed as it computes them.
     bool smallMaySeen(const occlusion::SmallTriangles& small, std::uint32_t t) {
@@ -634,8 +684,16 @@ struct OcclusionCuller::State {
         std::int64_t X[3] = {w.fx[a], w.fx[b], w.fx[c]}, Y[3] = {w.fy[a], w.fy[b], w.fy[c]};
         sw::Triangle t;
         const sw::SetupOrder order = sw::setupEdges(X, Y, singleSided, viewport, &t);
-        if (order == sw::SetupOrder::Dropped || !coversPixel(t, rowLo, rowHi)) return false;  // no pixel
-        sw::SetupVertex s[3]{};
+        if (order == sw::SetupOrder::Dropped) return false;
+        // A triangle at most 8 pixels wide whose edges fit in 32 bits is rasterized 8 pixels a row
+        // at once (occlusion::narrowAvx2), which finds no pixel as cheaply as coversPixel does.
+        const int ya = std::max(t.y0, rowLo), yb = std::min(t.y1, rowHi);
+        std::int32_t e00[3], ex[3], ey[3];
+        const bool narrow = simd && t.x1 - t.x0 < 8 && ya <= yb && narrowEdges(t, ya, yb, e00, ex, ey);
+        if (!narrow && !coversPixel(t, rowLo, rowHi)) return false;  // no pixel
+        // Only the positions are read (drawModuleKeepsFront, setupDepthPlane): the attributes are
+        // left unset (zeroing three vertices was a twentieth of the pass).
+        sw::SetupVertex s[3];
         const std::uint32_t corner[3] = {a, b, c};
         for (int i = 0; i < 3; ++i) {
             s[i].x = w.x[corner[i]];
@@ -646,14 +704,22 @@ struct OcclusionCuller::State {
         // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
         // triangle is kept but hides nothing.
         const bool occludes = !singleSided || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
-        if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
-        sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+        const sw::SetupVertex* v[3] = {&s[0], &s[1], &s[2]};
+        if (order == sw::SetupOrder::Swapped) std::swap(v[0], v[1]);
+        sw::setupDepthPlane(v[0], v[1], v[2], &t);
         // llvmpipe's z at pixel (px, py) is fma(dzdy, py, fma(dzdx, px, z0)) in float, clamped to
         // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes;
         // `s0` bounds the distance between the two (occlusion::depthSlack).
         const float s0 = occlusion::depthSlack(t.z0, t.dzdx, t.dzdy, float(width), float(height));
-        if (!(s0 < 1.0f)) return true;  // not a number, or a plane too steep to say anything
+        if (!(s0 < 1.0f)) return narrow ? coversPixel(t, rowLo, rowHi) : true;  // a plane that says nothing
         const float up = float(2.0 * kUnit);
+        if (narrow) {
+            std::uint32_t columns = 0;
+            const bool seen = occlusion::narrowAvx2(depth.data(), width, t.x0, t.x1, ya, yb, e00, ex, ey, t.z0, t.dzdx,
+                                                    t.dzdy, s0, up, halfZ, occludes, &columns);
+            if (occludes) markColumns(t.x0, ya, yb, columns);
+            return seen;
+        }
         const float dzdx = t.dzdx;
         bool seen = false;
         for (int py = std::max(t.y0, rowLo); py <= std::min(t.y1, rowHi); ++py) {
@@ -763,8 +829,10 @@ std::uint64_t OcclusionCuller::bytes() const {
         total += band.seen.capacity() + band.verdict.capacity() + band.covered.capacity() + band.occludes.capacity() +
                  (band.x.capacity() + band.y.capacity() + band.z.capacity() + band.lo.capacity() + band.hi.capacity()) *
                      sizeof(float) +
-                 (band.fx.capacity() + band.fy.capacity() + band.smallX0.capacity() + band.smallY0.capacity()) *
-                     sizeof(std::int32_t);
+                 (band.fx.capacity() + band.fy.capacity() + band.smallX0.capacity() + band.smallY0.capacity() +
+                  band.smallX1.capacity() + band.smallY1.capacity() + band.edge.capacity()) *
+                     sizeof(std::int32_t) +
+                 band.plane.capacity() * sizeof(float);
     return total;
 }
 

@@ -123,6 +123,51 @@ bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, f
     return _mm256_movemask_ps(seen) != 0;
 }
 
+bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const std::int32_t e[3],
+                const std::int32_t dx[3], const std::int32_t dy[3], float z0, float dzdx, float dzdy, float slack,
+                float up, bool halfZ, bool occludes, std::uint32_t* columns) {
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    // The edges at pixels x0 … x0 + 7 of row y0 (k − dx·px + dy·py), a row up each step; every value
+    // lies between the rectangle's corners', which the caller made sure fit.
+    __m256i edge[3], step[3];
+    for (int i = 0; i < 3; ++i) {
+        edge[i] = _mm256_sub_epi32(_mm256_set1_epi32(e[i]), _mm256_mullo_epi32(_mm256_set1_epi32(dx[i]), lane));
+        step[i] = _mm256_set1_epi32(dy[i]);
+    }
+    const __m256i inBox = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x0 + 1), lane);
+    const __m256i none = _mm256_set1_epi32(-1);
+    // spanAvx2's bounds: z = zRow + dzdx·px, the product the same on every row.
+    const __m256 slope = _mm256_mul_ps(_mm256_set1_ps(dzdx), _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x0), lane)));
+    const __m256 vs = _mm256_set1_ps(slack), vup = _mm256_set1_ps(up);
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    __m256 seen = zero;
+    __m256i any = _mm256_setzero_si256();
+    for (int py = y0; py <= y1; ++py) {
+        // Covered: every edge ≥ 0, i.e. their OR > −1.
+        const __m256i cover = _mm256_and_si256(
+            inBox, _mm256_cmpgt_epi32(_mm256_or_si256(_mm256_or_si256(edge[0], edge[1]), edge[2]), none));
+        for (int i = 0; i < 3; ++i) edge[i] = _mm256_add_epi32(edge[i], step[i]);
+        if (_mm256_testz_si256(cover, cover)) continue;
+        any = _mm256_or_si256(any, cover);
+        const float zRow = z0 + dzdy * float(py);
+        const __m256 z = _mm256_add_ps(_mm256_set1_ps(zRow), slope);
+        __m256 lo, hi;
+        if (!halfZ) {
+            lo = _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)));
+            hi = _mm256_add_ps(_mm256_min_ps(one, _mm256_add_ps(z, vs)), vup);
+        } else {
+            lo = _mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_add_ps(z, vs))));
+            hi = _mm256_add_ps(_mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)))), vup);
+        }
+        float* row = depth + std::ptrdiff_t(py) * width + x0;
+        const __m256 stored = _mm256_maskload_ps(row, cover);
+        seen = _mm256_or_ps(seen, _mm256_and_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ), _mm256_castsi256_ps(cover)));
+        if (occludes) _mm256_maskstore_ps(row, cover, _mm256_min_ps(hi, stored));
+    }
+    *columns = std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(any)));
+    return _mm256_movemask_ps(seen) != 0;
+}
+
 bool cpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 
 }  // namespace frugal::occlusion
@@ -137,6 +182,11 @@ void transformAvx2(const float*, const float*, const float*, const float*, std::
 void verdictsAvx2(const WindowArrays&, const std::uint16_t*, const std::uint16_t*, const std::uint16_t*, std::uint32_t,
                   bool, const sw::Viewport&, int, int, std::uint8_t*, const SmallTriangles&) {}
 bool spanAvx2(float*, int, int, float, float, float, float, bool, bool) { return true; }
+bool narrowAvx2(float*, int, int, int, int, int, const std::int32_t*, const std::int32_t*, const std::int32_t*, float,
+                float, float, float, float, bool, bool, std::uint32_t* columns) {
+    *columns = 0xff;
+    return true;
+}
 }  // namespace frugal::occlusion
 
 #endif

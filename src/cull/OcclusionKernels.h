@@ -29,6 +29,7 @@ enum Verdict : std::uint8_t {
     kTest = 1,  // may own one: the full test decides (Occlusion.cpp triangleMaySeen)
     kKeep = 2,  // a corner is kUnfixed, or its depth plane is too steep to bound: kept, hides nothing
     kSmall = 3,  // owns the pixel centres in SmallTriangles::covered, with the depth bounds given there
+    kMedium = 4,  // at most 8 pixel centres wide: rasterized by narrowAvx2 from SmallTriangles' edges and plane
 };
 
 // What the quick test gives of a kSmall triangle t (one of at most 2 × 2 pixel centres), structure
@@ -36,11 +37,19 @@ enum Verdict : std::uint8_t {
 // whether it occludes (Occlusion.cpp: not a sliver the draw module may drop), and at each covered
 // pixel k = a + 2b the bounds lo[k·stride + t] ≤ the far-ness the GL draw writes ≤ hi[k·stride + t]
 // (depthBounds).
+// A kMedium triangle t (within kQuickExtent, more than 2 × 2 and at most 8 pixel centres wide, a
+// depth plane not too steep) gets instead its pixel bounds x0 … x1, y0 … y1 (setup's, on the rows
+// looked at), whether it occludes, its three edges at pixel (x0, y0) and their steps in
+// narrowAvx2's form (edge[k·stride + t], edge[(3 + k)·stride + t] = dx, edge[(6 + k)·stride + t] =
+// dy for edge k), and its plane: plane[t] = z0, plane[stride + t] = dzdx, plane[2·stride + t] = dzdy,
+// plane[3·stride + t] = depthSlack.
 struct SmallTriangles {
     std::int32_t *x0, *y0;
     std::uint8_t *covered, *occludes;
     float *lo, *hi;
     std::uint32_t stride;
+    std::int32_t *x1 = nullptr, *y1 = nullptr, *edge = nullptr;
+    float* plane = nullptr;
 };
 
 // The rounding bound of the depth plane z0 + dzdx·px + dzdy·py on a target of `width` × `height`
@@ -55,7 +64,8 @@ inline float depthSlack(float z0, float dzdx, float dzdy, float width, float hei
 }
 
 // Triangles whose fixed-point extent is below this (in 1/256 pixel) in x and in y are decided in
-// 32-bit arithmetic when they span at most 2 × 2 pixel centres; the others get kTest.
+// 32-bit arithmetic when they span at most 2 × 2 pixel centres (kSmall), or set up for narrowAvx2
+// when they span at most 8 columns (kMedium, when the caller asks for it); the others get kTest.
 inline constexpr std::int32_t kQuickExtent = 1 << 12;
 
 // Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
@@ -92,4 +102,14 @@ void verdictsAvx512(const WindowArrays& window, const std::uint16_t* c0, const s
 // which touch nothing past xb.
 bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes);
 
+// A triangle at most eight pixels wide (x1 − x0 < 8) on rows [y0, y1] of the buffer `depth` (rows of
+// `width`; Occlusion.cpp triangleMaySeen): pixel (px, py) of the rectangle is covered when the three
+// edges e[i] − dx[i]·(px − x0) + dy[i]·(py − y0) are ≥ 0 (sw::Edge at (x0, y0)); every such value,
+// at the corners of columns x0 … x0 + 7 and rows y0 … y1 (and so between them), lies within ±2^30.
+// Each covered row is spanAvx2 of its covered pixels, the plane at row py being z0 + dzdy·py:
+// whether some pixel may be seen, and, when `occludes`, each lowered. `columns`: bit i when some row
+// covers column x0 + i. Masked loads and stores: nothing outside the covered pixels is touched.
+bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const std::int32_t e[3],
+                const std::int32_t dx[3], const std::int32_t dy[3], float z0, float dzdx, float dzdy, float slack,
+                float up, bool halfZ, bool occludes, std::uint32_t* columns);
 }  // namespace frugal::occlusion

@@ -29,6 +29,7 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
     const __m256 slackGrow = _mm256_set1_ps(1.0f + 1e-6f), step24 = _mm256_set1_ps(2.0f * kUnit);
     const __m256i unfixed = _mm256_set1_epi32(kUnfixed), quick = _mm256_set1_epi32(kQuickExtent);
     const __m256i lastX = _mm256_set1_epi32(width - 1), rowFirst = _mm256_set1_epi32(rowLo), rowLast = _mm256_set1_epi32(rowHi);
+    const bool medium8 = out.edge != nullptr;  // kMedium asked for
     for (std::uint32_t i = 0; i < count; i += 8) {
         const __m256i i0 = load8(c0 + i), i1 = load8(c1 + i), i2 = load8(c2 + i);
         __m256i X0 = fetch.fx(i0), X1 = fetch.fx(i1), X2 = fetch.fx(i2);
@@ -46,11 +47,15 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
         const __m256i empty = _mm256_or_si256(_mm256_cmpgt_epi32(x0, x1), _mm256_cmpgt_epi32(y0, y1));
         // Small enough for 32 bits (the extent is exact: |X| < 2^26), and at most 2 × 2 pixel centres.
         const __m256i dx = _mm256_sub_epi32(x1, x0), dy = _mm256_sub_epi32(y1, y0);
+        const __m256i within = _mm256_and_si256(lessThan(_mm256_sub_epi32(maxX, minX), quick),
+                                                lessThan(_mm256_sub_epi32(maxY, minY), quick));
         const __m256i small = _mm256_and_si256(
-            _mm256_and_si256(lessThan(_mm256_sub_epi32(maxX, minX), quick), lessThan(_mm256_sub_epi32(maxY, minY), quick)),
-            _mm256_and_si256(lessThan(dx, _mm256_set1_epi32(2)), lessThan(dy, _mm256_set1_epi32(2))));
-        // Area and facing; a front face swaps v0 and v1 (setupEdges). On small lanes nothing overflows:
-        // differences are below 2^12, products below 2^24.
+            within, _mm256_and_si256(lessThan(dx, _mm256_set1_epi32(2)), lessThan(dy, _mm256_set1_epi32(2))));
+        // At most 8 columns, larger than small (and asked for).
+        const __m256i medium = medium8 ? _mm256_andnot_si256(small, _mm256_and_si256(within, lessThan(dx, _mm256_set1_epi32(8))))
+                                       : zero;
+        // Area and facing; a front face swaps v0 and v1 (setupEdges). Within the extent nothing
+        // overflows: differences are below 2^12, products below 2^24.
         const __m256i area = _mm256_sub_epi32(_mm256_mullo_epi32(_mm256_sub_epi32(X0, X1), _mm256_sub_epi32(Y2, Y0)),
                                               _mm256_mullo_epi32(_mm256_sub_epi32(X2, X0), _mm256_sub_epi32(Y0, Y1)));
         const __m256i front = lessThan(area, zero);
@@ -68,6 +73,7 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
         const __m256i ox = _mm256_slli_epi32(x0, 8), oy = _mm256_slli_epi32(y0, 8);
         const __m256i Xs[3] = {X0, X1, X2}, Ys[3] = {Y0, Y1, Y2};
         __m256i m00 = zero, m10 = zero, m01 = zero, m11 = zero;
+        __m256i edges[3], stepsX[3], stepsY[3];
         for (int e = 0; e < 3; ++e) {
             const int f = e == 2 ? 0 : e + 1;
             const __m256i dcdx = _mm256_sub_epi32(Ys[e], Ys[f]), dcdy = _mm256_sub_epi32(Xs[e], Xs[f]);
@@ -78,6 +84,7 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
                                          _mm256_mullo_epi32(dcdy, _mm256_sub_epi32(Ys[e], oy)));
             c = _mm256_sub_epi32(_mm256_sub_epi32(c, tie), one);
             const __m256i stepX = _mm256_slli_epi32(dcdx, 8), stepY = _mm256_slli_epi32(dcdy, 8);
+            edges[e] = c, stepsX[e] = stepX, stepsY[e] = stepY;
             m00 = _mm256_or_si256(m00, c);
             m10 = _mm256_or_si256(m10, _mm256_sub_epi32(c, stepX));
             m01 = _mm256_or_si256(m01, _mm256_add_epi32(c, stepY));
@@ -93,10 +100,14 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
         // kKeep over everything; then an empty box drops; then a lane too large for the quick test is
         // tested in full; a small one drops when degenerate, culled or covering no centre, and is
         // kSmall otherwise (kKeep when its depth plane is too steep).
+        // A medium lane drops when degenerate or culled, and is kMedium otherwise (kTest when its
+        // plane is too steep: the full test then finds whether it covers a centre).
         const __m256i smallSeen = _mm256_andnot_si256(empty, _mm256_and_si256(small, _mm256_andnot_si256(culled, covered)));
-        const __m256i large = _mm256_andnot_si256(empty, _mm256_andnot_si256(small, _mm256_set1_epi32(-1)));
+        const __m256i mediumLive = _mm256_andnot_si256(empty, _mm256_andnot_si256(culled, medium));
+        const __m256i large = _mm256_andnot_si256(
+            empty, _mm256_andnot_si256(_mm256_or_si256(small, _mm256_and_si256(medium, culled)), _mm256_set1_epi32(-1)));
         __m256i v = _mm256_and_si256(large, one);
-        if (_mm256_movemask_epi8(_mm256_andnot_si256(keep, smallSeen)) != 0) {
+        if (_mm256_movemask_epi8(_mm256_andnot_si256(keep, _mm256_or_si256(smallSeen, mediumLive))) != 0) {
             // The depth plane in setup order (sw::setupDepthPlane: a front face swaps v0 and v1), every
             // operation rounded to float.
             const __m256i j0 = _mm256_blendv_epi8(i0, i1, front), j1 = _mm256_blendv_epi8(i1, i0, front);
@@ -162,6 +173,20 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
             const __m128i occ16 = _mm_packus_epi32(_mm256_castsi256_si128(occ), _mm256_extracti128_si256(occ, 1));
             _mm_storel_epi64(reinterpret_cast<__m128i*>(out.occludes + i), _mm_packus_epi16(occ16, occ16));
             v = _mm256_blendv_epi8(v, _mm256_blendv_epi8(_mm256_set1_epi32(3), _mm256_set1_epi32(2), steep), smallSeen);
+            if (_mm256_movemask_epi8(_mm256_andnot_si256(keep, mediumLive)) != 0) {
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.x1 + i), x1);
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.y1 + i), y1);
+                for (int e = 0; e < 3; ++e) {
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.edge + std::size_t(e) * out.stride + i), edges[e]);
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.edge + std::size_t(3 + e) * out.stride + i), stepsX[e]);
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.edge + std::size_t(6 + e) * out.stride + i), stepsY[e]);
+                }
+                _mm256_storeu_ps(out.plane + i, plane0);
+                _mm256_storeu_ps(out.plane + std::size_t(out.stride) + i, dzdx);
+                _mm256_storeu_ps(out.plane + 2 * std::size_t(out.stride) + i, dzdy);
+                _mm256_storeu_ps(out.plane + 3 * std::size_t(out.stride) + i, slack);
+                v = _mm256_blendv_epi8(v, _mm256_blendv_epi8(_mm256_set1_epi32(4), one, steep), mediumLive);
+            }
         }
         v = _mm256_blendv_epi8(v, _mm256_set1_epi32(2), keep);
         // Eight 32-bit verdicts to eight bytes.

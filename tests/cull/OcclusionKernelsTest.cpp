@@ -5,7 +5,9 @@
 // The plans the two give are compared in tests/cullrender/OcclusionTest.cpp; this test also
 // reaches what a plan does not show (a bound a little too near that no scene happens to reveal).
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -37,6 +39,10 @@ struct Expected {
     unsigned covered = 0;
     bool occludes = false;
     float lo[4] = {}, hi[4] = {};
+    // kMedium: the last pixel, the plane (z0, dzdx, dzdy, slack) and setup's edges.
+    std::int64_t x1 = 0, y1 = 0;
+    float plane[4] = {};
+    sw::Triangle edges{};
 };
 
 // The pass's scalar rules for one triangle whose corners are all representable (Occlusion.cpp
@@ -53,13 +59,28 @@ Expected reference(const float (*v)[3], bool cullBack, const sw::Viewport& vp, i
     const std::int64_t by0 = std::max<std::int64_t>(-((-minY) >> 8), rowLo),
                        by1 = std::min<std::int64_t>(maxY >> 8, rowHi);
     if (bx0 > bx1 || by0 > by1) return e;
-    if (maxX - minX >= kQuickExtent || maxY - minY >= kQuickExtent || bx1 - bx0 > 1 || by1 - by0 > 1) {
+    if (maxX - minX >= kQuickExtent || maxY - minY >= kQuickExtent || bx1 - bx0 > 7) {
         e.verdict = kTest;
         return e;
     }
     sw::Triangle t{};
     const sw::SetupOrder order = sw::setupEdges(X, Y, cullBack, vp, &t);
     if (order == sw::SetupOrder::Dropped) return e;
+    if (bx1 - bx0 > 1 || by1 - by0 > 1) {  // medium: the plane, unless too steep (then kTest)
+        EXPECT_EQ(t.x0, bx0);
+        EXPECT_EQ(t.x1, bx1);
+        sw::SetupVertex s[3]{};
+        for (int i = 0; i < 3; ++i) s[i].x = v[i][0], s[i].y = v[i][1], s[i].z = v[i][2], s[i].oow = 1.0f;
+        e.occludes = !cullBack || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
+        sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+        const float slack = depthSlack(t.z0, t.dzdx, t.dzdy, float(vp.width), float(vp.height));
+        e.verdict = slack < 1.0f ? kMedium : kTest;
+        e.x0 = bx0, e.y0 = by0, e.x1 = bx1, e.y1 = by1;
+        e.plane[0] = t.z0, e.plane[1] = t.dzdx, e.plane[2] = t.dzdy, e.plane[3] = slack;
+        e.edges = t;
+        return e;
+    }
     for (unsigned k = 0; k < 4; ++k) {
         const std::int64_t px = bx0 + (k & 1u), py = by0 + (k >> 1);
         if (px > bx1 || py > by1) continue;
@@ -100,7 +121,7 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
         SCOPED_TRACE(named.name);
         std::mt19937 rng(7);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-        std::size_t small = 0, dropped = 0, tested = 0, kept = 0;
+        std::size_t small = 0, dropped = 0, tested = 0, kept = 0, medium = 0;
         for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
             const sw::Viewport vp = sw::makeViewport(64, 48, format);
             for (int batch = 0; batch < 4000; ++batch) {
@@ -113,7 +134,8 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                 std::uint16_t place[64];
                 for (int i = 0; i < 64; ++i) place[i] = std::uint16_t(i);
                 std::shuffle(place, place + 64, rng);
-                const float size = batch % 3 == 0 ? 0.6f : batch % 3 == 1 ? 2.5f : 4.5f;
+                const int sizeClass = (batch / 2) % 4;
+                const float size = sizeClass == 0 ? 0.6f : sizeClass == 1 ? 2.5f : sizeClass == 2 ? 4.5f : 14.0f;
                 for (int t = 0; t < 8; ++t) {
                     const float cx = 1.0f + 61.0f * unit(rng), cy = 1.0f + 45.0f * unit(rng), cz = unit(rng);
                     for (int c = 0; c < 3; ++c) {
@@ -141,9 +163,9 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                 // Every fourth batch on a band of rows only, as a thread of the pass sees it.
                 const int rowLo = batch % 4 == 3 ? 20 : 0, rowHi = batch % 4 == 3 ? 27 : vp.height - 1;
                 std::uint8_t verdict[8], covered[8], occludes[8];
-                std::int32_t x0[8], y0[8];
-                float lo[32], hi[32];
-                const SmallTriangles out{x0, y0, covered, occludes, lo, hi, 8};
+                std::int32_t x0[8], y0[8], x1[8], y1[8], edge[72];
+                float lo[32], hi[32], plane[32];
+                const SmallTriangles out{x0, y0, covered, occludes, lo, hi, 8, x1, y1, edge, plane};
                 named.kernel({x, y, z, fx, fy}, c0, c1, c2, 8, cullBack, vp, rowLo, rowHi, verdict, out);
                 for (int t = 0; t < 8; ++t) {
                     const float v[3][3] = {
@@ -152,7 +174,28 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                     const std::string where = "batch " + std::to_string(batch) + ", lane " + std::to_string(t);
                     ASSERT_EQ(int(verdict[t]), int(e.verdict)) << where;
                     small += e.verdict == kSmall, dropped += e.verdict == kDrop, tested += e.verdict == kTest;
-                    kept += e.verdict == kKeep;
+                    kept += e.verdict == kKeep, medium += e.verdict == kMedium;
+                    if (e.verdict == kMedium) {
+                        ASSERT_EQ(x0[t], e.x0) << where;
+                        ASSERT_EQ(y0[t], e.y0) << where;
+                        ASSERT_EQ(x1[t], e.x1) << where;
+                        ASSERT_EQ(y1[t], e.y1) << where;
+                        ASSERT_EQ(occludes[t] != 0, e.occludes) << where;
+                        for (int k = 0; k < 4; ++k)
+                            ASSERT_EQ(std::memcmp(&plane[k * 8 + t], &e.plane[k], 4), 0) << where << ", plane " << k;
+                        // Each edge's sign at every pixel of the box, as narrowAvx2 evaluates it.
+                        for (std::int64_t py = e.y0; py <= e.y1; ++py)
+                            for (std::int64_t px = e.x0; px <= e.x1; ++px)
+                                for (int k = 0; k < 3; ++k) {
+                                    const sw::Edge& edgeK = e.edges.e[k];
+                                    const bool inside = edgeK.k - std::int64_t(edgeK.dx) * px + std::int64_t(edgeK.dy) * py >= 0;
+                                    const std::int64_t got = std::int64_t(edge[k * 8 + t]) -
+                                                             std::int64_t(edge[(3 + k) * 8 + t]) * (px - e.x0) +
+                                                             std::int64_t(edge[(6 + k) * 8 + t]) * (py - e.y0);
+                                    ASSERT_EQ(got >= 0, inside) << where << ", edge " << k << " at " << px << ", " << py;
+                                }
+                        continue;
+                    }
                     if (e.verdict != kSmall) continue;
                     ASSERT_EQ(unsigned(covered[t]), e.covered) << where;
                     ASSERT_EQ(x0[t], e.x0) << where;
@@ -170,7 +213,8 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
         // Every verdict but kKeep (steep planes need depths far apart in a pixel) is reached often.
         EXPECT_GT(small, 5000u);
         EXPECT_GT(dropped, 5000u);
-        EXPECT_GT(tested, 5000u);
+        EXPECT_GT(tested, 1000u);
+        EXPECT_GT(medium, 5000u);
         RecordProperty(std::string("kept, ") + named.name, int(kept));
     }
 }
@@ -198,6 +242,90 @@ TEST(OcclusionKernelsTest, ACornerThePassCannotUseKeepsTheTriangle) {
                      {x0, y0, covered, occludes, lo, hi, 8});
         for (int t = 0; t < 8; ++t) EXPECT_EQ(int(verdict[t]), int(kKeep)) << named.name << ", lane " << t;
     }
+}
+
+// narrowAvx2 against the pass's scalar rasterization of a triangle (Occlusion.cpp triangleMaySeen
+// without SIMD): its covered pixels by setup's edges one at a time, the depth bounds of each, the
+// buffer lowered pixel by pixel. On random triangles up to 8 pixels wide, some reaching past the
+// target's right edge (whose columns the kernel must not touch), on buffers holding random far-ness:
+// the buffers bit for bit, whether some pixel may be seen, and the columns covered.
+TEST(OcclusionKernelsTest, TheNarrowRasterizerEqualsThePixelByPixelOne) {
+    if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2 and FMA: only the scalar loops run";
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    constexpr int kWidth = 37, kHeight = 29;  // not a multiple of 8: the last columns end a row
+    std::size_t seenCount = 0, hiddenCount = 0, empty = 0;
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        const sw::Viewport vp = sw::makeViewport(kWidth, kHeight, format);
+        const bool halfZ = format == DepthFormat::D32F;
+        for (int n = 0; n < 20000; ++n) {
+            // A corner anywhere (past the right edge too), two more within 8 pixels across and
+            // up to 20 up or down.
+            float v[3][3];
+            const float cx = -2.0f + (kWidth + 6.0f) * unit(rng), cy = (kHeight - 1.0f) * unit(rng), cz = unit(rng);
+            for (int c = 0; c < 3; ++c) {
+                v[c][0] = cx + (c == 0 ? 0.0f : 7.9f * unit(rng));
+                v[c][1] = cy + (c == 0 ? 0.0f : 20.0f * (unit(rng) - 0.5f));
+                v[c][2] = n % 5 == 0 ? unit(rng) : cz + 1e-3f * unit(rng);
+            }
+            std::int64_t X[3], Y[3];
+            for (int c = 0; c < 3; ++c) ASSERT_TRUE(sw::fixedPosition(v[c][0], v[c][1], &X[c], &Y[c]));
+            sw::Triangle t{};
+            const bool cullBack = n % 2 == 0;
+            const sw::SetupOrder order = sw::setupEdges(X, Y, cullBack, vp, &t);
+            if (order == sw::SetupOrder::Dropped || t.x1 - t.x0 >= 8 || t.x0 > t.x1) continue;
+            sw::SetupVertex s[3]{};
+            for (int c = 0; c < 3; ++c) s[c].x = v[c][0], s[c].y = v[c][1], s[c].z = v[c][2], s[c].oow = 1.0f;
+            if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
+            sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+            const float slack = depthSlack(t.z0, t.dzdx, t.dzdy, float(kWidth), float(kHeight));
+            if (!(slack < 1.0f)) continue;
+            const float up = 2.0f / 16777216.0f;
+            // Sometimes a band of rows only, as a thread of the pass sees it.
+            const int y0 = n % 4 == 3 ? std::max(t.y0, 10) : t.y0, y1 = n % 4 == 3 ? std::min(t.y1, 17) : t.y1;
+            if (y0 > y1) continue;
+            std::int32_t e[3], dx[3], dy[3];
+            for (int i = 0; i < 3; ++i) {
+                const std::int64_t at = t.e[i].k - std::int64_t(t.e[i].dx) * t.x0 + std::int64_t(t.e[i].dy) * y0;
+                ASSERT_LT(std::abs(at), std::int64_t(1) << 30);
+                e[i] = std::int32_t(at), dx[i] = t.e[i].dx, dy[i] = t.e[i].dy;
+            }
+            // Far-ness that hides some pixels and not others.
+            std::vector<float> buffer(std::size_t(kWidth) * kHeight);
+            for (float& f : buffer) f = n % 3 == 0 ? std::numeric_limits<float>::infinity() : (halfZ ? -unit(rng) : unit(rng));
+            std::vector<float> expected = buffer;
+            const bool occludes = n % 7 != 6;
+            bool seen = false;
+            std::uint32_t columns = 0;
+            for (int py = y0; py <= y1; ++py) {
+                const float zRow = t.z0 + t.dzdy * float(py);
+                for (int px = t.x0; px <= t.x1; ++px) {
+                    std::int64_t m = 0;
+                    for (const sw::Edge& edge : t.e) m |= edge.k - std::int64_t(edge.dx) * px + std::int64_t(edge.dy) * py;
+                    if (m < 0) continue;
+                    columns |= 1u << (px - t.x0);
+                    const float z = zRow + t.dzdx * float(px);
+                    const float lo = halfZ ? -std::clamp(z + slack, 0.0f, 1.0f) : std::clamp(z - slack, 0.0f, 1.0f);
+                    const float hi = halfZ ? -std::clamp(z - slack, 0.0f, 1.0f) + up : std::min(z + slack, 1.0f) + up;
+                    float& stored = expected[std::size_t(py) * kWidth + std::size_t(px)];
+                    seen = seen || !(stored < lo);
+                    if (occludes) stored = std::min(stored, hi);
+                }
+            }
+            std::uint32_t gotColumns = 0;
+            const bool got = narrowAvx2(buffer.data(), kWidth, t.x0, t.x1, y0, y1, e, dx, dy, t.z0, t.dzdx, t.dzdy,
+                                        slack, up, halfZ, occludes, &gotColumns);
+            const std::string where = "triangle " + std::to_string(n);
+            ASSERT_EQ(got, seen) << where;
+            ASSERT_EQ(gotColumns, columns) << where;
+            ASSERT_EQ(std::memcmp(buffer.data(), expected.data(), buffer.size() * sizeof(float)), 0) << where;
+            seenCount += columns != 0 && seen, hiddenCount += columns != 0 && !seen, empty += columns == 0;
+        }
+    }
+    // Seen, hidden and empty triangles are all reached often.
+    EXPECT_GT(seenCount, 2000u);
+    EXPECT_GT(hiddenCount, 1000u);
+    EXPECT_GT(empty, 100u);
 }
 
 }  // namespace
