@@ -275,38 +275,33 @@ struct RangeList {
     }
 };
 
-// Per vertex of one instance, which clip planes it is outside of (bit k: plane k of -w ≤ x, y, z ≤ w),
-// by more than rounding, and kMayClip when it is not inside all of them by more than rounding;
-// computed on first use. A triangle whose three vertices share a bit of the six lies wholly outside
-// that plane and cannot own a pixel; one without kMayClip on any vertex is drawn unclipped.
+// Per vertex of a cluster of one instance, which clip planes it is outside of (bit k: plane k of
+// -w ≤ x, y, z ≤ w), by more than rounding, and kMayClip when it is not inside all of them by more
+// than rounding. A triangle whose three vertices share a bit of the six lies wholly outside that
+// plane and cannot own a pixel; one without kMayClip on any vertex is drawn unclipped.
 constexpr std::uint8_t kMayClip = 1u << 6;
 constexpr std::uint8_t kOutside = 0x3f;
 
 class Outcodes {
 public:
-    Outcodes(const Mesh& mesh, const glm::dmat4& mvp) : Outcodes(mesh, mvp, own_) {}
-    // Kept in `cache` (reused from instance to instance without clearing).
-    Outcodes(const Mesh& mesh, const glm::dmat4& mvp, SceneCuller::OutcodeCache& cache)
-        : mesh_(mesh), mvp_(mvp), cache_(cache) {
-        const std::size_t n = mesh.positions.size();
-        if (cache_.codes.size() < n) cache_.codes.resize(n), cache_.epochOf.resize(n, 0);
-        if (++cache_.epoch == 0) {  // wrapped: every stamp is stale again
-            std::fill(cache_.epochOf.begin(), cache_.epochOf.end(), 0u);
-            cache_.epoch = 1;
-        }
-    }
+    Outcodes(const ClusterVertices& vertices, const glm::dmat4& mvp) : vertices_(vertices), mvp_(mvp) {}
 
-    std::uint8_t operator[](std::uint32_t v) {
-        if (cache_.epochOf[v] != cache_.epoch) {
-            cache_.epochOf[v] = cache_.epoch;
-            cache_.codes[v] = compute(mesh_.positions[v]);
+    // The codes of cluster `c`'s vertices (ClusterVertices: its triangles' corners c0, c1, c2 index
+    // them), computed for the whole cluster at once: its vertices are side by side, where the
+    // mesh's would be scattered over memory the draw has just used.
+    const std::uint8_t* cluster(std::uint32_t c) {
+        if (c != cluster_) {
+            const std::uint32_t first = vertices_.firstVertex[c], count = vertices_.firstVertex[c + 1] - first;
+            for (std::uint32_t v = 0; v < count; ++v)
+                codes_[v] = compute(vertices_.x[first + v], vertices_.y[first + v], vertices_.z[first + v]);
+            cluster_ = c;
         }
-        return cache_.codes[v];
+        return codes_;
     }
 
 private:
-    std::uint8_t compute(const glm::vec3& p) const {
-        const glm::dvec4 c = mvp_ * glm::dvec4(glm::dvec3(p), 1.0);
+    std::uint8_t compute(float px, float py, float pz) const {
+        const glm::dvec4 c = mvp_ * glm::dvec4(double(px), double(py), double(pz), 1.0);
         if (!std::isfinite(c.x + c.y + c.z + c.w)) return 0;  // not a number: outside of nothing, kept
         auto out = [](double x, double w) { return x + w < -kPlaneMargin * (std::abs(x) + std::abs(w)); };
         auto near = [](double x, double w) { return x + w <= kPlaneMargin * (std::abs(x) + std::abs(w)); };
@@ -319,21 +314,23 @@ private:
         return code;
     }
 
-    const Mesh& mesh_;
+    const ClusterVertices& vertices_;
     glm::dmat4 mvp_;
-    SceneCuller::OutcodeCache own_;
-    SceneCuller::OutcodeCache& cache_;
+    std::uint32_t cluster_ = UINT32_MAX;  // whose codes codes_ holds
+    std::uint8_t codes_[kClusterVertices];
 };
 
 bool isSingleSided(const Scene& scene, const Mesh& mesh) {
     return mesh.material < 0 || !scene.materials[std::size_t(mesh.material)].doubleSided;
 }
 
-// The exact per-triangle tests over [first, first + count): frustum (unless `inside`) and facing
+// The exact per-triangle tests over cluster `ci` of `map`: frustum (unless `inside`) and facing
 // (when `singleSided`).
-void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv, Outcodes& vertices,
-                   std::uint32_t first, std::uint32_t count, bool inside, bool singleSided, glm::vec2 k,
-                   RangeList& out) {
+void testTriangles(const MeshMap& map, std::uint32_t ci, const InstanceView& iv, Outcodes& vertices, bool inside,
+                   bool singleSided, glm::vec2 k, RangeList& out) {
+    const std::uint32_t first = map.clusters[ci].first, count = map.clusters[ci].count;
+    const ClusterVertices& cv = map.vertices;
+    const std::uint8_t* codes = nullptr;  // the cluster's vertices' outcodes, on first use
     // Facing first, a batch of triangles at a time in one loop that vectorizes (InstanceView's test,
     // with the snapping margin K1·slack.x + K2·slack.y: `k` is facingK of what is tested).
     constexpr std::uint32_t kBatch = 128;
@@ -368,8 +365,8 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
         for (std::uint32_t t = batch; t < batch + n; ++t) {
             bool keep = facing[t - batch] != 0;
             if (keep || singleSided) {
-                const std::uint32_t* tri = &mesh.indices[3 * std::size_t(t)];
-                const std::uint8_t a = vertices[tri[0]], b = vertices[tri[1]], c = vertices[tri[2]];
+                if (codes == nullptr) codes = vertices.cluster(ci);
+                const std::uint8_t a = codes[cv.c0[t]], b = codes[cv.c1[t]], c = codes[cv.c2[t]];
                 // Outside a plane: dropped. Clipped by GL: its new triangles may turn, so facing
                 // does not drop it.
                 if ((a & b & c & kOutside) != 0)
@@ -394,8 +391,9 @@ void testTriangles(const Mesh& mesh, const MeshMap& map, const InstanceView& iv,
 // `whole` is the side of the box of all the mesh's clusters (meshBox): a box inside it is inside
 // the frustum too when that box is (and outside when it is), margins included; only a box that
 // straddles a plane needs its clusters tested one by one.
-void conservativeCluster(const Mesh& mesh, const MeshMap& map, const Cluster& c, const InstanceView& iv,
-                         Outcodes& vertices, bool singleSided, Side whole, RangeList& out) {
+void conservativeCluster(const MeshMap& map, std::uint32_t ci, const InstanceView& iv, Outcodes& vertices,
+                         bool singleSided, Side whole, RangeList& out) {
+    const Cluster& c = map.clusters[ci];
     const Side side = whole == Side::Straddles ? boxSide(iv.planes, c.boxMin, c.boxMax) : whole;
     if (side == Side::Outside) return;
     // A cone drops only a cluster that GL draws unclipped (its triangles' margins hold; a clipped one
@@ -405,7 +403,7 @@ void conservativeCluster(const Mesh& mesh, const MeshMap& map, const Cluster& c,
     if (side == Side::Inside && allFacing)
         out.add(c.first, c.count);
     else
-        testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided && !allFacing,
+        testTriangles(map, ci, iv, vertices, side == Side::Inside, singleSided && !allFacing,
                       singleSided && !allFacing ? iv.facingK(glm::dvec3(c.center), double(c.radius)) : glm::vec2(0.0f), out);
 }
 
@@ -518,8 +516,7 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
     const std::size_t pieceClusters = sideBySide ? kPieceClusters : std::max<std::size_t>(clusterStart_.back(), 1);
     const std::size_t pieceCount = (clusterStart_.back() + pieceClusters - 1) / pieceClusters;
     if (pieces_.size() < pieceCount) pieces_.resize(pieceCount);
-    outcodes_.resize(std::size_t(occlusion_.threads(target)));
-    occlusion_.parallel(target, pieceCount, [&](std::size_t p, int worker) {
+    occlusion_.parallel(target, pieceCount, [&](std::size_t p, int) {
         ConservativePiece& piece = pieces_[p];
         piece.kept.clear();
         piece.ranges.clear();
@@ -540,12 +537,12 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
                 at = std::min(last, clusterStart_[i + 1]);
                 continue;
             }
-            Outcodes vertices(mesh, iv.mvp, outcodes_[std::size_t(worker)]);
+            Outcodes vertices(map.vertices, iv.mvp);
             const bool singleSided = isSingleSided(scene, mesh);
             for (; at < std::min(last, clusterStart_[i + 1]); ++at) {
                 const std::size_t c = at - clusterStart_[i];
                 out.ranges.clear();
-                conservativeCluster(mesh, map, map.clusters[c], iv, vertices, singleSided, whole, out);
+                conservativeCluster(map, std::uint32_t(c), iv, vertices, singleSided, whole, out);
                 if (out.ranges.empty()) continue;
                 piece.kept.push_back({std::uint32_t(i), std::uint32_t(c), std::uint32_t(piece.ranges.size()),
                                       std::uint32_t(out.ranges.size())});
@@ -606,10 +603,11 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
                 // Every triangle tested, cluster by cluster: the facing margin of a cluster's depth
                 // range (the whole mesh's would be wider), and no clip test for a cluster whose box
                 // is inside (GL clips none of it).
-                Outcodes vertices(mesh, iv.mvp);
-                for (const Cluster& c : map.clusters) {
+                Outcodes vertices(map.vertices, iv.mvp);
+                for (std::uint32_t ci = 0; ci < map.clusters.size(); ++ci) {
+                    const Cluster& c = map.clusters[ci];
                     const Side side = boxSide(iv.planes, c.boxMin, c.boxMax);
-                    testTriangles(mesh, map, iv, vertices, c.first, c.count, side == Side::Inside, singleSided,
+                    testTriangles(map, ci, iv, vertices, side == Side::Inside, singleSided,
                                   singleSided ? iv.facingK(glm::dvec3(c.center), double(c.radius)) : glm::vec2(0.0f),
                                   out);
                 }
@@ -632,8 +630,9 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
                 const Side whole = boxSide(iv.planes, meshBoxes_[std::size_t(instance.mesh)].first,
                                            meshBoxes_[std::size_t(instance.mesh)].second);
                 if (whole == Side::Outside) break;
-                Outcodes vertices(mesh, iv.mvp);
-                for (const Cluster& c : map.clusters) conservativeCluster(mesh, map, c, iv, vertices, singleSided, whole, out);
+                Outcodes vertices(map.vertices, iv.mvp);
+                for (std::uint32_t ci = 0; ci < map.clusters.size(); ++ci)
+                    conservativeCluster(map, ci, iv, vertices, singleSided, whole, out);
                 break;
             }
 

@@ -73,14 +73,6 @@ public:
     const std::vector<MeshMap>& maps() const { return maps_; }
     PrepStats totals() const;  // summed over meshes
 
-    // Per vertex of a mesh, its clip outcode under the instance view it was last computed for
-    // (`epoch` tells which view: a new one needs no clearing).
-    struct alignas(64) OutcodeCache {
-        std::vector<std::uint32_t> epochOf;
-        std::vector<std::uint8_t> codes;
-        std::uint32_t epoch = 0;
-    };
-
 private:
     DrawList cullOcclusion(const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
                            const OcclusionTarget& target) const;
@@ -102,7 +94,6 @@ private:
         std::vector<IndexRange> ranges;
     };
     mutable std::vector<ConservativePiece> pieces_;
-    mutable std::vector<OutcodeCache> outcodes_;  // one per thread of the pieces
     mutable std::vector<std::size_t> clusterStart_;  // per instance: its first cluster, counting over all
 };
 

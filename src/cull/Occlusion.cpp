@@ -78,6 +78,7 @@ struct alignas(64) Piece {
 // What every band's walk reads.
 struct Walk {
     const Scene& scene;
+    const std::vector<MeshMap>& maps;
     const std::vector<glm::mat4>& world;
     const glm::mat4& viewProjection;
     const std::vector<KeptCluster>& kept;
@@ -192,19 +193,7 @@ struct OcclusionCuller::State {
     // bound of what the frame's depth buffer ends with; blockMax: per block, the farthest of those.
     std::vector<float> depth, blockMax;
     std::vector<std::uint8_t> blockDirty;
-    // Per mesh, its clusters' vertices side by side (built on first use): a cluster's triangles then
-    // read a few hundred bytes in a row, not vertices scattered over the mesh.
-    // Structure of arrays, each padded with 8 zeros: the AVX2 loops read 8 at a time.
-    struct ClusterVertices {
-        bool built = false;
-        std::vector<float> x, y, z;              // positions, cluster by cluster
-        std::vector<std::uint32_t> firstVertex;  // per cluster, and one past the last
-        std::uint32_t maxVertices = 0;           // of a cluster
-        std::vector<std::uint16_t> c0, c1, c2;   // per triangle of the mesh: its corners in its cluster's vertices
-    };
-    std::size_t maxVertices = 0;  // of a cluster of any mesh, rounded up to 8, and 8 more
-    std::vector<ClusterVertices> meshes;
-    std::vector<std::uint32_t> scratch;    // vertex → index in the cluster being built
+    std::size_t maxVertices = 0;  // of a cluster of any mesh walked, rounded up to 8, and 8 more
     std::vector<Item> items;               // the kept clusters, nearest first
     std::vector<std::uint32_t> slots;      // per item: its first triangle slot (and one past the last)
     std::vector<Band> bands;
@@ -271,14 +260,14 @@ struct OcclusionCuller::State {
     // writes nothing there (every pixel it covers already holds something nearer).
     void walk(const Walk& w, Band& band) {
         std::fill(depth.begin() + std::ptrdiff_t(band.y0) * width, depth.begin() + std::ptrdiff_t(band.y1 + 1) * width, kOpen);
-        band.reserve(maxVertices, 0);  // every mesh's clusters were built when the items were made
+        band.reserve(maxVertices, 0);
         for (std::size_t i = 0; i < items.size(); ++i) {
             const Item& it = items[i];
             if (it.testable && (it.x0 > it.x1 || it.y1 < band.y0 || it.y0 > band.y1 || hidden(it, band))) continue;
             const Instance& instance = w.scene.instances[w.kept[it.kept].instance];
             const Mesh& mesh = w.scene.meshes[std::size_t(instance.mesh)];
             const bool singleSided = mesh.material < 0 || !w.scene.materials[std::size_t(mesh.material)].doubleSided;
-            const ClusterVertices& cv = meshes[std::size_t(instance.mesh)];
+            const ClusterVertices& cv = w.maps[std::size_t(instance.mesh)].vertices;
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
             std::uint32_t slot = slots[i];
             for (std::uint32_t k = it.kept; k < it.kept + it.count; ++k)
@@ -455,42 +444,6 @@ struct OcclusionCuller::State {
             it.nearest = float(nearest) - float(2.0 * kUnit);
             it.testable = std::isfinite(nearest);
         }
-    }
-
-    const ClusterVertices& clusterVertices(const Mesh& mesh, const MeshMap& map, std::size_t index) {
-        if (meshes.size() <= index) meshes.resize(index + 1);
-        ClusterVertices& cv = meshes[index];
-        if (cv.built) return cv;
-        cv.built = true;
-        scratch.assign(mesh.positions.size(), UINT32_MAX);
-        const std::size_t triangles = mesh.indices.size() / 3;
-        for (auto* c : {&cv.c0, &cv.c1, &cv.c2}) c->assign(triangles + 8, 0);
-        cv.firstVertex.clear();
-        for (const Cluster& c : map.clusters) {
-            const auto first = std::uint32_t(cv.x.size());
-            cv.firstVertex.push_back(first);
-            for (std::size_t t = c.first; t < std::size_t(c.first) + c.count; ++t)
-                for (int k = 0; k < 3; ++k) {
-                    const std::uint32_t v = mesh.indices[3 * t + std::size_t(k)];
-                    if (scratch[v] == UINT32_MAX) {
-                        scratch[v] = std::uint32_t(cv.x.size()) - first;
-                        cv.x.push_back(mesh.positions[v].x);
-                        cv.y.push_back(mesh.positions[v].y);
-                        cv.z.push_back(mesh.positions[v].z);
-                    }
-                    // A cluster has at most 3·124 vertices.
-                    (k == 0 ? cv.c0 : k == 1 ? cv.c1 : cv.c2)[t] = std::uint16_t(scratch[v]);
-                }
-            for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i)
-                scratch[mesh.indices[i]] = UINT32_MAX;
-            cv.maxVertices = std::max(cv.maxVertices, std::uint32_t(cv.x.size()) - first);
-        }
-        cv.firstVertex.push_back(std::uint32_t(cv.x.size()));
-        for (auto* a : {&cv.x, &cv.y, &cv.z}) a->resize(a->size() + 8, 0.0f);
-        // (At least 64: the AVX-512 quick test reads 64 of each array.)
-        maxVertices = std::max({maxVertices, (std::size_t(cv.maxVertices) + 7) / 8 * 8 + 8,
-                                std::size_t(occlusion::kLookupVertices)});
-        return cv;
     }
 
     void reset(int w, int h, DepthFormat format) {
@@ -821,10 +774,6 @@ std::uint64_t OcclusionCuller::bytes() const {
     std::uint64_t total = st.depth.capacity() * sizeof(float) + st.blockMax.capacity() * sizeof(float) +
                           st.blockDirty.capacity() + st.items.capacity() * sizeof(Item) +
                           st.slots.capacity() * sizeof(std::uint32_t);
-    for (const State::ClusterVertices& cv : st.meshes)
-        total += (cv.x.capacity() + cv.y.capacity() + cv.z.capacity()) * sizeof(float) +
-                 cv.firstVertex.capacity() * sizeof(std::uint32_t) +
-                 (cv.c0.capacity() + cv.c1.capacity() + cv.c2.capacity()) * sizeof(std::uint16_t);
     for (const Band& band : st.bands)
         total += band.seen.capacity() + band.verdict.capacity() + band.covered.capacity() + band.occludes.capacity() +
                  (band.x.capacity() + band.y.capacity() + band.z.capacity() + band.lo.capacity() + band.hi.capacity()) *
@@ -867,19 +816,20 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     st.stats.ran = true;
     st.reset(width, height, view.depthFormat);
 
-    // Every kept cluster's box on the screen: the pixels it may reach and its nearest far-ness.
     const glm::mat4 viewProjection = view.projection * view.view;  // as the backends compute it
-    // Every kept cluster's mesh has its clusters' vertices side by side; then every kept
-    // cluster's box on the screen, in pieces side by side.
+    // The bands' room for a cluster's vertices: the largest cluster of a mesh walked, rounded up to 8
+    // and 8 more (the AVX2 loops read 8 at a time), and at least 64 (the AVX-512 quick test reads 64
+    // of each array).
+    st.maxVertices = occlusion::kLookupVertices;
     std::uint32_t lastInstance = std::numeric_limits<std::uint32_t>::max();
     for (const KeptCluster& kc : kept)
         if (kc.instance != lastInstance) {
             lastInstance = kc.instance;
-            const Instance& instance = scene.instances[kc.instance];
-            st.clusterVertices(scene.meshes[std::size_t(instance.mesh)], maps[std::size_t(instance.mesh)],
-                               std::size_t(instance.mesh));
+            const ClusterVertices& cv = maps[std::size_t(scene.instances[kc.instance].mesh)].vertices;
+            st.maxVertices = std::max(st.maxVertices, (std::size_t(cv.maxVertices) + 7) / 8 * 8 + 8);
         }
-    // The items: a cluster each, or an instance of a small mesh whole.
+    // The items: a cluster each, or an instance of a small mesh whole; then each one's box on the
+    // screen (the pixels it may reach and its nearest far-ness), in pieces side by side.
     st.items.clear();
     for (std::uint32_t k = 0; k < kept.size();) {
         Item it{};
@@ -928,7 +878,7 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
 
     // Each band of rows walks every cluster in the order above, with the part of the buffer it owns:
     // what it finds is what one walk over the whole screen finds (State::walk).
-    const Walk walk{scene, world, viewProjection, kept, ranges};
+    const Walk walk{scene, maps, world, viewProjection, kept, ranges};
     st.pool(target.threads).run(st.bands.size(), [&](std::size_t band, int) { st.walk(walk, st.bands[band]); });
 
     // A triangle is kept when some band may see it (or must keep it); a cluster with nothing left

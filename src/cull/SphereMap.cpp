@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include <meshoptimizer.h>
 
@@ -16,6 +18,40 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The vertices of each cluster of `clusters` (triangles of the reordered index buffer `indices`)
+// side by side.
+void buildClusterVertices(const Mesh& mesh, const std::vector<std::uint32_t>& indices,
+                          const std::vector<Cluster>& clusters, ClusterVertices& cv) {
+    std::vector<std::uint32_t> local(mesh.positions.size(), UINT32_MAX);  // vertex → its index in the cluster
+    const std::size_t triangles = indices.size() / 3;
+    for (auto* c : {&cv.c0, &cv.c1, &cv.c2}) c->assign(triangles + 8, 0);
+    cv.firstVertex.clear();
+    for (const Cluster& c : clusters) {
+        const auto first = std::uint32_t(cv.x.size());
+        cv.firstVertex.push_back(first);
+        for (std::size_t t = c.first; t < std::size_t(c.first) + c.count; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = indices[3 * t + std::size_t(k)];
+                if (local[v] == UINT32_MAX) {
+                    local[v] = std::uint32_t(cv.x.size()) - first;
+                    cv.x.push_back(mesh.positions[v].x);
+                    cv.y.push_back(mesh.positions[v].y);
+                    cv.z.push_back(mesh.positions[v].z);
+                }
+                (k == 0 ? cv.c0 : k == 1 ? cv.c1 : cv.c2)[t] = std::uint16_t(local[v]);  // below kClusterVertices
+            }
+        for (std::size_t i = 3 * std::size_t(c.first); i < 3 * (std::size_t(c.first) + c.count); ++i)
+            local[indices[i]] = UINT32_MAX;
+        cv.maxVertices = std::max(cv.maxVertices, std::uint32_t(cv.x.size()) - first);
+        // meshoptimizer's limit, which culling's per-cluster arrays rely on.
+        if (cv.maxVertices > kClusterVertices)
+            throw std::logic_error("a cluster of " + std::to_string(cv.maxVertices) + " vertices, more than " +
+                                   std::to_string(kClusterVertices));
+    }
+    cv.firstVertex.push_back(std::uint32_t(cv.x.size()));
+    for (auto* a : {&cv.x, &cv.y, &cv.z}) a->resize(a->size() + 8, 0.0f);
 }
 
 // Splits one bin's triangles (consecutive in `indices`, vertex-cache order) into meshoptimizer
@@ -213,11 +249,16 @@ MeshMap buildMeshMap(const Mesh& mesh, const MapParams& params, std::vector<std:
                        localIndex, scratch, map.clusters);
         bin.clusterCount = std::uint32_t(map.clusters.size()) - bin.firstCluster;
     }
+    buildClusterVertices(mesh, reordered, map.clusters, map.vertices);
     map.stats.clusterMs = msSince(start);
 
     map.stats.mapBytes = map.entries.size() * sizeof(MapEntry);
+    const ClusterVertices& cv = map.vertices;
     map.stats.accessBytes = map.bins.size() * sizeof(Bin) + map.clusters.size() * sizeof(Cluster) +
-                            map.planes.size() * sizeof(glm::vec4) + map.facingSlack.size() * sizeof(glm::vec2);
+                            map.planes.size() * sizeof(glm::vec4) + map.facingSlack.size() * sizeof(glm::vec2) +
+                            (cv.x.size() + cv.y.size() + cv.z.size()) * sizeof(float) +
+                            cv.firstVertex.size() * sizeof(std::uint32_t) +
+                            (cv.c0.size() + cv.c1.size() + cv.c2.size()) * sizeof(std::uint16_t);
     map.stats.hullBytes = map.hull.vertices.size() * sizeof(glm::vec3);
     return map;
 }

@@ -80,6 +80,17 @@ struct PrepStats {
     double totalMs() const { return sphereMs + mapMs + clusterMs + hullMs; }
 };
 
+// Every cluster's vertices side by side, for the work done per vertex of a cluster (conservative's
+// clip outcodes, the occlusion pass's transform): a cluster's triangles then read a few hundred
+// bytes in a row, not vertices scattered over the mesh. Structure of arrays, each padded with 8
+// zeros (the AVX2 loops read 8 at a time). A cluster has at most kClusterVertices vertices.
+struct ClusterVertices {
+    std::vector<float> x, y, z;              // positions, cluster by cluster
+    std::vector<std::uint32_t> firstVertex;  // per cluster, and one past the last
+    std::uint32_t maxVertices = 0;           // of a cluster
+    std::vector<std::uint16_t> c0, c1, c2;   // per triangle (and 8 more): its corners among its cluster's vertices
+};
+
 struct MeshMap {
     MapParams params;
     Sphere sphere;                   // object space; minimal enclosing sphere of the used vertices
@@ -93,6 +104,7 @@ struct MeshMap {
     // the area, 1 ÷ twice the area); +inf for zero area. The facing margin of a triangle is K1·x + K2·y (Culling.cpp),
     // K1 and K2 from the view.
     std::vector<glm::vec2> facingSlack;
+    ClusterVertices vertices;        // of `clusters`
     Hull hull;                       // of the used vertices
     PrepStats stats;
 

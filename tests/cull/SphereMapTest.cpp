@@ -4,6 +4,7 @@
 // the views measured against their own frustum.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -330,11 +331,43 @@ MeshMap buildAndCheck(const Mesh& given, const MapParams& params, Mesh* out = nu
         for (std::uint32_t t = cluster.first; t < cluster.first + cluster.count && t < map.facingSlack.size(); ++t)
             EXPECT_TRUE(glm::all(glm::lessThanEqual(map.facingSlack[t], cluster.slack))) << "cluster's largest, " << t;
 
+    // Each cluster's vertices side by side: every corner of its triangles, bit for bit (not-a-number
+    // ones too), at most kClusterVertices of them, and the arrays padded with 8.
+    const ClusterVertices& cv = map.vertices;
+    const std::size_t triangleCount = mesh.indices.size() / 3;
+    EXPECT_EQ(cv.firstVertex.size(), map.clusters.size() + 1);
+    EXPECT_EQ(cv.c0.size(), triangleCount + 8);
+    EXPECT_EQ(cv.c1.size(), triangleCount + 8);
+    EXPECT_EQ(cv.c2.size(), triangleCount + 8);
+    EXPECT_EQ(cv.y.size(), cv.x.size());
+    EXPECT_EQ(cv.z.size(), cv.x.size());
+    const bool sized = cv.firstVertex.size() == map.clusters.size() + 1 && cv.c0.size() == triangleCount + 8 &&
+                       cv.c1.size() == cv.c0.size() && cv.c2.size() == cv.c0.size() && cv.y.size() == cv.x.size() &&
+                       cv.z.size() == cv.x.size() && cv.x.size() == std::size_t(cv.firstVertex.back()) + 8;
+    EXPECT_TRUE(sized) << "the cluster vertices' arrays";
+    for (std::size_t c = 0; sized && c < map.clusters.size(); ++c) {
+        const std::uint32_t first = cv.firstVertex[c], count = cv.firstVertex[c + 1] - first;
+        EXPECT_LE(count, kClusterVertices) << "cluster " << c;
+        EXPECT_LE(count, cv.maxVertices) << "cluster " << c;
+        for (std::uint32_t t = map.clusters[c].first; t < map.clusters[c].first + map.clusters[c].count && t < triangleCount; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint16_t local = (k == 0 ? cv.c0 : k == 1 ? cv.c1 : cv.c2)[t];
+                EXPECT_LT(local, count) << "cluster " << c << ", triangle " << t;
+                if (local >= count) continue;
+                const glm::vec3 p = mesh.positions[mesh.indices[3 * std::size_t(t) + std::size_t(k)]];
+                const float got[3] = {cv.x[first + local], cv.y[first + local], cv.z[first + local]};
+                EXPECT_EQ(std::memcmp(got, &p.x, sizeof got), 0) << "cluster " << c << ", triangle " << t << ", corner " << k;
+            }
+    }
+
     // Stats.
     EXPECT_EQ(map.stats.mapBytes, map.entries.size() * sizeof(MapEntry));
     EXPECT_EQ(map.stats.accessBytes, map.bins.size() * sizeof(Bin) + map.clusters.size() * sizeof(Cluster) +
                                          map.planes.size() * sizeof(glm::vec4) +
-                                         map.facingSlack.size() * sizeof(glm::vec2));
+                                         map.facingSlack.size() * sizeof(glm::vec2) +
+                                         (cv.x.size() + cv.y.size() + cv.z.size()) * sizeof(float) +
+                                         cv.firstVertex.size() * sizeof(std::uint32_t) +
+                                         (cv.c0.size() + cv.c1.size() + cv.c2.size()) * sizeof(std::uint16_t));
     for (double ms : {map.stats.sphereMs, map.stats.mapMs, map.stats.clusterMs, map.stats.hullMs}) {
         EXPECT_TRUE(std::isfinite(ms));
         EXPECT_GE(ms, 0.0);
