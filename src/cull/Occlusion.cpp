@@ -16,7 +16,9 @@
 
 // The vertex transform below reproduces the software backend's (Kernels.inl transform): every
 // product and sum rounded on its own, the viewport fused only where the CPU fuses it.
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal {
 
@@ -46,9 +48,6 @@ constexpr double kBackOffGrowth = 1.25;
 // How long the threads prepare() wakes wait for the pass: making the conservative plan of a large
 // scene takes about a millisecond.
 constexpr std::chrono::microseconds kWarmFor{3000};
-
-// ⌊a / b⌋ for b > 0.
-inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 // A cluster in the order of the pass.
 // A cluster in the order of the pass, or all the kept clusters of an instance of a small mesh
@@ -675,9 +674,11 @@ struct OcclusionCuller::State {
         }
         const float dzdx = t.dzdx;
         bool seen = false;
-        for (int py = std::max(t.y0, rowLo); py <= std::min(t.y1, rowHi); ++py) {
+        // A wide triangle's rows, each edge solved for px (stepped from row to row).
+        occlusion::EdgeRows edges[3] = {{t.e[0], ya}, {t.e[1], ya}, {t.e[2], ya}};
+        for (int py = ya; py <= yb; ++py) {
             // The row's covered pixels, edge by edge: k − dx·px + dy·py ≥ 0. A narrow triangle
-            // tests its few pixels; a wide one solves each edge for px (a division an edge).
+            // tests its few pixels; a wide one takes the bounds of its edges.
             std::int64_t xa = t.x0, xb = t.x1;
             if (t.x1 - t.x0 < 8) {
                 const auto inside = [&t, py](std::int64_t px) {
@@ -688,14 +689,9 @@ struct OcclusionCuller::State {
                 while (xa <= xb && !inside(xa)) ++xa;
                 while (xb >= xa && !inside(xb)) --xb;
             } else {
-                for (const sw::Edge& e : t.e) {
-                    const std::int64_t r = e.k + std::int64_t(e.dy) * py;  // dx·px ≤ r
-                    if (e.dx > 0)
-                        xb = std::min(xb, floorDiv(r, e.dx));
-                    else if (e.dx < 0)
-                        xa = std::max(xa, -floorDiv(r, -std::int64_t(e.dx)));
-                    else if (r < 0)
-                        xb = xa - 1;
+                for (occlusion::EdgeRows& e : edges) {
+                    e.bound(xa, xb);
+                    e.nextRow();
                 }
             }
             if (xa > xb) continue;

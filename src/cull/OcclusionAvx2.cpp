@@ -12,8 +12,12 @@
 
 // Every product and sum rounded on its own (Rasterizer.h 1.): GCC would otherwise fuse _mm256_mul_ps
 // and _mm256_add_ps into an FMA.
+#if defined(__clang__)  // which ignores GCC's pragmas: -ffp-contract=off comes from CMakeLists.txt
+#pragma clang attribute push(__attribute__((target("avx2,fma"))), apply_to = function)
+#else
 #pragma GCC optimize("fp-contract=off")
 #pragma GCC target("avx2,fma")
+#endif
 
 namespace frugal::occlusion {
 
@@ -171,6 +175,10 @@ bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const s
 bool cpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
 
 }  // namespace frugal::occlusion
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#endif
 
 #else
 

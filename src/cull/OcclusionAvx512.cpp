@@ -14,11 +14,17 @@
 #include <immintrin.h>
 
 // Every product and sum rounded on its own, as in OcclusionAvx2.cpp.
+#if defined(__clang__)  // which ignores GCC's pragmas: -ffp-contract=off comes from CMakeLists.txt
+#pragma clang attribute push(__attribute__((target("avx2,fma,avx512f,avx512vl"))), apply_to = function)
+#else
 #pragma GCC optimize("fp-contract=off")
 #pragma GCC target("avx2,fma,avx512f,avx512vl")
+#endif
 // GCC 12's own casts between 256 and 512 bits read a deliberately undefined register and warn about
 // it where they are inlined (GCC bug 105593, fixed in GCC 13).
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 namespace frugal::occlusion {
 
@@ -61,6 +67,10 @@ bool cpuHasAvx512() {
 }
 
 }  // namespace frugal::occlusion
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#endif
 
 #else
 

@@ -68,7 +68,44 @@ inline float depthSlack(float z0, float dzdx, float dzdy, float width, float hei
 // when they span at most 8 columns (kMedium, when the caller asks for it); the others get kTest.
 inline constexpr std::int32_t kQuickExtent = 1 << 12;
 
-// Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
+// ⌊a / b⌋ for b > 0.
+inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// Where one edge of a triangle (sw::Edge: a pixel is inside when k − dx·px + dy·py ≥ 0) bounds the
+// covered pixels of successive rows, with no division a row: inside is dx·px ≤ r = k + dy·py, so
+// px ≤ ⌊r / dx⌋ for dx > 0, px ≥ −⌊r / −dx⌋ for dx < 0, and every pixel or none (r ≥ 0) for
+// dx = 0. The quotient is stepped exactly from row to row: r grows by dy, the quotient by
+// ⌊dy / d⌋ and the remainder by the rest, carrying one when it reaches d.
+struct EdgeRows {
+    std::int64_t r = 0, dy = 0;       // k + dy·py at the current row, and its step
+    std::int64_t d = 0, q = 0, rem = 0, dq = 0, dr = 0;  // |dx|; ⌊r / d⌋ = q, r − q·d = rem; the steps
+    int sign = 0;                     // +1: px ≤ q; −1: px ≥ −q; 0: dx = 0
+
+    EdgeRows(const sw::Edge& e, std::int64_t py)
+        : r(e.k + std::int64_t(e.dy) * py), dy(e.dy), sign(e.dx > 0 ? 1 : e.dx < 0 ? -1 : 0) {
+        if (sign == 0) return;
+        d = e.dx > 0 ? std::int64_t(e.dx) : -std::int64_t(e.dx);
+        q = floorDiv(r, d), rem = r - q * d;
+        dq = floorDiv(dy, d), dr = dy - dq * d;
+    }
+    // The row's covered pixels within [xa, xb] (xa > xb: none).
+    void bound(std::int64_t& xa, std::int64_t& xb) const {
+        if (sign > 0)
+            xb = xb < q ? xb : q;
+        else if (sign < 0)
+            xa = xa > -q ? xa : -q;
+        else if (r < 0)
+            xb = xa - 1;
+    }
+    void nextRow() {
+        r += dy;
+        if (sign == 0) return;
+        q += dq, rem += dr;
+        if (rem >= d) ++q, rem -= d;
+    }
+};
+
+// Whether the CPU runs the AVX2 kernels below// Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
 // llvmpipe fuses it on such a CPU).
 bool cpuHasAvx2();
 

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <span>
 
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal::sw {
 

@@ -15,8 +15,12 @@
 
 #include <immintrin.h>
 
+#if defined(__clang__)  // which ignores GCC's pragmas: -ffp-contract=off comes from CMakeLists.txt
+#pragma clang attribute push(__attribute__((target("avx2,fma"))), apply_to = function)
+#else
 #pragma GCC optimize("fp-contract=off")
 #pragma GCC target("avx2,fma")
+#endif
 
 namespace frugal::sw::avx2 {
 #define FRUGAL_SW_SIMD_AVX2 1
@@ -29,6 +33,10 @@ namespace frugal::sw::avx2 {
 
 const Kernels kKernels = kernelTable("avx2");
 }  // namespace frugal::sw::avx2
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#endif
 
 #else
 

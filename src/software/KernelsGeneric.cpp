@@ -8,7 +8,9 @@
 
 #include "software/Kernels.h"
 
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal::sw {
 

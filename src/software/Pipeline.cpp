@@ -9,7 +9,9 @@
 
 #include "render/IndexRanges.h"
 
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal::sw {
 

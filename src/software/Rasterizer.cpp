@@ -10,7 +10,9 @@
 
 // Every product and sum here is rounded on its own, as in llvmpipe (Rasterizer.h); GCC would
 // otherwise contract a·b + c into an FMA wherever the target has one.
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal::sw {
 

@@ -19,7 +19,9 @@
 #include "software/Pipeline.h"
 #include "software/Shading.h"
 
+#if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 namespace frugal {
 

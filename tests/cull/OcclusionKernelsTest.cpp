@@ -244,6 +244,50 @@ TEST(OcclusionKernelsTest, ACornerThePassCannotUseKeepsTheTriangle) {
     }
 }
 
+// EdgeRows steps each row's bound of an edge without dividing: the same bounds as dividing on every
+// row, for edges of every slope and sign (vertical and horizontal ones too), over a few hundred
+// rows from anywhere, with the values setup's fixed point can reach.
+TEST(OcclusionKernelsTest, EdgeRowsStepsTheBoundsThatDividingGives) {
+    std::mt19937_64 rng(5);
+    const auto pick = [&rng](std::int64_t lo, std::int64_t hi) {
+        return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+    };
+    std::size_t upper = 0, lower = 0, flat = 0;
+    for (int n = 0; n < 20000; ++n) {
+        sw::Edge e{};
+        const std::int64_t span = n % 3 == 0 ? 300 : n % 3 == 1 ? 70000 : (std::int64_t(1) << 26);
+        e.dx = std::int32_t(n % 11 == 0 ? 0 : pick(-span, span));
+        e.dy = std::int32_t(n % 13 == 0 ? 0 : pick(-span, span));
+        e.k = pick(-(std::int64_t(1) << 40), std::int64_t(1) << 40);
+        const std::int64_t py0 = pick(-100, 5000);
+        occlusion::EdgeRows rows(e, py0);
+        for (std::int64_t py = py0; py < py0 + 300; ++py) {
+            // What dividing gives, in a row of pixels [−1000, 1000].
+            std::int64_t xa = -1000, xb = 1000;
+            const std::int64_t r = e.k + std::int64_t(e.dy) * py;
+            if (e.dx > 0)
+                xb = std::min(xb, floorDiv(r, e.dx)), ++upper;
+            else if (e.dx < 0)
+                xa = std::max(xa, -floorDiv(r, -std::int64_t(e.dx))), ++lower;
+            else if (r < 0)
+                xb = xa - 1, ++flat;
+            std::int64_t ga = -1000, gb = 1000;
+            rows.bound(ga, gb);
+            rows.nextRow();
+            ASSERT_EQ(ga, xa) << "edge " << n << ", row " << py;
+            ASSERT_EQ(gb, xb) << "edge " << n << ", row " << py;
+            // And each bound is the last (or first) pixel inside the edge.
+            if (e.dx > 0) {
+                ASSERT_GE(r - std::int64_t(e.dx) * floorDiv(r, e.dx), 0);
+                ASSERT_LT(r - std::int64_t(e.dx) * (floorDiv(r, e.dx) + 1), 0);
+            }
+        }
+    }
+    EXPECT_GT(upper, 100000u);
+    EXPECT_GT(lower, 100000u);
+    EXPECT_GT(flat, 1000u);
+}
+
 // narrowAvx2 against the pass's scalar rasterization of a triangle (Occlusion.cpp triangleMaySeen
 // without SIMD): its covered pixels by setup's edges one at a time, the depth bounds of each, the
 // buffer lowered pixel by pixel. On random triangles up to 8 pixels wide, some reaching past the

@@ -545,7 +545,7 @@ TEST(SphereMapTest, ManyTrianglesInOneBinAreSplitIntoClusters) {
         for (int j = 0; j <= n; ++j) patch.positions.emplace_back(1.0f, 0.01f * float(i) - 0.3f, 0.01f * float(j) - 0.3f);
     // One far point on the other side so the sphere's centre is away from the patch.
     patch.positions.emplace_back(-5.0f, 0.0f, 0.0f);
-    const auto at = [n](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
+    const auto at = [&](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             patch.indices.insert(patch.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});

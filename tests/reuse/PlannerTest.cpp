@@ -501,7 +501,7 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
             EXPECT_TRUE(covers(maskOf(rectsOf(plan, Op::Clear, S, S)), rest));
             EXPECT_TRUE(covers(maskOf(rectsOf(plan, Op::Copy, S, R)), rest));
             const std::vector<const DrawCommand*> redraws = drawsInto(plan, S);
-            EXPECT_TRUE(std::any_of(redraws.begin(), redraws.end(), [j](const DrawCommand* c) { return c->instance == j; }));
+            EXPECT_TRUE(std::any_of(redraws.begin(), redraws.end(), [&](const DrawCommand* c) { return c->instance == j; }));
             EXPECT_GT(redraws.size(), 1u);
             EXPECT_EQ(s->redrawnTris, s->staticRedrawnTris);
             EXPECT_TRUE(drawsInto(plan, R).empty());

@@ -49,7 +49,7 @@ std::string base64(const std::string& data) {
     return out;
 }
 
-constexpr int kByte = 5120, kUByte = 5121, kShort = 5122, kUShort = 5123, kUInt = 5125, kFloat = 5126;
+constexpr int kByte = 5120, kUByte = 5121, kShort = 5122, kUShort = 5123, kFloat = 5126;
 
 // A glTF document and the contents of its one buffer.
 struct Asset {
@@ -551,7 +551,7 @@ std::vector<BadCase> badCases() {
         {"SamplerOutOfRange",
          [](Asset& a) {
              a.json["textures"] = {{{"sampler", 1}}};
-             a.json["samplers"] = {Json::object()};
+             a.json["samplers"] = Json::array({Json::object()});
          },
          "textures[0].sampler: sampler 1 out of range, the file has 1 sampler"},
         {"ImageBufferViewOutOfRange",
@@ -559,7 +559,7 @@ std::vector<BadCase> badCases() {
              a.json["images"] = {{{"bufferView", 2}, {"mimeType", "image/png"}}};
          },
          "images[0].bufferView: bufferView 2 out of range, the file has 2 bufferViews"},
-        {"ImageWithoutSource", [](Asset& a) { a.json["images"] = {Json::object()}; },
+        {"ImageWithoutSource", [](Asset& a) { a.json["images"] = Json::array({Json::object()}); },
          "images[0]: has neither uri nor bufferView"},
         {"AnimationChannelNodeOutOfRange",
          [](Asset& a) {
