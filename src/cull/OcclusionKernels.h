@@ -145,7 +145,9 @@ bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, f
 // at the corners of columns x0 … x0 + 7 and rows y0 … y1 (and so between them), lies within ±2^30.
 // Each covered row is spanAvx2 of its covered pixels, the plane at row py being z0 + dzdy·py:
 // whether some pixel may be seen, and, when `occludes`, each lowered. `columns`: bit i when some row
-// covers column x0 + i. Masked loads and stores: nothing outside the covered pixels is touched.
+// covers column x0 + i. Nothing outside the covered pixels changes; columns x0 … x0 + 7 that lie
+// within the row are read and written back (the caller's thread must own the rows), those past its
+// end are not touched.
 bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const std::int32_t e[3],
                 const std::int32_t dx[3], const std::int32_t dy[3], float z0, float dzdx, float dzdy, float slack,
                 float up, bool halfZ, bool occludes, std::uint32_t* columns);
