@@ -90,20 +90,12 @@ void verdictsAvx2(const WindowArrays& w, const std::uint16_t* c0, const std::uin
 
 bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, float up, bool halfZ, bool occludes) {
     const __m256 vz = _mm256_set1_ps(zRow), vdz = _mm256_set1_ps(dzdx), vs = _mm256_set1_ps(slack), vup = _mm256_set1_ps(up);
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 zero = _mm256_setzero_ps();
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-    // Far-ness bounds lo ≤ the stored value ≤ hi at pixels px … px + 7: z = zRow + dzdx·px, rounded
-    // twice; std::clamp(v, 0, 1) is min(1, max(0, v)) in this operand order (a NaN stays), as the
-    // scalar loops compute it.
+    // Far-ness bounds at pixels px … px + 7: z = zRow + dzdx·px, rounded twice.
     const auto bounds = [&](int px, __m256& lo, __m256& hi) {
         const __m256 z = _mm256_add_ps(vz, _mm256_mul_ps(vdz, _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(px), lane))));
-        if (!halfZ) {
-            lo = _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)));
-            hi = _mm256_add_ps(_mm256_min_ps(one, _mm256_add_ps(z, vs)), vup);
-        } else {
-            lo = _mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_add_ps(z, vs))));
-            hi = _mm256_add_ps(_mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)))), vup);
-        }
+        depthBounds(z, vs, vup, halfZ, lo, hi);
     };
     // Seen where !(stored < lo); stored lowered to hi where hi < stored (std::min(stored, hi) is
     // _mm256_min_ps(hi, stored)).
@@ -144,7 +136,7 @@ bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const s
     // spanAvx2's bounds: z = zRow + dzdx·px, the product the same on every row.
     const __m256 slope = _mm256_mul_ps(_mm256_set1_ps(dzdx), _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x0), lane)));
     const __m256 vs = _mm256_set1_ps(slack), vup = _mm256_set1_ps(up);
-    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const __m256 zero = _mm256_setzero_ps();
     __m256 seen = zero;
     __m256i any = _mm256_setzero_si256();
     for (int py = y0; py <= y1; ++py) {
@@ -155,15 +147,8 @@ bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const s
         if (_mm256_testz_si256(cover, cover)) continue;
         any = _mm256_or_si256(any, cover);
         const float zRow = z0 + dzdy * float(py);
-        const __m256 z = _mm256_add_ps(_mm256_set1_ps(zRow), slope);
         __m256 lo, hi;
-        if (!halfZ) {
-            lo = _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)));
-            hi = _mm256_add_ps(_mm256_min_ps(one, _mm256_add_ps(z, vs)), vup);
-        } else {
-            lo = _mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_add_ps(z, vs))));
-            hi = _mm256_add_ps(_mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, vs)))), vup);
-        }
+        depthBounds(_mm256_add_ps(_mm256_set1_ps(zRow), slope), vs, vup, halfZ, lo, hi);
         float* row = depth + std::ptrdiff_t(py) * width + x0;
         const __m256 mask = _mm256_castsi256_ps(cover);
         if (inRow) {

@@ -13,6 +13,20 @@ inline __m256i load8(const std::uint16_t* p) {
 inline __m256i ceil256(__m256i a) { return _mm256_sub_epi32(_mm256_setzero_si256(), _mm256_srai_epi32(_mm256_sub_epi32(_mm256_setzero_si256(), a), 8)); }
 inline __m256i floor256(__m256i a) { return _mm256_srai_epi32(a, 8); }
 inline __m256i lessThan(__m256i a, __m256i b) { return _mm256_cmpgt_epi32(b, a); }
+// Far-ness bounds lo ≤ the stored value ≤ hi at pixels whose plane value is z, `slack` its rounding
+// bound and `up` the 24-bit step (Occlusion.cpp triangleMaySeen): D24 stores the clamped z, D32F
+// (`halfZ`) is read as its negation. std::clamp(v, 0, 1) is min(1, max(0, v)) in this operand
+// order (a NaN stays), as the scalar loops compute it.
+inline void depthBounds(__m256 z, __m256 slack, __m256 up, bool halfZ, __m256& lo, __m256& hi) {
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    if (!halfZ) {
+        lo = _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, slack)));
+        hi = _mm256_add_ps(_mm256_min_ps(one, _mm256_add_ps(z, slack)), up);
+    } else {
+        lo = _mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_add_ps(z, slack))));
+        hi = _mm256_add_ps(_mm256_sub_ps(zero, _mm256_min_ps(one, _mm256_max_ps(zero, _mm256_sub_ps(z, slack)))), up);
+    }
+}
 
 // verdictsAvx2's work (OcclusionKernels.h), with the corners' attributes from `fetch`.
 template <class Fetch>
@@ -147,15 +161,8 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
             const __m256 zs[4] = {_mm256_add_ps(row0, _mm256_mul_ps(dzdx, px0)), _mm256_add_ps(row0, _mm256_mul_ps(dzdx, px1)),
                                   _mm256_add_ps(row1, _mm256_mul_ps(dzdx, px0)), _mm256_add_ps(row1, _mm256_mul_ps(dzdx, px1))};
             for (int k = 0; k < 4; ++k) {
-                const __m256 z = zs[k];
                 __m256 lo, hi;
-                if (!vp.halfZ) {
-                    lo = _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_sub_ps(z, slack)));
-                    hi = _mm256_add_ps(_mm256_min_ps(fone, _mm256_add_ps(z, slack)), step24);
-                } else {
-                    lo = _mm256_sub_ps(fzero, _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_add_ps(z, slack))));
-                    hi = _mm256_add_ps(_mm256_sub_ps(fzero, _mm256_min_ps(fone, _mm256_max_ps(fzero, _mm256_sub_ps(z, slack)))), step24);
-                }
+                depthBounds(zs[k], slack, step24, vp.halfZ, lo, hi);
                 _mm256_storeu_ps(out.lo + std::size_t(k) * out.stride + i, lo);
                 _mm256_storeu_ps(out.hi + std::size_t(k) * out.stride + i, hi);
             }
