@@ -30,8 +30,8 @@
 // same threads, woken before the conservative plan is made (prepare), and joined in order.
 //
 // It pays for itself or turns itself off: a pass is skipped when the conservative plan submits
-// fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped,
-// by what a triangle costs the target) was less than its own time, the next 1, 2, 4, ... 16 calls
+// fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped
+// and the draws the plan no longer makes, by what each costs the target) was less than its own time, the next 1, 2, 4, ... 16 calls
 // skip it, unless their plan is more than 1.25 times as large (another kind of view). A skipped
 // pass leaves the conservative plan as it is.
 #pragma once
@@ -61,7 +61,8 @@ struct OcclusionStats {
     std::size_t clustersHidden = 0;     // dropped
     std::size_t trianglesHidden = 0;    // of the conservative plan's: dropped with the clusters, or alone
     double ms = 0.0;                    // the pass: ordering, rasterizing and testing
-    double savedMs = 0.0;               // estimated: trianglesHidden × the target's cost of a triangle
+    std::int64_t drawsSaved = 0;        // draws the plan no longer makes (OcclusionTarget::gathering)
+    double savedMs = 0.0;               // estimated: trianglesHidden and drawsSaved by the target's costs
 };
 
 // One cluster that the conservative plan keeps, with the ranges of it that the plan submits.
@@ -79,6 +80,8 @@ struct OcclusionTarget {
     // Otherwise (a GPU's driver) only whole clusters are tested, with their margins.
     bool exactRules = true;
     double drawNsPerTriangle = 110.0;  // what a submitted triangle costs the draw (llvmpipe's, 2 cores)
+    double drawNsPerDraw = 0.0;        // and what each draw costs it, besides its triangles
+    RangeGathering gathering{};        // how the backend draws an instance's ranges: which draws it makes
     // false: the pass runs on every call, however little it gains (tests, and measuring it).
     bool adaptive = true;
     int threads = 0;  // the walk's threads; 0: every core

@@ -132,20 +132,22 @@ bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const s
     }
     const __m256i inBox = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x0 + 1), lane);
     const bool inRow = x0 + 8 <= width;
-    const __m256i none = _mm256_set1_epi32(-1);
     // spanAvx2's bounds: z = zRow + dzdx·px, the product the same on every row.
     const __m256 slope = _mm256_mul_ps(_mm256_set1_ps(dzdx), _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x0), lane)));
     const __m256 vs = _mm256_set1_ps(slack), vup = _mm256_set1_ps(up);
-    const __m256 zero = _mm256_setzero_ps();
-    __m256 seen = zero;
-    __m256i any = _mm256_setzero_si256();
+    // What was seen, and the columns covered, as bits in general registers: sixteen vector registers
+    // hold the edges, their steps and the constants, and two more accumulators spilled to the stack
+    // on every row.
+    int seen = 0, any = 0;
     for (int py = y0; py <= y1; ++py) {
-        // Covered: every edge ≥ 0, i.e. their OR > −1.
-        const __m256i cover = _mm256_and_si256(
-            inBox, _mm256_cmpgt_epi32(_mm256_or_si256(_mm256_or_si256(edge[0], edge[1]), edge[2]), none));
+        // Covered: every edge ≥ 0, i.e. the sign bit of their OR clear.
+        const __m256i cover =
+            _mm256_andnot_si256(_mm256_srai_epi32(_mm256_or_si256(_mm256_or_si256(edge[0], edge[1]), edge[2]), 31), inBox);
         for (int i = 0; i < 3; ++i) edge[i] = _mm256_add_epi32(edge[i], step[i]);
-        if (_mm256_testz_si256(cover, cover)) continue;
-        any = _mm256_or_si256(any, cover);
+        // A row with no pixel covered goes through the same steps (it writes back what it read): a
+        // branch on it is one the CPU mispredicts, at the corners of the triangle.
+        const int coverBits = _mm256_movemask_ps(_mm256_castsi256_ps(cover));
+        any |= coverBits;
         const float zRow = z0 + dzdy * float(py);
         __m256 lo, hi;
         depthBounds(_mm256_add_ps(_mm256_set1_ps(zRow), slope), vs, vup, halfZ, lo, hi);
@@ -156,16 +158,16 @@ bool narrowAvx2(float* depth, int width, int x0, int x1, int y0, int y1, const s
             // the triangle is not (the row is this thread's alone). Masked moves cost a few times
             // as much on some CPUs (AMD's Zen).
             const __m256 stored = _mm256_loadu_ps(row);
-            seen = _mm256_or_ps(seen, _mm256_and_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ), mask));
+            seen |= _mm256_movemask_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ)) & coverBits;
             if (occludes) _mm256_storeu_ps(row, _mm256_blendv_ps(stored, _mm256_min_ps(hi, stored), mask));
         } else {
             const __m256 stored = _mm256_maskload_ps(row, cover);
-            seen = _mm256_or_ps(seen, _mm256_and_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ), mask));
+            seen |= _mm256_movemask_ps(_mm256_cmp_ps(stored, lo, _CMP_NLT_UQ)) & coverBits;
             if (occludes) _mm256_maskstore_ps(row, cover, _mm256_min_ps(hi, stored));
         }
     }
-    *columns = std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(any)));
-    return _mm256_movemask_ps(seen) != 0;
+    *columns = std::uint32_t(any);
+    return seen != 0;
 }
 
 bool cpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }

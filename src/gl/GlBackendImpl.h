@@ -123,6 +123,7 @@ public:
         gl_.Finish();
     }
     StateChanges stateChanges() const override { return state_.changes(); }
+    RangeGathering rangeGathering() const override;
     void releaseThread() override { releaseCurrentContext(context_.get()); }
 
 private:

@@ -48,6 +48,9 @@ constexpr std::size_t kGatherMaxAverageRun = 256;
 
 }  // namespace
 
+// (Frames that write ids draw every range on its own: the id pass is not gathered.)
+RangeGathering GlBackend::rangeGathering() const { return {kGatherMinRuns, kGatherMaxAverageRun}; }
+
 void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     assert(targets_.find(target) != nullptr && "beginFrame: no such target");
     if (targets_.find(target) == nullptr) return;

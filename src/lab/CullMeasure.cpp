@@ -165,6 +165,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         occlusionView->trianglesHidden = o.trianglesHidden;
         occlusionView->clustersHidden = o.clustersHidden;
         occlusionView->clustersTested = o.clustersTested;
+        occlusionView->drawsSaved = o.drawsSaved;
         occlusionView->savedMs = o.savedMs;
         if (!s_.masksDir.empty()) {
             int w = 0, h = 0;

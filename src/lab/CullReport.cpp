@@ -138,6 +138,7 @@ std::string cullReportJson(const CullReport& report) {
                                   {"triangles_hidden", o->trianglesHidden},
                                   {"clusters_hidden", o->clustersHidden},
                                   {"clusters_tested", o->clustersTested},
+                                  {"draws_saved", o->drawsSaved},
                                   {"saved_ms_estimate", number(o->savedMs)},
                                   {"image", o->image.empty() ? Json() : Json(o->image)}};
         views.push_back(std::move(v));

@@ -29,7 +29,8 @@ struct OcclusionView {
     double passMs = 0.0;               // median time of the pass where it ran (0: never)
     std::size_t trianglesHidden = 0;   // of the conservative plan (the untimed pass)
     std::size_t clustersHidden = 0, clustersTested = 0;
-    double savedMs = 0.0;              // its estimate of the draw time it saves (trianglesHidden × cost)
+    std::int64_t drawsSaved = 0;       // the draws its plan no longer makes
+    double savedMs = 0.0;              // its estimate of the draw time it saves (triangles and draws × cost)
     std::string image;                 // the buffer's file (--masks), relative to the report; empty: none
 };
 
@@ -53,7 +54,7 @@ struct CullReport {
 //   "method","tos","pvs","rvs","misses","waste","pixels_differing","cull_ms","draw_ms",
 //   "ratio_to_oracle","ratio_to_full","ratio_to_full_cullface"}],
 //   "occlusion" (with the occlusion method):{"runs","frames","pass_ms","triangles_hidden",
-//   "clusters_hidden","clusters_tested","saved_ms_estimate","image" (null: none)}}],
+//   "clusters_hidden","clusters_tested","draws_saved","saved_ms_estimate","image" (null: none)}}],
 //  "summary":{METHOD:{"views","median_pvs","median_cull_ms","median_draw_ms","median_ratio_to_oracle",
 //   "median_ratio_to_full","median_ratio_to_full_cullface","median_cull_over_draw" (of cull ÷ draw per
 //   view: the share of the frame culling takes),"worst_view":{"index","class","ratio_to_oracle"},

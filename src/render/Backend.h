@@ -109,6 +109,16 @@ struct InstanceParams {
 // triangleSource has one entry per triangle or is empty (then triangle t has source t).
 bool isUploadable(const Mesh& mesh);
 
+// How a backend draws one draw() of several index ranges: each range as a draw of its own, or, from
+// `minRuns` ranges on whose average is below `maxAverageRun` triangles, all as one draw (0: never).
+// What the occlusion pass counts when it weighs the draws it saves.
+struct RangeGathering {
+    std::uint64_t minRuns = 0, maxAverageRun = 0;
+    std::uint64_t drawsOf(std::uint64_t runs, std::uint64_t triangles) const {
+        return minRuns > 0 && runs >= minRuns && triangles / runs < maxAverageRun ? 1 : runs;
+    }
+};
+
 class Backend {
 public:
     virtual ~Backend() = default;
@@ -122,6 +132,9 @@ public:
     bool followsLlvmpipeRules() const {
         return name() == "software" || renderer().find("llvmpipe") != std::string::npos;
     }
+
+    // How draw() draws many ranges (the GL backend gathers many short ones into one draw).
+    virtual RangeGathering rangeGathering() const { return {}; }
 
     // Largest width or height createTarget accepts (GL_MAX_RENDERBUFFER_SIZE and GL_MAX_VIEWPORT_DIMS).
     virtual int maxTargetSize() const = 0;

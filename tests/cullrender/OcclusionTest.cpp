@@ -399,6 +399,7 @@ TEST(OcclusionTest, ItSkipsItselfWhereItDoesNotPay) {
     addBox(scene, glm::vec3(1.0f), {0, 0, 0}, 0, 40);  // 19,200 triangles, 9,600 facing any eye at most
     addBox(scene, glm::vec3(0.5f), {0, 0, -4}, 0, 40);
     scene.buildInstances();
+    const Scene copy = scene;
     CullBench bench(std::move(scene), 96, 72);
     Result<FrameSetup> setup = setUpFrame(bench.scene, test::lookAt({0, 0, 6}, {0, 0, 0}), 0.0, 96, 72, true);
     ASSERT_TRUE(setup);
@@ -426,6 +427,23 @@ TEST(OcclusionTest, ItSkipsItselfWhereItDoesNotPay) {
     }
     EXPECT_EQ(ran, (std::vector<bool>{true, false, true, false, false, true}));
 
+    // The draws it saves count too: with triangles free and draws dear it runs on every call
+    // (the box behind is a draw the plan no longer makes), with both free it backs off (each
+    // from a culler of its own: none has backed off before).
+    target.drawNsPerTriangle = 0.0;
+    target.gathering = {1, 1u << 30};  // an instance's ranges one draw (the front box's, split, too)
+    for (const double drawNs : {1e6, 0.0}) {
+        target.drawNsPerDraw = drawNs;
+        CullBench fresh(Scene(copy), 96, 72);
+        ran.clear();
+        for (int call = 0; call < 3; ++call) {
+            fresh.culler.cull(Cull::Occlusion, fresh.scene, setup->world, setup->view, target);
+            ran.push_back(fresh.culler.occlusion().stats().ran);
+        }
+        EXPECT_EQ(ran, drawNs > 0.0 ? (std::vector<bool>{true, true, true}) : (std::vector<bool>{true, false, true}))
+            << drawNs << " ns a draw";
+    }
+
     // A plan of a few triangles is never worth the pass.
     Scene small = emptyScene("small");
     addBox(small, glm::vec3(1.0f), {0, 0, 0});
@@ -436,6 +454,42 @@ TEST(OcclusionTest, ItSkipsItselfWhereItDoesNotPay) {
     ASSERT_TRUE(smallSetup);
     smallBench.culler.cull(Cull::Occlusion, smallBench.scene, smallSetup->world, smallSetup->view, target);
     EXPECT_FALSE(smallBench.culler.occlusion().stats().ran);
+}
+
+TEST(OcclusionTest, TheDrawsItSavesAreTheDrawsThePlansMake) {
+    // A wall in front of a row of small boxes (12 triangles each, a draw each): the ones behind it
+    // go whole, the ones beside it stay; a box half behind the wall's edge loses some faces. What
+    // the pass counts as saved is, for every way a backend may draw an instance's ranges, the
+    // draws of the conservative plan less those of its own, as the draw lists give them.
+    Scene scene = emptyScene("draws");
+    addBox(scene, {1.5f, 1.0f, 0.2f}, {0, 0, 0}, 0, 12);
+    for (int i = 0; i < 9; ++i) addBox(scene, glm::vec3(0.25f), {-2.6f + 0.65f * float(i), 0.1f * float(i % 3), -2.0f}, 0, 1);
+    scene.buildInstances();
+    CullBench bench(std::move(scene), 160, 120);
+    Result<FrameSetup> setup = setUpFrame(bench.scene, test::lookAt({0.3f, 0.4f, 5}, {0, 0, -1}), 0.0, 160, 120, true);
+    ASSERT_TRUE(setup);
+    const DrawList conservative = bench.culler.cull(Cull::Conservative, bench.scene, setup->world, setup->view);
+    const auto drawsOf = [&](const DrawList& list, const RangeGathering& g) {
+        std::int64_t draws = 0;
+        for (const DrawCommand& command : list) {
+            std::uint64_t triangles = 0;
+            for (const IndexRange& r : command.ranges) triangles += r.triangleCount;
+            draws += std::int64_t(g.drawsOf(command.ranges.size(), triangles));
+        }
+        return draws;
+    };
+    for (const RangeGathering& g : {RangeGathering{}, RangeGathering{1, 1u << 30}, RangeGathering{2, 3}}) {
+        OcclusionTarget target = bench.occlusionTarget();
+        target.gathering = g;
+        const DrawList occlusion = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
+        const OcclusionStats& stats = bench.culler.occlusion().stats();
+        ASSERT_TRUE(stats.ran);
+        ASSERT_LT(occlusion.size(), conservative.size()) << "boxes behind the wall go whole";
+        EXPECT_EQ(stats.drawsSaved, drawsOf(conservative, g) - drawsOf(occlusion, g)) << g.minRuns << " " << g.maxAverageRun;
+        if (g.minRuns == 1) {
+            EXPECT_EQ(stats.drawsSaved, std::int64_t(conservative.size() - occlusion.size())) << "a draw an instance";
+        }
+    }
 }
 
 }  // namespace

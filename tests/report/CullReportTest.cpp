@@ -54,7 +54,7 @@ CullReport fakeReport() {
         row("none", 100, 0, 0, 0.0, 4.0, 4.0),
         row("sphere", 41, 3, 1, 0.125, 1.75, 1.5),
         row("oracle", 45, 0, 0, 0.0, 2.0, 1.0),
-    }, OcclusionView{2, 3, 0.75, 59, 4, 9, 1.5, "m/occlusion-view-2.png"}});
+    }, OcclusionView{2, 3, 0.75, 59, 4, 9, 3, 1.5, "m/occlusion-view-2.png"}});
     return r;
 }
 
@@ -96,7 +96,7 @@ TEST(CullReportTest, JsonHasTheDocumentedKeys) {
     EXPECT_FALSE(j["views"][0].contains("occlusion"));
     const nlohmann::json& o = j["views"][2]["occlusion"];
     EXPECT_EQ(o, nlohmann::json::parse(R"({"runs": 2, "frames": 3, "pass_ms": 0.75, "triangles_hidden": 59,
-        "clusters_hidden": 4, "clusters_tested": 9, "saved_ms_estimate": 1.5, "image": "m/occlusion-view-2.png"})"));
+        "clusters_hidden": 4, "clusters_tested": 9, "draws_saved": 3, "saved_ms_estimate": 1.5, "image": "m/occlusion-view-2.png"})"));
 }
 
 TEST(CullReportTest, JsonSummaryHasMediansWorstViewAndTotals) {
