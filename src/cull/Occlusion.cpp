@@ -179,8 +179,8 @@ inline std::uint64_t keptMask(const std::uint8_t* flags) {
 // The draws a plan makes on `target`: per instance, one draw() of its ranges (adjacent ones joined,
 // as the plan's draw list joins them), which the backend makes one draw, or one per range
 // (Backend::RangeGathering). A long plan costs a few tens of microseconds here.
-std::int64_t drawsOf(const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
-                     const std::vector<IndexRange>& ranges) {
+std::int64_t planDraws(const OcclusionTarget& target, const std::vector<KeptCluster>& kept,
+                       const std::vector<IndexRange>& ranges) {
     std::int64_t draws = 0;
     for (std::size_t k = 0; k < kept.size();) {
         const std::uint32_t instance = kept[k].instance;
@@ -935,8 +935,9 @@ void OcclusionCuller::run(const Scene& scene, const std::vector<MeshMap>& maps, 
     st.rest();
     st.stats.trianglesHidden = planned - left;
     st.stats.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    // Did it pay? The draw it saved, by the target's cost of a triangle, against its own time.
-    st.stats.drawsSaved = drawsOf(target, kept, ranges) - drawsOf(target, result, out);
+    // Did it pay? The draw it saved (the triangles and the draws that went, by the target's costs of
+    // each) against its own time.
+    st.stats.drawsSaved = planDraws(target, kept, ranges) - planDraws(target, result, out);
     st.stats.savedMs =
         (double(st.stats.trianglesHidden) * target.drawNsPerTriangle + double(st.stats.drawsSaved) * target.drawNsPerDraw) * 1e-6;
     if (!target.adaptive) return;

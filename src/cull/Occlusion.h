@@ -31,9 +31,9 @@
 //
 // It pays for itself or turns itself off: a pass is skipped when the conservative plan submits
 // fewer than a few thousand triangles, and after a pass whose saved draw (the triangles it dropped
-// and the draws the plan no longer makes, by what each costs the target) was less than its own time, the next 1, 2, 4, ... 16 calls
-// skip it, unless their plan is more than 1.25 times as large (another kind of view). A skipped
-// pass leaves the conservative plan as it is.
+// and the draws the plan no longer makes, by what each costs the target) was less than its own
+// time, the next 1, 2, 4, ... 16 calls skip it, unless their plan is more than 1.25 times as large
+// (another kind of view). A skipped pass leaves the conservative plan as it is.
 #pragma once
 
 #include <cstddef>
