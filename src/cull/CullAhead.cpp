@@ -26,8 +26,8 @@ bool sameView(const View& a, const View& b) {
 bool sameTarget(const OcclusionTarget& a, const OcclusionTarget& b) {
     return a.width == b.width && a.height == b.height && a.exactRules == b.exactRules &&
            sameBits(a.drawNsPerTriangle, b.drawNsPerTriangle) &&
-           sameBits(a.drawNsPerDraw, b.drawNsPerDraw) && a.gathering.minRuns == b.gathering.minRuns &&
-           a.gathering.maxAverageRun == b.gathering.maxAverageRun && a.adaptive == b.adaptive && a.simd == b.simd;
+           sameBits(a.drawNsPerDraw, b.drawNsPerDraw) && a.gathering == b.gathering && a.adaptive == b.adaptive &&
+           a.simd == b.simd;
 }
 
 bool sameWorld(const std::vector<glm::mat4>& a, const std::vector<glm::mat4>& b) {

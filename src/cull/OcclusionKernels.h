@@ -105,7 +105,7 @@ struct EdgeRows {
     }
 };
 
-// Whether the CPU runs the AVX2 kernels below// Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
+// Whether the CPU runs the AVX2 kernels below (AVX2 and FMA: the viewport is then fused, as
 // llvmpipe fuses it on such a CPU).
 bool cpuHasAvx2();
 

@@ -117,6 +117,7 @@ struct RangeGathering {
     std::uint64_t drawsOf(std::uint64_t runs, std::uint64_t triangles) const {
         return minRuns > 0 && runs >= minRuns && triangles / runs < maxAverageRun ? 1 : runs;
     }
+    bool operator==(const RangeGathering&) const = default;
 };
 
 class Backend {
