@@ -24,10 +24,13 @@ from ._frugal import (  # noqa: F401
     __version__,
     default_settings,
     load,
+    settings,
     settings_names,
+    settings_schema,
 )
 
 __all__ = [
     "BackendUnavailable", "Camera", "Error", "Frame", "InputError", "Interrupted", "IoError", "OutOfMemory",
-    "Renderer", "Scene", "Writer", "__version__", "default_settings", "load", "settings_names",
+    "Renderer", "Scene", "Writer", "__version__", "default_settings", "load", "settings",
+    "settings_names", "settings_schema",
 ]

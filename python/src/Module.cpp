@@ -89,4 +89,12 @@ PYBIND11_MODULE(_frugal, m) {
     m.def("settings_names", [] { return py::list(settingsDict(Settings{}).attr("keys")()); },
           "The keyword arguments frugal.Renderer takes.");
     m.def("default_settings", [] { return settingsDict(Settings{}); }, "Every setting with its default.");
+    m.def("settings_schema", &settingsSchema,
+          "Every setting as a dict: name (the keyword), option (the command line's flag, or None), key (in a "
+          "settings file), kind (switch, whole, pair, choice, colour), default, help, choices, range, expected (what "
+          "a refusal says a value is not), conflicts (the settings it may not go with).");
+    m.def("settings", [](const py::kwargs& kwargs) { return settingsDict(settingsFrom(kwargs)); },
+          "Every setting as frugal.Renderer(scene, **kwargs) would take them (settings='file.json' first, the others "
+          "over it), checked as it checks them: raises InputError on a value out of its range or settings that may "
+          "not go together.");
 }

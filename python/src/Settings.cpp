@@ -1,7 +1,7 @@
+// frugal.Renderer's keyword arguments, read and written through the library's schema
+// (frugal/Settings.h): each kind of value once, every setting from the table.
 #include "Settings.h"
 
-#include <functional>
-#include <map>
 #include <string>
 
 #include "Arrays.h"
@@ -13,77 +13,69 @@ namespace {
 
 std::string shown(const py::handle& value) { return py::repr(value).cast<std::string>(); }
 
-template <class T, std::size_t N>
-T choice(const py::handle& value, const char* name, const std::array<T, N>& values, const char* noun) {
-    if (!py::isinstance<py::str>(value))
-        throw InputError{std::string(name) + ": expected a string, one of " + namesOf(values) + ", got " + shown(value)};
-    const std::string text = value.cast<std::string>();
-    if (const std::optional<T> v = fromString(text, values)) return *v;
-    throw InputError{std::string(name) + ": '" + text + "' is not " + noun + " (" + namesOf(values) + ")"};
-}
-
-bool flag(const py::handle& value, const char* name) {
-    if (!py::isinstance<py::bool_>(value)) throw InputError{std::string(name) + ": expected True or False, got " + shown(value)};
-    return value.cast<bool>();
-}
-
-int integer(const py::handle& value, const char* name) {
-    if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
-        throw InputError{std::string(name) + ": expected an integer, got " + shown(value)};
-    const long long v = value.cast<long long>();
-    if (v < -(1LL << 30) || v > (1LL << 30)) throw InputError{std::string(name) + ": " + std::to_string(v) + " is out of range"};
-    return int(v);
-}
-
-// (a, b), [a, b] or "AxB" (as the command line takes it).
-std::pair<int, int> pairOf(const py::handle& value, const char* name, const char* form) {
-    const std::string expected = std::string(name) + ": expected " + form + ", got " + shown(value);
-    if (py::isinstance<py::str>(value)) {
-        const std::string text = value.cast<std::string>();
-        const std::size_t x = text.find('x');
+// A Python value as the setting's value, by its kind alone (nothing: not of the kind). Pairs are
+// (a, b), [a, b] or "AxB"; colours a sequence of 3 or 4 numbers.
+std::optional<SettingValue> valueOf(const SettingInfo& info, const py::handle& v) {
+    const auto isInt = [](const py::handle& x) { return py::isinstance<py::int_>(x) && !py::isinstance<py::bool_>(x); };
+    const auto wholeOf = [](const py::handle& x) -> std::optional<long long> {
         try {
-            std::size_t used1 = 0, used2 = 0;
-            if (x == std::string::npos) throw InputError{expected};
-            const int a = std::stoi(text.substr(0, x), &used1), b = std::stoi(text.substr(x + 1), &used2);
-            if (used1 != x || used2 != text.size() - x - 1) throw InputError{expected};
-            return {a, b};
-        } catch (const std::logic_error&) {
-            throw InputError{expected};
+            return x.cast<long long>();
+        } catch (const py::cast_error&) {
+            return std::nullopt;  // beyond 64 bits: out of every range
         }
+    };
+    switch (info.kind) {
+        case SettingKind::Switch:
+            if (py::isinstance<py::bool_>(v)) return v.cast<bool>();
+            break;
+        case SettingKind::Whole:
+            if (isInt(v))
+                if (const std::optional<long long> w = wholeOf(v)) return *w;
+            break;
+        case SettingKind::Pair:
+            if (py::isinstance<py::str>(v)) return parseSettingText(info, v.cast<std::string>());
+            if (py::isinstance<py::sequence>(v) && py::len(v) == 2) {
+                const py::sequence items = py::reinterpret_borrow<py::sequence>(v);
+                if (isInt(items[0]) && isInt(items[1]))
+                    if (const auto a = wholeOf(items[0]), b = wholeOf(items[1]); a && b)
+                        return std::array<long long, 2>{*a, *b};
+            }
+            break;
+        case SettingKind::Choice:
+            if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+            break;
+        case SettingKind::Colour:
+            if (py::isinstance<py::sequence>(v) && !py::isinstance<py::str>(v)) {
+                std::vector<double> c;
+                for (const py::handle x : py::reinterpret_borrow<py::sequence>(v)) {
+                    if (py::isinstance<py::bool_>(x) || !(py::isinstance<py::int_>(x) || py::isinstance<py::float_>(x)))
+                        return std::nullopt;
+                    c.push_back(x.cast<double>());
+                }
+                return c;
+            }
+            break;
     }
-    if (!py::isinstance<py::sequence>(value) || py::len(value) != 2) throw InputError{expected};
-    const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
-    return {integer(items[0], name), integer(items[1], name)};
+    return std::nullopt;
 }
 
-using Setter = std::function<void(Settings&, const py::handle&)>;
+py::object pythonValue(const SettingValue& value) {
+    return std::visit(
+        [](const auto& v) -> py::object {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, std::array<long long, 2>>) return py::make_tuple(v[0], v[1]);
+            else if constexpr (std::is_same_v<V, std::vector<double>>) {
+                py::tuple t(v.size());
+                for (std::size_t i = 0; i < v.size(); ++i) t[i] = py::float_(double(float(v[i])));
+                return t;
+            } else return py::cast(v);
+        },
+        value);
+}
 
-const std::map<std::string, Setter>& setters() {
-    static const std::map<std::string, Setter> table = {
-        {"size",
-         [](Settings& s, const py::handle& v) { std::tie(s.width, s.height) = pairOf(v, "size", "(width, height) or 'WxH'"); }},
-        {"backend", [](Settings& s, const py::handle& v) { s.backend = choice(v, "backend", kBackendKinds, "a backend"); }},
-        {"threads", [](Settings& s, const py::handle& v) { s.threads = integer(v, "threads"); }},
-        {"interp", [](Settings& s, const py::handle& v) { s.interp = choice(v, "interp", kDepthInterps, "a mode"); }},
-        {"cull", [](Settings& s, const py::handle& v) { s.cull = choice(v, "cull", kCulls, "a method"); }},
-        {"cull_bins",
-         [](Settings& s, const py::handle& v) {
-             std::tie(s.cullBinsTheta, s.cullBinsPhi) = pairOf(v, "cull_bins", "(polar, azimuthal) or 'TxP'");
-         }},
-        {"order", [](Settings& s, const py::handle& v) { s.order = choice(v, "order", kOrders, "an order"); }},
-        {"refine_costs", [](Settings& s, const py::handle& v) { s.refineCosts = integer(v, "refine_costs"); }},
-        {"reuse", [](Settings& s, const py::handle& v) { s.reuse = flag(v, "reuse"); }},
-        {"reuse_grain", [](Settings& s, const py::handle& v) { s.reuseSettings.grain = integer(v, "reuse_grain"); }},
-        {"reuse_cell", [](Settings& s, const py::handle& v) { s.reuseSettings.cell = integer(v, "reuse_cell"); }},
-        {"no_fallback", [](Settings& s, const py::handle& v) { s.reuseSettings.fallback = !flag(v, "no_fallback"); }},
-        {"exact_static", [](Settings& s, const py::handle& v) { s.reuseSettings.exactStatic = flag(v, "exact_static"); }},
-        {"hsr", [](Settings& s, const py::handle& v) { s.hsr = choice(v, "hsr", kHsrs, "a mode"); }},
-        {"depth_format",
-         [](Settings& s, const py::handle& v) { s.depthFormat = choice(v, "depth_format", kDepthFormats, "a format"); }},
-        {"background", [](Settings& s, const py::handle& v) { s.background = colorFrom(v, "background"); }},
-        {"ids", [](Settings& s, const py::handle& v) { s.ids = flag(v, "ids"); }},
-    };
-    return table;
+// A setting as Python spells it: "cull='oracle'", "reuse=True".
+std::string pythonSpelling(const SettingInfo& info, const SettingValue& value) {
+    return info.pythonName() + "=" + shown(pythonValue(value));
 }
 
 }  // namespace
@@ -97,36 +89,53 @@ Settings settingsFrom(const py::kwargs& kwargs) {
     for (const auto& [key, value] : kwargs) {
         const std::string name = key.cast<std::string>();
         if (name == "settings") continue;
-        const auto setter = setters().find(name);
-        if (setter == setters().end()) {
+        const SettingInfo* info = findSetting(name);
+        if (!info || info->pythonName() != name) {
             std::string names;
-            for (const auto& [known, unused] : setters()) names += (names.empty() ? "" : ", ") + known;
+            for (const SettingInfo& known : settingInfos()) names += (names.empty() ? "" : ", ") + known.pythonName();
             throw InputError{"unknown setting '" + name + "' (" + names + ")"};
         }
-        setter->second(settings, value);
+        const std::optional<SettingValue> v = valueOf(*info, value);
+        if (const std::string why = v ? setSetting(settings, *info, *v) : "is not " + expected(*info); !why.empty())
+            throw InputError{name + ": " + shown(value) + " " + why};
     }
+    if (const std::optional<SettingsProblem> problem = settingsProblem(settings))
+        throw InputError{describe(*problem, settings, pythonSpelling)};
     return settings;
+}
+
+py::list settingsSchema() {
+    const char* const kinds[] = {"switch", "whole", "pair", "choice", "colour"};
+    const Settings defaults;
+    py::list out;
+    for (const SettingInfo& info : settingInfos()) {
+        py::dict d;
+        d["name"] = info.pythonName();
+        d["option"] = info.flag ? py::object(py::str("--" + info.name)) : py::object(py::none());
+        d["key"] = info.name;
+        d["kind"] = kinds[std::size_t(info.kind)];
+        d["default"] = pythonValue(info.get(defaults));
+        d["help"] = info.help;
+        py::list choices;
+        for (const ChoiceInfo& c : info.choices) choices.append(py::str(std::string(c.name)));
+        d["choices"] = choices;
+        d["range"] = info.kind == SettingKind::Whole || info.kind == SettingKind::Pair
+                         ? py::object(py::make_tuple(info.min, info.max))
+                         : py::object(py::none());
+        d["expected"] = expected(info);
+        py::list conflicts;
+        for (const SettingsConflict& c : settingsConflicts())
+            if (c.first == info.name || c.second == info.name)
+                conflicts.append(py::str(findSetting(c.first == info.name ? c.second : c.first)->pythonName()));
+        d["conflicts"] = conflicts;
+        out.append(d);
+    }
+    return out;
 }
 
 py::dict settingsDict(const Settings& s) {
     py::dict d;
-    d["size"] = py::make_tuple(s.width, s.height);
-    d["backend"] = toString(s.backend);
-    d["threads"] = s.threads;
-    d["interp"] = toString(s.interp);
-    d["cull"] = toString(s.cull);
-    d["cull_bins"] = py::make_tuple(s.cullBinsTheta, s.cullBinsPhi);
-    d["order"] = toString(s.order);
-    d["refine_costs"] = s.refineCosts;
-    d["reuse"] = s.reuse;
-    d["reuse_grain"] = s.reuseSettings.grain;
-    d["reuse_cell"] = s.reuseSettings.cell;
-    d["no_fallback"] = !s.reuseSettings.fallback;
-    d["exact_static"] = s.reuseSettings.exactStatic;
-    d["hsr"] = toString(s.hsr);
-    d["depth_format"] = toString(s.depthFormat);
-    d["background"] = py::make_tuple(s.background.r, s.background.g, s.background.b, s.background.a);
-    d["ids"] = s.ids;
+    for (const SettingInfo& info : settingInfos()) d[py::str(info.pythonName())] = pythonValue(info.get(s));
     return d;
 }
 

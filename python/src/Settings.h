@@ -10,12 +10,16 @@ namespace frugal::python {
 
 namespace py = pybind11;
 
-// Settings from keyword arguments; an unknown name or a value of the wrong form raises InputError
-// naming it ("cull: 'x' is not a method (none, sphere, ...)"). Ranges are the Renderer's to check.
+// Settings from keyword arguments, checked as a whole (settingsProblem): an unknown name, a value
+// that is not what the setting takes ("cull: 'x' is not a method (none, sphere, ...)") or settings
+// that may not go together ("reuse=True with cull='oracle': ...") raise InputError.
 // settings=PATH reads a settings file (frugal/Settings.h) first; the other arguments win over it.
 Settings settingsFrom(const py::kwargs& kwargs);
 
 // The names settingsFrom takes, with their values in `settings`.
 py::dict settingsDict(const Settings& settings);
+
+// The schema as Python sees it: a list of dicts, one a setting, in the settings file's order.
+py::list settingsSchema();
 
 }  // namespace frugal::python

@@ -90,12 +90,15 @@ def test_bad_settings():
     refused(frugal.InputError, r"unknown setting 'colour' \(.*background", frugal.Renderer, scene, colour=1)
     refused(frugal.InputError, r"cull: 'x' is not a method \(none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle\)",
             frugal.Renderer, scene, cull="x")
-    refused(frugal.InputError, r"size: expected \(width, height\) or 'WxH', got 'big'", frugal.Renderer, scene,
+    refused(frugal.InputError, r"size: 'big' is not a size \(WxH, each 1 to 65536\)", frugal.Renderer, scene,
             size="big")
-    refused(frugal.InputError, r"size 0x5: width and height must be at least 1", frugal.Renderer, scene, size=(0, 5))
-    refused(frugal.InputError, r"reuse: expected True or False, got 1", frugal.Renderer, scene, reuse=1)
-    refused(frugal.InputError, r"threads: expected an integer, got 2\.5", frugal.Renderer, scene, threads=2.5)
-    refused(frugal.InputError, r"reuse with cull oracle", frugal.Renderer, scene, reuse=True, cull="oracle")
+    refused(frugal.InputError, r"size: \(0, 5\) is not a size \(WxH, each 1 to 65536\)", frugal.Renderer, scene,
+            size=(0, 5))
+    refused(frugal.InputError, r"reuse: 1 is not true or false", frugal.Renderer, scene, reuse=1)
+    refused(frugal.InputError, r"threads: 2\.5 is not a whole number from 0 to 256", frugal.Renderer, scene,
+            threads=2.5)
+    refused(frugal.InputError, r"reuse=True with cull='oracle': the oracle is an id pass", frugal.Renderer, scene,
+            reuse=True, cull="oracle")
 
 
 def in_python(code, **env):

@@ -33,7 +33,7 @@ def test_occlusion_culling_gives_the_same_image_and_says_what_it_did():
         assert b.stats["pvs"] <= a.stats["pvs"]
         assert "occlusion" not in a.stats
         assert culled.extra_bytes > plain.extra_bytes or not b.stats["occlusion"]["ran"]
-    with pytest.raises(frugal.InputError, match="reuse with cull occlusion"):
+    with pytest.raises(frugal.InputError, match="reuse=True with cull='occlusion'"):
         frugal.Renderer(scene, size=(32, 24), cull="occlusion", reuse=True)
 
 

@@ -11,7 +11,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/HsrSupport.h"
 #include "lab/RenderBench.h"
 
 namespace frugal {
@@ -45,18 +44,17 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     RenderOptions options;
     bool ids = false;
     int runs = 30, warmup = 5;
-    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    Order drawOrder = Order::Submit;
     std::vector<std::string> rest(args.begin() + (args[0] == "render" ? 1 : 0), args.end());
     CommandLine command{"bench", benchHelp(), &options};
     command.flags = {{"", {
         flag::whole("--repeat", "N", "timed frames per variant (default 30)", runs, 1, 100000),
         flag::whole("--warmup", "N", "untimed frames first (default 5)", warmup, 0, 100000),
         flag::on("--ids", "also write triangle ids (the id pass)", ids),
-        hsrFlag(hsrMode, "zbuffer (default), depthsort or adaptive (see 'frugal help render'); the plan is timed with "
-                         "the frame; the minimal program stays z-buffered"),
-        orderFlag(drawOrder, "the draw order: submit (default), key, paper, greedy or best (see 'frugal help render'); "
-                             "consecutive draws of one mesh are one instanced draw. In the cache order two more rows: "
+        settingFlag("hsr", options.settings, options.given,
+                    "the hidden-surface mode (see 'frugal help render'); the plan is timed with the frame; the minimal "
+                    "program stays z-buffered"),
+        settingFlag("order", options.settings, options.given,
+                    "the draw order (see 'frugal help render'); consecutive draws of one mesh are one instanced draw. In the cache order two more rows: "
                              "\"unbatched\" (one draw per instance) and \"premerged\" (the floor: the instances "
                              "pre-transformed into one mesh per material); \"pixels_differing\" says where each image "
                              "differs from frugal's, and for frugal's own row, where --order changed it from "
@@ -81,14 +79,12 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     const int frame = options.frames ? options.frames->first : 0;
     RenderBenchSettings settings;
     settings.scene = options.scene;
-    settings.render = rendererSettings(options);
+    settings.render = options.settings;
     settings.runs = runs;
     settings.warmup = warmup;
     settings.camera = cameraOf(options, frame);
     settings.time = frameTimeOf(options, *optimized, frame);
     settings.render.ids = ids;
-    settings.render.hsr = hsrMode;
-    settings.render.order = drawOrder;
     Result<RenderBench> bench = measureRenderBench(*optimized, *original, settings, progressTo(err, options.quiet));
     if (!bench) return fail(err, bench.failure());
     out << renderBenchJson(*bench);

@@ -2,6 +2,7 @@
 
 #include <ostream>
 
+#include <frugal/Settings.h>
 #include <frugal/Version.h>
 
 #include "app/Commands.h"
@@ -30,6 +31,7 @@ usage:
   frugal soak [SCENE] [options]                   100,000 frames and 1,000 create/destroy cycles: memory, images
   frugal batch MANIFEST [--shard I/N] [options]   the jobs of a manifest, or shard I of N of them; status, merge
   frugal help [COMMAND]                           this text, or a command's options
+  frugal help settings                            every renderer setting: flag, settings file, Python
 
 SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
 )";
@@ -53,6 +55,32 @@ void printUsage(std::ostream& out) {
     for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
     out << "with no SCENE, render, report, bench, diff, cull-report and reuse-bench use builtin:default.\n";
     out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << exitCodesHelp();
+}
+
+// `frugal help settings`: the schema (frugal/Settings.h) as Markdown tables, which docs/cli.md
+// holds as its "Settings" section (scripts/cli-doc).
+std::string settingsHelp() {
+    const auto code = [](const std::string& text) { return "`" + text + "`"; };
+    std::string out =
+        "Every setting of a renderer, once: the option of `frugal render` (and of the commands that render), the key "
+        "of a settings file (`render --settings FILE`, `report`'s settings.json), the keyword argument of Python's "
+        "frugal.Renderer, and the member of the library's frugal::Settings.\n\n"
+        "| option | Python | value | default | what it does |\n|---|---|---|---|---|\n";
+    const Settings defaults;
+    for (const SettingInfo& info : settingInfos()) {
+        std::string value = expected(info);
+        if (info.kind == SettingKind::Pair) value += "; JSON also [A, B], Python (A, B)";
+        if (info.kind == SettingKind::Colour) value += "; JSON [r, g, b(, a)], Python (r, g, b(, a))";
+        std::string help = info.help;
+        for (const ChoiceInfo& c : info.choices) help += "; " + std::string(c.name) + ": " + std::string(c.summary);
+        out += "| " + (info.flag ? code("--" + info.name) : info.name + " (no flag)") + " | " + code(info.pythonName()) +
+               " | " + value + " | " + code(settingText(info, info.get(defaults))) + " | " + help + " |\n";
+    }
+    out += "\nSettings that may not go together, refused with one line in each (the same words after the "
+           "settings it names):\n\n| settings | when |\n|---|---|\n";
+    for (const SettingsConflict& c : settingsConflicts())
+        out += "| " + code(c.first) + " with " + code(c.second) + " | " + c.when + " |\n";
+    return out;
 }
 
 struct CommandEntry {
@@ -92,6 +120,10 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
     if (name == "-h" || name == "--help" || name == "help") {
         if (rest.empty()) {
             printUsage(out);
+            return kExitOk;
+        }
+        if (rest[0] == "settings") {
+            out << settingsHelp();
             return kExitOk;
         }
         // `frugal help COMMAND` is `frugal COMMAND --help`: one help text per command.

@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "app/Cli.h"
-#include "app/CullSupport.h"
+#include "lab/CullMeasure.h"
 #include "renderer/StateOrder.h"
 
 namespace frugal {

@@ -81,7 +81,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
         if (images.size() != 2) cursor.fail("compare: expected two images, A.png B.png (see 'frugal help compare')");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
-    options.background = colorBytes(colors.background);
+    options.background = colorBytes(colors.settings.background);
     const std::string& actualPath = images[0];
     const std::string& referencePath = images[1];
 

@@ -8,8 +8,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/CullSupport.h"
-#include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
 #include "cull/Views.h"
 #include "lab/CullMeasure.h"
@@ -76,12 +74,10 @@ Result<std::vector<ReportView>> viewsOf(const RenderOptions& options, const std:
 
 int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
-    CullOptions cull;
     Outputs outputs;
     int viewCount = 32, repeat = 5;
     std::string masksDir;
     bool viewsGiven = false;
-    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
     std::vector<Cull> methods(std::begin(kCulls), std::end(kCulls));
     CommandLine command{"cull-report", cullReportHelp(), &options};
     command.flags = {
@@ -98,9 +94,10 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
             methodsFlag(methods),
             flag::whole("--repeat", "K", "timed frames per view and method, interleaved; medians (default 5)", repeat, 1,
                         10000),
-            hsrFlag(hsrMode, "every row draws in this hidden-surface mode (zbuffer, depthsort or adaptive; 'frugal help "
-                             "render'), its plan timed with the draw; the reference stays the z-buffered full render"),
-            cullFlags(cull, false)[0],
+            settingFlag("hsr", options.settings, options.given,
+                        "every row draws in this hidden-surface mode ('frugal help render'), its plan timed with the "
+                        "draw; the reference stays the z-buffered full render"),
+            settingFlag("cull-bins", options.settings, options.given),
         }},
         {"occlusion (with the occlusion method)", {
             flag::text("--masks", "DIR", "write each view's occlusion buffer to DIR/occlusion-view-<v>.png (the "
@@ -133,11 +130,8 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.failure());
-    CullMeasureSettings settings{options.scene, rendererSettings(options), methods, repeat,
-                                 options.time.value_or(0.0), "cold", masksDir};
-    settings.render.cullBinsTheta = cull.bins.thetaBins;
-    settings.render.cullBinsPhi = cull.bins.phiBins;
-    settings.render.hsr = hsrMode;
+    CullMeasureSettings settings{options.scene, options.settings, methods, repeat, options.time.value_or(0.0), "cold",
+                                 masksDir};
     Result<std::vector<ReportView>> views = viewsOf(options, outputs.cameraPath, viewCount, *loaded, settings);
     if (!views) return fail(err, views.failure());
 

@@ -12,7 +12,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/HsrSupport.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
 #include "lab/BackendPair.h"
@@ -73,7 +72,7 @@ std::string diffJson(const RenderOptions& options, const Settings& settings, int
     const nlohmann::ordered_json report = {
         {"command", "diff"},
         {"scene", options.scene},
-        {"size", {options.width, options.height}},
+        {"size", {options.settings.width, options.settings.height}},
         {"tolerance", tolerance},
         {"hsr", toString(settings.hsr)},
         {"draw_order", toString(settings.order)},
@@ -107,8 +106,6 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     CompareOptions compare;
     compare.tolerance = kDefaultTolerance;
     std::string outDir, jsonPath;
-    hsr::Mode hsrMode = hsr::Mode::ZBuffer;
-    Order drawOrder = Order::Submit;
     CommandLine command{"diff", diffHelp(), &options};
     command.flags = {{"", {
         flag::whole("--tolerance", "N", "per-channel tolerance in 8-bit steps, 0 to 255 (default 2); a pixel fails "
@@ -118,25 +115,24 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                    "mask.png; with --frames actual_0003.png, ... The mask is red where a pixel fails, the reference "
                    "in grey elsewhere", outDir, "a folder name"),
         flag::text("--json", "FILE", "per-frame metrics as JSON", jsonPath),
-        hsrFlag(hsrMode, "both backends draw the frame in this hidden-surface mode: zbuffer (default), depthsort or "
-                         "adaptive (see 'frugal help render')"),
-        orderFlag(drawOrder, "both backends draw in this order: submit (default), key, paper, greedy or best (see "
-                             "'frugal help render'); consecutive draws of one mesh are one instanced draw on GL"),
+        settingFlag("hsr", options.settings, options.given,
+                    "both backends draw the frame in this hidden-surface mode (see 'frugal help render')"),
+        settingFlag("order", options.settings, options.given,
+                    "both backends draw in this order (see 'frugal help render'); consecutive draws of one mesh are "
+                    "one instanced draw on GL"),
     }}};
     command.positional = sceneArgument(options);
     command.finish = [&options](ArgCursor& cursor) {
-        if (options.backend == BackendKind::Software)
+        if (options.settings.backend == BackendKind::Software)
             cursor.fail("--backend software: diff compares a GL backend with the software reference; choose auto, egl, "
                         "egl-device, egl-surfaceless or osmesa");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
-    compare.background = colorBytes(options.background);
+    compare.background = colorBytes(options.settings.background);
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.failure());
-    Settings settings = rendererSettings(options);
-    settings.hsr = hsrMode;
-    settings.order = drawOrder;
+    const Settings& settings = options.settings;
     Result<BackendPair> pair = BackendPair::open(*loaded, settings, progressTo(err, options.quiet));
     if (!pair) return fail(err, pair.failure());
 

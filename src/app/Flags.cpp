@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 
 #include "app/Options.h"
@@ -65,56 +66,93 @@ bool Flag::matches(const std::string& spelling) const {
 
 std::string Flag::canonical() const { return spellings(name).back(); }
 
+namespace {
+
+// `words` wrapped at column kWidth after `line` (which the first words continue), the lines after
+// it indented by `indent`. A word too long for a line (a JSON shape) breaks after its commas.
+constexpr std::size_t kColumn = 24, kWidth = 100;
+std::string wrap(std::string line, const std::string& words, std::size_t indent) {
+    std::string out;
+    std::stringstream in(words);
+    std::string word;
+    bool first = true;
+    while (in >> word) {
+        std::size_t start = 0;
+        while (start < word.size()) {
+            std::size_t end = word.size();
+            if (end - start > kWidth - indent) {
+                const std::size_t comma = word.rfind(',', start + (kWidth - indent) - 1);
+                if (comma != std::string::npos && comma >= start) end = comma + 1;
+            }
+            const std::string piece = word.substr(start, end - start);
+            const bool glued = start > 0;  // continues the word: no space before it
+            if (!first && line.size() + (glued ? 0 : 1) + piece.size() > kWidth) {
+                out += line + "\n";
+                line = std::string(indent, ' ');
+                first = true;
+            }
+            line += (first || glued ? "" : " ") + piece;
+            first = false;
+            start = end;
+        }
+    }
+    return out + line + "\n";
+}
+
+}  // namespace
+
 std::string flagsHelp(const std::vector<FlagGroup>& groups) {
-    constexpr std::size_t kColumn = 24, kWidth = 100;
     std::string out;
     for (const FlagGroup& group : groups) {
         if (group.flags.empty()) continue;
         out += "\n" + (group.title.empty() ? "" : group.title + ":\n");
         for (const Flag& f : group.flags) {
             std::string line = "  " + f.name + (f.value.empty() ? "" : " " + f.value);
-            // The help's words, wrapped; a name longer than the column puts them on the next line.
+            // A name longer than the column puts the help on the next line.
             if (line.size() + 2 > kColumn) {
                 out += line + "\n";
                 line.clear();
             }
             line.resize(kColumn, ' ');
             if (f.help.find('\n') != std::string::npos) {
-                // Laid out by hand (a table of modes): each line as it is, at the column.
+                // Laid out by hand: each line as it is, at the column.
                 std::stringstream lines(f.help);
                 std::string text;
                 for (bool first = true; std::getline(lines, text); first = false)
                     out += (first ? line : std::string(kColumn, ' ')) + text + "\n";
-                continue;
+            } else {
+                // A list of values follows the words after a colon.
+                const bool colon = !f.choices.empty() && !f.help.empty() && f.help.back() != ':';
+                out += wrap(line, f.help + (colon ? ":" : ""), kColumn);
             }
-            std::stringstream words(f.help);
-            std::string word;
-            bool first = true;
-            while (words >> word) {
-                // A word too long for a line (a JSON shape) breaks after its commas.
-                std::size_t start = 0;
-                while (start < word.size()) {
-                    std::size_t end = word.size();
-                    if (end - start > kWidth - kColumn) {
-                        const std::size_t comma = word.rfind(',', start + (kWidth - kColumn) - 1);
-                        if (comma != std::string::npos && comma >= start) end = comma + 1;
-                    }
-                    const std::string piece = word.substr(start, end - start);
-                    const bool glued = start > 0;  // continues the word: no space before it
-                    if (!first && line.size() + (glued ? 0 : 1) + piece.size() > kWidth) {
-                        out += line + "\n";
-                        line = std::string(kColumn, ' ');
-                        first = true;
-                    }
-                    line += (first || glued ? "" : " ") + piece;
-                    first = false;
-                    start = end;
-                }
+            // The values it takes, one a line: the name, then what it is, wrapped beside it.
+            std::size_t nameWidth = 0;
+            for (const ChoiceInfo& c : f.choices) nameWidth = std::max(nameWidth, c.name.size());
+            for (const ChoiceInfo& c : f.choices) {
+                std::string head = std::string(kColumn + 2, ' ') + std::string(c.name);
+                head.resize(kColumn + 2 + nameWidth + 2, ' ');
+                out += wrap(head, std::string(c.summary), kColumn + 2 + nameWidth + 2);
             }
-            out += line + "\n";
         }
     }
     return out;
+}
+
+Flag settingFlag(std::string_view name, Settings& settings, std::vector<std::string>& given, std::string help) {
+    const SettingInfo* info = findSetting(name);
+    if (!info) throw std::logic_error("settingFlag: no setting '" + std::string(name) + "'");
+    Flag f{"--" + info->name, info->kind == SettingKind::Switch ? "" : info->metavar,
+           help.empty() ? info->help : std::move(help),
+           [info, &settings, &given](const std::string& text) -> std::string {
+               const std::optional<SettingValue> value =
+                   info->kind == SettingKind::Switch ? SettingValue(true) : parseSettingText(*info, text);
+               std::string why = value ? setSetting(settings, *info, *value) : "is not " + expected(*info);
+               if (why.empty() && std::find(given.begin(), given.end(), info->name) == given.end())
+                   given.push_back(info->name);
+               return why;
+           }};
+    f.choices = info->choices;
+    return f;
 }
 
 namespace flag {
@@ -238,17 +276,6 @@ Flag two(std::string name, std::string value, std::string help, std::string& fir
            }};
     f.arity = 2;
     return f;
-}
-
-Flag colour(std::string name, std::string value, std::string help, glm::vec4& target) {
-    return {std::move(name), std::move(value), std::move(help), [&target](const std::string& text) -> std::string {
-                std::vector<double> v;
-                if ((!parseNumbers(text, 3, v) && !parseNumbers(text, 4, v)) ||
-                    std::any_of(v.begin(), v.end(), [](double x) { return x < 0.0 || x > 1.0; }))
-                    return "is not a colour (r,g,b or r,g,b,a, each 0 to 1)";
-                target = glm::vec4(float(v[0]), float(v[1]), float(v[2]), v.size() == 4 ? float(v[3]) : 1.0f);
-                return {};
-            }};
 }
 
 Flag frames(std::string name, std::string help, std::optional<FrameRange>& target) {

@@ -35,6 +35,8 @@ struct Flag {
     // Values it takes (--ids A B: 2). With 2, `set` gets both joined by '\0' (no argument holds one)
     // and a refusal reads "error: <name>: <why>".
     int arity = 1;
+    // The names it takes, each listed under the help with what it is (a setting's choices).
+    std::vector<ChoiceInfo> choices = {};
 
     bool matches(const std::string& spelling) const;
     std::string canonical() const;  // the last spelling: "--output"
@@ -48,6 +50,12 @@ struct FlagGroup {
 // The help of `groups`: each flag on its line, "  --cull METHOD         <help wrapped at 100
 // columns, continued at column 24>", groups headed by their titles.
 std::string flagsHelp(const std::vector<FlagGroup>& groups);
+
+// The flag of setting `name` (frugal/Settings.h's schema: `--<name>`, its value, help and choices),
+// setting it in `settings` and adding the name to `given` (which settings the command line gave).
+// `help`, when given, replaces the schema's paragraph (a command that uses the setting its own way);
+// a refused value reads "error: --<name>: '<value>' is not <expected(info)>".
+Flag settingFlag(std::string_view name, Settings& settings, std::vector<std::string>& given, std::string help = {});
 
 // Builders of the usual kinds. Each sets `target` from the value or refuses it:
 namespace flag {
@@ -106,8 +114,6 @@ Flag wholeList(std::string name, std::string value, std::string help, std::vecto
 // Two non-empty values into `first` and `second` (arity 2); `why` is the refusal.
 Flag two(std::string name, std::string value, std::string help, std::string& first, std::string& second,
          std::string why);
-// r,g,b or r,g,b,a, each in [0, 1] (alpha 1 when not given): "'x' is not a colour (...)".
-Flag colour(std::string name, std::string value, std::string help, glm::vec4& target);
 // A:B, 0 ≤ A ≤ B, at most 1,000,000 frames: "'x' is not a frame range (A:B, 0 <= A <= B, ...)".
 Flag frames(std::string name, std::string help, std::optional<FrameRange>& target);
 

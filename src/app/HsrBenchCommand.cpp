@@ -7,7 +7,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/HsrSupport.h"
 #include "app/ReportOutputs.h"
 #include "io/ImageIO.h"
 #include "lab/HsrBench.h"
@@ -62,8 +61,8 @@ Result<bool> writeMasks(const std::string& masksDir, const std::vector<HsrWorstI
 int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     options.scene = "builtin:cubes";
-    options.width = 240;
-    options.height = 320;
+    options.settings.width = 240;
+    options.settings.height = 320;
     ReportPaths outputs;
     std::string masksDir;
     int repeat = 1, warmup = 3;
@@ -96,7 +95,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.failure());
-    const HsrBenchSettings settings{options.scene,        rendererSettings(options), options.frames->first,
+    const HsrBenchSettings settings{options.scene,        options.settings, options.frames->first,
                                     options.frames->last, repeat,                    warmup,
                                     !masksDir.empty()};
     const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(options, *loaded, frame, false); };

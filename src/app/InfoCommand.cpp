@@ -47,12 +47,12 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             cursor.fail("--state-costs measures the backend, not a scene: give one or the other");
         else if (!stateCosts && !sceneGiven)
             cursor.fail("info needs a SCENE (a file or builtin:NAME), or --state-costs");
-        else if (!stateCosts && (!jsonPath.empty() || options.backend != BackendKind::Auto || options.threads != 0))
+        else if (!stateCosts && (!jsonPath.empty() || options.gave("backend") || options.gave("threads")))
             cursor.fail("--backend, --threads and --json go with --state-costs");
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     if (stateCosts) {
-        Result<StateCostsOutput> report = stateCostsReport(rendererSettings(options));
+        Result<StateCostsOutput> report = stateCostsReport(options.settings);
         if (!report) return fail(err, report.failure());
         out << report->text;
         if (!jsonPath.empty())

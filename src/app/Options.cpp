@@ -45,21 +45,12 @@ bool parseIntPair(const std::string& text, int& first, int& second) {
 
 FlagGroup renderFlags(RenderOptions& o) {
     Camera& c = o.camera;
+    const auto setting = [&o](std::string_view name) { return settingFlag(name, o.settings, o.given); };
     return {"", {
-        flag::size("--size", "WxH", "image size in pixels (default 800x600, or the scene camera's aspect ratio with the "
-                   "longer side 800)", o.width, o.height, 65536, &o.sizeGiven),
-        flag::choice("--backend", "NAME", "a backend",
-                     "auto (default: EGL device if it is a GPU, EGL surfaceless, then OSMesa), egl, egl-device, "
-                     "egl-surfaceless, osmesa, or software (the CPU reference rasterizer, llvmpipe's rules, no GL)",
-                     o.backend, kBackendKinds),
-        flag::whole("--threads", "N", "rasterizer threads: the software backend's, and llvmpipe's (LP_NUM_THREADS); "
-                    "default every core", o.threads, 1, 256),
-        flag::choice("--interp", "MODE", "an interpolation mode",
-                     "depth along each scan-line span, software backend only: exact (default, llvmpipe's bits), span "
-                     "(paper 001's midpoint-subdivision engine, within 1 LSB of the line through the span's ends) or "
-                     "dda (add-and-shift, 8 fraction bits: the error grows along the span); a slow path. Colour is "
-                     "shaded per fragment in every mode (not Gouraud): it changes only where a depth test flips",
-                     o.interp, kDepthInterps),
+        setting("size"),
+        setting("backend"),
+        setting("threads"),
+        setting("interp"),
         {"--camera", "N", "use the scene's camera N (default: camera 0 if the scene has one, else a view that fits "
          "the scene's bounds)", [&c](const std::string& text) -> std::string {
              long long index = 0;
@@ -80,21 +71,30 @@ FlagGroup renderFlags(RenderOptions& o) {
                      "animation, along the view), never past the planes above, so nothing they keep is clipped and "
                      "depth precision goes to the scene; file: the planes above as they are",
                      c.depthRange, kDepthRanges),
-        flag::choice("--depth-format", "F", "a depth format",
-                     "d24 (default): 24-bit depth; d32f: 32-bit float with reversed Z (glClipControl zero-to-one, 1 "
-                     "near, 0 far), which separates depths about 1e-7 of their distance apart at any near/far ratio. "
-                     "See 'frugal info SCENE'",
-                     o.depthFormat, kDepthFormats),
+        setting("depth-format"),
         flag::number("--time", "SECONDS", "animation time of the frame (default 0)", o.time, -1e9, 1e9),
         flag::frames("--frames", "frames A to B inclusive, at --fps (default the scene's, 30)", o.frames),
         flag::number("--fps", "N", "frames per second of --frames (default the scene's)", o.fps, 1e-3, 1e6),
-        flag::colour("--background", "R,G,B[,A]", "clear colour in [0,1] (default 0.12,0.13,0.15)", o.background),
+        setting("background"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),
         flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",
                  o.load.optimizeOrder, false),
         flag::on("-q, --quiet", "no progress lines", o.quiet),
     }};
+}
+
+Flag cameraPathFlag(RenderOptions& render) {
+    return flag::text("--camera-path", "FILE", "a JSON list of {\"eye\":[x,y,z],\"target\":[x,y,z],"
+                      "\"up\":[x,y,z],\"fov\":deg}: entry i is frame A+i of --frames A:B, the last entry "
+                      "holds (equal entries = still)", render.cameraPathFile);
+}
+
+std::vector<Flag> topicFlags(RenderOptions& o, std::string_view topic) {
+    std::vector<Flag> flags;
+    for (const SettingInfo& info : settingInfos())
+        if (info.flag && info.topic == topic) flags.push_back(settingFlag(info.name, o.settings, o.given));
+    return flags;
 }
 
 FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names) {
@@ -105,12 +105,8 @@ FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& name
 }
 
 void checkSharedOptions(RenderOptions& o, ArgCursor& cursor) {
-    if (o.backend != BackendKind::Software && o.interp != DepthInterp::Exact)
-        cursor.fail(std::string("--interp ") + toString(o.interp) +
-                    ": only the software backend models the span interpolator (use --backend software)");
-    if (o.interp != DepthInterp::Exact && o.depthFormat == DepthFormat::D32F)
-        cursor.fail(std::string("--interp ") + toString(o.interp) +
-                    " with --depth-format d32f: the span engine interpolates a 24-bit depth; use --depth-format d24");
+    if (const std::optional<SettingsProblem> problem = settingsProblem(o.settings))
+        cursor.fail(commandLineProblem(*problem, o));
     const std::optional<float>& near = o.camera.znear;
     const std::optional<float>& far = o.camera.zfar;
     if (near && far && *far != 0.0f && !(*far > *near))
@@ -122,15 +118,14 @@ void checkSharedOptions(RenderOptions& o, ArgCursor& cursor) {
     }
 }
 
-Flag orderFlag(Order& order, std::string help) {
-    if (help.empty())
-        help = "the draw order: submit (default), key (texture, program, mesh, as bgfx sorts), or by state-change "
-               "costs measured on the backend at start (about a second; see 'frugal info --state-costs'): paper "
-               "(paper 004's id sort over the 3 costliest kinds), greedy (cheapest next change) or best (the optimum "
-               "over the distinct state sets, Held-Karp up to 16, else local search). Consecutive draws of one mesh go "
-               "out as one instanced draw. Only pixels where two surfaces tie exactly in depth can change (first drawn "
-               "wins). Not applied with --reuse, which draws in its own order (the static pair, then what changed)";
-    return flag::choice("--order", "ORDER", "an order", std::move(help), order, kOrders);
+std::string commandLineProblem(const SettingsProblem& problem, const RenderOptions& options) {
+    const bool anyGiven = std::any_of(problem.settings.begin(), problem.settings.end(),
+                                      [&options](const std::string& name) { return options.gave(name); });
+    return describe(problem, options.settings, [&](const SettingInfo& info, const SettingValue& value) -> std::string {
+        if (anyGiven && !options.gave(info.name)) return {};
+        if (info.kind == SettingKind::Switch) return "--" + info.name;
+        return "--" + info.name + " " + settingText(info, value);
+    });
 }
 
 void applyDepthOptions(const Camera& options, Camera& view) {
@@ -151,11 +146,12 @@ std::string fitSizeToCamera(RenderOptions& options, const Scene& scene) {
     const SceneCamera& camera = scene.cameras[std::size_t(*index)];
     const float aspect = camera.fileAspect();
     if (!(aspect > 0.0f) || !std::isfinite(aspect)) return {};
-    if (!options.sizeGiven) sizeForAspect(aspect, kLongSide, options.width, options.height);
-    if (!aspectDiffers(aspect, options.width, options.height)) return {};
+    Settings& s = options.settings;
+    if (!options.gave("size")) sizeForAspect(aspect, kLongSide, s.width, s.height);
+    if (!aspectDiffers(aspect, s.width, s.height)) return {};
     return options.scene + ": camera " + std::to_string(*index) + quotedName(camera.name) + " has aspect ratio " +
-           fmt(aspect) + ", the image " + fmt(double(options.width) / options.height) + " (" +
-           std::to_string(options.width) + "x" + std::to_string(options.height) +
+           fmt(aspect) + ", the image " + fmt(double(s.width) / s.height) + " (" + std::to_string(s.width) + "x" +
+           std::to_string(s.height) +
            "): drawn with the camera's vertical " + (camera.perspective ? "field of view" : "extent (ymag)") +
            " and the image's aspect ratio, not stretched";
 }
@@ -177,24 +173,12 @@ Result<Scene> loadForRender(RenderOptions& options, std::ostream& err) {
     return scene;
 }
 
-Settings rendererSettings(const RenderOptions& options) {
-    Settings s;
-    s.width = options.width;
-    s.height = options.height;
-    s.backend = options.backend;
-    s.threads = options.threads;
-    s.interp = options.interp;
-    s.depthFormat = options.depthFormat;
-    s.background = options.background;
-    return s;
-}
-
 Result<std::vector<ReportView>> viewsAround(const RenderOptions& options, const Scene& scene, int count, double time) {
     const Bounds bounds = scene.bounds(time);
     if (bounds.empty()) return Error{options.scene + ": the scene has no geometry to view"};
     std::vector<ReportView> views = reportViews(bounds.center(), bounds.radius(), count,
                                                 options.camera.yfovDegrees.value_or(40.0f),
-                                                float(options.width) / float(options.height));
+                                                float(options.settings.width) / float(options.settings.height));
     for (ReportView& view : views) applyDepthOptions(options.camera, view.camera);
     return views;
 }
@@ -214,8 +198,9 @@ Camera cameraOf(const RenderOptions& options, int frame) {
 
 Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
     const Camera camera = cameraOf(options, frame);
-    Result<FrameSetup> setup = frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), options.width,
-                                                  options.height, writeIds, options.depthFormat);
+    const Settings& s = options.settings;
+    Result<FrameSetup> setup =
+        frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), s.width, s.height, writeIds, s.depthFormat);
     if (!setup) return Error{options.scene + ": " + setup.error()};
     return setup;
 }

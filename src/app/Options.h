@@ -3,12 +3,14 @@
 // The frame itself is set up by the library (render/Frame.h).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/Format.h"
@@ -48,13 +50,11 @@ struct FrameRange {
 
 struct RenderOptions {
     std::string scene = "builtin:default";
-    int width = 800, height = 600;
-    bool sizeGiven = false;  // --size: else the scene camera's aspect ratio sizes the image (kLongSide)
-    BackendKind backend = BackendKind::Auto;
-    int threads = 0;                   // rasterizer threads (software pool, LP_NUM_THREADS); 0 = default
-    DepthInterp interp = DepthInterp::Exact;  // --interp: the software backend's depth along a span
+    // The renderer's settings (frugal/Settings.h): the schema's flags set them, a settings file
+    // (render --settings) before them. The command holds these, not a copy of its own.
+    Settings settings;
+    std::vector<std::string> given;  // the settings the command line (or its settings file) named
     Camera camera;
-    DepthFormat depthFormat = DepthFormat::D24;  // --depth-format
     // --camera-path (render, reuse-bench; frugal/Camera.h readCameraPath): entry i is frame first + i, the last
     // one holds; --near/--far still apply. Empty: `camera` for every frame.
     std::vector<Camera> cameraPath;
@@ -62,22 +62,30 @@ struct RenderOptions {
     std::optional<double> time;   // seconds; default frame 0
     std::optional<FrameRange> frames;
     std::optional<double> fps;    // default: the scene's
-    glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
     LoadOptions load;
     bool quiet = false;
+
+    // Whether the command line named setting `name` (--size: else the scene camera's aspect ratio
+    // sizes the image, kLongSide).
+    bool gave(std::string_view name) const { return std::find(given.begin(), given.end(), name) != given.end(); }
 };
 
 // The flags every command that renders takes (size, backend, camera, time, frames, ...), setting
 // `options`; `options` must outlive the group.
 FlagGroup renderFlags(RenderOptions& options);
-// Checks between them, once all are read ("--far 1: must exceed --near 5"), and reads
-// --camera-path's file.
+// --camera-path FILE into `render.cameraPathFile` (read with the shared options' checks): render and
+// reuse-bench.
+Flag cameraPathFlag(RenderOptions& render);
+// The flags of the settings whose topic is `topic` (settingInfos(): "culling", "order", "reuse", ...).
+std::vector<Flag> topicFlags(RenderOptions& options, std::string_view topic);
+// Checks between them, once all are read ("--far 1: must exceed --near 5"; settings that may not go
+// together, settingsProblem), and reads --camera-path's file.
 void checkSharedOptions(RenderOptions& options, ArgCursor& cursor);
+// A settings problem as the command line says it: the settings named as flags ("--reuse with --cull
+// oracle: ..."), those the command line did not give left out when it gave any.
+std::string commandLineProblem(const SettingsProblem& problem, const RenderOptions& options);
 // The flags of `group` named in `names` (a command that takes a few of them).
 FlagGroup someFlags(const FlagGroup& group, const std::vector<std::string>& names);
-
-// --order submit|key|paper|greedy|best into `order` (render, diff, bench); `help` replaces render's.
-Flag orderFlag(Order& order, std::string help = {});
 
 // "AxB" as two whole numbers (--size 800x600, --cull-bins 16x32); false for anything else.
 bool parseIntPair(const std::string& text, int& first, int& second);
@@ -109,10 +117,6 @@ std::string fitSizeToCamera(RenderOptions& options, const Scene& scene);
 // ratio the image does not have) to `err`, sizes the image (fitSizeToCamera), and checks the first
 // frame's camera, so that a bad camera fails before any backend is opened.
 Result<Scene> loadForRender(RenderOptions& options, std::ostream& err);
-
-// The renderer's settings the shared options give (frugal/Settings.h): size, backend, threads,
-// interp, depth format, background; the command fills in its own.
-Settings rendererSettings(const RenderOptions& options);
 
 // The camera of frame `frame`: the --camera-path entry (the last holds) with --near, --far and
 // --depth-range, or the camera the options give.

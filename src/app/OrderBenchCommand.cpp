@@ -52,7 +52,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     if (!loaded) return fail(err, loaded.failure());
     Result<FrameSetup> setup = setUpFrame(options, *loaded, options.frames ? options.frames->first : 0, false);
     if (!setup) return fail(err, setup.failure());
-    const OrderBenchSettings settings{options.scene, rendererSettings(options), runs, warmup};
+    const OrderBenchSettings settings{options.scene, options.settings, runs, warmup};
     Result<OrderBenchResult> measured = measureOrders(*loaded, *setup, settings, progressTo(err, options.quiet));
     if (!measured) return fail(err, measured.failure());
     out << measured->text;

@@ -12,9 +12,6 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/CullSupport.h"
-#include "app/HsrSupport.h"
-#include "app/ReuseSupport.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
 #include "render/SceneRenderer.h"
@@ -37,6 +34,7 @@ namespace {
 struct Outputs {
     std::string color = "frame.png";
     std::string depth, ids, json;
+    std::string settings;  // --save-settings
     int pngLevel = kDefaultPngLevel;
 };
 
@@ -65,52 +63,73 @@ std::string checkPattern(const std::string& flag, const std::string& path) {
 }
 
 
-// Everything `render` reads from its command line.
+// Everything `render` reads from its command line: the settings (in `options`), and the files.
 struct RenderRequest {
     RenderOptions options;
     Outputs outputs;
-    CullOptions cull;
-    ReuseCliOptions reuse;
-    hsr::Mode hsr = hsr::Mode::ZBuffer;
-    Order order = Order::Submit;
-    int refineCosts = 10;
 };
 
 // --settings FILE (frugal/Settings.h): its values are where the flags start from, so a flag given
-// beside it wins wherever it stands. "ids" is left out: ids are drawn when --ids names a file.
-Result<bool> applySettingsFile(const std::vector<std::string>& args, RenderRequest& r) {
+// beside it wins wherever it stands; its keys count as given. "ids" is left out: ids are drawn when
+// --ids names a file.
+Result<bool> applySettingsFile(const std::vector<std::string>& args, RenderOptions& o) {
     const auto given = std::find(args.begin(), args.end(), "--settings");
     if (given == args.end() || std::next(given) == args.end()) return true;  // the flag reports a missing value
-    Result<SettingsFile> file = readSettingsFile(*std::next(given));
+    Result<SettingsFile> file = readSettingsFile(*std::next(given), o.settings);
     if (!file) return file.failure();
-    const Settings& s = file->settings;
-    RenderOptions& o = r.options;
-    o.width = s.width;
-    o.height = s.height;
-    o.sizeGiven = std::find(file->keys.begin(), file->keys.end(), "size") != file->keys.end();
-    o.backend = s.backend;
-    o.threads = s.threads;
-    o.interp = s.interp;
-    o.depthFormat = s.depthFormat;
-    o.background = s.background;
-    if (s.cull != Cull::None) r.cull.method = s.cull;
-    r.cull.bins.thetaBins = s.cullBinsTheta;
-    r.cull.bins.phiBins = s.cullBinsPhi;
-    r.order = s.order;
-    r.refineCosts = s.refineCosts;
-    r.reuse.enabled = s.reuse;
-    r.reuse.settings = s.reuseSettings;
-    r.hsr = s.hsr;
+    o.settings = file->settings;
+    o.given = file->keys;
     return true;
+}
+
+// The checks of render's own flags, once all are read.
+void checkRender(const RenderRequest& r, ArgCursor& cursor) {
+    const Outputs& o = r.outputs;
+    if (!hasExtension(o.color, ".png"))
+        cursor.fail("-o " + o.color + ": the colour image is written as PNG; name it .png");
+    else if (!o.depth.empty() && !hasExtension(o.depth, ".png") && !hasExtension(o.depth, ".pfm"))
+        cursor.fail("--depth " + o.depth + ": name it .png (16-bit) or .pfm (float32)");
+    else if (!o.ids.empty() && !hasExtension(o.ids, ".png"))
+        cursor.fail("--ids " + o.ids + ": the id image is written as PNG; name it .png");
+    else if (r.options.frames)
+        for (const auto& [flag, path] : {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}})
+            if (!path.empty()) {
+                const std::string problem = checkPattern(flag, path);
+                if (!problem.empty()) cursor.fail(problem);
+            }
+}
+
+// --png-level N|auto into `level`.
+Flag pngLevelFlag(int& level) {
+    return {"--png-level", "N|auto", "PNG compression: 0 (stored: fastest, largest files), 1 (frugal's run-length "
+            "deflate: several times faster, files somewhat larger), 2 to 12 (libdeflate: smaller, slower), or auto "
+            "(default): per kind of image the fastest level whose files stayed within 1.1x those of the old encoder "
+            "on every scene measured (colour 3, depth 1, ids 6; docs/writing.md). Files are encoded on threads of "
+            "their own while the next frame renders",
+            [&level](const std::string& text) -> std::string {
+                if (text == "auto") {
+                    level = kAutoPngLevel;
+                    return {};
+                }
+                const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+                if (text.empty() || text.size() > 2 || !std::all_of(text.begin(), text.end(), digit) ||
+                    std::stoi(text) > kMaxPngLevel)
+                    return "must be 0 to " + std::to_string(kMaxPngLevel) + " or auto";
+                level = std::stoi(text);
+                return {};
+            }};
 }
 
 // The command line into `request`: the exit status to return, or nothing to go on.
 std::optional<int> parseRender(const std::vector<std::string>& args, RenderRequest& r, std::ostream& out,
                                std::ostream& err) {
-    if (Result<bool> applied = applySettingsFile(args, r); !applied) return fail(err, applied.failure());
+    if (Result<bool> applied = applySettingsFile(args, r.options); !applied) return fail(err, applied.failure());
     CommandLine command{"render", renderHelp(), &r.options};
     Outputs& files = r.outputs;
+    RenderOptions& o = r.options;
     std::string settingsFile;  // read above, before the other flags
+    std::vector<Flag> reuse = topicFlags(o, "reuse");
+    reuse.push_back(cameraPathFlag(o));
     command.flags = {
         {"settings file", {
             flag::text("--settings", "FILE", "start from a settings file: a JSON object of the options below by "
@@ -125,84 +144,26 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
                        "reversed, 1 near, 0 far)", files.depth),
             flag::text("--ids", "FILE", "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
                        "byte); 0 = background", files.ids),
-            {"--png-level", "N|auto", "PNG compression: 0 (stored: fastest, largest files), 1 (frugal's run-length "
-             "deflate: several times faster, files somewhat larger), 2 to 12 (libdeflate: smaller, slower), or auto "
-             "(default): per kind of image the fastest level whose files stayed within 1.1x those of the old encoder "
-             "on every scene measured (colour 3, depth 1, ids 6; docs/writing.md). Files are encoded on threads of "
-             "their own while the next frame renders",
-             [&files](const std::string& text) -> std::string {
-                 if (text == "auto") {
-                     files.pngLevel = kAutoPngLevel;
-                     return {};
-                 }
-                 const auto digit = [](char c) { return c >= '0' && c <= '9'; };
-                 if (text.empty() || text.size() > 2 || !std::all_of(text.begin(), text.end(), digit) ||
-                     std::stoi(text) > kMaxPngLevel)
-                     return "must be 0 to " + std::to_string(kMaxPngLevel) + " or auto";
-                 files.pngLevel = std::stoi(text);
-                 return {};
-             }},
+            pngLevelFlag(files.pngLevel),
             flag::text("--json", "FILE", "metadata: scene counts, camera (the planes drawn with and the given ones, the "
                        "aspect ratios, the depth format), backend, GL renderer, per-frame timings (render_ms, readback_ms; "
                        "write_ms: encoding and writing the frame's files on the writer's threads, encode_ms of it; with --cull: "
                        "per-frame tos, pvs and cull_ms too), and per frame the state changes the backend issued, by "
                        "kind (\"state_changes\": draws, programs, meshes, textures, toggles, uniforms; software: draws "
                        "only)", files.json),
+            flag::text("--save-settings", "FILE", "write the settings this render uses as a settings file (the form "
+                       "--settings reads), before the first frame", files.settings),
         }},
-        {"culling (only the triangles that may be visible are submitted; src/cull/Culling.h)", cullFlags(r.cull, true)},
-        {"draw order (costly state changes made rare; src/order/)", {
-            orderFlag(r.order),
-            flag::whole("--refine-costs", "N", "with paper, greedy or best: every N frames of a sequence, one more "
-                        "round of the cost measurement between two frames (a few ms), averaged with the last 32 "
-                        "rounds, so the order follows the backend (default 10; 0 = never)", r.refineCosts, 0, 1000000),
-        }},
-        {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)",
-         reuseFlags(r.reuse, r.options, true)},
-        {"hidden-surface removal (paper 003; src/hsr/Plan.h)", {hsrFlag(r.hsr)}},
+        {"culling (only the triangles that may be visible are submitted; src/cull/Culling.h)", topicFlags(o, "culling")},
+        {"draw order (costly state changes made rare; src/order/)", topicFlags(o, "order")},
+        {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)", reuse},
+        {"hidden-surface removal (paper 003; src/hsr/Plan.h)", topicFlags(o, "hsr")},
     };
-    command.positional = sceneArgument(r.options);
-    command.finish = [&r](ArgCursor& cursor) {
-        const Outputs& o = r.outputs;
-        const Cull method = r.cull.method.value_or(Cull::None);
-        if (r.reuse.enabled && method == Cull::Oracle)
-            cursor.fail("--reuse with --cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (r.reuse.enabled && usesOcclusion(method))
-            cursor.fail(std::string("--reuse with --cull ") + toString(method) + ": a static part hidden behind a moving one would be missing from "
-                        "the static image once it moves away; use --cull conservative with --reuse");
-        else if (r.hsr != hsr::Mode::ZBuffer && r.reuse.enabled)
-            cursor.fail(std::string("--hsr ") + toString(r.hsr) +
-                        " with --reuse: reuse redraws what moved with the z-buffer over the static image; use one");
-        else if (r.hsr != hsr::Mode::ZBuffer && method == Cull::Oracle)
-            cursor.fail(std::string("--hsr ") + toString(r.hsr) +
-                        " with --cull oracle: the oracle draws its own scene; use --cull with a method");
-        else if (!hasExtension(o.color, ".png"))
-            cursor.fail("-o " + o.color + ": the colour image is written as PNG; name it .png");
-        else if (!o.depth.empty() && !hasExtension(o.depth, ".png") && !hasExtension(o.depth, ".pfm"))
-            cursor.fail("--depth " + o.depth + ": name it .png (16-bit) or .pfm (float32)");
-        else if (!o.ids.empty() && !hasExtension(o.ids, ".png"))
-            cursor.fail("--ids " + o.ids + ": the id image is written as PNG; name it .png");
-        else if (r.options.frames)
-            for (const auto& [flag, path] : {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}})
-                if (!path.empty()) {
-                    const std::string problem = checkPattern(flag, path);
-                    if (!problem.empty()) cursor.fail(problem);
-                }
-    };
-    return parseCommandLine(command, args, out, err);
-}
-
-Settings settingsOf(const RenderRequest& r) {
-    Settings s = rendererSettings(r.options);
-    s.cull = r.cull.method.value_or(Cull::None);
-    s.cullBinsTheta = r.cull.bins.thetaBins;
-    s.cullBinsPhi = r.cull.bins.phiBins;
-    s.order = r.order;
-    s.refineCosts = r.refineCosts;
-    s.reuse = r.reuse.enabled;
-    s.reuseSettings = r.reuse.settings;
-    s.hsr = r.hsr;
-    s.ids = !r.outputs.ids.empty();
-    return s;
+    command.positional = sceneArgument(o);
+    command.finish = [&r](ArgCursor& cursor) { checkRender(r, cursor); };
+    std::optional<int> status = parseCommandLine(command, args, out, err);
+    o.settings.ids = !files.ids.empty();
+    return status;
 }
 
 // The render JSON, written as frames finish: their records go to a spool (an anonymous file, so
@@ -298,7 +259,12 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
     Result<Scene> loaded = loadForRender(r.options, err);
     if (!loaded) return fail(err, loaded.failure());
-    Result<Renderer> made = Renderer::create(std::move(*loaded), settingsOf(r));
+    if (!r.outputs.settings.empty()) {
+        const std::string text = settingsJson(options.settings);
+        if (Result<bool> saved = writeFileAtomic(r.outputs.settings, Bytes(text.begin(), text.end())); !saved)
+            return fail(err, saved.failure());
+    }
+    Result<Renderer> made = Renderer::create(std::move(*loaded), options.settings);
     if (!made) return fail(err, made.failure());
     Renderer& renderer = *made;
     const Settings& s = renderer.settings();

@@ -108,7 +108,7 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     TradeSettings& settings = *shots;
     settings.repeat = repeat;
     settings.budgetPx = std::uint64_t(budget);
-    const Settings base = rendererSettings(options);
+    const Settings base = options.settings;
     const std::vector<TradeCandidate> candidates =
         tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software);
     Result<TradeReport> report = measureTrades(*loaded, candidates, settings, progressTo(err, options.quiet));

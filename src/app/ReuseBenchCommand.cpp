@@ -8,9 +8,7 @@
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "app/CullSupport.h"
 #include "app/ReportOutputs.h"
-#include "app/ReuseSupport.h"
 #include "lab/ReuseBench.h"
 #include "lab/ReuseReport.h"
 
@@ -40,9 +38,7 @@ Prints a summary; --json/--csv/--plot write the whole report.
 namespace {
 
 struct ReuseBenchArgs {
-    RenderOptions options;
-    CullOptions cull;
-    ReuseCliOptions reuse;
+    RenderOptions options;  // settings.reuse is always on: every frame after the first may reuse
     ReportPaths outputs;
     int repeat = 5;
     bool ids = false;
@@ -52,10 +48,15 @@ struct ReuseBenchArgs {
 std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::string>& args, std::ostream& out,
                                    std::ostream& err) {
     RenderOptions& options = a.options;
+    options.settings.reuse = true;
     CommandLine command{"reuse-bench", reuseBenchHelp(), &options};
-    std::vector<Flag> culling = cullFlags(a.cull, true);
-    culling[0].help = "full and reuse frames draw that method's list (none, sphere, backface, cones, paper or "
-                      "conservative; not occlusion or oracle)";
+    const Flag cull = settingFlag("cull", options.settings, options.given,
+                                  "full and reuse frames draw that method's list (not occlusion, occlusion-ahead or "
+                                  "oracle)");
+    const Flag cullBins = settingFlag("cull-bins", options.settings, options.given);
+    std::vector<Flag> reuse = topicFlags(options, "reuse");
+    std::erase_if(reuse, [](const Flag& f) { return f.canonical() == "--reuse"; });
+    reuse.push_back(cameraPathFlag(options));
     command.flags = {
         {"frames and timing", {
             flag::frames("--frames", "the frames, inclusive (required; A has no predecessor: it is a rebuild)",
@@ -64,8 +65,8 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
                         "also checks the frames (default 5); medians over the rounds", a.repeat, 1, 10000),
             flag::on("--ids", "write triangle ids in every render (and compare them); default off, as 'frugal render' "
                      "without --ids", a.ids),
-            culling[0],
-            culling[1],
+            cull,
+            cullBins,
         }},
         {"outputs (each written whole or not at all)",
          reportFlags(a.outputs, "the report: frames, summary (medians, speed-up, ratios to both oracles, the fitted "
@@ -74,17 +75,12 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
                      "static share, and the times per frame; the gnuplot script is written beside it as FILE.gp, to "
                      "restyle and rerun")},
         {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)",
-         reuseFlags(a.reuse, options, false)},
+         reuse},
     };
     command.positional = sceneArgument(options);
     command.finish = [&](ArgCursor& cursor) {
         if (!options.frames)
             cursor.fail("--frames: reuse-bench needs a frame range A:B (each frame after A may reuse the one before)");
-        else if (a.cull.method == Cull::Oracle)
-            cursor.fail("--cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-        else if (a.cull.method && usesOcclusion(*a.cull.method))
-            cursor.fail(std::string("--cull ") + toString(*a.cull.method) + ": a static part hidden behind a moving one would be missing from the static "
-                        "image once it moves away; use --cull conservative with reuse");
         else if (const std::string problem = plotProblem(a.outputs); !problem.empty())
             cursor.fail(problem);
     };
@@ -94,12 +90,8 @@ std::optional<int> parseReuseBench(ReuseBenchArgs& a, const std::vector<std::str
 ReuseBenchSettings settingsOf(const ReuseBenchArgs& a) {
     ReuseBenchSettings s;
     s.scene = a.options.scene;
-    s.render = rendererSettings(a.options);
+    s.render = a.options.settings;
     s.render.ids = a.ids;
-    s.render.cull = a.cull.method.value_or(Cull::None);
-    s.render.cullBinsTheta = a.cull.bins.thetaBins;
-    s.render.cullBinsPhi = a.cull.bins.phiBins;
-    s.render.reuseSettings = a.reuse.settings;
     s.firstFrame = a.options.frames->first;
     s.lastFrame = a.options.frames->last;
     s.repeat = a.repeat;

@@ -69,7 +69,7 @@ std::string usageProblem(const SoakSettings& settings, const RenderOptions& opti
         return settings.minimal ? "--minimal with --frames none: the minimal GL program only draws frames"
                                 : "--frames none with --cycles 0: nothing to do";
     if (settings.minimal && settings.ids) return "--minimal with --ids: the minimal GL program draws no ids";
-    if (settings.minimal && options.backend == BackendKind::Software)
+    if (settings.minimal && options.settings.backend == BackendKind::Software)
         return "--minimal with --backend software: the minimal program is a GL program; pick a GL backend";
     if (settings.warmup && settings.frames > 0 && *settings.warmup >= settings.frames)
         return "--warmup " + std::to_string(*settings.warmup) + ": must be less than the " +
@@ -82,8 +82,8 @@ std::string usageProblem(const SoakSettings& settings, const RenderOptions& opti
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
     options.scene = "builtin:cubes";
-    options.width = 64;
-    options.height = 48;
+    options.settings.width = 64;
+    options.settings.height = 48;
     SoakSettings settings;
     ReportPaths outputs;
     double maxGrowth = 5.0;
@@ -117,10 +117,10 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                        "rss_kb, hwm_kb, ms_each", outputs.csv),
             flag::text("--plot", "FILE.svg|.png", "resident memory over frames and over cycles, drawn by gnuplot from "
                        "the CSV (--csv, or FILE.csv beside the plot); the script is written as FILE.gp", outputs.plot),
-            flag::size("--size", "WxH", "image size (default 64x48)", options.width, options.height, 65536,
-                       &options.sizeGiven),
-            flag::choice("--backend", "NAME", "a backend", "one backend only: software, egl-device, egl-surfaceless "
-                         "or osmesa (auto, the default, runs each)", options.backend, kBackendKinds),
+            settingFlag("size", options.settings, options.given, "image size (default 64x48)"),
+            settingFlag("backend", options.settings, options.given,
+                        "one backend only: software, egl-device, egl-surfaceless or osmesa (auto, the default, runs "
+                        "each)"),
         }},
     };
     command.positional = sceneArgument(options);
@@ -132,7 +132,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.failure());
     settings.scene = options.scene;
-    settings.render = rendererSettings(options);
+    settings.render = options.settings;
     settings.camera = options.camera;
     settings.time = options.time;
     settings.fps = options.fps.value_or(loaded->fps);

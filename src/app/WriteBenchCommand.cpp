@@ -47,9 +47,9 @@ way's images checked equal to glReadPixels'. Timings are printed, never asserted
 
 int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     RenderOptions options;
-    options.width = 1920;
-    options.height = 1080;
-    options.sizeGiven = true;  // the size stays 1920x1080 unless --size says otherwise
+    options.settings.width = 1920;
+    options.settings.height = 1080;
+    options.given.push_back("size");  // the size stays 1920x1080 unless --size says otherwise
     std::vector<std::string> scenes;
     WriteBenchSettings settings;
     ReportPaths outputs;
@@ -98,7 +98,7 @@ int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::
         if (!scene) return fail(err, scene.failure());
         loaded.emplace_back(name, std::move(*scene));
     }
-    settings.render = rendererSettings(options);
+    settings.render = options.settings;
     Result<WriteBench> bench = measureWriteBench(loaded, settings, progressTo(err, options.quiet));
     if (!bench) return fail(err, bench.failure());
     const ReportTexts texts{[&bench] { return writeBenchJson(*bench); }, [&bench] { return writeBenchCsv(*bench); },

@@ -581,8 +581,9 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
 DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world,
                            const View& view, const OcclusionTarget& target) const {
     DrawList list;
-    if (method == Cull::None || method == Cull::Oracle) return fullDrawList(scene);
-    if (method == Cull::Occlusion || method == Cull::OcclusionAhead) return cullOcclusion(scene, world, view, target);
+    const CullTraits& traits = traitsOf(method);
+    if (!traits.prepares || traits.idPass) return fullDrawList(scene);  // none; the oracle draws its own
+    if (traits.occlusion) return cullOcclusion(scene, world, view, target);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];

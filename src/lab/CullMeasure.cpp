@@ -119,8 +119,9 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         const bool record = round >= 0;
         for (std::size_t m = 0; m < methods.size(); ++m) {
             Timing& t = timings[m];
-            if (methods[m] == Cull::None || methods[m] == Cull::Oracle) continue;
-            if (methods[m] == Cull::OcclusionAhead) {
+            const CullTraits& traits = traitsOf(methods[m]);
+            if (!traits.prepares || traits.idPass) continue;
+            if (traits.ahead) {
                 // As a sequence runs it: this frame's plan was made while the frame before it drew
                 // (the warm-up frame makes its own), and the next frame's (this view's next round)
                 // is made while this one draws. The row's cull time is what the frame then waits for
@@ -138,7 +139,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
             t.list = culler_.cull(methods[m], scene_, world, setup_->view, occlusionTarget);
             const double cullMs = msSince(t0);
             if (record) t.cull.push_back(cullMs);
-            if (methods[m] == Cull::Occlusion && record) {
+            if (traits.occlusion && record) {
                 if (!occlusionView) occlusionView.emplace();
                 const OcclusionStats& o = culler_.occlusion().stats();
                 ++occlusionView->frames;
@@ -187,15 +188,16 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
              << " ms, oracle " << fmt(oracleMs) << " ms";
     for (std::size_t m = 0; m < methods.size(); ++m) {
         Timing& t = timings[m];
-        if (methods[m] == Cull::None) {
+        const CullTraits& traits = traitsOf(methods[m]);
+        if (!traits.prepares) {
             t = fullTiming;
             t.list = renderer.fullList();
-        } else if (methods[m] == Cull::Oracle) {
+        } else if (traits.idPass) {
             t = oracleTiming;
         }
         MethodResult result;
         result.method = toString(methods[m]);
-        const TriangleSet pvs = methods[m] == Cull::Oracle ? oracle_->rvs : drawnSet(scene_, t.list);
+        const TriangleSet pvs = traits.idPass ? oracle_->rvs : drawnSet(scene_, t.list);
         const SetCounts counts = compareSets(scene_, pvs, oracle_->rvs);
         result.tos = counts.tos;
         result.pvs = counts.pvs;
@@ -203,7 +205,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         result.misses = counts.misses;
         result.waste = counts.waste;
         // The image this plan draws, against the full render's.
-        if (methods[m] == Cull::Oracle)
+        if (traits.idPass)
             draw(*oracle_->renderer, nullptr);
         else
             draw(renderer, &t.list);
@@ -215,7 +217,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
         result.ratioToOracle = total / oracleMs;
         result.ratioToFull = total / fullMs;
         result.ratioToFullCullface = total / cullfaceMs;
-        if (methods[m] != Cull::None && methods[m] != Cull::Oracle)
+        if (traits.prepares && !traits.idPass)
             progress << "; " << result.method << " x" << fmt(std::round(result.ratioToOracle * 100) / 100)
                      << (result.misses ? " misses " + std::to_string(result.misses) : "");
         view.methods.push_back(std::move(result));
@@ -280,7 +282,7 @@ Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportVie
                                        const std::function<void(const std::string&)>& progress) {
     const Settings& s = settings.render;
     MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
-    bins.hull = std::find(settings.methods.begin(), settings.methods.end(), Cull::Paper) != settings.methods.end();
+    bins.hull = std::any_of(settings.methods.begin(), settings.methods.end(), [](Cull c) { return traitsOf(c).hull; });
     const SceneCuller culler = prepareCulling(scene, bins, progress);
 
     Result<Stage> stage = Stage::open(s);

@@ -30,9 +30,9 @@ std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" +
 // The culling of s.cull prepared (prepareCulling); nothing for none. The hull is built for paper
 // alone (the only method using it).
 std::optional<SceneCuller> cullingOf(Scene& scene, const Settings& s, const Progress& progress) {
-    if (s.cull == Cull::None) return std::nullopt;
+    if (!traitsOf(s.cull).prepares) return std::nullopt;
     MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
-    bins.hull = s.cull == Cull::Paper;
+    bins.hull = traitsOf(s.cull).hull;
     return prepareCulling(scene, bins, progress);
 }
 

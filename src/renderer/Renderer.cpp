@@ -27,35 +27,6 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 
 std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
-// Settings that cannot go together, or values out of their range (BadInput, about a setting).
-std::optional<Error> settingsProblem(const Settings& s) {
-    const auto problem = [](std::string message) { return Error{std::move(message), ErrorKind::BadInput, true}; };
-    if (s.width < 1 || s.height < 1) return problem("size " + sizeText(s) + ": width and height must be at least 1");
-    if (s.threads < 0 || s.threads > 256)
-        return problem("threads " + std::to_string(s.threads) + ": 0 (every core) to 256");
-    if (s.cullBinsTheta < 1 || s.cullBinsTheta > 1024 || s.cullBinsPhi < 1 || s.cullBinsPhi > 1024)
-        return problem("cull-bins " + std::to_string(s.cullBinsTheta) + "x" + std::to_string(s.cullBinsPhi) +
-                       ": each 1 to 1024");
-    if (s.refineCosts < 0) return problem("refine-costs " + std::to_string(s.refineCosts) + ": 0 (never) or more");
-    if (s.reuseSettings.grain < 0 || s.reuseSettings.cell < 1 || s.reuseSettings.cell > 4096)
-        return problem("reuse-grain " + std::to_string(s.reuseSettings.grain) + ", reuse-cell " +
-                       std::to_string(s.reuseSettings.cell) + ": a grain of 0 or more, a cell of 1 to 4096 pixels");
-    if (s.reuse && s.cull == Cull::Oracle)
-        return problem("reuse with cull oracle: the oracle is an id pass of each frame, not a plan to reuse");
-    if (s.reuse && usesOcclusion(s.cull))
-        return problem(std::string("reuse with cull ") + toString(s.cull) + ": a static part hidden behind a moving one would be missing from the "
-                       "static image once it moves away; use cull conservative with reuse");
-    if (s.hsr != Hsr::ZBuffer && s.reuse)
-        return problem(std::string("hsr ") + toString(s.hsr) +
-                       " with reuse: reuse redraws what moved with the z-buffer over the static image; use one");
-    if (s.hsr != Hsr::ZBuffer && s.cull == Cull::Oracle)
-        return problem(std::string("hsr ") + toString(s.hsr) + " with cull oracle: the oracle draws its own scene");
-    if (s.interp != DepthInterp::Exact && s.depthFormat == DepthFormat::D32F)
-        return problem(std::string("interp ") + toString(s.interp) +
-                       " with depth-format d32f: the span engine interpolates a 24-bit depth");
-    return std::nullopt;
-}
-
 }  // namespace
 
 // Members in the order they are made; they go in reverse, the backend last.
@@ -95,17 +66,20 @@ struct Renderer::Impl {
 
 Result<bool> Renderer::Impl::open() {
     const Settings& s = settings;
-    if (std::optional<Error> problem = settingsProblem(s)) return *problem;
-    if (s.cull != Cull::None) {
+    // Values out of their range, and settings that may not go together (frugal/Settings.h).
+    if (const std::optional<SettingsProblem> problem = settingsProblem(s))
+        return Error{describe(*problem, s), ErrorKind::BadInput, true};
+    const CullTraits& cull = traitsOf(s.cull);
+    if (cull.prepares) {
         MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
-        bins.hull = s.cull == Cull::Paper;            // the only method that uses the hull
+        bins.hull = cull.hull;
         culler = SceneCuller::prepare(*scene, bins);  // reorders the meshes: before the upload
         const PrepStats totals = culler->totals();
         cullPreparation = CullPreparation{totals.sphereMs, totals.mapMs,     totals.clusterMs,
                                           totals.hullMs,   totals.totalMs(), bins.hull,
                                           totals.mapBytes + totals.accessBytes + totals.hullBytes};
     }
-    if (s.hsr != Hsr::ZBuffer) planner.emplace(*scene);
+    if (traitsOf(s.hsr).plans) planner.emplace(*scene);
 
     Result<Stage> opened = Stage::open(s);
     if (!opened) return opened.failure();
@@ -205,7 +179,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
 
     const StateChanges changesBefore = backend->stateChanges();
     auto t0 = Clock::now();
-    if (s.cull == Cull::Oracle) {
+    if (traitsOf(s.cull).idPass) {
         // The id pass and the oracle's own index buffers come before the clock starts.
         Result<Oracle> oracle =
             makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, s.background);
@@ -221,13 +195,13 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();
         stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges, std::nullopt};
-        if (usesOcclusion(s.cull)) {
+        if (traitsOf(s.cull).occlusion) {
             const OcclusionStats& o = culler->occlusion().stats();
             stats.cull->occlusion = OcclusionFrameStats{o.ran, o.ms, o.trianglesHidden, madeAhead.has_value(), 0.0};
         }
         // The next frame's plan, made while this one draws (its set-up is this thread's: the same
         // calls render() makes; a frame that cannot be set up is culled, and its error given, then).
-        if (s.cull == Cull::OcclusionAhead && nextFrame) {
+        if (traitsOf(s.cull).ahead && nextFrame) {
             Result<FrameSetup> next = setUpFrame(*scene, nextFrame->first, nextFrame->second, s.width, s.height, s.ids,
                                                  s.depthFormat, stillBounds ? &*stillBounds : nullptr);
             if (next) ahead.start(*culler, s.cull, *scene, std::move(next->world), next->view, aheadTarget(cullTarget));
@@ -299,7 +273,7 @@ Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame
     return impl_->render(camera, seconds, frame, readBack);
 }
 void Renderer::setNextFrame(const Camera& camera, double seconds) {
-    if (impl_->settings.cull == Cull::OcclusionAhead) impl_->nextFrame.emplace(camera, seconds);
+    if (traitsOf(impl_->settings.cull).ahead) impl_->nextFrame.emplace(camera, seconds);
 }
 
 Result<bool> Renderer::setTransform(int node, const glm::mat4& transform) {

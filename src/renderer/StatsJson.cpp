@@ -54,10 +54,10 @@ nlohmann::json frameStatsJson(const FrameStats& stats, const Settings& settings)
     nlohmann::json j = {{"time", stats.time}, {"render_ms", stats.renderMs}, {"readback_ms", stats.readbackMs}};
     if (stats.cull) {
         j.update({{"tos", stats.cull->tos}, {"pvs", stats.cull->pvs}, {"cull_ms", stats.cull->ms}});
-        if (settings.cull != Cull::Oracle) j["ranges"] = stats.cull->ranges;
+        if (!traitsOf(settings.cull).idPass) j["ranges"] = stats.cull->ranges;
         if (const std::optional<OcclusionFrameStats>& o = stats.cull->occlusion) {
             j["occlusion"] = {{"ran", o->ran}, {"ms", o->ms}, {"triangles_hidden", o->trianglesHidden}};
-            if (settings.cull == Cull::OcclusionAhead)
+            if (traitsOf(settings.cull).ahead)
                 j["occlusion"].update({{"ahead", o->ahead}, {"ahead_wait_ms", o->aheadWaitMs}});
         }
     }

@@ -69,7 +69,7 @@ TEST(MisuseCliTest, EveryCommandRefusesAnImpossibleSharedOptionWithOneLine) {
         {{"--backend", "nope"},
          "error: --backend: 'nope' is not a backend (auto, egl, egl-device, egl-surfaceless, osmesa, software)"},
         {{"--time", "nan"}, "error: --time: 'nan' is not a number from -1e+09 to 1e+09"},
-        {{"--threads", "-1"}, "error: --threads: '-1' is not a whole number from 1 to 256"},
+        {{"--threads", "-1"}, "error: --threads: '-1' is not a whole number from 0 to 256"},
         {{"--fov", "180"}, "error: --fov: '180' is not a number from 0.001 to 179.999"},
         {{"--eye", "0,0,nan"}, "error: --eye: '0,0,nan' is not a point (x,y,z: three finite numbers)"},
         {{"--background", "red"}, "error: --background: 'red' is not a colour (r,g,b or r,g,b,a, each 0 to 1)"},

@@ -47,7 +47,8 @@ TEST(SettingsFileTest, EverySettingReadsBackAsItWasWritten) {
     ASSERT_TRUE(read) << read.error();
     EXPECT_EQ(settingsJson(read->settings), settingsJson(s));
     EXPECT_EQ(read->settings.background, s.background);
-    std::vector<std::string> names(kSettingNames.begin(), kSettingNames.end());
+    std::vector<std::string> names;
+    for (const SettingInfo& info : settingInfos()) names.push_back(info.name);
     std::sort(names.begin(), names.end());
     EXPECT_EQ(read->keys, names) << "every setting is written, under the names the reader takes";
 }
@@ -70,10 +71,10 @@ TEST(SettingsFileTest, BadFilesAreOneLineNamingTheKey) {
               "settings s.json: key 'cull': \"x\" is not a method (none, sphere, backface, cones, paper, conservative, "
               "occlusion, occlusion-ahead, oracle)");
     EXPECT_EQ(error(R"({"reuse": 1})"), "settings s.json: key 'reuse': 1 is not true or false");
-    EXPECT_EQ(error(R"({"threads": 2.5})"), "settings s.json: key 'threads': 2.5 is not a whole number");
-    EXPECT_EQ(error(R"({"size": "80x"})"), "settings s.json: key 'size': \"80x\" is not [width, height] or \"WxH\"");
+    EXPECT_EQ(error(R"({"threads": 2.5})"), "settings s.json: key 'threads': 2.5 is not a whole number from 0 to 256");
+    EXPECT_EQ(error(R"({"size": "80x"})"), "settings s.json: key 'size': \"80x\" is not a size (WxH, each 1 to 65536)");
     EXPECT_EQ(error(R"({"background": [1, 2, 3]})"),
-              "settings s.json: key 'background': [1,2,3] is not a colour ([r, g, b] or [r, g, b, a], each 0 to 1)");
+              "settings s.json: key 'background': [1,2,3] is not a colour (r,g,b or r,g,b,a, each 0 to 1)");
     EXPECT_EQ(error("[1]"), "settings s.json: expected a JSON object of settings, got array");
     EXPECT_TRUE(error("{").starts_with("settings s.json: not JSON ("));
     EXPECT_TRUE(error(R"({"culll": "none"})").starts_with("settings s.json: 'culll' is not a setting (size, backend,"));
