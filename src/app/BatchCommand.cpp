@@ -2,6 +2,7 @@
 // command line would run it, its outputs in OUT/<id>/; `batch status` and `batch merge` read OUT.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -47,6 +48,13 @@ job's files go to DIR/<id>/; when it finishes, DIR/<id>/done.json records its in
 job's keys, the files it reads, frugal's version) and its time; a job that fails leaves
 DIR/<id>/failed.json with its error line, and the others still run. The manifest is checked in
 full (keys, kinds, ids, files, scenes loaded) before any job runs.
+
+A render may take the settings an earlier job writes: "settings": "bunny-report/settings.json",
+when a job has the id bunny-report, is DIR/bunny-report/settings.json (a report's; or a render's
+whose settings are an object), and "./bunny-report/settings.json" a file beside MANIFEST. The
+check refuses a reference to a later job, to the job itself or to a file the job does not write.
+Jobs linked so run in one shard, in manifest order; done.json keeps the digest of each such file
+read, and --resume redoes a job whose file changed (its writer redone with another result).
 
 --plan N (which --slurm runs itself) writes DIR/plan.json: a split into N shards from the costs
 corrected by what DIR holds done (each command's seconds per unit of estimated cost; a job done
@@ -131,18 +139,40 @@ Result<std::vector<double>> costsOf(const Manifest& manifest) {
     return estimateCosts(manifest, triangles);
 }
 
-// Per job, its seconds when OUT/<id>/done.json is there with the inputs of now.
+// Per job, the files of it that later jobs read, by their path in OUT ("<id>/settings.json").
+std::vector<std::vector<std::string>> filesReadOf(const Manifest& manifest) {
+    std::vector<std::vector<std::string>> read(manifest.jobs.size());
+    for (const Job& job : manifest.jobs)
+        for (const ProducedInput& input : job.reads) read[input.job].push_back(input.path);
+    return read;
+}
+
+// Whether every file of a job that later jobs read is in OUT: a job done whose file is gone runs
+// again with --resume, to write it.
+bool keptIn(const std::string& out, const std::vector<std::string>& files) {
+    std::error_code ec;
+    return std::all_of(files.begin(), files.end(),
+                       [&](const std::string& f) { return fs::is_regular_file(fs::path(out) / f, ec); });
+}
+
+// Per job, its seconds when OUT/<id>/done.json is there with the inputs of now, and a job that
+// writes what it reads is done too (else that job runs again first, and may write another file).
 Result<std::vector<std::optional<double>>> doneSecondsOf(const Manifest& manifest, const std::string& out) {
+    const std::vector<std::vector<std::string>> read = filesReadOf(manifest);
     std::vector<std::optional<double>> seconds;
-    for (const Job& job : manifest.jobs) {
+    for (std::size_t i = 0; i < manifest.jobs.size(); ++i) {
+        const Job& job = manifest.jobs[i];
         const std::optional<DoneRecord> record = doneRecord(fs::path(out) / job.id);
-        if (!record || record->version != version()) {  // a record of another version: no hash to make
+        const auto writerDone = [&seconds](const ProducedInput& input) { return seconds[input.job].has_value(); };
+        const bool writersDone = std::all_of(job.reads.begin(), job.reads.end(), writerDone);
+        // A record of another version: no hash to make.
+        if (!record || record->version != version() || !writersDone || !keptIn(out, read[i])) {
             seconds.emplace_back();
             continue;
         }
-        Result<std::string> hash = inputsHash(job, version());
+        Result<InputsHash> hash = inputsHash(job, version(), out);
         if (!hash) return hash.failure();
-        seconds.push_back(current(*record, *hash) ? std::optional<double>(record->seconds) : std::nullopt);
+        seconds.push_back(current(*record, hash->hash) ? std::optional<double>(record->seconds) : std::nullopt);
     }
     return seconds;
 }
@@ -156,25 +186,31 @@ Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& esti
     plan.manifest = manifestHash(manifest);
     plan.count = count;
     plan.costs = correctedCosts(manifest, estimates, *done);
-    plan.shardOf = assignShards(plan.costs, count);
+    plan.shardOf = assignShards(plan.costs, groupsOf(manifest), count);
     if (Result<bool> w = writeFileAtomic((fs::path(out) / kPlan).string(), bytesOf(planJson(plan))); !w)
         return w.failure();
     return plan;
 }
 
-// The split a shard follows: OUT/plan.json when it is for this manifest and this N, else its own
-// from the manifest alone (the same in every shard).
+// The split a shard follows: OUT/plan.json when it is for this manifest and this N (and keeps each
+// group of jobs in one shard), else its own from the manifest alone (the same in every shard).
 std::vector<int> splitOf(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
                          int count, std::string& from) {
+    const std::vector<std::size_t> groups = groupsOf(manifest);
     if (const std::optional<std::string> text = readWholeFile((fs::path(out) / kPlan).string()))
         if (const std::optional<Plan> plan = parsePlan(*text);
             plan && plan->manifest == manifestHash(manifest) && plan->count == count &&
             plan->shardOf.size() == manifest.jobs.size()) {
-            from = " (split by " + (fs::path(out) / kPlan).string() + ")";
-            return plan->shardOf;
+            bool whole = true;
+            for (std::size_t i = 0; i < groups.size(); ++i)
+                whole = whole && plan->shardOf[i] == plan->shardOf[groups[i]];
+            if (whole) {
+                from = " (split by " + (fs::path(out) / kPlan).string() + ")";
+                return plan->shardOf;
+            }
         }
     from = "";
-    return assignShards(estimates, count);
+    return assignShards(estimates, groups, count);
 }
 
 struct RunOptions {
@@ -190,7 +226,7 @@ struct RunOptions {
 };
 
 // Runs one job into DIR/<id>/: "" when done, else its error line. Only an interrupt stops the batch.
-std::string runJob(const Job& job, const std::string& hash, const RunOptions& o, double& seconds) {
+std::string runJob(const Job& job, const InputsHash& inputs, const RunOptions& o, double& seconds) {
     const fs::path dir = fs::path(o.out) / job.id;
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -206,7 +242,7 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
             return "error: " + w.error();
 
     std::ostringstream out, err;
-    const std::vector<std::string> line = commandLine(job, dir.string());
+    const std::vector<std::string> line = commandLine(job, o.out);
     const auto start = std::chrono::steady_clock::now();
     const int status = runCli(line, out, err);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -217,7 +253,7 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     (void)writeFileAtomic((dir / "log.txt").string(), bytesOf(log));
     std::string problem;
     if (status == kExitOk) {
-        const DoneRecord record{job.id, hash, version(), seconds};
+        const DoneRecord record{job.id, inputs.hash, version(), seconds, inputs.reads};
         if (Result<bool> w = writeFileAtomic((dir / kDone).string(), bytesOf(doneJson(record))); !w)
             problem = "error: " + w.error();
     } else {
@@ -228,6 +264,16 @@ std::string runJob(const Job& job, const std::string& hash, const RunOptions& o,
     }
     fs::remove(dir / kRunning, ec);
     return problem;
+}
+
+// Records `job` as failed with `problem` without running it (it cannot: an input is missing).
+void recordNotRun(const Job& job, const std::string& problem, const RunOptions& o) {
+    const fs::path dir = fs::path(o.out) / job.id;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    fs::remove(dir / kDone, ec);
+    const Json failed = {{"id", job.id}, {"status", kExitError}, {"error", problem}};
+    (void)writeFileAtomic((dir / kFailed).string(), bytesOf(failed.dump(2) + "\n"));
 }
 
 // The manifest checked and its jobs' estimated costs.
@@ -285,29 +331,46 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     std::string splitFrom;
     const std::vector<int> shardOf = splitOf(*manifest, checked->costs, o.out, o.shard.count, splitFrom);
 
-    std::vector<const Job*> mine;
+    // In manifest order: a job that writes what another reads runs first (both are in this shard).
+    std::vector<std::size_t> mine;
     for (std::size_t i = 0; i < manifest->jobs.size(); ++i)
-        if (shardOf[i] == o.shard.index) mine.push_back(&manifest->jobs[i]);
+        if (shardOf[i] == o.shard.index) mine.push_back(i);
+    const std::vector<std::vector<std::string>> read = filesReadOf(*manifest);
+    std::vector<bool> failedHere(manifest->jobs.size(), false);
     int done = 0, skipped = 0, failed = 0;
     const std::string shardName = std::to_string(o.shard.index) + "/" + std::to_string(o.shard.count);
     if (!o.quiet)
         err << "batch: shard " << shardName << ": " << mine.size() << " of " << manifest->jobs.size() << " jobs"
             << splitFrom << "\n";
     for (std::size_t k = 0; k < mine.size(); ++k) {
-        const Job& job = *mine[k];
-        Result<std::string> hash = inputsHash(job, version());
-        if (!hash) return fail(err, hash.failure());
+        const Job& job = manifest->jobs[mine[k]];
         const std::string progress = "[" + std::to_string(k + 1) + "/" + std::to_string(mine.size()) + "] " + job.id;
+        // A job cannot run when a job whose file it reads failed here, or an input cannot be read.
+        std::string problem;
+        for (const ProducedInput& input : job.reads)
+            if (problem.empty() && failedHere[input.job])
+                problem = "error: " + input.path + ": job '" + manifest->jobs[input.job].id +
+                          "' failed, so this job, which reads it, did not run";
+        Result<InputsHash> hash =
+            problem.empty() ? inputsHash(job, version(), o.out) : Result<InputsHash>(InputsHash{});
+        if (problem.empty() && !hash) problem = "error: " + hash.error();
+        if (!problem.empty()) {
+            recordNotRun(job, problem, o);
+            failedHere[mine[k]] = true;
+            ++failed;
+            err << progress << ": failed: " << problem << "\n";
+            continue;
+        }
         if (o.resume) {
             if (const std::optional<DoneRecord> record = doneRecord(fs::path(o.out) / job.id);
-                record && current(*record, *hash)) {
+                record && current(*record, hash->hash) && keptIn(o.out, read[mine[k]])) {
                 ++skipped;
                 if (!o.quiet) err << progress << ": done before, skipped\n";
                 continue;
             }
         }
         double seconds = 0;
-        const std::string problem = runJob(job, *hash, o, seconds);
+        problem = runJob(job, *hash, o, seconds);
         if (const int signal = notedSignal(); signal != 0) {
             err << "batch: interrupted by " << signalName(signal) << " in job " << job.id << " after " << done
                 << " of " << mine.size() << " jobs; --resume finishes the rest\n";
@@ -318,6 +381,7 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
             if (!o.quiet) err << progress << ": done in " << fmt(seconds) << " s\n";
         } else {
             ++failed;
+            failedHere[mine[k]] = true;
             err << progress << ": failed: " << problem << "\n";
         }
     }

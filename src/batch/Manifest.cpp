@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -133,10 +134,22 @@ bool wholeIn(const Json& v, long long lo, long long hi) {
     return v.is_number_integer() && v.get<long long>() >= lo && v.get<long long>() <= hi;
 }
 
+// The jobs a job's keys may name by id: every job's id with its index and line, from a scan before
+// the checks (so that a job named before it is read is known as a later one), and the jobs read.
+struct JobIds {
+    struct Entry {
+        std::size_t index = 0;
+        int line = 0;
+    };
+    std::map<std::string, Entry> ids;  // the first job of each id (a second is refused when read)
+    const std::vector<Job>* read = nullptr;
+};
+
 // Checks one job: its keys (after the defaults) into a Job. `fail` gets the key and why.
 class JobReader {
 public:
-    JobReader(const fs::path& base, Job& job) : base_(base), job_(job) {}
+    JobReader(const fs::path& base, const JobIds& jobs, std::size_t index, Job& job)
+        : base_(base), jobs_(jobs), index_(index), job_(job) {}
 
     // "" when fine, else why (the caller adds where).
     std::string read(const std::string& key, const Json& v) {
@@ -301,6 +314,42 @@ private:
         flag("--fps", fmt(v.get<double>()));
         return "";
     }
+    // "<id>/<name>" when <id> is a job's: the file that job writes, read from OUT when this job runs;
+    // "" when it is one this job may read, else why not. Nothing when <id> is no job's (a path of
+    // the manifest's folder, as is "./<id>/<name>").
+    std::optional<std::string> produced(const Json& v, const std::string& flag, FileKind kind) {
+        if (!v.is_string()) return std::nullopt;
+        const std::string text = v.get<std::string>();
+        const std::size_t slash = text.find('/');
+        const auto producer = slash == std::string::npos ? jobs_.ids.end() : jobs_.ids.find(text.substr(0, slash));
+        if (producer == jobs_.ids.end()) return std::nullopt;
+        const auto [index, line] = producer->second;
+        const std::string name = text.substr(slash + 1);
+        if (index == index_) return quoted(v) + ": this job's own output (a job reads what an earlier job writes)";
+        const std::string which = "job " + std::to_string(index) + " '" + producer->first + "'";
+        if (index > index_)
+            return quoted(v) + ": " + which + " at line " + std::to_string(line) +
+                   " comes after this one (a job reads what an earlier job writes: put it first)";
+        const Job& from = (*jobs_.read)[index];
+        const std::vector<ProducedFile> files = producedFiles(from);
+        const auto file =
+            std::find_if(files.begin(), files.end(), [&name](const ProducedFile& f) { return f.name == name; });
+        if (file == files.end()) {
+            std::string names;
+            for (const ProducedFile& f : files) names += (names.empty() ? "" : ", ") + f.name;
+            return quoted(v) + ": " + which + " writes no " + oneLine(name, 80) + " a job may read (it writes " +
+                   (names.empty() ? "only images" : names) +
+                   (from.command == Command::Render && name == "settings.json"
+                        ? "; a render writes settings.json when its settings are an object)"
+                        : ")");
+        }
+        if (file->kind != kind)
+            return quoted(v) + ": not a settings file (settings reads a settings.json an earlier job writes: a "
+                               "report's, or a render's whose settings are an object)";
+        job_.reads.push_back({flag, index, text});
+        return "";
+    }
+
     std::string settings(const Json& v) {
         if (v.is_object()) {
             Result<SettingsFile> parsed = parseSettingsJson(v.dump(), "settings");
@@ -308,6 +357,7 @@ private:
             job_.settingsText = v.dump(2) + "\n";
             return "";
         }
+        if (std::optional<std::string> why = produced(v, "--settings", FileKind::Settings)) return *why;
         std::string path;
         if (std::string why = file(v, path); !why.empty()) return why;
         if (Result<SettingsFile> parsed = readSettingsFile(path); !parsed) return parsed.error();
@@ -335,6 +385,8 @@ private:
     }
 
     fs::path base_;
+    const JobIds& jobs_;
+    std::size_t index_;
     Job& job_;
 };
 
@@ -367,6 +419,20 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
     manifest.path = path;
     std::map<std::string, int> idLines;
     const std::size_t width = std::to_string(doc["jobs"].size() - 1).size();
+    const auto defaultId = [width](std::size_t i) {
+        const std::string number = std::to_string(i);
+        return "job-" + std::string(width - number.size(), '0') + number;
+    };
+    JobIds ids;
+    ids.read = &manifest.jobs;
+    for (std::size_t i = 0; i < doc["jobs"].size(); ++i) {
+        const Json& entry = doc["jobs"][i];
+        if (!entry.is_object()) continue;
+        const std::string id = !entry.contains("id") ? defaultId(i)
+                               : entry["id"].is_string() ? entry["id"].get<std::string>()
+                                                         : std::string();
+        if (validId(id)) ids.ids.emplace(id, JobIds::Entry{i, lines.of("jobs/" + std::to_string(i))});
+    }
     for (std::size_t i = 0; i < doc["jobs"].size(); ++i) {
         const Json& entry = doc["jobs"][i];
         const std::string at = "jobs/" + std::to_string(i);
@@ -384,9 +450,8 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
         }
         Job job;
         job.line = lines.of(at);
-        std::string number = std::to_string(i);
-        job.id = "job-" + std::string(width - number.size(), '0') + number;
-        JobReader reader(base, job);
+        job.id = defaultId(i);
+        JobReader reader(base, ids, i, job);
         // The command first: what a key means can depend on it.
         std::vector<std::string> order{"command", "scene"};
         for (const auto& [k, v] : keys)
@@ -418,9 +483,31 @@ Result<Manifest> readManifest(const std::string& path) {
     return parseManifest(*text, path);
 }
 
-std::vector<std::string> commandLine(const Job& job, const std::string& jobDir) {
+std::vector<ProducedFile> producedFiles(const Job& job) {
+    switch (job.command) {
+    case Command::Render: {
+        std::vector<ProducedFile> files;
+        if (std::find(job.outputs.begin(), job.outputs.end(), "json") != job.outputs.end())
+            files.push_back({"render.json", FileKind::Record});
+        if (!job.settingsText.empty()) files.push_back({"settings.json", FileKind::Settings});
+        return files;
+    }
+    case Command::CullReport: return {{"cull-report.json", FileKind::Record}, {"cull-report.csv", FileKind::Record}};
+    case Command::ReuseBench: return {{"reuse-bench.json", FileKind::Record}, {"reuse-bench.csv", FileKind::Record}};
+    case Command::Report:
+        return {{"settings.json", FileKind::Settings}, {"report.json", FileKind::Record},
+                {"report.csv", FileKind::Record},      {"papers.csv", FileKind::Record},
+                {"index.html", FileKind::Record},      {"pareto.gp", FileKind::Record}};
+    }
+    return {};
+}
+
+std::vector<std::string> commandLine(const Job& job, const std::string& out) {
     std::vector<std::string> line{toString(job.command)};
     line.insert(line.end(), job.args.begin(), job.args.end());
+    for (const ProducedInput& input : job.reads)
+        line.insert(line.end(), {input.flag, (fs::path(out) / input.path).string()});
+    const std::string jobDir = (fs::path(out) / job.id).string();
     const std::string dir = jobDir + "/";
     switch (job.command) {
     case Command::Render:

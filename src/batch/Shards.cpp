@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -45,19 +46,52 @@ Result<Shard> parseShard(const std::string& text) {
 }
 
 std::vector<int> assignShards(const std::vector<double>& costs, int shards) {
-    std::vector<std::size_t> order(costs.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&costs](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+    std::vector<std::size_t> alone(costs.size());
+    std::iota(alone.begin(), alone.end(), 0);
+    return assignShards(costs, alone, shards);
+}
+
+std::vector<std::size_t> groupsOf(const Manifest& manifest) {
+    // Union-find whose root is the group's first job (a reader's writer comes before it).
+    std::vector<std::size_t> first(manifest.jobs.size());
+    std::iota(first.begin(), first.end(), 0);
+    const auto root = [&first](std::size_t i) {
+        while (first[i] != i) i = first[i] = first[first[i]];
+        return i;
+    };
+    for (std::size_t i = 0; i < manifest.jobs.size(); ++i)
+        for (const ProducedInput& input : manifest.jobs[i].reads) {
+            const std::size_t a = root(i), b = root(input.job);
+            first[std::max(a, b)] = std::min(a, b);
+        }
+    for (std::size_t i = 0; i < first.size(); ++i) first[i] = root(i);
+    return first;
+}
+
+std::vector<int> assignShards(const std::vector<double>& costs, const std::vector<std::size_t>& groupOf, int shards) {
+    // The groups in the order of their first jobs, each with its cost and its number of jobs.
+    std::map<std::size_t, std::pair<double, std::size_t>> groups;
+    for (std::size_t job = 0; job < costs.size(); ++job) {
+        auto& [cost, jobs] = groups[groupOf[job]];
+        cost += costs[job];
+        ++jobs;
+    }
+    std::vector<std::size_t> order;
+    for (const auto& entry : groups) order.push_back(entry.first);
+    std::stable_sort(order.begin(), order.end(),
+                     [&groups](std::size_t a, std::size_t b) { return groups[a].first > groups[b].first; });
     // Least cost first, then fewest jobs (jobs of no cost, done ones in a plan, still spread), then
     // the lowest shard.
     std::vector<std::pair<double, std::size_t>> load(std::size_t(std::max(shards, 1)), {0.0, 0});
-    std::vector<int> shardOf(costs.size(), 0);
-    for (const std::size_t job : order) {
+    std::map<std::size_t, int> shardOfGroup;
+    for (const std::size_t group : order) {
         const auto least = std::min_element(load.begin(), load.end());  // the first of equals
-        shardOf[job] = int(least - load.begin());
-        least->first += costs[job];
-        ++least->second;
+        shardOfGroup[group] = int(least - load.begin());
+        least->first += groups[group].first;
+        least->second += groups[group].second;
     }
+    std::vector<int> shardOf(costs.size(), 0);
+    for (std::size_t job = 0; job < costs.size(); ++job) shardOf[job] = shardOfGroup[groupOf[job]];
     return shardOf;
 }
 
@@ -133,25 +167,46 @@ std::string manifestHash(const Manifest& manifest) {
     return hex(h);
 }
 
-Result<std::string> inputsHash(const Job& job, const std::string& version) {
+Result<InputsHash> inputsHash(const Job& job, const std::string& version, const std::string& out) {
     std::uint64_t h = kFnvOffset;
     const auto add = [&h](const std::string& s) { h = fnvStep(h, s.data(), s.size() + 1); };  // with its NUL
     add(job.canonical);
     add(job.settingsText);
     add(version);
     std::vector<char> buffer(1 << 16);
-    for (const std::string& path : job.inputFiles) {
+    // The file's bytes into `into`, from FNV-1a's start.
+    const auto digest = [&buffer](const std::string& path, std::uint64_t& into) {
         std::ifstream in(path, std::ios::binary);
-        if (!in) return Error{path + ": cannot read the file (an input of job '" + job.id + "')", ErrorKind::Io};
+        if (!in) return false;
         while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0)
-            h = fnvStep(h, buffer.data(), std::size_t(in.gcount()));
+            into = fnvStep(into, buffer.data(), std::size_t(in.gcount()));
+        return true;
+    };
+    for (const std::string& path : job.inputFiles) {
+        if (!digest(path, h))
+            return Error{path + ": cannot read the file (an input of job '" + job.id + "')", ErrorKind::Io};
         add(path);
     }
-    return hex(h);
+    // The files of earlier jobs: their digests, by their path in OUT (OUT may move).
+    InputsHash result;
+    for (const ProducedInput& input : job.reads) {
+        std::uint64_t file = kFnvOffset;
+        const std::string path = (std::filesystem::path(out) / input.path).string();
+        if (!digest(path, file))
+            return Error{path + ": cannot read the file (job '" + job.id + "' reads it; job '" +
+                             input.path.substr(0, input.path.find('/')) + "' writes it)",
+                         ErrorKind::Io};
+        result.reads[input.path] = hex(file);
+        add(input.path);
+        add(hex(file));
+    }
+    result.hash = hex(h);
+    return result;
 }
 
 std::string doneJson(const DoneRecord& r) {
-    const nlohmann::json doc = {{"id", r.id}, {"inputs", r.inputs}, {"version", r.version}, {"seconds", r.seconds}};
+    nlohmann::json doc = {{"id", r.id}, {"inputs", r.inputs}, {"version", r.version}, {"seconds", r.seconds}};
+    if (!r.reads.empty()) doc["reads"] = r.reads;
     return doc.dump(2) + "\n";
 }
 
@@ -161,7 +216,15 @@ std::optional<DoneRecord> parseDone(const std::string& text) {
         !doc["inputs"].is_string() || !doc.contains("version") || !doc["version"].is_string() ||
         !doc.contains("seconds") || !doc["seconds"].is_number())
         return std::nullopt;
-    return DoneRecord{doc["id"], doc["inputs"], doc["version"], doc["seconds"].get<double>()};
+    DoneRecord record{doc["id"], doc["inputs"], doc["version"], doc["seconds"].get<double>(), {}};
+    if (doc.contains("reads")) {
+        if (!doc["reads"].is_object()) return std::nullopt;
+        for (const auto& [path, digest] : doc["reads"].items()) {
+            if (!digest.is_string()) return std::nullopt;
+            record.reads[path] = digest.get<std::string>();
+        }
+    }
+    return record;
 }
 
 }  // namespace frugal::batch

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """`frugal batch --slurm` on a real Slurm: a private one-node cluster on loopback (cluster.py).
 
-1. A manifest of 8 jobs submitted as a 4-task array and a merge job: every task completes, and the
-   merged output is byte for byte what one process gives (`frugal batch` then `batch merge`).
+1. A manifest of 9 jobs submitted as a 4-task array and a merge job: every task completes, and the
+   merged output is byte for byte what one process gives (`frugal batch` then `batch merge`). One
+   job reads the settings.json another writes: both run in one task, the writer first.
 2. A task cancelled in the middle of a long job (scancel of one array index): its job has no done
    record and no half-written file is left; submitted again (the scripts run with --resume), the
    batch completes without redoing the jobs that had finished.
@@ -69,7 +70,10 @@ def array_then_merge(binary, work, cluster):
     jobs += [{"id": "culled", "scene": "builtin:cubes", "settings": {"cull": "conservative", "order": "key"}},
              {"id": "dominoes", "scene": "builtin:dominoes", "frames": "0:4", "settings": {"reuse": True}},
              {"id": "cull", "command": "cull-report", "scene": "builtin:cubes", "views": 2, "repeat": 1},
-             {"id": "report", "command": "report", "scene": "builtin:cubes?count=3", "views": 2, "repeat": 1}]
+             {"id": "report", "command": "report", "scene": "builtin:cubes?count=3", "views": 2, "repeat": 1},
+             # Costlier than any job but dominoes: alone it would go to another task than culled.
+             {"id": "culled-again", "scene": "builtin:cubes?count=7", "frames": "0:8",
+              "settings": "culled/settings.json"}]
     manifest = os.path.join(work, "m.json")
     write_manifest(manifest, jobs)
     single = os.path.join(work, "single")
@@ -85,9 +89,18 @@ def array_then_merge(binary, work, cluster):
     check(all(r.state == "COMPLETED" for r in merged.values()), "merge job: %s" % states(merged))
     with open(os.path.join(single, "merged.json"), "rb") as a, open(os.path.join(array, "merged.json"), "rb") as b:
         check(a.read() == b.read(), "merged.json of 4 array tasks differs from one process's")
+    with_reader = []
     for task in range(4):
         log = os.path.join(array, "slurm", "shard-%d.log" % task)
-        check(os.path.exists(log), "no log " + log)
+        if not check(os.path.exists(log), "no log " + log):
+            continue
+        text = open(log).read()
+        writer, reader = text.find("] culled: done"), text.find("] culled-again: done")
+        check((writer < 0) == (reader < 0), "task %d ran one of culled and culled-again: %s" % (task, text))
+        if reader >= 0:
+            with_reader.append(task)
+            check(writer < reader, "task %d ran culled-again before culled, whose settings it reads" % task)
+    check(len(with_reader) == 1, "culled-again ran in tasks %s, expected one" % with_reader)
     check(not leftovers(array), "temporary files left: %s" % leftovers(array))
 
 
