@@ -21,7 +21,7 @@ namespace frugal {
 
 namespace {
 
-// The software backend follows llvmpipe's rasterization rules (src/software/Rasterizer.h). On
+// The software backend follows llvmpipe's rasterization rules (src/raster/Rasterizer.h). On
 // Mesa 22.3.6 llvmpipe it matches bit for bit (colour, ids and depth): builtin:default, 30 frames of
 // builtin:cubes, the bunny at 800x600 and every renderable glTF file of assimp-testmodels all have a
 // largest channel difference of 0. The default still allows 2 steps, because the shading is the same

@@ -11,8 +11,8 @@
 #include "cull/OcclusionKernels.h"
 #include "render/IndexRanges.h"
 #include "software/Kernels.h"
-#include "software/Rasterizer.h"
-#include "software/ThreadPool.h"
+#include "raster/Rasterizer.h"
+#include "base/ThreadPool.h"
 
 // The vertex transform below reproduces the software backend's (Kernels.inl transform): every
 // product and sum rounded on its own, the viewport fused only where the CPU fuses it.
@@ -128,7 +128,7 @@ struct Band {
 // on this CPU (`kFused`). occlusion::transformAvx2 is the same, eight at a time.
 template <bool kFused>
 inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, const float* px, const float* py,
-                                                         const float* pz, std::uint32_t count, const sw::Viewport& vp,
+                                                         const float* pz, std::uint32_t count, const raster::Viewport& vp,
                                                          const occlusion::WindowArrays& out) {
     for (std::uint32_t i = 0; i < count; ++i) {
         glm::vec4 c;
@@ -145,19 +145,19 @@ inline __attribute__((always_inline)) void transformBody(const glm::mat4& m, con
             out.z[i] = nz * vp.sz + vp.tz;
         }
         std::int64_t fx = 0, fy = 0;
-        const bool usable = sw::clipMask(c, vp.halfZ) == 0 && sw::fixedPosition(out.x[i], out.y[i], &fx, &fy);
+        const bool usable = raster::clipMask(c, vp.halfZ) == 0 && raster::fixedPosition(out.x[i], out.y[i], &fx, &fy);
         out.fx[i] = usable ? std::int32_t(fx) : occlusion::kUnfixed;  // |fx|, |fy| < 2^26
         out.fy[i] = usable ? std::int32_t(fy) : occlusion::kUnfixed;
     }
 }
 
 // The fused flavour, compiled for FMA so that std::fma is one instruction (it is called only when
-// the CPU has FMA: sw::cpuHasFma()).
+// the CPU has FMA: raster::cpuHasFma()).
 #if defined(__x86_64__)
 __attribute__((target("fma")))
 #endif
 void transformFused(const glm::mat4& m, const float* px, const float* py, const float* pz, std::uint32_t count,
-                    const sw::Viewport& vp, const occlusion::WindowArrays& out) {
+                    const raster::Viewport& vp, const occlusion::WindowArrays& out) {
     transformBody<true>(m, px, py, pz, count, vp, out);
 }
 
@@ -205,8 +205,8 @@ struct OcclusionCuller::State {
     OcclusionStats stats;
     int width = 0, height = 0, blocksX = 0, blocksY = 0;
     bool halfZ = false;
-    sw::Viewport viewport;
-    bool fused = sw::cpuHasFma();
+    raster::Viewport viewport;
+    bool fused = raster::cpuHasFma();
     bool avx2 = occlusion::cpuHasAvx2();  // and simd: the AVX2 loops
     bool simd = true;
     // And the quick test looks the corners up with AVX-512 permutes (clusters of at most 64 vertices).
@@ -227,10 +227,10 @@ struct OcclusionCuller::State {
     std::vector<std::uint32_t> slots;      // per item: its first triangle slot (and one past the last)
     std::vector<Band> bands;
     std::vector<Piece> pieces;             // the plan, gathered piece by piece (gather)
-    std::unique_ptr<sw::ThreadPool> threads;
+    std::unique_ptr<ThreadPool> threads;
     // For one thread (occlusion-ahead's pass, beside the draw): the caller alone, kept apart so that
     // alternating with the pass on every core does not start and stop the other pool's threads.
-    std::unique_ptr<sw::ThreadPool> single;
+    std::unique_ptr<ThreadPool> single;
 
     // The threads prepare() woke go back to sleep.
     void rest() {
@@ -239,15 +239,15 @@ struct OcclusionCuller::State {
     }
 
     // The walk's threads: `count`, or every core (at most 8) for 0.
-    sw::ThreadPool& pool(int count) {
+    ThreadPool& pool(int count) {
         // (hardware_concurrency() reads a file on Linux: tens of microseconds, asked once.)
         static const int cores = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
         const int wanted = count > 0 ? std::min(count, 64) : cores;
         if (wanted == 1) {
-            if (!single) single = std::make_unique<sw::ThreadPool>(1);
+            if (!single) single = std::make_unique<ThreadPool>(1);
             return *single;
         }
-        if (!threads || threads->size() != wanted) threads = std::make_unique<sw::ThreadPool>(wanted);
+        if (!threads || threads->size() != wanted) threads = std::make_unique<ThreadPool>(wanted);
         return *threads;
     }
 
@@ -479,7 +479,7 @@ struct OcclusionCuller::State {
         width = w;
         height = h;
         halfZ = format == DepthFormat::D32F;
-        viewport = sw::makeViewport(w, h, format);
+        viewport = raster::makeViewport(w, h, format);
         blocksX = (w + kBlock - 1) / kBlock;
         blocksY = (h + kBlock - 1) / kBlock;
         depth.resize(std::size_t(w) * std::size_t(h));  // each band opens its own rows (walk)
@@ -557,7 +557,7 @@ struct OcclusionCuller::State {
     // module may drop it, 2a.).
     // Whether a triangle set up as `t` (its edges and bounds) covers a pixel centre in rows
     // [rowLo, rowHi]: every k − dx·px + dy·py ≥ 0, i.e. their OR is not negative.
-    static bool coversPixel(const sw::Triangle& t, int rowLo, int rowHi) {
+    static bool coversPixel(const raster::Triangle& t, int rowLo, int rowHi) {
         const std::int64_t x0 = t.x0, x1 = t.x1, y0 = std::max(t.y0, rowLo), y1 = std::min(t.y1, rowHi);
         if (y0 > y1) return false;
         std::int64_t e00[3], ex[3], ey[3];
@@ -590,7 +590,7 @@ struct OcclusionCuller::State {
 
     // The edges of `t` at pixel (t.x0, y0) and their steps, for occlusion::narrowAvx2: false when a
     // value at a corner of columns t.x0 … t.x0 + 7 and rows y0 … y1 is not within ±2^30.
-    static bool narrowEdges(const sw::Triangle& t, int y0, int y1, std::int32_t e00[3], std::int32_t ex[3],
+    static bool narrowEdges(const raster::Triangle& t, int y0, int y1, std::int32_t e00[3], std::int32_t ex[3],
                             std::int32_t ey[3]) {
         constexpr std::int64_t kLimit = std::int64_t(1) << 30;
         const auto fits = [](std::int64_t v) { return v > -kLimit && v < kLimit; };
@@ -666,9 +666,9 @@ struct OcclusionCuller::State {
         const std::int32_t minY = std::min({w.fy[a], w.fy[b], w.fy[c]}), maxY = std::max({w.fy[a], w.fy[b], w.fy[c]});
         if (-((-minX) >> 8) > (maxX >> 8) || std::max(-((-minY) >> 8), rowLo) > std::min(maxY >> 8, rowHi)) return false;
         std::int64_t X[3] = {w.fx[a], w.fx[b], w.fx[c]}, Y[3] = {w.fy[a], w.fy[b], w.fy[c]};
-        sw::Triangle t;
-        const sw::SetupOrder order = sw::setupEdges(X, Y, singleSided, viewport, &t);
-        if (order == sw::SetupOrder::Dropped) return false;
+        raster::Triangle t;
+        const raster::SetupOrder order = raster::setupEdges(X, Y, singleSided, viewport, &t);
+        if (order == raster::SetupOrder::Dropped) return false;
         // A triangle at most 8 pixels wide whose edges fit in 32 bits is rasterized 8 pixels a row
         // at once (occlusion::narrowAvx2), which finds no pixel as cheaply as coversPixel does.
         const int ya = std::max(t.y0, rowLo), yb = std::min(t.y1, rowHi);
@@ -677,7 +677,7 @@ struct OcclusionCuller::State {
         if (!narrow && !coversPixel(t, rowLo, rowHi)) return false;  // no pixel
         // Only the positions are read (drawModuleKeepsFront, setupDepthPlane): the attributes are
         // left unset (zeroing three vertices was a twentieth of the pass).
-        sw::SetupVertex s[3];
+        raster::SetupVertex s[3];
         const std::uint32_t corner[3] = {a, b, c};
         for (int i = 0; i < 3; ++i) {
             s[i].x = w.x[corner[i]];
@@ -687,10 +687,10 @@ struct OcclusionCuller::State {
         }
         // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
         // triangle is kept but hides nothing.
-        const bool occludes = !singleSided || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
-        const sw::SetupVertex* v[3] = {&s[0], &s[1], &s[2]};
-        if (order == sw::SetupOrder::Swapped) std::swap(v[0], v[1]);
-        sw::setupDepthPlane(v[0], v[1], v[2], &t);
+        const bool occludes = !singleSided || raster::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        const raster::SetupVertex* v[3] = {&s[0], &s[1], &s[2]};
+        if (order == raster::SetupOrder::Swapped) std::swap(v[0], v[1]);
+        raster::setupDepthPlane(v[0], v[1], v[2], &t);
         // llvmpipe's z at pixel (px, py) is fma(dzdy, py, fma(dzdx, px, z0)) in float, clamped to
         // [0, 1] (Rasterizer.h 5.). Here it is (z0 + dzdy·py) + dzdx·px, rounded as it goes;
         // `s0` bounds the distance between the two (occlusion::depthSlack).
@@ -715,7 +715,7 @@ struct OcclusionCuller::State {
             if (t.x1 - t.x0 < 8) {
                 const auto inside = [&t, py](std::int64_t px) {
                     std::int64_t m = 0;
-                    for (const sw::Edge& e : t.e) m |= e.k - std::int64_t(e.dx) * px + std::int64_t(e.dy) * py;
+                    for (const raster::Edge& e : t.e) m |= e.k - std::int64_t(e.dx) * px + std::int64_t(e.dy) * py;
                     return m >= 0;
                 };
                 while (xa <= xb && !inside(xa)) ++xa;

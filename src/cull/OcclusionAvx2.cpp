@@ -22,7 +22,7 @@
 namespace frugal::occlusion {
 
 void transformAvx2(const float* m, const float* px, const float* py, const float* pz, std::uint32_t count,
-                   const sw::Viewport& vp, const WindowArrays& out) {
+                   const raster::Viewport& vp, const WindowArrays& out) {
     __m256 col[4][4];
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) col[c][r] = _mm256_set1_ps(m[4 * c + r]);
@@ -39,7 +39,7 @@ void transformAvx2(const float* m, const float* px, const float* py, const float
             c[r] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(col[0][r], x), _mm256_mul_ps(col[1][r], y)),
                                                _mm256_mul_ps(col[2][r], z)),
                                  col[3][r]);
-        // The clip mask is not 0 (sw::clipMask; unordered: a NaN sets a bit).
+        // The clip mask is not 0 (raster::clipMask; unordered: a NaN sets a bit).
         __m256 clipped = _mm256_or_ps(_mm256_cmp_ps(c[0], c[3], _CMP_NLE_UQ),
                                       _mm256_cmp_ps(_mm256_add_ps(c[0], c[3]), zero, _CMP_NGE_UQ));
         clipped = _mm256_or_ps(clipped, _mm256_cmp_ps(c[1], c[3], _CMP_NLE_UQ));
@@ -55,7 +55,7 @@ void transformAvx2(const float* m, const float* px, const float* py, const float
         _mm256_storeu_ps(out.x + i, wx);
         _mm256_storeu_ps(out.y + i, wy);
         _mm256_storeu_ps(out.z + i, wz);
-        // sw::fixedPosition: round_even((x − 0.5)·256), representable when |…| < 2^26 (false for NaN).
+        // raster::fixedPosition: round_even((x − 0.5)·256), representable when |…| < 2^26 (false for NaN).
         const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(wx, half), fixedOne);
         const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(wy, half), fixedOne);
         const __m256 fits = _mm256_and_ps(_mm256_cmp_ps(_mm256_and_ps(fx, absMask), limit, _CMP_LT_OQ),
@@ -83,7 +83,7 @@ struct Gather {
 }  // namespace
 
 void verdictsAvx2(const WindowArrays& w, const std::uint16_t* c0, const std::uint16_t* c1, const std::uint16_t* c2,
-                  std::uint32_t count, bool cullBack, const sw::Viewport& vp, int rowLo, int rowHi, std::uint8_t* verdict,
+                  std::uint32_t count, bool cullBack, const raster::Viewport& vp, int rowLo, int rowHi, std::uint8_t* verdict,
                   const SmallTriangles& out) {
     verdictsBody(Gather{w}, c0, c1, c2, count, cullBack, vp, rowLo, rowHi, verdict, out);
 }
@@ -183,10 +183,10 @@ bool cpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_suppo
 namespace frugal::occlusion {
 // Not an x86-64 build: the scalar loops run.
 bool cpuHasAvx2() { return false; }
-void transformAvx2(const float*, const float*, const float*, const float*, std::uint32_t, const sw::Viewport&,
+void transformAvx2(const float*, const float*, const float*, const float*, std::uint32_t, const raster::Viewport&,
                    const WindowArrays&) {}
 void verdictsAvx2(const WindowArrays&, const std::uint16_t*, const std::uint16_t*, const std::uint16_t*, std::uint32_t,
-                  bool, const sw::Viewport&, int, int, std::uint8_t*, const SmallTriangles&) {}
+                  bool, const raster::Viewport&, int, int, std::uint8_t*, const SmallTriangles&) {}
 bool spanAvx2(float*, int, int, float, float, float, float, bool, bool) { return true; }
 bool narrowAvx2(float*, int, int, int, int, int, const std::int32_t*, const std::int32_t*, const std::int32_t*, float,
                 float, float, float, float, bool, bool, std::uint32_t* columns) {

@@ -56,7 +56,7 @@ struct Permute {
 }  // namespace
 
 void verdictsAvx512(const WindowArrays& w, const std::uint16_t* c0, const std::uint16_t* c1, const std::uint16_t* c2,
-                    std::uint32_t count, bool cullBack, const sw::Viewport& vp, int rowLo, int rowHi,
+                    std::uint32_t count, bool cullBack, const raster::Viewport& vp, int rowLo, int rowHi,
                     std::uint8_t* verdict, const SmallTriangles& out) {
     verdictsBody(Permute{w}, c0, c1, c2, count, cullBack, vp, rowLo, rowHi, verdict, out);
 }
@@ -78,7 +78,7 @@ namespace frugal::occlusion {
 // Not an x86-64 build: the scalar loops run.
 bool cpuHasAvx512() { return false; }
 void verdictsAvx512(const WindowArrays&, const std::uint16_t*, const std::uint16_t*, const std::uint16_t*,
-                    std::uint32_t, bool, const sw::Viewport&, int, int, std::uint8_t*, const SmallTriangles&) {}
+                    std::uint32_t, bool, const raster::Viewport&, int, int, std::uint8_t*, const SmallTriangles&) {}
 }  // namespace frugal::occlusion
 
 #endif

@@ -7,12 +7,12 @@
 #include <cstdint>
 #include <limits>
 
-#include "software/Rasterizer.h"
+#include "raster/Rasterizer.h"
 
 namespace frugal::occlusion {
 
 // A fixed-point coordinate that setup cannot use: the vertex is clipped by the draw (its clip mask
-// is not 0), or its window position is not representable (sw::fixedPosition is false). A triangle
+// is not 0), or its window position is not representable (raster::fixedPosition is false). A triangle
 // with such a corner is kept and hides nothing. Real coordinates are within ±2^26.
 inline constexpr std::int32_t kUnfixed = std::numeric_limits<std::int32_t>::min();
 
@@ -71,7 +71,7 @@ inline constexpr std::int32_t kQuickExtent = 1 << 12;
 // ⌊a / b⌋ for b > 0.
 inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-// Where one edge of a triangle (sw::Edge: a pixel is inside when k − dx·px + dy·py ≥ 0) bounds the
+// Where one edge of a triangle (raster::Edge: a pixel is inside when k − dx·px + dy·py ≥ 0) bounds the
 // covered pixels of successive rows, with no division a row: inside is dx·px ≤ r = k + dy·py, so
 // px ≤ ⌊r / dx⌋ for dx > 0, px ≥ −⌊r / −dx⌋ for dx < 0, and every pixel or none (r ≥ 0) for
 // dx = 0. The quotient is stepped exactly from row to row: r grows by dy, the quotient by
@@ -81,7 +81,7 @@ struct EdgeRows {
     std::int64_t d = 0, q = 0, rem = 0, dq = 0, dr = 0;  // |dx|; ⌊r / d⌋ = q, r − q·d = rem; the steps
     int sign = 0;                     // +1: px ≤ q; −1: px ≥ −q; 0: dx = 0
 
-    EdgeRows(const sw::Edge& e, std::int64_t py)
+    EdgeRows(const raster::Edge& e, std::int64_t py)
         : r(e.k + std::int64_t(e.dy) * py), dy(e.dy), sign(e.dx > 0 ? 1 : e.dx < 0 ? -1 : 0) {
         if (sign == 0) return;
         d = e.dx > 0 ? std::int64_t(e.dx) : -std::int64_t(e.dx);
@@ -113,13 +113,13 @@ bool cpuHasAvx2();
 // [0, count) rounded up to a multiple of 8: `px`, `py`, `pz` and every array of `out` must hold
 // that many. `m` is column-major.
 void transformAvx2(const float* m, const float* px, const float* py, const float* pz, std::uint32_t count,
-                   const sw::Viewport& viewport, const WindowArrays& out);
+                   const raster::Viewport& viewport, const WindowArrays& out);
 
 // The verdict of triangles [0, count) (rounded up to a multiple of 8; `c0`, `c1`, `c2` hold their
 // corners' indices into `window`, every one valid) on pixel rows [rowLo, rowHi] of `viewport`, and
 // what `small` needs of the kSmall ones (its arrays hold `count` rounded up).
 void verdictsAvx2(const WindowArrays& window, const std::uint16_t* c0, const std::uint16_t* c1, const std::uint16_t* c2,
-                  std::uint32_t count, bool cullBack, const sw::Viewport& viewport, int rowLo, int rowHi,
+                  std::uint32_t count, bool cullBack, const raster::Viewport& viewport, int rowLo, int rowHi,
                   std::uint8_t* verdict, const SmallTriangles& small);
 
 // verdictsAvx2's verdicts and outputs, bit for bit, with each corner's attributes looked up by
@@ -129,7 +129,7 @@ void verdictsAvx2(const WindowArrays& window, const std::uint16_t* c0, const std
 inline constexpr std::uint32_t kLookupVertices = 64;
 bool cpuHasAvx512();
 void verdictsAvx512(const WindowArrays& window, const std::uint16_t* c0, const std::uint16_t* c1,
-                    const std::uint16_t* c2, std::uint32_t count, bool cullBack, const sw::Viewport& viewport,
+                    const std::uint16_t* c2, std::uint32_t count, bool cullBack, const raster::Viewport& viewport,
                     int rowLo, int rowHi, std::uint8_t* verdict, const SmallTriangles& small);
 
 // One row of a triangle's covered pixels [xa, xb] (xa ≤ xb) against the buffer `row` (far-ness;
@@ -141,7 +141,7 @@ bool spanAvx2(float* row, int xa, int xb, float zRow, float dzdx, float slack, f
 
 // A triangle at most eight pixels wide (x1 − x0 < 8) on rows [y0, y1] of the buffer `depth` (rows of
 // `width`; Occlusion.cpp triangleMaySeen): pixel (px, py) of the rectangle is covered when the three
-// edges e[i] − dx[i]·(px − x0) + dy[i]·(py − y0) are ≥ 0 (sw::Edge at (x0, y0)); every such value,
+// edges e[i] − dx[i]·(px − x0) + dy[i]·(py − y0) are ≥ 0 (raster::Edge at (x0, y0)); every such value,
 // at the corners of columns x0 … x0 + 7 and rows y0 … y1 (and so between them), lies within ±2^30.
 // Each covered row is spanAvx2 of its covered pixels, the plane at row py being z0 + dzdy·py:
 // whether some pixel may be seen, and, when `occludes`, each lowered. `columns`: bit i when some row

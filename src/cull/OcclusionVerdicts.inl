@@ -31,7 +31,7 @@ inline void depthBounds(__m256 z, __m256 slack, __m256 up, bool halfZ, __m256& l
 // verdictsAvx2's work (OcclusionKernels.h), with the corners' attributes from `fetch`.
 template <class Fetch>
 inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std::uint16_t* c1,
-                         const std::uint16_t* c2, std::uint32_t count, bool cullBack, const sw::Viewport& vp,
+                         const std::uint16_t* c2, std::uint32_t count, bool cullBack, const raster::Viewport& vp,
                          int rowLo, int rowHi, std::uint8_t* verdict, const SmallTriangles& out) {
     const int width = vp.width;
     const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
@@ -122,7 +122,7 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
             empty, _mm256_andnot_si256(_mm256_or_si256(small, _mm256_and_si256(medium, culled)), _mm256_set1_epi32(-1)));
         __m256i v = _mm256_and_si256(large, one);
         if (_mm256_movemask_epi8(_mm256_andnot_si256(keep, _mm256_or_si256(smallSeen, mediumLive))) != 0) {
-            // The depth plane in setup order (sw::setupDepthPlane: a front face swaps v0 and v1), every
+            // The depth plane in setup order (raster::setupDepthPlane: a front face swaps v0 and v1), every
             // operation rounded to float.
             const __m256i j0 = _mm256_blendv_epi8(i0, i1, front), j1 = _mm256_blendv_epi8(i1, i0, front);
             const __m256 x0f = fetch.x(j0), y0f = fetch.y(j0), z0f = fetch.z(j0);
@@ -143,7 +143,7 @@ inline void verdictsBody(const Fetch& fetch, const std::uint16_t* c0, const std:
                                               _mm256_mul_ps(_mm256_and_ps(dzdy, absMask), targetH));
             const __m256 slack = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(slackScale, size), slackAdd), slackGrow);
             const __m256i steep = _mm256_castps_si256(_mm256_cmp_ps(slack, fone, _CMP_NLT_UQ));
-            // The draw module's cull stage on the given order (sw::drawModuleKeepsFront): a sliver it
+            // The draw module's cull stage on the given order (raster::drawModuleKeepsFront): a sliver it
             // may drop hides nothing.
             // (v0 and v1 in the given order: swapped back where setup swapped them.)
             const __m256 swapped = _mm256_castsi256_ps(front);

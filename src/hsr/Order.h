@@ -7,7 +7,7 @@
 // rasterizers):
 // - x, y: the inclusive integer pixel box [x0, x1] × [y0, y1] (window coordinates, origin
 //   bottom-left, clipped to the target) that contains every pixel the triangle can cover. A pixel is
-//   covered only if its centre lies inside the triangle (src/software/Rasterizer.h, llvmpipe), so
+//   covered only if its centre lies inside the triangle (src/raster/Rasterizer.h, llvmpipe), so
 //   inside the box of the projected vertices; one pixel more on each side plus 1e-5 of the
 //   coordinate's magnitude absorbs snapping and the float differences of a vertex shader, as in
 //   src/reuse/Extents.h. Why pixels and not the paper's vertex coordinates: the paper's test

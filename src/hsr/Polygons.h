@@ -13,7 +13,7 @@
 //
 // Why that matters (hsr/Plan.h): a polygon drawn without a depth test must draw each of its pixels
 // once, whatever the order of its triangles. Triangles that tile a convex region share every inner
-// edge, so the rasterizers' fill rule (src/software/Rasterizer.h) gives each pixel centre to exactly
+// edge, so the rasterizers' fill rule (src/raster/Rasterizer.h) gives each pixel centre to exactly
 // one of them; an overlapping or folded group would not.
 #pragma once
 

@@ -127,7 +127,7 @@ public:
     virtual std::string name() const = 0;      // "egl-surfaceless", "osmesa", "software", ...
     virtual std::string renderer() const = 0;  // GL_RENDERER / GL_VERSION, or a description
 
-    // Whether it rasterizes by llvmpipe's rules (software/Rasterizer.h): llvmpipe itself, or the
+    // Whether it rasterizes by llvmpipe's rules (raster/Rasterizer.h): llvmpipe itself, or the
     // software backend. Plans that depend on which pixels a triangle covers (occlusion culling's
     // per-triangle tests) are exact only then.
     bool followsLlvmpipeRules() const {

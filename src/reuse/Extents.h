@@ -3,7 +3,7 @@
 //
 // Why a rectangle is enough, and when it is the whole screen:
 // - A pixel (px, py) is covered only if its centre (px + 0.5, py + 0.5) lies inside the triangle
-//   (src/software/Rasterizer.h, llvmpipe's rules), so inside the bounding box [minX, maxX] ×
+//   (src/raster/Rasterizer.h, llvmpipe's rules), so inside the bounding box [minX, maxX] ×
 //   [minY, maxY] of the projected vertices: px ∈ [floor(minX), ceil(maxX)). One more pixel on each
 //   side absorbs the sub-pixel snapping and the last bits by which a vertex shader's float
 //   arithmetic (FMA, another association) may differ from ours; a further 1e-5 of the coordinate's

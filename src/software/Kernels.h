@@ -10,10 +10,13 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "software/Rasterizer.h"
+#include "raster/Rasterizer.h"
 #include "software/Shading.h"
 
 namespace frugal::sw {
+
+// The backend is written in the rules' own terms (Viewport, Triangle, SetupVertex, ...).
+using namespace raster;
 
 // Vertex stage input for vertices [begin, end) of one draw.
 struct VertexJob {
@@ -65,7 +68,6 @@ struct Kernels {
 // The kernels for this CPU: AVX2 when it has AVX2 and FMA and `allowSimd`, else the portable ones,
 // fused when the CPU has FMA.
 const Kernels& selectKernels(bool allowSimd);
-bool cpuHasFma();
 
 namespace avx2 {
 extern const Kernels kKernels;

@@ -39,14 +39,6 @@ const Kernels kFused = fused::kernelTable("generic-fma");
 const Kernels kUnfused = unfused::kernelTable("generic");
 }  // namespace generic
 
-bool cpuHasFma() {
-#if defined(__x86_64__) || defined(__i386__)
-    return __builtin_cpu_supports("fma");
-#else
-    return false;
-#endif
-}
-
 const Kernels& selectKernels(bool allowSimd) {
 #if defined(__x86_64__)
     if (allowSimd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return avx2::kKernels;

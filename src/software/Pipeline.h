@@ -14,10 +14,10 @@
 
 #include "render/Backend.h"
 #include "software/Kernels.h"
-#include "software/Rasterizer.h"
+#include "raster/Rasterizer.h"
 #include "software/InterpRaster.h"
 #include "software/Shading.h"
-#include "software/ThreadPool.h"
+#include "base/ThreadPool.h"
 #include "software/span/Interp.h"
 
 namespace frugal::sw {

@@ -9,7 +9,7 @@
 // Arithmetic is IEEE binary32 in round-to-nearest-even, lane by lane, with no contraction of a·b + c
 // into an FMA unless `fma` is called: every software .cpp says `#pragma GCC optimize("fp-contract=off")`,
 // because GCC contracts by default in C++ whenever FMA instructions are available, and llvmpipe's
-// results depend on which operations are fused and which are not (src/software/Rasterizer.h).
+// results depend on which operations are fused and which are not (src/raster/Rasterizer.h).
 //
 // Integer lanes are int32 with wrap-around; comparisons give all-ones/all-zero lane masks.
 //

@@ -1,5 +1,5 @@
 // The occlusion pass's quick test (cull/OcclusionKernels.h: AVX2 with gathers, and with AVX-512
-// lookups where the CPU has them) against setup's own scalar steps (software/Rasterizer.h), lane by
+// lookups where the CPU has them) against setup's own scalar steps (raster/Rasterizer.h), lane by
 // lane, on random triangles of a few pixels: the verdict, the pixels covered, whether the triangle
 // occludes, and the depth bounds at each pixel, bit for bit.
 // The plans the two give are compared in tests/cullrender/OcclusionTest.cpp; this test also
@@ -20,7 +20,7 @@ namespace frugal::occlusion {
 namespace {
 
 using Kernel = void (*)(const WindowArrays&, const std::uint16_t*, const std::uint16_t*, const std::uint16_t*,
-                        std::uint32_t, bool, const sw::Viewport&, int, int, std::uint8_t*, const SmallTriangles&);
+                        std::uint32_t, bool, const raster::Viewport&, int, int, std::uint8_t*, const SmallTriangles&);
 struct NamedKernel {
     const char* name;
     Kernel kernel;
@@ -42,15 +42,15 @@ struct Expected {
     // kMedium: the last pixel, the plane (z0, dzdx, dzdy, slack) and setup's edges.
     std::int64_t x1 = 0, y1 = 0;
     float plane[4] = {};
-    sw::Triangle edges{};
+    raster::Triangle edges{};
 };
 
 // The pass's scalar rules for one triangle whose corners are all representable (Occlusion.cpp
 // triangleMaySeen), on rows [rowLo, rowHi] of the target.
-Expected reference(const float (*v)[3], bool cullBack, const sw::Viewport& vp, int rowLo, int rowHi) {
+Expected reference(const float (*v)[3], bool cullBack, const raster::Viewport& vp, int rowLo, int rowHi) {
     Expected e;
     std::int64_t X[3], Y[3];
-    for (int i = 0; i < 3; ++i) EXPECT_TRUE(sw::fixedPosition(v[i][0], v[i][1], &X[i], &Y[i]));
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(raster::fixedPosition(v[i][0], v[i][1], &X[i], &Y[i]));
     const std::int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});
     const std::int64_t minY = std::min({Y[0], Y[1], Y[2]}), maxY = std::max({Y[0], Y[1], Y[2]});
     // Setup's bounds first (no pixel centre: dropped), then the size the quick test decides.
@@ -63,17 +63,17 @@ Expected reference(const float (*v)[3], bool cullBack, const sw::Viewport& vp, i
         e.verdict = kTest;
         return e;
     }
-    sw::Triangle t{};
-    const sw::SetupOrder order = sw::setupEdges(X, Y, cullBack, vp, &t);
-    if (order == sw::SetupOrder::Dropped) return e;
+    raster::Triangle t{};
+    const raster::SetupOrder order = raster::setupEdges(X, Y, cullBack, vp, &t);
+    if (order == raster::SetupOrder::Dropped) return e;
     if (bx1 - bx0 > 1 || by1 - by0 > 1) {  // medium: the plane, unless too steep (then kTest)
         EXPECT_EQ(t.x0, bx0);
         EXPECT_EQ(t.x1, bx1);
-        sw::SetupVertex s[3]{};
+        raster::SetupVertex s[3]{};
         for (int i = 0; i < 3; ++i) s[i].x = v[i][0], s[i].y = v[i][1], s[i].z = v[i][2], s[i].oow = 1.0f;
-        e.occludes = !cullBack || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
-        if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
-        sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+        e.occludes = !cullBack || raster::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        if (order == raster::SetupOrder::Swapped) std::swap(s[0], s[1]);
+        raster::setupDepthPlane(&s[0], &s[1], &s[2], &t);
         const float slack = depthSlack(t.z0, t.dzdx, t.dzdy, float(vp.width), float(vp.height));
         e.verdict = slack < 1.0f ? kMedium : kTest;
         e.x0 = bx0, e.y0 = by0, e.x1 = bx1, e.y1 = by1;
@@ -85,16 +85,16 @@ Expected reference(const float (*v)[3], bool cullBack, const sw::Viewport& vp, i
         const std::int64_t px = bx0 + (k & 1u), py = by0 + (k >> 1);
         if (px > bx1 || py > by1) continue;
         std::int64_t m = 0;
-        for (const sw::Edge& edge : t.e) m |= edge.k - std::int64_t(edge.dx) * px + std::int64_t(edge.dy) * py;
+        for (const raster::Edge& edge : t.e) m |= edge.k - std::int64_t(edge.dx) * px + std::int64_t(edge.dy) * py;
         if (m >= 0) e.covered |= 1u << k;
     }
     if (e.covered == 0) return e;
     e.x0 = bx0, e.y0 = by0;
-    sw::SetupVertex s[3]{};
+    raster::SetupVertex s[3]{};
     for (int i = 0; i < 3; ++i) s[i].x = v[i][0], s[i].y = v[i][1], s[i].z = v[i][2], s[i].oow = 1.0f;
-    e.occludes = !cullBack || sw::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
-    if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
-    sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+    e.occludes = !cullBack || raster::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+    if (order == raster::SetupOrder::Swapped) std::swap(s[0], s[1]);
+    raster::setupDepthPlane(&s[0], &s[1], &s[2], &t);
     const float slack = depthSlack(t.z0, t.dzdx, t.dzdy, float(vp.width), float(vp.height));
     if (!(slack < 1.0f)) {
         e.verdict = kKeep;
@@ -123,7 +123,7 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
         std::size_t small = 0, dropped = 0, tested = 0, kept = 0, medium = 0;
         for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
-            const sw::Viewport vp = sw::makeViewport(64, 48, format);
+            const raster::Viewport vp = raster::makeViewport(64, 48, format);
             for (int batch = 0; batch < 4000; ++batch) {
                 // Eight triangles, three vertices each: a corner and two more within `size` pixels,
                 // sometimes snapped to the pixel grid or its centres, depths close together or steep.
@@ -146,7 +146,7 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                             x[i] = std::round(x[i] * 2.0f) * 0.5f, y[i] = std::round(y[i] * 2.0f) * 0.5f;
                         z[i] = batch % 7 == 2 ? unit(rng) : cz + 1e-3f * unit(rng);
                         std::int64_t X = 0, Y = 0;
-                        ASSERT_TRUE(sw::fixedPosition(x[i], y[i], &X, &Y));
+                        ASSERT_TRUE(raster::fixedPosition(x[i], y[i], &X, &Y));
                         fx[i] = std::int32_t(X), fy[i] = std::int32_t(Y);
                     }
                 }
@@ -154,7 +154,7 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                     const int from = place[std::size_t(i) % 24];
                     x[place[i]] = x[from] + 0.25f, y[place[i]] = y[from] - 0.5f, z[place[i]] = 1.0f - z[from];
                     std::int64_t X = 0, Y = 0;
-                    ASSERT_TRUE(sw::fixedPosition(x[place[i]], y[place[i]], &X, &Y));
+                    ASSERT_TRUE(raster::fixedPosition(x[place[i]], y[place[i]], &X, &Y));
                     fx[place[i]] = std::int32_t(X), fy[place[i]] = std::int32_t(Y);
                 }
                 std::uint16_t c0[8], c1[8], c2[8];
@@ -187,7 +187,7 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
                         for (std::int64_t py = e.y0; py <= e.y1; ++py)
                             for (std::int64_t px = e.x0; px <= e.x1; ++px)
                                 for (int k = 0; k < 3; ++k) {
-                                    const sw::Edge& edgeK = e.edges.e[k];
+                                    const raster::Edge& edgeK = e.edges.e[k];
                                     const bool inside = edgeK.k - std::int64_t(edgeK.dx) * px + std::int64_t(edgeK.dy) * py >= 0;
                                     const std::int64_t got = std::int64_t(edge[k * 8 + t]) -
                                                              std::int64_t(edge[(3 + k) * 8 + t]) * (px - e.x0) +
@@ -221,13 +221,13 @@ TEST(OcclusionKernelsTest, TheQuickTestAgreesWithSetupLaneByLane) {
 
 TEST(OcclusionKernelsTest, ACornerThePassCannotUseKeepsTheTriangle) {
     if (!cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2 and FMA: only the scalar loops run";
-    const sw::Viewport vp = sw::makeViewport(64, 48, DepthFormat::D24);
+    const raster::Viewport vp = raster::makeViewport(64, 48, DepthFormat::D24);
     float x[64] = {}, y[64] = {}, z[64] = {};
     std::int32_t fx[64] = {}, fy[64] = {};
     for (int i = 0; i < 24; ++i) {
         x[i] = 10.0f + float(i % 3), y[i] = 10.0f + float(i % 3 == 1), z[i] = 0.5f;
         std::int64_t X = 0, Y = 0;
-        ASSERT_TRUE(sw::fixedPosition(x[i], y[i], &X, &Y));
+        ASSERT_TRUE(raster::fixedPosition(x[i], y[i], &X, &Y));
         fx[i] = std::int32_t(X), fy[i] = std::int32_t(Y);
     }
     for (int t = 0; t < 8; ++t) (t % 2 ? fx : fy)[3 * t + t % 3] = kUnfixed;  // one corner of each
@@ -254,7 +254,7 @@ TEST(OcclusionKernelsTest, EdgeRowsStepsTheBoundsThatDividingGives) {
     };
     std::size_t upper = 0, lower = 0, flat = 0;
     for (int n = 0; n < 20000; ++n) {
-        sw::Edge e{};
+        raster::Edge e{};
         const std::int64_t span = n % 3 == 0 ? 300 : n % 3 == 1 ? 70000 : (std::int64_t(1) << 26);
         e.dx = std::int32_t(n % 11 == 0 ? 0 : pick(-span, span));
         e.dy = std::int32_t(n % 13 == 0 ? 0 : pick(-span, span));
@@ -300,7 +300,7 @@ TEST(OcclusionKernelsTest, TheNarrowRasterizerEqualsThePixelByPixelOne) {
     constexpr int kWidth = 37, kHeight = 29;  // not a multiple of 8: the last columns end a row
     std::size_t seenCount = 0, hiddenCount = 0, empty = 0;
     for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
-        const sw::Viewport vp = sw::makeViewport(kWidth, kHeight, format);
+        const raster::Viewport vp = raster::makeViewport(kWidth, kHeight, format);
         const bool halfZ = format == DepthFormat::D32F;
         for (int n = 0; n < 20000; ++n) {
             // A corner anywhere (past the right edge too), two more within 8 pixels across and
@@ -313,15 +313,15 @@ TEST(OcclusionKernelsTest, TheNarrowRasterizerEqualsThePixelByPixelOne) {
                 v[c][2] = n % 5 == 0 ? unit(rng) : cz + 1e-3f * unit(rng);
             }
             std::int64_t X[3], Y[3];
-            for (int c = 0; c < 3; ++c) ASSERT_TRUE(sw::fixedPosition(v[c][0], v[c][1], &X[c], &Y[c]));
-            sw::Triangle t{};
+            for (int c = 0; c < 3; ++c) ASSERT_TRUE(raster::fixedPosition(v[c][0], v[c][1], &X[c], &Y[c]));
+            raster::Triangle t{};
             const bool cullBack = n % 2 == 0;
-            const sw::SetupOrder order = sw::setupEdges(X, Y, cullBack, vp, &t);
-            if (order == sw::SetupOrder::Dropped || t.x1 - t.x0 >= 8 || t.x0 > t.x1) continue;
-            sw::SetupVertex s[3]{};
+            const raster::SetupOrder order = raster::setupEdges(X, Y, cullBack, vp, &t);
+            if (order == raster::SetupOrder::Dropped || t.x1 - t.x0 >= 8 || t.x0 > t.x1) continue;
+            raster::SetupVertex s[3]{};
             for (int c = 0; c < 3; ++c) s[c].x = v[c][0], s[c].y = v[c][1], s[c].z = v[c][2], s[c].oow = 1.0f;
-            if (order == sw::SetupOrder::Swapped) std::swap(s[0], s[1]);
-            sw::setupDepthPlane(&s[0], &s[1], &s[2], &t);
+            if (order == raster::SetupOrder::Swapped) std::swap(s[0], s[1]);
+            raster::setupDepthPlane(&s[0], &s[1], &s[2], &t);
             const float slack = depthSlack(t.z0, t.dzdx, t.dzdy, float(kWidth), float(kHeight));
             if (!(slack < 1.0f)) continue;
             const float up = 2.0f / 16777216.0f;
@@ -345,7 +345,7 @@ TEST(OcclusionKernelsTest, TheNarrowRasterizerEqualsThePixelByPixelOne) {
                 const float zRow = t.z0 + t.dzdy * float(py);
                 for (int px = t.x0; px <= t.x1; ++px) {
                     std::int64_t m = 0;
-                    for (const sw::Edge& edge : t.e) m |= edge.k - std::int64_t(edge.dx) * px + std::int64_t(edge.dy) * py;
+                    for (const raster::Edge& edge : t.e) m |= edge.k - std::int64_t(edge.dx) * px + std::int64_t(edge.dy) * py;
                     if (m < 0) continue;
                     columns |= 1u << (px - t.x0);
                     const float z = zRow + t.dzdx * float(px);

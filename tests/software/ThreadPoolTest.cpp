@@ -1,4 +1,4 @@
-// The fork-join pool of the software backend and the occlusion pass (software/ThreadPool.h): every
+// The fork-join pool of the software backend and the occlusion pass (base/ThreadPool.h): every
 // index runs exactly once per run(), run() returns only when all are done, and the spinning and
 // warm() never lose a job, run one twice, or keep the pool from shutting down.
 #include <atomic>
@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "software/ThreadPool.h"
+#include "base/ThreadPool.h"
 
 namespace frugal::sw {
 namespace {

@@ -1,5 +1,5 @@
 // Triangle setup, clipping helpers and binning (see Rasterizer.h for the rules and their sources).
-#include "software/Rasterizer.h"
+#include "raster/Rasterizer.h"
 
 #include <algorithm>
 #include <cassert>
@@ -14,7 +14,15 @@
 #pragma GCC optimize("fp-contract=off")
 #endif
 
-namespace frugal::sw {
+namespace frugal::raster {
+
+bool cpuHasFma() {
+#if defined(__x86_64__) || defined(__i386__)
+    return __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
 
 Viewport makeViewport(int width, int height, DepthFormat format) {
     Viewport v;
@@ -130,4 +138,4 @@ void Segment::close(int tileCount) {
     closed = true;
 }
 
-}  // namespace frugal::sw
+}  // namespace frugal::raster

@@ -1,4 +1,4 @@
-#include "software/ThreadPool.h"
+#include "base/ThreadPool.h"
 
 #include <cassert>
 
@@ -6,7 +6,7 @@
 #include <immintrin.h>
 #endif
 
-namespace frugal::sw {
+namespace frugal {
 
 namespace {
 
@@ -149,4 +149,4 @@ void ThreadPool::work(int worker) {
     }
 }
 
-}  // namespace frugal::sw
+}  // namespace frugal

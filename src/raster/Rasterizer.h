@@ -1,6 +1,8 @@
-// The software rasterizer: vertex stage, clipping, triangle setup, binning into tiles, and the
-// per-tile coverage + depth pass. Shading is separate (src/software/Shading.h); the two meet in a
-// per-tile "winner" map: which triangle last passed the depth test at each pixel.
+// llvmpipe's rasterization rules, as one module (raster) that the software backend (src/software/)
+// and the occlusion pass (src/cull/Occlusion.cpp) both build on: vertex stage arithmetic, clipping,
+// triangle setup, the fill rule and the depth plane. The software backend adds binning into tiles
+// and the per-tile coverage + depth pass; shading is separate (src/software/Shading.h), and the two
+// meet in a per-tile "winner" map: which triangle last passed the depth test at each pixel.
 //
 // What is reproduced, and from where (Mesa 22.3.6, llvmpipe on x86-64). This header is the
 // project's statement of the rasterization rules it matches; every rule below is checked against
@@ -112,7 +114,7 @@
 
 #include <frugal/Image.h>
 
-namespace frugal::sw {
+namespace frugal::raster {
 
 inline constexpr int kTileLog2 = 6;
 inline constexpr int kTileSize = 1 << kTileLog2;  // 64 × 64 pixels, llvmpipe's tile size
@@ -150,6 +152,9 @@ struct Viewport {
 };
 
 Viewport makeViewport(int width, int height, DepthFormat format = DepthFormat::D24);
+
+// Whether this CPU has FMA, and so whether llvmpipe's JIT fuses the viewport's multiply-adds (1.).
+bool cpuHasFma();
 
 // Window coordinates of a clip-space vertex made by the clipper: unfused, as the C code of
 // draw_pipe_clip.c interp() computes them.
@@ -372,4 +377,4 @@ void clipTriangle(const glm::vec4* const clip[3], const SetupVertex* const in[3]
     for (int i = 2; i < n; ++i) emit(inList[i - 1].vertex, inList[i].vertex, inList[0].vertex);
 }
 
-}  // namespace frugal::sw
+}  // namespace frugal::raster

@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-namespace frugal::sw {
+namespace frugal {
 
 class ThreadPool {
 public:
@@ -65,4 +65,4 @@ private:
     std::size_t warmth_ = 0;  // bumped per warm(), under the mutex: wakes the sleepers
 };
 
-}  // namespace frugal::sw
+}  // namespace frugal
