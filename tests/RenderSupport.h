@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 
 namespace frugal::test {
 

@@ -14,8 +14,8 @@
 
 #include "cull/Culling.h"
 #include "lab/ReuseCheck.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "reuse/Reuse.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"

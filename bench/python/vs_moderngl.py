@@ -6,7 +6,7 @@ matrices (those of a frugal frame through frugal.Camera.automatic()), the same t
 same order (scene.mesh(0) gives them in frugal's drawing order), no face culling (an OBJ is
 double-sided in frugal unless loaded with cull_backfaces=True), and the same lighting: frugal's
 shaders/mesh.frag without texture or vertex colours, base colour white, and its default light
-(src/render/Backend.h, `Lighting`). Per frame, timed with time.perf_counter:
+(src/pipeline/Backend.h, `Lighting`). Per frame, timed with time.perf_counter:
 
   frugal    f = r.render(cam); f.color; f.depth
             (colour is a view of the frame's memory; depth is converted from the 24-bit values to
@@ -39,7 +39,7 @@ import benchutil
 
 GOAL = 1.0  # frugal / moderngl, medians
 
-# frugal's default light (src/render/Backend.h, `Lighting`), in world space.
+# frugal's default light (src/pipeline/Backend.h, `Lighting`), in world space.
 TO_LIGHT = (np.array([0.35, 0.8, 0.5]) / np.linalg.norm([0.35, 0.8, 0.5])).astype(np.float32)
 AMBIENT, DIFFUSE = 0.3, 0.7
 

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "base/Format.h"
-#include "render/Backend.h"
-#include "render/Camera.h"
-#include "render/Frame.h"
-#include "render/Plan.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Camera.h"
+#include "pipeline/Frame.h"
+#include "pipeline/Plan.h"
 #include "app/Flags.h"
 #include "cull/Views.h"
 #include "renderer/Backends.h"

@@ -14,7 +14,7 @@
 #include "app/Commands.h"
 #include "io/ImageIO.h"
 #include "io/Interrupt.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/SceneRenderer.h"
 #include "renderer/Oracle.h"
 #include "renderer/StateOrder.h"
 #include "renderer/StatsJson.h"

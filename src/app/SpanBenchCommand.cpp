@@ -1,4 +1,4 @@
-// `frugal span-bench`: the bit-level model of paper 001's shading engine (src/software/span/):
+// `frugal span-bench`: the bit-level model of paper 001's shading engine (src/span/):
 // Fig. 11 reproduced, the schemes it rules out, the error tables of midpoint subdivision, of the
 // same tree truncating at each level, of a DDA and of double evaluation against the exact line, and
 // the model's spans per second beside the paper's 59,000; with --scene, the software backend's

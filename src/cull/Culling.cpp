@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 #include "scene/MeshBuild.h"
 
 namespace frugal {

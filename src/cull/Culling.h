@@ -43,8 +43,8 @@
 
 #include "cull/Occlusion.h"
 #include "cull/SphereMap.h"
-#include "render/Camera.h"
-#include "render/Plan.h"
+#include "pipeline/Camera.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 

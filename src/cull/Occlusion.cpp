@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "cull/OcclusionKernels.h"
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 #include "software/Kernels.h"
 #include "raster/Rasterizer.h"
 #include "base/ThreadPool.h"

@@ -49,8 +49,8 @@
 #include <frugal/Settings.h>
 
 #include "cull/SphereMap.h"
-#include "render/Backend.h"
-#include "render/Camera.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Camera.h"
 
 namespace frugal {
 

@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 
 namespace frugal {
 

@@ -8,7 +8,7 @@
 #include <frugal/Result.h>
 
 #include "gl/GlContext.h"
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -23,8 +23,8 @@
 #include "gl/GlApi.h"
 #include "gl/GlContext.h"
 #include "gl/GlStateCache.h"
-#include "render/Backend.h"
-#include "render/Handles.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Handles.h"
 
 namespace frugal::gl {
 

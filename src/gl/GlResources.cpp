@@ -12,7 +12,7 @@
 
 #include "gl/GlApi.h"
 #include "gl/GlBackendImpl.h"
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 
 namespace frugal::gl {
 

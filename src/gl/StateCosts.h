@@ -38,7 +38,7 @@
 
 #include <frugal/Result.h>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -50,8 +50,8 @@
 
 #include <frugal/Scene.h>
 
-#include "render/Backend.h"
-#include "render/Plan.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Plan.h"
 
 namespace frugal::hsr {
 

@@ -70,8 +70,8 @@
 #include <frugal/Stats.h>
 
 #include "hsr/Polygons.h"
-#include "render/Backend.h"
-#include "render/Plan.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Plan.h"
 
 namespace frugal::hsr {
 

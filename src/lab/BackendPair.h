@@ -14,7 +14,7 @@
 #include <frugal/Settings.h>
 
 #include "hsr/Plan.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 #include "renderer/Stage.h"
 #include "renderer/StateOrder.h"
 

@@ -14,7 +14,7 @@
 #include "cull/CullAhead.h"
 #include "cull/Culling.h"
 #include "hsr/Plan.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 #include "io/ImageIO.h"
 #include "renderer/Oracle.h"
 #include "renderer/Stage.h"

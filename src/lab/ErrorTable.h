@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "software/span/Interp.h"
+#include "span/Interp.h"
 
 namespace frugal::span {
 

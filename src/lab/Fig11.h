@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "software/span/Engine.h"
+#include "span/Engine.h"
 
 namespace frugal::span {
 

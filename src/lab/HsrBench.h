@@ -15,7 +15,7 @@
 #include <frugal/Settings.h>
 
 #include "lab/HsrReport.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {

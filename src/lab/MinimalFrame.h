@@ -23,7 +23,7 @@
 #include <frugal/Scene.h>
 
 #include "gl/GlContext.h"
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -13,7 +13,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 
 namespace frugal {
 

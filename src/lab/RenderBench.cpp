@@ -15,8 +15,8 @@
 #include "hsr/Plan.h"
 #include "lab/MinimalFrame.h"
 #include "renderer/Stage.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "renderer/StateOrder.h"
 #include "report/ImageCompare.h"
 

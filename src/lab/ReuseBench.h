@@ -23,7 +23,7 @@
 #include <frugal/Settings.h>
 
 #include "lab/ReuseReport.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 
 namespace frugal {
 

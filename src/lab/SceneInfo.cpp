@@ -13,7 +13,7 @@
 
 #include "base/Format.h"
 #include "gl/StateCosts.h"
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 #include "renderer/Backends.h"
 
 namespace frugal {

@@ -12,7 +12,7 @@
 #include <frugal/Renderer.h>
 
 #include "lab/MinimalFrame.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 #include "renderer/Backends.h"
 #include "renderer/Stage.h"
 

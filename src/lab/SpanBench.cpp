@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "lab/ReportText.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
 #include "software/SoftwareBackend.h"
 

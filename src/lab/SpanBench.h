@@ -1,5 +1,5 @@
 // `frugal span-bench`'s measurement: the bit-level model of paper 001's shading engine
-// (src/software/span/) — Fig. 11 under every scheme of fig11Schemes(), the error table of the
+// (src/span/) — Fig. 11 under every scheme of fig11Schemes(), the error table of the
 // interpolators against the exact line (lab/ErrorTable.h), the spans per second of the model beside
 // the paper's 59,000 — and, on whole scenes, the software backend's --interp modes against its exact
 // render: how span and dda depart from it, and how fast the slow path runs.

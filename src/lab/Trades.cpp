@@ -11,7 +11,7 @@
 
 #include "base/Format.h"
 #include "base/Stats.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 #include "report/ImageCompare.h"
 
 namespace frugal {

@@ -25,7 +25,7 @@
 #include "gl/GlContext.h"
 #include "io/ImageIO.h"
 #include "lab/MinimalFrame.h"
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 
 namespace frugal {
 

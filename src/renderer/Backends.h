@@ -12,7 +12,7 @@
 #include <frugal/Result.h>
 #include <frugal/Settings.h>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -9,7 +9,7 @@
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 
-#include "render/SceneRenderer.h"
+#include "pipeline/SceneRenderer.h"
 #include "report/VisibleSet.h"
 
 namespace frugal {

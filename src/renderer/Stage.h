@@ -12,8 +12,8 @@
 #include <frugal/Result.h>
 #include <frugal/Settings.h>
 
-#include "render/Backend.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Backend.h"
+#include "pipeline/SceneRenderer.h"
 
 namespace frugal {
 

@@ -13,7 +13,7 @@
 
 #include "gl/StateCosts.h"
 #include "order/Order.h"
-#include "render/Plan.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 

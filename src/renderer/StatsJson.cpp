@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 
 namespace frugal {
 

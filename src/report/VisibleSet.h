@@ -14,7 +14,7 @@
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 
-#include "render/Plan.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 

@@ -23,7 +23,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal::reuse {
 

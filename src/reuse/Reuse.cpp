@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 
 namespace frugal {
 

@@ -61,7 +61,7 @@
 
 #include <frugal/Settings.h>
 
-#include "render/Plan.h"
+#include "pipeline/Plan.h"
 #include "reuse/CellGrid.h"
 
 namespace frugal {

@@ -1,6 +1,6 @@
 // The slow path of the software rasterizer for SoftwareOptions::interp = Span or Dda (see
 // software/SoftwareBackend.h): coverage as Kernels.h raster() gives it, depth from paper 001's span
-// interpolator (software/span/Interp.h) instead of from the plane at every pixel. Exact never comes
+// interpolator (span/Interp.h) instead of from the plane at every pixel. Exact never comes
 // here: Pipeline::flush calls the kernels for it, so the default path is neither changed nor slowed.
 //
 // Per row of a triangle within a tile:
@@ -23,7 +23,7 @@
 
 #include "software/Kernels.h"
 #include "software/SoftwareBackend.h"
-#include "software/span/Interp.h"
+#include "span/Interp.h"
 
 namespace frugal::sw {
 

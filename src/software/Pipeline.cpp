@@ -7,7 +7,7 @@
 #include <iterator>
 #include <new>
 
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 
 #if !defined(__clang__)  // Clang: -ffp-contract=off (CMakeLists.txt)
 #pragma GCC optimize("fp-contract=off")

@@ -12,13 +12,13 @@
 #include <span>
 #include <vector>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 #include "software/Kernels.h"
 #include "raster/Rasterizer.h"
 #include "software/InterpRaster.h"
 #include "software/Shading.h"
 #include "base/ThreadPool.h"
-#include "software/span/Interp.h"
+#include "span/Interp.h"
 
 namespace frugal::sw {
 

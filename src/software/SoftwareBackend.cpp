@@ -14,8 +14,8 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
-#include "render/Handles.h"
-#include "render/IndexRanges.h"
+#include "pipeline/Handles.h"
+#include "pipeline/IndexRanges.h"
 #include "software/Pipeline.h"
 #include "software/Shading.h"
 

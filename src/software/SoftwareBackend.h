@@ -26,8 +26,8 @@
 #include <memory>
 #include <optional>
 
-#include "render/Backend.h"
-#include "software/span/Interp.h"
+#include "pipeline/Backend.h"
+#include "span/Interp.h"
 
 namespace frugal {
 

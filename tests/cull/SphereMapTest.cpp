@@ -18,7 +18,7 @@
 #include "TestSupport.h"
 #include "cull/SphereMap.h"
 #include "cull/Views.h"
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 #include "scene/MeshBuild.h"
 
 namespace frugal {

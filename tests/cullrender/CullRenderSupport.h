@@ -26,8 +26,8 @@
 
 #include "cull/Culling.h"
 #include "cull/Views.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "report/VisibleSet.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"

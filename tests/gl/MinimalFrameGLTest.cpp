@@ -16,8 +16,8 @@
 #include "gl/GlContext.h"
 #include "io/ImageIO.h"
 #include "lab/MinimalFrame.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
 
 namespace frugal {

@@ -10,8 +10,8 @@
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "io/ImageIO.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
 

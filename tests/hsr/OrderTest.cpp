@@ -16,8 +16,8 @@
 #include "TestSupport.h"
 #include "hsr/Flags.h"
 #include "hsr/Order.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
 #include "software/SoftwareBackend.h"
 

@@ -14,8 +14,8 @@
 #include "hsr/Flags.h"
 #include "hsr/Order.h"
 #include "hsr/Plan.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
 #include "software/SoftwareBackend.h"
 

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 
 namespace frugal {
 namespace {

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "render/Frame.h"
-#include "render/Handles.h"
-#include "render/IndexRanges.h"
-#include "render/Plan.h"
+#include "pipeline/Frame.h"
+#include "pipeline/Handles.h"
+#include "pipeline/IndexRanges.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 namespace {

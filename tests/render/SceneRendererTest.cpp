@@ -2,7 +2,7 @@
 // and that a refused upload is an error instead of a mesh silently missing from every frame.
 #include <gtest/gtest.h>
 
-#include "render/SceneRenderer.h"
+#include "pipeline/SceneRenderer.h"
 
 namespace frugal {
 namespace {

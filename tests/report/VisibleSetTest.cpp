@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 #include "report/VisibleSet.h"
 
 namespace frugal {

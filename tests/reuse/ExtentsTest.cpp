@@ -18,7 +18,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/SceneRenderer.h"
 #include "reuse/Extents.h"
 #include "software/SoftwareBackend.h"
 

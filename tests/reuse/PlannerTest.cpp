@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "ReuseSupport.h"
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 #include "software/SoftwareBackend.h"
 
 namespace frugal::test {

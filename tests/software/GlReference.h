@@ -18,7 +18,7 @@
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "io/ImageIO.h"
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 #include "software/SoftwareBackend.h"
 
 namespace frugal::test {

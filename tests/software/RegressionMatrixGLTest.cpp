@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "GlReference.h"
-#include "render/Frame.h"
-#include "render/SceneRenderer.h"
+#include "pipeline/Frame.h"
+#include "pipeline/SceneRenderer.h"
 #include "report/ImageCompare.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"

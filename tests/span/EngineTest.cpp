@@ -1,4 +1,4 @@
-// The blocks of the paper-001 engine model one at a time (software/span/Engine.h): number formats,
+// The blocks of the paper-001 engine model one at a time (span/Engine.h): number formats,
 // the multipliers (III.2, Fig. 7), the midpoint tree (III.2, Fig. 8), the Edge Painting Tree (III.3),
 // the LSB-first z comparator (III.3, Fig. 10), and the engine that wires them (III.1, Fig. 6).
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "software/span/Engine.h"
+#include "span/Engine.h"
 
 namespace frugal::span {
 namespace {

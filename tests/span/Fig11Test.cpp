@@ -1,5 +1,5 @@
 // Fig. 11 of paper 001 (section IV), reproduced by the engine model, and the schemes that do not
-// reproduce it (software/span/Fig11.h).
+// reproduce it (span/Fig11.h).
 #include <gtest/gtest.h>
 
 #include "lab/Fig11.h"

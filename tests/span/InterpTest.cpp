@@ -1,4 +1,4 @@
-// The per-span API (software/span/Interp.h) and the error tables (software/span/ErrorTable.h): the
+// The per-span API (span/Interp.h) and the error tables (span/ErrorTable.h): the
 // paper's claim (III.2) that midpoint subdivision avoids the error add-and-shift accumulates, as
 // bounds on the error against the exact line, and overflow reported instead of wrapped.
 #include <array>
@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "lab/ErrorTable.h"
-#include "software/span/Interp.h"
+#include "span/Interp.h"
 
 namespace frugal::span {
 namespace {

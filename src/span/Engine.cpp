@@ -1,4 +1,4 @@
-#include "software/span/Engine.h"
+#include "span/Engine.h"
 
 #include <cassert>
 #include <cmath>

@@ -5,8 +5,8 @@
 
 #include <frugal/Result.h>
 
-#include "render/Backend.h"
-#include "render/Plan.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -1,4 +1,4 @@
-#include "render/Camera.h"
+#include "pipeline/Camera.h"
 
 #include <algorithm>
 #include <cmath>

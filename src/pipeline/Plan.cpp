@@ -1,4 +1,4 @@
-#include "render/Plan.h"
+#include "pipeline/Plan.h"
 
 #include <algorithm>
 #include <tuple>

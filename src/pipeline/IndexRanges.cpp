@@ -1,4 +1,4 @@
-#include "render/IndexRanges.h"
+#include "pipeline/IndexRanges.h"
 
 #include <algorithm>
 #include <cassert>

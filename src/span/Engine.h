@@ -37,7 +37,7 @@
 #include <span>
 #include <string>
 
-#include "software/span/Fixed.h"
+#include "span/Fixed.h"
 
 namespace frugal::span {
 

@@ -1,4 +1,4 @@
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -14,8 +14,8 @@
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 
-#include "render/Backend.h"
-#include "render/Camera.h"
+#include "pipeline/Backend.h"
+#include "pipeline/Camera.h"
 
 namespace frugal {
 

@@ -1,4 +1,4 @@
-#include "software/span/Interp.h"
+#include "span/Interp.h"
 
 #include <algorithm>
 #include <array>

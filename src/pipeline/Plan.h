@@ -6,7 +6,7 @@
 
 #include <frugal/Settings.h>
 
-#include "render/Backend.h"
+#include "pipeline/Backend.h"
 
 namespace frugal {
 

@@ -1,4 +1,4 @@
-#include "render/SceneRenderer.h"
+#include "pipeline/SceneRenderer.h"
 
 #include <string>
 #include <utility>

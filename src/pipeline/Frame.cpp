@@ -1,4 +1,4 @@
-#include "render/Frame.h"
+#include "pipeline/Frame.h"
 
 #include <algorithm>
 #include <cmath>

@@ -31,7 +31,7 @@
 
 #include <frugal/Settings.h>
 
-#include "software/span/Engine.h"
+#include "span/Engine.h"
 
 namespace frugal::span {
 
