@@ -2,7 +2,7 @@
 // core), PNG encoding of a full frame, index-range normalisation as a culled draw list needs it, and
 // culling: the bunny's pre-processing (map, clusters, sphere, hull) and each method's plan for the
 // report's views; the adaptive z-buffer's overlap flags.
-// No GL here: GL frames are measured by `frugal bench render`, against the minimal GL program.
+// No GL here: GL frames are measured by `frugal-lab bench render`, against the minimal GL program.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>

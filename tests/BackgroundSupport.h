@@ -27,7 +27,7 @@ class Background {
 public:
     Background(const fs::path& dir, const std::vector<std::string>& args) : dir_(dir) {
         fs::create_directories(work());
-        std::vector<std::string> argv = {FRUGAL_CLI};
+        std::vector<std::string> argv = {binaryFor(args)};
         argv.insert(argv.end(), args.begin(), args.end());
         std::vector<char*> pointers;
         for (std::string& a : argv) pointers.push_back(a.data());

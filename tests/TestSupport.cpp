@@ -93,10 +93,20 @@ int runGnuplot(const fs::path& script, std::string& messages) {
 
 std::vector<std::string> CliRun::errLines() const { return lines(err); }
 
-CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
+const char* binaryFor(const std::vector<std::string>& args) {
+    const auto lab = [](const std::string& name) {
+        return std::find(kLabCommands.begin(), kLabCommands.end(), name) != kLabCommands.end();
+    };
+    if (!args.empty() && (lab(args[0]) || (args[0] == "help" && args.size() > 1 && lab(args[1]))))
+        return FRUGAL_LAB_CLI;
+    return FRUGAL_CLI;
+}
+
+namespace {
+CliRun runBinary(const char* binary, const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
     // (An ostringstream, not string +: GCC 12 -O3 reports a false -Wrestrict on the latter.)
     std::ostringstream line;
-    line << "cd " << shellQuoted(dir.string()) << " && " << env << " " << shellQuoted(FRUGAL_CLI);
+    line << "cd " << shellQuoted(dir.string()) << " && " << env << " " << shellQuoted(binary);
     for (const std::string& a : args) line << " " << shellQuoted(a);
     line << " >stdout.txt 2>stderr.txt";
     const std::string command = line.str();
@@ -108,6 +118,15 @@ CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, cons
     fs::remove(dir / "stdout.txt");
     fs::remove(dir / "stderr.txt");
     return run;
+}
+}  // namespace
+
+CliRun runFrugal(const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
+    return runBinary(binaryFor(args), dir, args, env);
+}
+
+CliRun runLab(const fs::path& dir, const std::vector<std::string>& args, const std::string& env) {
+    return runBinary(FRUGAL_LAB_CLI, dir, args, env);
 }
 
 Mesh looseTriangles(const std::vector<glm::vec3>& positions) {

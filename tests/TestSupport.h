@@ -57,9 +57,18 @@ struct CliRun {
     std::vector<std::string> errLines() const;
 };
 
-// Runs the frugal binary (FRUGAL_CLI) with `args` in `dir`, with an optional environment prefix
+// frugal-lab's own commands (the research tree's), which frugal does not have.
+inline const std::vector<std::string> kLabCommands = {"bench",     "reuse-bench", "order-bench", "hsr-bench",
+                                                      "span-bench", "state-sim",  "soak",        "write-bench"};
+// The binary that runs `args`: frugal-lab (FRUGAL_LAB_CLI) for its own commands (and their help),
+// else frugal (FRUGAL_CLI).
+const char* binaryFor(const std::vector<std::string>& args);
+
+// Runs the binary of `args` (binaryFor) with `args` in `dir`, with an optional environment prefix
 // such as "GALLIUM_DRIVER=x". Its stdout/stderr go through files in `dir` that are removed after.
 CliRun runFrugal(const std::filesystem::path& dir, const std::vector<std::string>& args, const std::string& env = "");
+// The same with frugal-lab, whatever the command (a batch of research jobs).
+CliRun runLab(const std::filesystem::path& dir, const std::vector<std::string>& args, const std::string& env = "");
 
 // A mesh of separate triangles, three positions each (normals +z): tests that draw triangles alone.
 Mesh looseTriangles(const std::vector<glm::vec3>& positions);

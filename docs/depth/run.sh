@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The figures of docs/depth/README.md: d32f against d24 (frugal bench render, side by side in one
+# The figures of docs/depth/README.md: d32f against d24 (frugal-lab bench render, side by side in one
 # process), what each format and depth range separates (frugal info), and z-fighting on the
 # assimp engine (front surfaces that differ from the d32f render). Needs glmark2-data and
 # assimp-testmodels (scripts/install-deps --tests) and a Release build in ../../build.
 set -euo pipefail
 cd "$(dirname "$0")"
-F=../../build/frugal
+F=../../build/frugal-lab
 BUNNY=/usr/share/glmark2/models/bunny.obj
 ENGINE=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
 for backend in egl software; do

@@ -1,4 +1,4 @@
-# frugal hsr-bench: speed-up over the z-buffer per mode, measured and the paper's (Table 1).
+# frugal-lab hsr-bench: speed-up over the z-buffer per mode, measured and the paper's (Table 1).
 # Drawn from the CSV; run gnuplot on this file to draw it again.
 set terminal svg size 720,420 dynamic background rgb 'white'
 set output 'cubes-software.svg'

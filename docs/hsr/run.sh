@@ -1,9 +1,9 @@
 #!/bin/sh
-# Reproduces the tables of docs/hsr/README.md: frugal hsr-bench on the paper's cubes (at the paper's
+# Reproduces the tables of docs/hsr/README.md: frugal-lab hsr-bench on the paper's cubes (at the paper's
 # 240x320 and at 1920x1080), the dominoes and the bunny, on the software reference and on llvmpipe
 # (EGL surfaceless). Run from this folder after a build; about four minutes on 2 quiet cores.
 set -eu
-frugal=${FRUGAL:-../../build/frugal}
+frugal=${FRUGAL:-../../build/frugal-lab}
 bunny=/usr/share/glmark2/models/bunny.obj
 for backend in software egl; do
     "$frugal" hsr-bench builtin:cubes --frames 0:299 --repeat 3 --backend $backend -q \

@@ -1,4 +1,4 @@
-# frugal order-bench: frame time and draws per backend and draw order.
+# frugal-lab order-bench: frame time and draws per backend and draw order.
 # Drawn from the CSV; run gnuplot 'materials.csv' skip 1 using 0:3:xtic(sprintf('%s %s', strcol(1), strcol(2))) with boxes title 'frame ms', '' skip 1 using 0:3:4:5 with yerrorbars lc rgb 'black' pt 0 notitle, '' skip 1 using 0:7 axes x1y2 with points pt 7 ps 1.2 title 'draws'
 set terminal svg size 760,440 dynamic background rgb 'white'
 set output 'materials.svg'

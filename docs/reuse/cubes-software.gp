@@ -1,4 +1,4 @@
-# frugal reuse-bench: the CSV's two plots (gnuplot 5, svg terminal)
+# frugal-lab reuse-bench: the CSV's two plots (gnuplot 5, svg terminal)
 set terminal svg size 1000,800 dynamic enhanced font 'sans,10'
 set output 'cubes-software.svg'
 set datafile separator ','

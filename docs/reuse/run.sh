@@ -4,7 +4,7 @@
 # this folder on a quiet machine, after building frugal (scripts/demo) and the micro-benchmark
 # (cmake -DFRUGAL_BUILD_BENCH=ON). About four minutes on 2 cores.
 set -eu
-B=../../build/frugal
+B=../../build/frugal-lab
 bench() {
     name=$1; shift
     "$B" reuse-bench "$@" --repeat 7 --json "$name.json" --csv "$name.csv" --plot "$name.svg" --quiet > "$name.txt"

@@ -1,4 +1,4 @@
-# frugal soak: resident memory (VmRSS) over frames and over create/destroy cycles, from the CSV.
+# frugal-lab soak: resident memory (VmRSS) over frames and over create/destroy cycles, from the CSV.
 # Run gnuplot on this file to draw it again.
 set terminal pngcairo size 1000,420 font 'sans,10'
 set output 'long-egl-ids.png'

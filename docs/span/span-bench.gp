@@ -1,4 +1,4 @@
-# frugal span-bench: error of each interpolator against the exact line (LSB), by span length.
+# frugal-lab span-bench: error of each interpolator against the exact line (LSB), by span length.
 set terminal svg size 960,420 dynamic enhanced
 set output 'span-bench.svg'
 set datafile separator ','

@@ -1,4 +1,4 @@
-# frugal state-sim: total state-change cost per order (set-not-held), with paper 004's columns.
+# frugal-lab state-sim: total state-change cost per order (set-not-held), with paper 004's columns.
 set terminal svg size 1100,440 dynamic enhanced
 set output 'state-sim.svg'
 set datafile separator ','

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# The figures of docs/writing.md: `frugal write-bench` on the bunny, the engine and the dominoes at
+# The figures of docs/writing.md: `frugal-lab write-bench` on the bunny, the engine and the dominoes at
 # 1920x1080 (the encoder table and a 30-frame sequence of the bunny, 3 rounds), the read-back
 # experiment on the bunny (30 frames a variant, 9 rounds: readback.json), and one frame in one
 # process, `frugal render` of each scene, ROUNDS times, against OLD_FRUGAL when given (a build from
 # before the frame writer; the runs alternate).
 #
-#   docs/writing/run.sh FRUGAL OUT_DIR [OLD_FRUGAL] [ROUNDS]
+#   docs/writing/run.sh FRUGAL_LAB OUT_DIR [OLD_FRUGAL] [ROUNDS]   (FRUGAL_LAB: build/frugal-lab, which renders too)
 set -euo pipefail
-[ $# -ge 2 ] || { echo "usage: docs/writing/run.sh FRUGAL OUT_DIR [OLD_FRUGAL] [ROUNDS]" >&2; exit 2; }
+[ $# -ge 2 ] || { echo "usage: docs/writing/run.sh FRUGAL_LAB OUT_DIR [OLD_FRUGAL] [ROUNDS]" >&2; exit 2; }
 frugal=$(realpath "$1"); out=$(realpath "$2"); old=${3:+$(realpath "$3")}; rounds=${4:-10}
 bunny=/usr/share/glmark2/models/bunny.obj
 engine=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb

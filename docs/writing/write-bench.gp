@@ -1,4 +1,4 @@
-# frugal write-bench: PNG size against encoding time per plane (drawn from the CSV)
+# frugal-lab write-bench: PNG size against encoding time per plane (drawn from the CSV)
 set terminal svg size 1200,420 dynamic
 set output '/work/main/docs/writing/write-bench.svg'
 set datafile separator ','

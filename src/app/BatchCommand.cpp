@@ -284,6 +284,15 @@ struct Checked {
 Result<Checked> check(const std::string& manifestPath) {
     Result<Manifest> manifest = readManifest(manifestPath);
     if (!manifest) return manifest.failure();
+    // A job runs in this process: a research command (reuse-bench) needs frugal-lab.
+    for (std::size_t i = 0; i < manifest->jobs.size(); ++i) {
+        const Job& job = manifest->jobs[i];
+        const std::string name = batch::toString(job.command);
+        if (!hasCommand(name))
+            return Error{"manifest " + manifestPath + " line " + std::to_string(job.line) + ": job " + std::to_string(i) +
+                         " '" + job.id + "': command: '" + name + "' is not a command of " + programName() +
+                         " (a research command: run this manifest with frugal-lab batch)"};
+    }
     Result<std::vector<double>> costs = costsOf(*manifest);
     if (!costs) return costs.failure();
     return Checked{std::move(*manifest), std::move(*costs)};

@@ -1,41 +1,25 @@
 #include "app/Cli.h"
 
+#include <algorithm>
+#include <iostream>
+#include <new>
 #include <ostream>
+
+#include <malloc.h>
 
 #include <frugal/Settings.h>
 #include <frugal/Version.h>
 
 #include "app/Commands.h"
 #include "app/Options.h"
+#include "io/Interrupt.h"
+#include "renderer/Backends.h"
 
 namespace frugal {
 
 namespace {
 
-const char* kUsage = R"(frugal — offscreen OpenGL renderer (Mesa EGL/OSMesa) that does only the work a scene requires
-
-usage:
-  frugal render [SCENE] [-o FILE.png] [options]   render a frame or a sequence to PNG
-  frugal report [SCENE] [options] -o DIR          every speed-accuracy trade on SCENE, and the settings to use
-  frugal info SCENE                               what a scene holds, and what frugal does not model
-  frugal bench render [SCENE] [options]           frame time per backend, as JSON
-  frugal compare A.png B.png [options]            compare an image with a reference (B)
-  frugal diff [SCENE] [options]                   a GL render against the software reference
-  frugal cull-report [SCENE] [options]            how exact and how fast each culling method is
-  frugal reuse-bench [SCENE] --frames A:B [opts]  what temporal reuse saves, frame by frame
-  frugal order-bench [SCENE] [options]            a frame in every draw order: time, state changes, ties
-  frugal hsr-bench [SCENE] [options]              depth sort and the adaptive z-buffer against the z-buffer
-  frugal span-bench [options]                     paper 001's shading engine model: Fig. 11, error tables
-  frugal write-bench [--scene SCENE ...] [opts]   PNG levels and filters: time against size; sequence wall time
-  frugal state-sim [options]                      paper 004's draw orders on random state sets: Tables 6, 7
-  frugal soak [SCENE] [options]                   100,000 frames and 1,000 create/destroy cycles: memory, images
-  frugal batch MANIFEST [--shard I/N] [options]   the jobs of a manifest, or shard I of N of them; status, merge
-  frugal help [COMMAND]                           this text, or a command's options
-  frugal help settings                            every renderer setting: flag, settings file, Python
-
-SCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:
-)";
-
+const Program* running = nullptr;
 }  // namespace
 
 const char* exitCodesHelp() {
@@ -50,11 +34,26 @@ exit status: 0 success (compare, diff: within tolerance), 1 bad input, failed ou
 
 namespace {
 
-void printUsage(std::ostream& out) {
-    out << kUsage;
-    for (const auto& [name, description] : builtinScenes()) out << "  " << name << "  " << description << "\n";
-    out << "with no SCENE, render, report, bench, diff, cull-report and reuse-bench use builtin:default.\n";
-    out << "\nrun 'frugal help COMMAND' (for example 'frugal help render') for a command's options.\n" << exitCodesHelp();
+void printUsage(const Program& program, std::ostream& out) {
+    out << program.title << "\n\nusage:\n";
+    const std::string name = program.name;
+    // The summaries in one column, after the longest usage (at least column 50).
+    std::size_t column = 50;
+    for (const CommandEntry& c : program.commands)
+        column = std::max(column, 2 + name.size() + 1 + std::string(c.name).size() + 1 + std::string(c.usage).size() + 1);
+    const auto line = [&out, &name, column](const std::string& usage, const std::string& summary) {
+        std::string text = "  " + name + " " + usage;
+        text.resize(column, ' ');
+        out << text << summary << "\n";
+    };
+    for (const CommandEntry& c : program.commands) line(std::string(c.name) + " " + c.usage, c.summary);
+    line("help [COMMAND]", "this text, or a command's options");
+    line("help settings", "every renderer setting: flag, settings file, Python");
+    out << "\nSCENE is a .gltf/.glb (glTF 2.0) or .obj file, or builtin:NAME[?key=value&...]:\n";
+    for (const auto& [scene, description] : builtinScenes()) out << "  " << scene << "  " << description << "\n";
+    out << "with no SCENE, a command that renders uses builtin:default.\n" << program.footer;
+    out << "\nrun '" << name << " help COMMAND' (for example '" << name << " help render') for a command's options.\n"
+        << exitCodesHelp();
 }
 
 // `frugal help settings`: the schema (frugal/Settings.h) as Markdown tables, which docs/cli.md
@@ -83,43 +82,61 @@ std::string settingsHelp() {
     return out;
 }
 
-struct CommandEntry {
-    const char* name;
-    int (*run)(const std::vector<std::string>&, std::ostream&, std::ostream&);
-};
-
-const CommandEntry kCommands[] = {
-    {"render", runRender},           {"report", runReport},     {"info", runInfo},         {"bench", runBench},
-    {"compare", runCompare},         {"diff", runDiff},         {"cull-report", runCullReport},
-    {"reuse-bench", runReuseBench},  {"hsr-bench", runHsrBench}, {"order-bench", runOrderBench},
-    {"span-bench", runSpanBench},    {"state-sim", runStateSim}, {"soak", runSoak},
-    {"batch", runBatch},             {"write-bench", runWriteBench},
-};
-
-std::string commandNames() {
+std::string commandNames(const Program& program) {
     std::string names;
-    for (const CommandEntry& entry : kCommands) names += std::string(entry.name) + ", ";
+    for (const CommandEntry& entry : program.commands) names += std::string(entry.name) + ", ";
     return names + "help";
 }
 
-const CommandEntry* findCommand(const std::string& name) {
-    for (const CommandEntry& entry : kCommands)
+const CommandEntry* findCommand(const Program& program, const std::string& name) {
+    for (const CommandEntry& entry : program.commands)
         if (name == entry.name) return &entry;
     return nullptr;
 }
 
 }  // namespace
 
+const Program& frugalProgram() {
+    static const Program program{
+        "frugal",
+        "frugal — offscreen OpenGL renderer (Mesa EGL/OSMesa) that does only the work a scene requires",
+        {
+            {"render", "[SCENE] [-o FILE.png] [options]", "render a frame or a sequence to PNG", runRender},
+            {"report", "[SCENE] [options] -o DIR", "every speed-accuracy trade on SCENE, and the settings to use",
+             runReport},
+            {"info", "SCENE", "what a scene holds, and what frugal does not model", runInfo},
+            {"compare", "A.png B.png [options]", "compare an image with a reference (B)", runCompare},
+            {"diff", "[SCENE] [options]", "a GL render against the software reference", runDiff},
+            {"cull-report", "[SCENE] [options]", "how exact and how fast each culling method is", runCullReport},
+            {"batch", "MANIFEST [--shard I/N] [options]", "the jobs of a manifest, or shard I of N of them; status, merge",
+             runBatch},
+        },
+        "\nThe benchmarks and paper reproductions (bench, reuse-bench, order-bench, hsr-bench, span-bench,\n"
+        "write-bench, state-sim, soak) are frugal-lab's: run 'frugal-lab help'.\n"};
+    return program;
+}
+
+const char* programName() { return running ? running->name : "frugal"; }
+
+bool hasCommand(const std::string& name) {
+    return findCommand(running ? *running : frugalProgram(), name) != nullptr;
+}
+
 int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    return runCli(running ? *running : frugalProgram(), args, out, err);
+}
+
+int runCli(const Program& program, const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    running = &program;
     if (args.empty()) {
-        printUsage(err);
+        printUsage(program, err);
         return kExitUsage;
     }
     const std::string& name = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (name == "-h" || name == "--help" || name == "help") {
         if (rest.empty()) {
-            printUsage(out);
+            printUsage(program, out);
             return kExitOk;
         }
         if (rest[0] == "settings") {
@@ -127,15 +144,32 @@ int runCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
             return kExitOk;
         }
         // `frugal help COMMAND` is `frugal COMMAND --help`: one help text per command.
-        if (const CommandEntry* entry = findCommand(rest[0])) return entry->run({"--help"}, out, err);
-        return usageError(err, "help " + rest[0] + ": no such command (commands: " + commandNames() + ")");
+        if (const CommandEntry* entry = findCommand(program, rest[0])) return entry->run({"--help"}, out, err);
+        return usageError(err, "help " + rest[0] + ": no such command (commands: " + commandNames(program) + ")");
     }
     if (name == "--version") {
-        out << "frugal " << version() << "\n";
+        out << program.name << " " << version() << "\n";
         return kExitOk;
     }
-    if (const CommandEntry* entry = findCommand(name)) return entry->run(rest, out, err);
-    return usageError(err, "unknown command '" + name + "' (commands: " + commandNames() + ")");
+    if (const CommandEntry* entry = findCommand(program, name)) return entry->run(rest, out, err);
+    return usageError(err, "unknown command '" + name + "' (commands: " + commandNames(program) + ")");
+}
+
+int runMain(const Program& program, int argc, char** argv) {
+    installInterruptHandler();  // before any file is written or any thread started
+    // llvmpipe frees and reallocates large scratch memory every frame; glibc's default trim threshold
+    // hands it back to the kernel each time. Keeping it cuts llvmpipe's frame time sharply, and a
+    // larger M_MMAP_THRESHOLD gained nothing more (docs/gl/README.md).
+    mallopt(M_TRIM_THRESHOLD, 512 * 1024 * 1024);
+    std::vector<std::string> args(argv + 1, argv + argc);
+    int status = kExitError;
+    try {
+        status = runCli(program, args, std::cout, std::cerr);
+    } catch (const std::bad_alloc&) {  // past the checks made up front (renderer/Backends.h)
+        std::cerr << "error: " << outOfMemoryMessage() << "\n";
+    }
+    raiseNotedSignal();  // a command stopped by a signal ends by it (io/Interrupt.h)
+    return status;
 }
 
 int exitStatus(ErrorKind kind) { return kind == ErrorKind::BackendUnavailable ? kExitNoBackend : kExitError; }

@@ -67,7 +67,7 @@ std::optional<int> parseCommandLine(const CommandLine& command, const std::vecto
             continue;
         }
         if (flag.size() > 1 && flag[0] == '-')
-            cursor.fail(flag + ": unknown option (see 'frugal help " + command.name + "')");
+            cursor.fail(flag + ": unknown option (see '" + std::string(programName()) + " help " + command.name + "')");
         else if (command.positional)
             command.positional(flag, cursor);
         else

@@ -56,7 +56,7 @@
 //
 // depthsort is exact only where no two overlapping polygons need each other's depth; its errors
 // (cyclic overlaps, interpenetration, a large polygon behind a small one with a nearer average)
-// are what `frugal hsr-bench` counts.
+// are what `frugal-lab hsr-bench` counts.
 #pragma once
 
 #include <cstdint>

@@ -70,7 +70,7 @@ libdeflate_compressor* compressorFor(int level) {
 // caller's pixels or `scratch` (stride bytes) filled. Two scratch rows alternate, so the row above
 // stays readable for the Up filter.
 // Each kind of image's level under kAutoPngLevel and its filter at each level, as measured
-// (docs/writing.md: `frugal write-bench` on the bunny, the engine and the dominoes at 1080p).
+// (docs/writing.md: `frugal-lab write-bench` on the bunny, the engine and the dominoes at 1080p).
 // Up suits colour and depth at every level (a rendered image's rows are alike); ids gain from it
 // only at the levels that find few matches (1 to 3): from 4 on, unfiltered ids, whose runs repeat
 // along a row, compress better.

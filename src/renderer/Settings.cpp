@@ -149,7 +149,7 @@ std::vector<SettingInfo> makeTable() {
                        [](auto& s) -> auto& { return s.reuseSettings.exactStatic; }));
     t.push_back(choice("hsr", "MODE", "a mode", kHsr,
                        "hidden-surface removal (paper 003). Besides zbuffer, the depth image holds only the "
-                       "depth-tested polygons. See 'frugal hsr-bench'",
+                       "depth-tested polygons. See 'frugal-lab hsr-bench'",
                        [](auto& s) -> auto& { return s.hsr; }));
     t.push_back(choice("depth-format", "F", "a depth format", kImage,
                        "the depth buffer (see 'frugal info SCENE' for the depth resolution each gives)",

@@ -32,6 +32,7 @@ namespace fs = std::filesystem;
 using test::CliRun;
 using test::readAll;
 using test::runFrugal;
+using test::runLab;  // writeManifest's jobs include reuse-bench, a research command: frugal-lab runs them
 
 // Seven jobs of every command on built-in scenes, small; the camera path beside the manifest.
 void writeManifest(const fs::path& dir) {
@@ -54,14 +55,26 @@ void writeManifest(const fs::path& dir) {
 
 const std::vector<std::string> kIds = {"cubes", "culled", "dominoes", "cull", "reuse", "report", "job-6"};
 
+// A reuse-bench job is a research command's: frugal refuses the manifest before any job runs, and
+// frugal-lab (which has frugal's commands besides its own) runs it.
+TEST(BatchCliTest, AResearchJobNeedsFrugalLab) {
+    const fs::path dir = test::freshDir("BatchLab");
+    writeManifest(dir);
+    const CliRun refused = runFrugal(dir, {"batch", "m.json", "--out", "out", "-q"});
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_EQ(refused.err, "error: manifest m.json line 10: job 4 'reuse': command: 'reuse-bench' is not a command of "
+                           "frugal (a research command: run this manifest with frugal-lab batch)\n");
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
     const fs::path dir = test::freshDir("BatchShards");
     writeManifest(dir);
-    CliRun one = runFrugal(dir, {"batch", "m.json", "--out", "one", "-q"});
+    CliRun one = runLab(dir, {"batch", "m.json", "--out", "one", "-q"});
     ASSERT_EQ(one.status, 0) << one.err;
     EXPECT_EQ(one.out, "batch: shard 0/1: 7 done, 0 skipped (done before), 0 failed\n");
     for (int i = 0; i < 4; ++i) {
-        const CliRun shard = runFrugal(dir, {"batch", "m.json", "--shard", std::to_string(i) + "/4", "--out", "four", "-q"});
+        const CliRun shard = runLab(dir, {"batch", "m.json", "--shard", std::to_string(i) + "/4", "--out", "four", "-q"});
         ASSERT_EQ(shard.status, 0) << shard.err;
     }
     int ran = 0;
@@ -73,8 +86,8 @@ TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
         ++ran;
     }
     EXPECT_EQ(ran, 7);
-    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "one"}).status, 0);
-    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "four"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "merge", "one"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "merge", "four"}).status, 0);
     EXPECT_EQ(readAll(dir / "one" / "merged.json"), readAll(dir / "four" / "merged.json"));
     EXPECT_EQ(test::lines(readAll(dir / "four" / "times.csv")).size(), 8u);
     // The reports' tables joined, a row each led by the job: cull-report's 3 views x 9 methods.
@@ -161,26 +174,26 @@ TEST(BatchShardsTest, TheCostliestJobsGoFirstToTheLeastLoadedShard) {
 TEST(BatchCliTest, AnArrayTaskTakesItsShardFromSlurmOrKubernetes) {
     const fs::path dir = test::freshDir("BatchArray");
     writeManifest(dir);
-    ASSERT_EQ(runFrugal(dir, {"batch", "m.json", "--out", "one", "-q"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "m.json", "--out", "one", "-q"}).status, 0);
     // Kubernetes' index for shards 0 and 1, Slurm's (an array numbered from 1) for 2 and 3.
     for (const std::string env : {"JOB_COMPLETION_INDEX=0", "JOB_COMPLETION_INDEX=1",
                                   "SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_MIN=1", "SLURM_ARRAY_TASK_ID=4 SLURM_ARRAY_TASK_MIN=1"}) {
-        const CliRun task = runFrugal(dir, {"batch", "m.json", "--shard", "array/4", "--out", "array", "-q"}, env);
+        const CliRun task = runLab(dir, {"batch", "m.json", "--shard", "array/4", "--out", "array", "-q"}, env);
         ASSERT_EQ(task.status, 0) << env << ": " << task.err;
     }
-    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "one"}).status, 0);
-    ASSERT_EQ(runFrugal(dir, {"batch", "merge", "array"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "merge", "one"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "merge", "array"}).status, 0);
     EXPECT_EQ(readAll(dir / "one" / "merged.json"), readAll(dir / "array" / "merged.json"));
 
-    CliRun bad = runFrugal(dir, {"batch", "m.json", "--shard", "array/4"}, "JOB_COMPLETION_INDEX=4");
+    CliRun bad = runLab(dir, {"batch", "m.json", "--shard", "array/4"}, "JOB_COMPLETION_INDEX=4");
     EXPECT_EQ(bad.status, 2);
     EXPECT_EQ(bad.err, "error: --shard array/4: JOB_COMPLETION_INDEX=4 is not a shard index (0 to 3)\n");
-    bad = runFrugal(dir, {"batch", "m.json", "--shard", "array/4"}, "env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX");
+    bad = runLab(dir, {"batch", "m.json", "--shard", "array/4"}, "env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX");
     EXPECT_EQ(bad.status, 2);
     EXPECT_EQ(bad.err.rfind("error: --shard array/4: neither SLURM_ARRAY_TASK_ID", 0), 0u) << bad.err;
 
     // --slurm --dry-run: the two scripts and the sbatch lines, nothing written.
-    const CliRun dry = runFrugal(dir, {"batch", "m.json", "--slurm", "3", "--dry-run", "--out", "slurm-out",
+    const CliRun dry = runLab(dir, {"batch", "m.json", "--slurm", "3", "--dry-run", "--out", "slurm-out",
                                        "--sbatch-args", "--partition=cpu --comment='two words'"});
     ASSERT_EQ(dry.status, 0) << dry.err;
     const std::string out = fs::weakly_canonical(dir / "slurm-out").string();
@@ -195,7 +208,7 @@ TEST(BatchCliTest, AnArrayTaskTakesItsShardFromSlurmOrKubernetes) {
         << dry.out;
     EXPECT_NE(dry.out.find("--dependency=afterany:<the array's job id> " + out + "/slurm/merge.sh"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "slurm-out"));
-    bad = runFrugal(dir, {"batch", "m.json", "--slurm", "2", "--shard", "0/2"});
+    bad = runLab(dir, {"batch", "m.json", "--slurm", "2", "--shard", "0/2"});
     EXPECT_EQ(bad.err, "error: --slurm: each array task picks its shard; give no --shard\n");
 }
 
@@ -222,10 +235,10 @@ TEST(BatchShardsTest, FinishedJobsCorrectTheEstimatesOfTheirCommand) {
 TEST(BatchCliTest, APlanCorrectedByWhatIsDoneIsTheSplitEveryShardFollows) {
     const fs::path dir = test::freshDir("BatchPlan");
     writeManifest(dir);
-    ASSERT_EQ(runFrugal(dir, {"batch", "m.json", "--out", "out", "-q"}).status, 0);
+    ASSERT_EQ(runLab(dir, {"batch", "m.json", "--out", "out", "-q"}).status, 0);
     fs::remove(dir / "out" / "cubes" / "done.json");
     fs::remove(dir / "out" / "report" / "done.json");
-    const CliRun plan = runFrugal(dir, {"batch", "m.json", "--plan", "2", "--out", "out"});
+    const CliRun plan = runLab(dir, {"batch", "m.json", "--plan", "2", "--out", "out"});
     ASSERT_EQ(plan.status, 0) << plan.err;
     EXPECT_EQ(plan.out.rfind("plan: out/plan.json, 2 shards of 7 jobs\n", 0), 0u) << plan.out;
     const nlohmann::json written = test::readJson(dir / "out" / "plan.json");
@@ -235,7 +248,7 @@ TEST(BatchCliTest, APlanCorrectedByWhatIsDoneIsTheSplitEveryShardFollows) {
     EXPECT_NE(written["shard_of"][0], written["shard_of"][5]) << "the two jobs left, one a shard";
     int ran = 0;
     for (int i = 0; i < 2; ++i) {
-        const CliRun shard = runFrugal(dir, {"batch", "m.json", "--shard", std::to_string(i) + "/2", "--out", "out",
+        const CliRun shard = runLab(dir, {"batch", "m.json", "--shard", std::to_string(i) + "/2", "--out", "out",
                                              "--resume"});
         ASSERT_EQ(shard.status, 0) << shard.err;
         EXPECT_NE(shard.err.find("jobs (split by out/plan.json)"), std::string::npos) << shard.err;
@@ -243,22 +256,22 @@ TEST(BatchCliTest, APlanCorrectedByWhatIsDoneIsTheSplitEveryShardFollows) {
     }
     EXPECT_EQ(ran, 2);
     // Another N, or another manifest: the plan is not theirs, and each shard splits by itself.
-    const CliRun three = runFrugal(dir, {"batch", "m.json", "--shard", "0/3", "--out", "out", "--resume"});
+    const CliRun three = runLab(dir, {"batch", "m.json", "--shard", "0/3", "--out", "out", "--resume"});
     EXPECT_EQ(three.err.find("split by"), std::string::npos) << three.err;
 }
 
 TEST(BatchCliTest, ResumeRedoesOnlyWhatIsMissingOrChanged) {
     const fs::path dir = test::freshDir("BatchResume");
     writeManifest(dir);
-    ASSERT_EQ(runFrugal(dir, {"batch", "m.json", "--out", "out", "-q"}).status, 0);
-    CliRun again = runFrugal(dir, {"batch", "m.json", "--out", "out", "--resume", "-q"});
+    ASSERT_EQ(runLab(dir, {"batch", "m.json", "--out", "out", "-q"}).status, 0);
+    CliRun again = runLab(dir, {"batch", "m.json", "--out", "out", "--resume", "-q"});
     ASSERT_EQ(again.status, 0) << again.err;
     EXPECT_EQ(again.out, "batch: shard 0/1: 0 done, 7 skipped (done before), 0 failed\n");
 
     // A job whose record is gone (killed before it finished), and one whose input file changed.
     fs::remove(dir / "out" / "cubes" / "done.json");
     test::writeFile(dir / "path.json", R"([{"eye":[0,0.6,3],"target":[0,0,0]}])");
-    again = runFrugal(dir, {"batch", "m.json", "--out", "out", "--resume"});
+    again = runLab(dir, {"batch", "m.json", "--out", "out", "--resume"});
     ASSERT_EQ(again.status, 0) << again.err;
     EXPECT_EQ(again.out, "batch: shard 0/1: 2 done, 5 skipped (done before), 0 failed\n");
     EXPECT_NE(again.err.find("] cubes: done in"), std::string::npos) << again.err;

@@ -26,7 +26,7 @@ TEST(CliTest, HelpListsCommandsScenesAndExitCodes) {
     const fs::path dir = test::freshDir("CliHelp");
     const CliRun run = runFrugal(dir, {"--help"});
     EXPECT_EQ(run.status, 0);
-    for (const char* text : {"frugal render", "frugal info", "frugal bench render", "frugal compare", "frugal diff",
+    for (const char* text : {"frugal render", "frugal info", "frugal compare", "frugal diff", "frugal-lab help",
                              "builtin:dominoes", "builtin:cubes", "exit status"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
     const CliRun render = runFrugal(dir, {"render", "--help"});
@@ -44,6 +44,29 @@ TEST(CliTest, VersionIsTheProjectVersion) {
     EXPECT_EQ(std::string(version()), FRUGAL_PROJECT_VERSION);
 }
 
+// frugal has the commands users run daily; frugal-lab (the research tree's) has the benchmarks and
+// paper reproductions, and frugal's commands besides.
+TEST(CliTest, TheResearchCommandsAreFrugalLabsOnly) {
+    const fs::path dir = test::freshDir("CliLab");
+    const CliRun frugal = runFrugal(dir, {"help"});
+    for (const std::string& command : test::kLabCommands) {
+        SCOPED_TRACE(command);
+        EXPECT_EQ(frugal.out.find("  frugal " + command + " "), std::string::npos);
+        const int status = std::system((std::string("'") + FRUGAL_CLI + "' " + command + " --help >/dev/null 2>&1").c_str());
+        EXPECT_EQ(WEXITSTATUS(status), 2) << "frugal runs " << command;
+        const CliRun lab = runFrugal(dir, {"help", command});
+        EXPECT_EQ(lab.status, 0);
+        EXPECT_NE(lab.out.find("usage: frugal-lab " + command), std::string::npos);
+    }
+    const int labStatus = std::system((std::string("'") + FRUGAL_LAB_CLI + "' help > lab-help.txt").c_str());
+    EXPECT_EQ(WEXITSTATUS(labStatus), 0);
+    const std::string lab = readAll("lab-help.txt");
+    for (const std::string& command : test::kLabCommands) EXPECT_NE(lab.find("  frugal-lab " + command + " "), std::string::npos);
+    for (const char* command : {"render", "report", "info", "compare", "diff", "cull-report", "batch"})
+        EXPECT_NE(lab.find(std::string("  frugal-lab ") + command + " "), std::string::npos) << command;
+    fs::remove("lab-help.txt");
+}
+
 TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {
     const fs::path dir = test::freshDir("CliHelpEach");
     for (const char* command : {"render", "report", "info", "bench", "compare", "diff", "cull-report", "reuse-bench", "hsr-bench",
@@ -55,7 +78,7 @@ TEST(CliTest, EveryCommandHasOneHelpTextWhicheverWayItIsAsked) {
         EXPECT_EQ(flag.status, 0);
         EXPECT_EQ(help.out, flag.out);
         EXPECT_EQ(help.err, "");
-        EXPECT_NE(help.out.find("usage: frugal "), std::string::npos);
+        EXPECT_NE(help.out.find("usage: frugal"), std::string::npos);
         EXPECT_NE(help.out.find("exit status: 0 success"), std::string::npos);
         // Wrapped within 100 columns (characters, not UTF-8 bytes).
         std::stringstream lines(help.out);
@@ -134,7 +157,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
         {{"render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help render')"},
         {{"render", "missing.glb"}, 1, "error: missing.glb: no such file"},
         {{"render", "builtin:cubes", "--camera", "3"}, 1, "error: builtin:cubes: camera 3: the scene has 1 camera"},
-        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, report, info, bench, compare, diff, cull-report, reuse-bench, hsr-bench, order-bench, span-bench, state-sim, soak, batch, write-bench, help)"},
+        {{"frobnicate"}, 2, "error: unknown command 'frobnicate' (commands: render, report, info, compare, diff, cull-report, batch, help)"},
         {{"info"}, 2, "error: info needs a SCENE (a file or builtin:NAME), or --state-costs"},
         {{"render", "--near", "5", "--far", "1"}, 2, "error: --far 1: must exceed --near 5"},
         // Only --near given: the library names the values, and which one it fitted.
@@ -142,7 +165,7 @@ TEST(CliTest, BadCommandLinesAndInputsGetOneLineAndNoFile) {
          "error: in/tri.obj: camera: far plane 2.88661 (fitted to the scene) must exceed the near plane 1000"},
         {{"bench", "render", "--repeat", "5x"}, 2, "error: --repeat: '5x' is not a whole number from 1 to 100000"},
         {{"bench", "render", "--warmup", "-1"}, 2, "error: --warmup: '-1' is not a whole number from 0 to 100000"},
-        {{"bench", "render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help bench')"},
+        {{"bench", "render", "--wat"}, 2, "error: --wat: unknown option (see 'frugal-lab help bench')"},
         {{"diff", "a", "b"}, 2, "error: unexpected argument 'b' (one SCENE only)"},
         {{"compare", "a.png"}, 2, "error: compare: expected two images, A.png B.png (see 'frugal help compare')"},
         {{"info", "--wat"}, 2, "error: --wat: unknown option (see 'frugal help info')"},

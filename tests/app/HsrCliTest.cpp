@@ -1,5 +1,5 @@
 // The hidden-surface modes on the command line (`--hsr` on render, diff and bench, and
-// `frugal hsr-bench`), end to end with the real binary. Speeds are printed, never asserted; the
+// `frugal-lab hsr-bench`), end to end with the real binary. Speeds are printed, never asserted; the
 // pixel counts are asserted where src/hsr/Plan.h says adaptive is exact.
 #include <gtest/gtest.h>
 

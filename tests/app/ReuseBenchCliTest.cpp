@@ -1,4 +1,4 @@
-// `frugal reuse-bench` on the command line, end to end: the real binary in a child process (exit
+// `frugal-lab reuse-bench` on the command line, end to end: the real binary in a child process (exit
 // status, stdout, stderr, JSON, CSV, plots). The software backend at small sizes, few frames and
 // rounds, so the suite stays fast; the figures themselves are never asserted, only their shape and
 // the check against the full render.
@@ -161,7 +161,7 @@ TEST(ReuseBenchCliTest, BadCommandLinesGetOneLineAndNoFile) {
          2,
          "error: --cull oracle: the oracle is an id pass of each frame, not a plan to reuse"},
         {{"reuse-bench", "--frames", "0:3", "--plot", "x.png"}, 2, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
-        {{"reuse-bench", "--frames", "0:3", "--reuse"}, 2, "error: --reuse: unknown option (see 'frugal help reuse-bench')"},
+        {{"reuse-bench", "--frames", "0:3", "--reuse"}, 2, "error: --reuse: unknown option (see 'frugal-lab help reuse-bench')"},
         {{"reuse-bench", "--frames", "0:3", "--reuse-cell", "0"},
          2,
          "error: --reuse-cell: '0' is not a whole number from 1 to 4096"},
@@ -183,11 +183,11 @@ TEST(ReuseBenchCliTest, HelpListsTheOptions) {
     const fs::path dir = test::freshDir("ReuseBenchHelp");
     const CliRun run = runFrugal(dir, {"help", "reuse-bench"});
     ASSERT_EQ(run.status, 0);
-    for (const char* text : {"usage: frugal reuse-bench", "--repeat K", "--plot FILE.svg", "--reuse-grain N", "--frames A:B",
+    for (const char* text : {"usage: frugal-lab reuse-bench", "--repeat K", "--plot FILE.svg", "--reuse-grain N", "--frames A:B",
                              "oracle (cells)", "oracle (whole)", "reuse/whole"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
-    const CliRun usage = runFrugal(dir, {"--help"});
-    EXPECT_NE(usage.out.find("frugal reuse-bench"), std::string::npos);
+    const CliRun usage = test::runLab(dir, {"--help"});
+    EXPECT_NE(usage.out.find("frugal-lab reuse-bench"), std::string::npos);
 }
 
 }  // namespace

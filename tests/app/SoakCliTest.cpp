@@ -1,4 +1,4 @@
-// `frugal soak` (issue 11) on a few frames and cycles, end to end with the real binary, and the
+// `frugal-lab soak` (issue 11) on a few frames and cycles, end to end with the real binary, and the
 // checks it judges by (report/SoakReport.h), each shown to fail on what it must catch. The real
 // soak (100,000 frames, 1,000 cycles) is the CTest test Soak.* (label soak, -DFRUGAL_SOAK_TESTS=ON).
 // The runs here allow any memory growth (--max-growth 1000): a few frames are no measure of it, and

@@ -1,4 +1,4 @@
-// `frugal span-bench` on the command line, end to end: the real binary in a child process. The
+// `frugal-lab span-bench` on the command line, end to end: the real binary in a child process. The
 // error figures are deterministic for a seed and asserted as bounds (the model's <= 1 LSB); the
 // speeds are printed, never asserted.
 #include <gtest/gtest.h>
@@ -152,7 +152,7 @@ TEST(SpanBenchCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
         {{"span-bench", "--render-size", "240", "--json", "x.json"},
          "error: --render-size: '240' is not a size (WxH, each 1 to 16384)"},
         {{"span-bench", "--render-size", "0x320"}, "error: --render-size: '0x320' is not a size (WxH, each 1 to 16384)"},
-        {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal help span-bench')"},
+        {{"span-bench", "--wat"}, "error: --wat: unknown option (see 'frugal-lab help span-bench')"},
         {{"span-bench", "extra"}, "error: unexpected argument 'extra'"},
     };
     test::expectOneErrorLine(dir, cases);
@@ -162,11 +162,11 @@ TEST(SpanBenchCliTest, HelpExplainsEveryOption) {
     const fs::path dir = test::freshDir("SpanBenchHelp");
     const CliRun run = runFrugal(dir, {"help", "span-bench"});
     ASSERT_EQ(run.status, 0);
-    for (const char* text : {"usage: frugal span-bench", "--lengths", "--widths", "--spans N", "--seed S", "--dda-bits N",
+    for (const char* text : {"usage: frugal-lab span-bench", "--lengths", "--widths", "--spans N", "--seed S", "--dda-bits N",
                              "--speed-ms N", "--scene SCENE", "--render-size WxH", "--json FILE", "--csv FILE", "--plot FILE.svg", "span_trunc"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
-    const CliRun usage = runFrugal(dir, {"--help"});
-    EXPECT_NE(usage.out.find("frugal span-bench"), std::string::npos);
+    const CliRun usage = test::runLab(dir, {"--help"});
+    EXPECT_NE(usage.out.find("frugal-lab span-bench"), std::string::npos);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// `frugal state-sim` on the command line, end to end: the real binary in a child process. The figures
+// `frugal-lab state-sim` on the command line, end to end: the real binary in a child process. The figures
 // are means over random instances, so the tests assert orderings and ranges that hold on average (best
 // <= paper <= submit, the bound below best), never the paper's numbers.
 #include <gtest/gtest.h>
@@ -133,7 +133,7 @@ TEST(StateSimCliTest, BadCommandLinesGetOneLineStatus2AndNoFile) {
         {{"state-sim", "--seeds", "x"}, "error: --seeds: 'x' is not a whole number from 1 to 100000"},
         {{"state-sim", "--json", "", "--seeds", "1"}, "error: --json: '' is not a file name"},
         {{"state-sim", "--seeds", "1", "--plot", "x.png"}, "error: --plot x.png: gnuplot writes SVG here; name it .svg"},
-        {{"state-sim", "--wat"}, "error: --wat: unknown option (see 'frugal help state-sim')"},
+        {{"state-sim", "--wat"}, "error: --wat: unknown option (see 'frugal-lab help state-sim')"},
         {{"state-sim", "extra"}, "error: unexpected argument 'extra'"},
     };
     test::expectOneErrorLine(dir, cases);
@@ -152,11 +152,11 @@ TEST(StateSimCliTest, HelpExplainsEveryOption) {
     const fs::path dir = test::freshDir("StateSimHelp");
     const CliRun run = runFrugal(dir, {"help", "state-sim"});
     ASSERT_EQ(run.status, 0);
-    for (const char* text : {"usage: frugal state-sim", "--seeds N", "--json FILE", "--csv FILE", "--plot FILE.svg", "set-not-held",
+    for (const char* text : {"usage: frugal-lab state-sim", "--seeds N", "--json FILE", "--csv FILE", "--plot FILE.svg", "set-not-held",
                              "lookahead", "Held-Karp"})
         EXPECT_NE(run.out.find(text), std::string::npos) << text;
-    const CliRun usage = runFrugal(dir, {"--help"});
-    EXPECT_NE(usage.out.find("frugal state-sim"), std::string::npos);
+    const CliRun usage = test::runLab(dir, {"--help"});
+    EXPECT_NE(usage.out.find("frugal-lab state-sim"), std::string::npos);
 }
 
 }  // namespace

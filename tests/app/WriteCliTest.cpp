@@ -1,5 +1,5 @@
 // Files written while the next frame renders, end to end: `frugal render --png-level` (every
-// level gives the same pixels, the render JSON's write timings) and `frugal write-bench` (its
+// level gives the same pixels, the render JSON's write timings) and `frugal-lab write-bench` (its
 // table and sequence, pixels equal at every level and filter). Timings are printed, never asserted.
 #include <filesystem>
 #include <string>

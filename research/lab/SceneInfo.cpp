@@ -1,0 +1,182 @@
+#include "lab/SceneInfo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "renderer/Research.h"
+
+namespace frugal {
+
+namespace {
+
+// The scene's finer detail: the length that 1 % of its triangles' edges (world space, time 0) are
+// shorter than, leaving out edges of length 0. 0 when it has no edge.
+double sceneDetail(const Scene& scene) {
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    std::vector<float> lengths;
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        const glm::mat3 m(world[std::size_t(instance.node)]);
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 a = mesh.positions[mesh.indices[t + std::size_t(k)]];
+                const glm::vec3 b = mesh.positions[mesh.indices[t + std::size_t((k + 1) % 3)]];
+                const float length = glm::length(m * (b - a));
+                if (length > 0.0f && std::isfinite(length)) lengths.push_back(length);
+            }
+    }
+    if (lengths.empty()) return 0.0;
+    const auto at = lengths.begin() + std::ptrdiff_t(lengths.size() / 100);
+    std::nth_element(lengths.begin(), at, lengths.end());
+    return double(*at);
+}
+
+// Where the scene lies along camera `index`'s view (the automatic view when none), and the depth
+// each format and range separates at its far side; a warning where that is coarser than `detail`.
+void printDepthPrecision(const Scene& scene, std::optional<int> index, double detail, int longSide, std::ostream& out) {
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    int width = 800, height = 600;
+    if (index) {
+        const float aspect = scene.cameras[std::size_t(*index)].fileAspect();
+        if (aspect > 0.0f) sizeForAspect(aspect, longSide, width, height);
+    }
+    Camera spec;
+    spec.sceneCamera = index;
+    Result<View> fitted = resolveCamera(scene, world, 0.0, spec, width, height);
+    spec.depthRange = DepthRange::File;
+    Result<View> given = resolveCamera(scene, world, 0.0, spec, width, height);
+    if (!fitted || !given) {
+        out << "    " << (fitted ? given.error() : fitted.error()) << "\n";
+        return;
+    }
+    const DepthExtent extent = depthExtent(fitted->view, scene.envelope);
+    if (scene.envelope.empty() || !(extent.farthest > 0.0)) {
+        out << "    the scene is not in front of this camera\n";
+        return;
+    }
+    const auto planes = [](const View& v) {
+        return fmt(v.znear) + " to " + (v.zfar > 0.0f ? fmt(v.zfar) : std::string("infinity"));
+    };
+    // The far side as drawn: no farther than the far plane.
+    const double d = given->zfar > 0.0f ? std::min(extent.farthest, double(given->zfar)) : extent.farthest;
+    out << "    scene at distance " << fmt(std::max(extent.nearest, 0.0)) << " to " << fmt(extent.farthest)
+        << " along the view (its bounds over the whole animation)\n";
+    out << "    depth separated at " << fmt(d) << ": fit (" << planes(*fitted) << "), file (" << planes(*given)
+        << ")\n";
+    std::string coarse;
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
+        char line[160];
+        const double fit = depthResolution(format, fitted->perspective, fitted->znear, fitted->zfar, d);
+        const double file = depthResolution(format, given->perspective, given->znear, given->zfar, d);
+        std::snprintf(line, sizeof line, "      %-5s fit %-12.4g file %.4g\n", depthFormatName(format), fit, file);
+        out << line;
+        for (const auto& [range, step] : {std::pair{"fit", fit}, std::pair{"file", file}})
+            if (detail > 0.0 && step > detail)
+                coarse += (coarse.empty() ? "" : ", ") + std::string(depthFormatName(format)) + " with " + range +
+                          " (" + fmt(step) + ")";
+    }
+    if (!coarse.empty())
+        out << "    warning: coarser than the scene's detail (" << fmt(detail) << "): " << coarse
+            << "; surfaces closer together than that may z-fight\n";
+}
+
+}  // namespace
+
+std::string sceneInfoText(const Scene& scene, int longSide) {
+    std::ostringstream out;
+
+    std::size_t vertices = 0;
+    for (const Mesh& mesh : scene.meshes) vertices += mesh.positions.size();
+    out << "scene: " << scene.source << "\n";
+    out << "nodes: " << scene.nodes.size() << " (" << scene.roots.size() << " roots)\n";
+    out << "meshes: " << scene.meshes.size() << " (" << vertices << " vertices)\n";
+    out << "instances: " << scene.instances.size() << "\n";
+    out << "triangles: " << scene.triangleCount() << " (drawn per frame)\n";
+    out << "materials: " << scene.materials.size() << "\n";
+    for (const Material& m : scene.materials) {
+        out << "  '" << m.name << "' base colour " << fmt(m.baseColorFactor.r) << "," << fmt(m.baseColorFactor.g) << ","
+            << fmt(m.baseColorFactor.b) << "," << fmt(m.baseColorFactor.a)
+            << (m.baseColorTexture >= 0 ? ", texture " + std::to_string(m.baseColorTexture) : std::string())
+            << (m.doubleSided ? ", double-sided" : ", single-sided") << "\n";
+    }
+    out << "textures: " << scene.textures.size() << "\n";
+    for (const Texture& t : scene.textures)
+        out << "  '" << t.name << "' " << t.width << "x" << t.height << (t.filter == Filter::Nearest ? " nearest" : " linear") << "\n";
+    const double detail = sceneDetail(scene);
+    out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
+    out << "cameras: " << scene.cameras.size() << "\n";
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+        const SceneCamera& c = scene.cameras[i];
+        out << "  '" << c.name << "' "
+            << (c.perspective ? "perspective yfov " + fmt(glm::degrees(c.yfov)) + " deg" : std::string("orthographic"))
+            << (c.perspective && c.aspect > 0.0f ? ", aspect ratio " + fmt(c.aspect) : std::string()) << ", znear "
+            << fmt(c.znear) << ", zfar " << (c.zfar > 0 ? fmt(c.zfar) : std::string("infinite")) << "\n";
+        printDepthPrecision(scene, int(i), detail, longSide, out);
+    }
+    if (scene.cameras.empty()) {
+        out << "  the automatic view (no camera in the scene):\n";
+        printDepthPrecision(scene, std::nullopt, detail, longSide, out);
+    }
+    std::size_t channels = 0;
+    for (const Animation& a : scene.animations) channels += a.channels.size();
+    out << "animations: " << scene.animations.size() << " (" << channels << " channels, " << fmt(scene.duration())
+        << " s at " << fmt(scene.fps) << " fps)\n";
+    const Bounds b = scene.bounds(0.0);
+    if (b.empty()) out << "bounds: empty\n";
+    else out << "bounds: min " << fmt(b.min.x) << "," << fmt(b.min.y) << "," << fmt(b.min.z) << " max " << fmt(b.max.x) << ","
+             << fmt(b.max.y) << "," << fmt(b.max.z) << " (radius " << fmt(b.radius()) << ")\n";
+    out << "not modelled: ";
+    if (scene.unsupported.empty()) out << "none\n";
+    else {
+        std::string names;
+        for (const std::string& name : scene.unsupported) names += (names.empty() ? "" : ", ") + name;
+        out << names << "\n";
+    }
+    for (const std::string& warning : scene.warnings) out << "warning: " << warning << "\n";
+    return out.str();
+}
+
+Result<StateCostsOutput> stateCostsReport(const Settings& settings) {
+    Result<std::unique_ptr<Backend>> backend = openBackend(settings.backend, nullptr, settings.threads, settings.interp);
+    if (!backend)
+        return Error{std::string("backend ") + toString(settings.backend) + ": " + backend.error(), backend.errorKind(),
+                     true};
+    Result<StateCostReport> measured = measureStateCosts(**backend);
+    if (!measured) return measured.failure();
+    std::ostringstream out;
+    const StateCostReport& r = *measured;
+    out << "state costs on " << r.backend << " (" << r.renderer << "), " << r.rounds << " rounds of " << r.draws
+        << " draws\n";
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-10s %10.3f us a draw with no change\n", "draw", r.drawUs);
+    out << line;
+    nlohmann::json costs = nlohmann::json::object();
+    for (const StateCost& c : r.costs) {
+        std::snprintf(line, sizeof line, "  %-10s %10.3f us a change (%.3f to %.3f)\n", c.kind.c_str(), c.us, c.minUs, c.maxUs);
+        out << line;
+        costs[c.kind] = {{"us", c.us}, {"min_us", c.minUs}, {"max_us", c.maxUs}};
+    }
+    std::snprintf(line, sizeof line,
+                  "  texture 256x256: upload %.3f ms, first draw %.3f ms, resident draw %.3f ms\n"
+                  "  new state combination: first draw %.3f ms, again %.3f ms\n",
+                  r.textureUploadMs, r.textureFirstDrawMs, r.textureResidentDrawMs, r.newCombinationMs, r.seenCombinationMs);
+    out << line;
+    const nlohmann::json json = {
+        {"backend", r.backend}, {"renderer", r.renderer}, {"rounds", r.rounds}, {"draws", r.draws}, {"draw_us", r.drawUs},
+        {"costs", costs},
+        {"texture", {{"upload_ms", r.textureUploadMs}, {"first_draw_ms", r.textureFirstDrawMs},
+                     {"resident_draw_ms", r.textureResidentDrawMs}}},
+        {"new_combination", {{"first_ms", r.newCombinationMs}, {"again_ms", r.seenCombinationMs}}}};
+    return StateCostsOutput{out.str(), json.dump(2) + "\n"};
+}
+
+
+}  // namespace frugal
