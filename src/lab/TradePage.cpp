@@ -358,7 +358,8 @@ Result<TradePageFiles> tradePage(const TradeReport& report, const TradeSettings&
       << ", each rendered " << (settings.sequence ? 1 : settings.repeat) << " time(s) by every method, interleaved; "
       << report.rows.size() << " methods. A method pays when, paired with the plain render shot by shot and round by "
          "round, the " << levelPercent() << " % interval of its time's ratio to the plain render's lies below "
-      << fixed(kPays, 2) << " (a bootstrap of the median over the shots, " << kBootstrapResamples
+      << fixed(kPays, 2) << " (a bootstrap of the " << int(std::lround(100 * kTrim))
+      << " % trimmed geometric mean over the shots, " << kBootstrapResamples
       << " resamples, seed " << kBootstrapSeed << "), and when its draws are not the plain render's: a no-op is never "
          "picked.</p>\n";
     h << recommendationHtml(report, settings);
@@ -368,7 +369,8 @@ Result<TradePageFiles> tradePage(const TradeReport& report, const TradeSettings&
          "visible triangles, a bound no culling method can pass.</p>\n";
     h << "<h2>Every method</h2>\n" << methodsTable(report, thumbnails);
     h << "<p><i>paired &times; plain</i>: per shot, the median over its rounds of the method's time &divide; the plain "
-         "render's in the same round, then the median over the shots, and in brackets its "
+         "render's in the same round, then the geometric mean over the shots without the lowest and highest "
+      << int(std::lround(100 * kTrim)) << " %, and in brackets its "
       << levelPercent() << " % interval; bold where it pays. <i>no-op</i>: in every timed frame the method asked the "
          "backend for exactly the plain render's clears, copies and draws (an order of a single draw, a cull that keeps "
          "every triangle), so whatever its time says it cannot pay. "

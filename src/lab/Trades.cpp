@@ -143,6 +143,19 @@ double middle(std::vector<double>& values) {
     return (*std::max_element(values.begin(), values.begin() + std::ptrdiff_t(half)) + upper) / 2.0;
 }
 
+// The mean of `values` without the lowest and the highest kTrim of them (rounded down; none of 4 or
+// fewer), reordering them: robust to a few shots that load hit, yet unlike the median it moves
+// smoothly with every shot it keeps, so a gain that differs from view to view (culling) does not
+// leave the estimate jumping between two clusters of shots (R. Wilcox, Introduction to Robust
+// Estimation and Hypothesis Testing: the percentile bootstrap suits a 20 % trimmed mean).
+double trimmedMean(std::vector<double>& values) {
+    std::sort(values.begin(), values.end());
+    const auto cut = std::size_t(kTrim * double(values.size()));
+    double sum = 0.0;
+    for (std::size_t i = cut; i < values.size() - cut; ++i) sum += values[i];
+    return sum / double(values.size() - 2 * cut);
+}
+
 // Whether `a` only adds to `b`: every method setting `b` changes from `plain`, `a` changes the same
 // way (so `a` does `b`'s planning and more). Every candidate adds to the plain render; the floor
 // neither adds nor is added to. A cull and its ahead form are two culls, not one added to another.
@@ -224,23 +237,20 @@ bool TradeReport::pays(std::size_t row) const {
 PairedRatio pairedRatio(const std::vector<std::vector<double>>& ms, const std::vector<std::vector<double>>& plainMs,
                         std::uint64_t seed) {
     PairedRatio out;
-    out.low = out.high = std::numeric_limits<double>::quiet_NaN();
-    std::vector<std::vector<double>> shots;  // per shot, its pairs' ratios
+    out.estimate = out.low = out.high = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::vector<double>> shots;  // per shot, its pairs' log ratios
     for (std::size_t s = 0; s < std::min(ms.size(), plainMs.size()); ++s) {
-        std::vector<double> ratios;
+        std::vector<double> logs;
         for (std::size_t r = 0; r < std::min(ms[s].size(), plainMs[s].size()); ++r)
-            if (plainMs[s][r] > 0 && std::isfinite(ms[s][r]) && std::isfinite(plainMs[s][r]))
-                ratios.push_back(ms[s][r] / plainMs[s][r]);
-        out.pairs += ratios.size();
-        if (!ratios.empty()) shots.push_back(std::move(ratios));
+            if (ms[s][r] > 0 && plainMs[s][r] > 0 && std::isfinite(ms[s][r]) && std::isfinite(plainMs[s][r]))
+                logs.push_back(std::log(ms[s][r] / plainMs[s][r]));
+        out.pairs += logs.size();
+        if (!logs.empty()) shots.push_back(std::move(logs));
     }
-    if (shots.empty()) {
-        out.estimate = std::numeric_limits<double>::quiet_NaN();
-        return out;
-    }
+    if (shots.empty()) return out;
     std::vector<double> perShot, scratch;
-    for (std::vector<double> ratios : shots) perShot.push_back(middle(ratios));  // a copy: middle reorders
-    out.estimate = middle(perShot);
+    for (std::vector<double> logs : shots) perShot.push_back(middle(logs));  // a copy: middle reorders
+    out.estimate = std::exp(trimmedMean(perShot));
     if (!out.known()) return out;
 
     // Shots drawn with replacement, and each drawn shot's rounds: the rounds' spread is counted
@@ -260,12 +270,44 @@ PairedRatio pairedRatio(const std::vector<std::vector<double>>& ms, const std::v
             for (double& round : scratch) round = shot[rng.below(shot.size())];
             value = middle(scratch);
         }
-        estimate = middle(perShot);
+        estimate = trimmedMean(perShot);
     }
     std::sort(estimates.begin(), estimates.end());
     const auto cut = std::size_t(std::llround(double(estimates.size()) * (1.0 - kIntervalLevel) / 2.0));
-    out.low = estimates[cut];
-    out.high = estimates[estimates.size() - 1 - cut];
+    out.low = std::exp(estimates[cut]);
+    out.high = std::exp(estimates[estimates.size() - 1 - cut]);
+    return out;
+}
+
+std::vector<std::optional<std::size_t>> repeatedDraws(const std::vector<TradeCandidate>& candidates,
+                                                      const std::vector<std::vector<DrawRecord>>& rounds) {
+    // repeats[i][j]: candidate i adds to candidate j and drew what j drew in every round.
+    // idleAfterCull[i]: what candidate i does after its cull (an order, a hidden-surface plan,
+    // reuse) changed nothing in any round. The second holds where the first cannot be seen:
+    // occlusion culling skips its pass where its timing says it does not pay, so two renderers
+    // that both cull by occlusion need not draw alike, though neither's order did anything.
+    const std::size_t n = candidates.size();
+    std::vector<std::vector<char>> repeats(n, std::vector<char>(n, 0));
+    std::vector<char> idleAfterCull(n, 0);
+    for (std::size_t i = 1; i < n; ++i) {
+        idleAfterCull[i] = !rounds.empty() && !candidates[i].floor;
+        for (std::size_t j = 0; j < n; ++j)
+            repeats[i][j] = !rounds.empty() && addsTo(candidates[i], candidates[j], candidates[0].settings);
+    }
+    for (const std::vector<DrawRecord>& drew : rounds) {
+        const auto at = [&drew](std::size_t k) { return k < drew.size() ? drew[k] : DrawRecord{}; };
+        for (std::size_t i = 1; i < n; ++i) {
+            const std::uint64_t mine = at(i).drawn;
+            idleAfterCull[i] = idleAfterCull[i] && mine != 0 && mine == at(i).culled;
+            for (std::size_t j = 0; j < n; ++j) repeats[i][j] = repeats[i][j] && mine != 0 && mine == at(j).drawn;
+        }
+    }
+    std::vector<std::optional<std::size_t>> out(n);
+    for (std::size_t i = 1; i < n; ++i) {
+        const std::optional<std::size_t> alone = idleAfterCull[i] ? cullAlone(candidates, i) : std::nullopt;
+        for (std::size_t j = 0; j < n && !out[i]; ++j)  // the plain render first
+            if (repeats[i][j] || alone == j) out[i] = j;
+    }
     return out;
 }
 
@@ -357,22 +399,9 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
     progress("report: " + std::to_string(candidates.size()) + " candidates on " + report.backend + ", " +
              std::to_string(settings.shots.size()) + (settings.sequence ? " frames" : " views"));
 
-    // repeats[i][j]: candidate i adds to candidate j and has drawn what j drew in every round so
-    // far. idleAfterCull[i]: what candidate i does after its cull (an order, a hidden-surface plan,
-    // reuse) has changed nothing in any round so far. The second holds where the first cannot be
-    // seen: occlusion culling skips its pass where its timing says it does not pay, so two
-    // renderers that both cull by occlusion need not draw alike, though neither's order did anything.
-    const std::size_t n = candidates.size();
-    std::vector<std::vector<char>> repeats(n, std::vector<char>(n, 0));
-    std::vector<char> idleAfterCull(n, 0);
-    for (std::size_t i = 1; i < n; ++i) {
-        idleAfterCull[i] = !settings.shots.empty() && !candidates[i].floor;
-        for (std::size_t j = 0; j < n; ++j)
-            repeats[i][j] = !settings.shots.empty() && addsTo(candidates[i], candidates[j], candidates[0].settings);
-    }
-
     const double triangles = double(std::max<std::size_t>(scene.triangleCount(), 1));
     std::vector<Frame> frames(candidates.size());
+    std::vector<std::vector<DrawRecord>> rounds;  // what every candidate drew, round after round
     MissCounter misses;
     // Candidate i's render of `shot` into its frame; an error names both.
     const auto renderShot = [&](std::size_t i, const TradeShot& shot) -> Result<bool> {
@@ -397,24 +426,15 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
                 if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
                 note(report.rows[i], s, frames[i].stats, triangles);
             }
-            // This round's draws, each candidate's against those of the candidates it adds to, and
-            // against its own cull's list.
-            for (std::size_t i = 1; i < n; ++i) {
-                const std::uint64_t drew = frames[i].stats.drawFingerprint;
-                idleAfterCull[i] = idleAfterCull[i] && drew != 0 && drew == frames[i].stats.culledFingerprint;
-                for (std::size_t j = 0; j < n; ++j)
-                    repeats[i][j] = repeats[i][j] && drew != 0 && drew == frames[j].stats.drawFingerprint;
-            }
+            std::vector<DrawRecord>& drew = rounds.emplace_back();
+            for (const Frame& frame : frames) drew.push_back({frame.stats.drawFingerprint, frame.stats.culledFingerprint});
         }
         if (Result<bool> judged = judge(report.rows, frames, shot, candidates[0].settings.background, misses); !judged)
             return judged.failure();
         progress(shot.label + " (" + std::to_string(s + 1) + "/" + std::to_string(settings.shots.size()) + ")");
     }
-    for (std::size_t i = 1; i < n; ++i) {
-        const std::optional<std::size_t> alone = idleAfterCull[i] ? cullAlone(candidates, i) : std::nullopt;
-        for (std::size_t j = 0; j < n && !report.rows[i].sameDrawsAs; ++j)  // the plain render first
-            if (repeats[i][j] || alone == j) report.rows[i].sameDrawsAs = j;
-    }
+    const std::vector<std::optional<std::size_t>> repeated = repeatedDraws(candidates, rounds);
+    for (std::size_t i = 0; i < report.rows.size(); ++i) report.rows[i].sameDrawsAs = repeated[i];
     for (TradeRow& row : report.rows) {
         std::size_t timed = 0;
         for (const std::vector<double>& shot : row.shotMs) timed += shot.size();
@@ -470,7 +490,9 @@ std::string tradeReportJson(const TradeReport& report, const TradeSettings& sett
                 {"budget_px", settings.budgetPx},
                 {"pays_below", kPays},
                 {"interval",
-                 {{"statistic", "median over the shots of each shot's median ratio (time / the plain render's, same round)"},
+                 {{"statistic", "20 % trimmed geometric mean over the shots of each shot's median ratio (time / the "
+                                "plain render's, same round)"},
+                  {"trim", kTrim},
                   {"method", "percentile bootstrap: shots, and each drawn shot's rounds, drawn with replacement"},
                   {"level", kIntervalLevel},
                   {"resamples", kBootstrapResamples},

@@ -51,28 +51,31 @@ struct TradeSettings {
 // this.
 inline constexpr double kPays = 0.97;
 
-// The paired comparison (docs/report.md, "The answer"). A pair is a candidate's timed render and
-// the plain render's of the same shot in the same round; its ratio is the candidate's time ÷ the
-// plain render's. A shot's ratio is the median of its rounds' ratios; the estimate is the median of
-// the shots' ratios. Its interval is a percentile bootstrap: kBootstrapResamples times, the shots
-// are drawn with replacement and each drawn shot's rounds with replacement, and the estimate taken
-// again; the interval runs from the 2.5th to the 97.5th percentile of those. Draws come from
-// SplitMix64 seeded with kBootstrapSeed, so the same timings give the same interval everywhere.
-// With fewer than kMinPairs pairs there is no interval, and the candidate is not picked.
+// The paired comparison (docs/report.md, "When a method pays"). A pair is a candidate's timed
+// render and the plain render's of the same shot in the same round; its ratio is the candidate's
+// time ÷ the plain render's. A shot's ratio is the median of its rounds' ratios (taken on their
+// logarithms); the estimate is the trimmed geometric mean of the shots' ratios: exp of the mean of
+// their logarithms once the lowest and the highest kTrim of them are left out. Its interval is a
+// percentile bootstrap: kBootstrapResamples times, the shots are drawn with replacement and each
+// drawn shot's rounds with replacement, and the estimate taken again; the interval runs from the
+// 2.5th to the 97.5th percentile of those. Draws come from SplitMix64 seeded with kBootstrapSeed, so
+// the same timings give the same interval everywhere. With fewer than kMinPairs pairs there is no
+// interval, and the candidate is not picked.
+inline constexpr double kTrim = 0.2;
 inline constexpr int kBootstrapResamples = 2000;
 inline constexpr double kIntervalLevel = 0.95;
 inline constexpr std::uint64_t kBootstrapSeed = 20261203;
 inline constexpr std::size_t kMinPairs = 8;
 
 struct PairedRatio {
-    double estimate = 0.0;         // the median over the shots of each shot's median paired ratio
+    double estimate = 0.0;         // the trimmed geometric mean over the shots of their paired ratios
     double low = 0.0, high = 0.0;  // its interval (kIntervalLevel); NaN without one
     std::size_t pairs = 0;         // the pairs measured (shots × rounds)
     bool known() const { return pairs >= kMinPairs; }
 };
 
-// `ms` and `plainMs`: per shot, the timed renders in round order (TradeRow::shotMs). A pair whose
-// plain time is not above 0 is left out.
+// `ms` and `plainMs`: per shot, the timed renders in round order (TradeRow::shotMs). A pair with a
+// time that is not above 0 is left out.
 PairedRatio pairedRatio(const std::vector<std::vector<double>>& ms, const std::vector<std::vector<double>>& plainMs,
                         std::uint64_t seed = kBootstrapSeed);
 
@@ -134,6 +137,17 @@ struct TradeReport {
 // on the software backend the interpolators, in a sequence reuse, and the useful combinations.
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software);
 
+// What a candidate drew in one timed render: FrameStats::drawFingerprint and culledFingerprint.
+struct DrawRecord {
+    std::uint64_t drawn = 0, culled = 0;
+};
+
+// Each candidate's TradeRow::sameDrawsAs, from what every candidate drew in every timed round:
+// rounds[r][i] is candidates[i]'s render in round r (every shot's rounds, one after another).
+// candidates[0] is the plain render. A round short of a candidate counts as drawing otherwise.
+std::vector<std::optional<std::size_t>> repeatedDraws(const std::vector<TradeCandidate>& candidates,
+                                                      const std::vector<std::vector<DrawRecord>>& rounds);
+
 // What `report` recommends, from its rows' timings and judgements (measureTrades ends with it):
 // each row's paired ratio, then among the rows that pay (TradeReport::pays) the exact one and the
 // one within settings.budgetPx differing pixels a frame with the lowest estimate (ties: the lower
@@ -147,7 +161,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
                                   const std::function<void(const std::string&)>& progress);
 
 // report.json: {"scene", "shots", "sequence", "repeat", "budget_px", "pays_below", "interval":
-// {"statistic", "method", "level", "resamples", "seed", "generator", "min_pairs"}, "backend", "rows":
+// {"statistic", "trim", "method", "level", "resamples", "seed", "generator", "min_pairs"}, "backend", "rows":
 // [{"name", "family", "floor", "median_ms", "x_plain", "x_floor", "x_plain_paired", "x_plain_low",
 // "x_plain_high", "pairs", "no_op", "same_draws_as", "pays", "differing_px", "worst_frame_px", "misses", "worst_psnr",
 // "worst_depth", "extra_bytes", "prepare_ms", "submitted_share", "state_changes", "worst_shot",

@@ -4,12 +4,12 @@
 // anything: every duration is synthetic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "base/Stats.h"
 #include "lab/Trades.h"
 
 namespace frugal {
@@ -163,16 +163,13 @@ TEST(TradePickTest, ANoOpIsNeverPickedEvenWhenItIsFaster) {
 }
 
 TEST(TradePickTest, ThePickIsTheLowestEstimateAmongThoseThatPay) {
-    // conservative: 0.85 of the plain render in every shot, within 1 %. cones: 0.6 in half the
-    // shots, 0.94 in the other half (a view-dependent gain): a lower estimate, a wider interval.
-    Noise noise(5);
+    // conservative: 0.85 of the plain render in every shot. cones: 0.8 in the middle, but from
+    // 0.8 e^-0.5 to 0.8 e^0.5 from view to view: a lower estimate, a wider interval.
     Timings plain, conservative, cones, paper, oracle;
     for (int i = 0; i < 40; ++i) {
-        const double base = 3.0 + 0.2 * i;
+        const double base = 3.0 + 0.2 * i, gain = 0.8 * std::exp(-0.5 + double(i % 10) / 9.0);
         plain.push_back({base, base, base});
-        conservative.push_back({});
-        for (int r = 0; r < 3; ++r) conservative.back().push_back(0.85 * base * noise.around(0.01));
-        const double gain = i % 2 == 0 ? 0.6 : 0.94;
+        conservative.push_back({0.85 * base, 0.85 * base, 0.85 * base});
         cones.push_back({gain * base, gain * base, gain * base});
         paper.push_back({0.5 * base, 0.5 * base, 0.5 * base});
         oracle.push_back({0.3 * base, 0.3 * base, 0.3 * base});
@@ -207,25 +204,31 @@ TEST(TradePickTest, TheIntervalComesFromTheTimingsAndTheSeedAlone) {
     EXPECT_NEAR(c.high, a.high, 0.01);
 }
 
-TEST(TradePickTest, TheEstimateIsTheMedianOverShotsOfEachShotsMedianRatio) {
-    // Shot i's rounds: plain 10 ms each; the method 4, 5 and 6 ms + i: ratios whose median is (5 + i) / 10.
-    Timings plain, method;
-    for (int i = 0; i < 9; ++i) {
-        plain.push_back({10.0, 10.0, 10.0});
-        method.push_back({6.0 + i, 4.0 + i, 5.0 + i});
-    }
-    const PairedRatio p = pairedRatio(method, plain);
-    EXPECT_EQ(p.pairs, 27u);
-    EXPECT_DOUBLE_EQ(p.estimate, 0.9) << "the median of 0.5 ... 1.3";
-    EXPECT_GE(p.low, 0.3);
-    EXPECT_LE(p.high, 1.5);
+TEST(TradePickTest, TheEstimateIsATrimmedGeometricMeanOfEachShotsMedianRatio) {
+    // Ten shots whose rounds' median ratios are these (the other two rounds 1.25 and 0.8 times it):
+    // the lowest two and the highest two are left out, the other six averaged on a log scale.
+    const std::vector<double> ratios{0.1, 0.2, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 3.0, 9.0};
+    const auto timings = [](const std::vector<double>& r) {
+        Timings method;
+        for (const double x : r) method.push_back({12.5 * x, 10.0 * x, 8.0 * x});
+        return method;
+    };
+    const Timings plain(ratios.size(), {10.0, 10.0, 10.0});
+    const PairedRatio p = pairedRatio(timings(ratios), plain);
+    EXPECT_EQ(p.pairs, 30u);
+    const double middleSix = std::pow(0.5 * 0.6 * 0.7 * 0.8 * 0.9 * 1.0, 1.0 / 6.0);
+    EXPECT_NEAR(p.estimate, middleSix, 1e-12) << "not the median " << (0.7 + 0.8) / 2 << ", nor the mean of all ten";
     EXPECT_LT(p.low, p.estimate);
     EXPECT_GT(p.high, p.estimate);
+    std::vector<double> wilder = ratios;
+    wilder.front() = 0.001;
+    wilder.back() = 900.0;
+    EXPECT_NEAR(pairedRatio(timings(wilder), plain).estimate, middleSix, 1e-12) << "a trimmed shot does not count";
 
     // Every pair the same ratio: no spread, the interval is that ratio.
     const PairedRatio flat = pairedRatio(Timings(10, {4.5, 9.0}), Timings(10, {5.0, 10.0}));
-    EXPECT_DOUBLE_EQ(flat.low, 0.9);
-    EXPECT_DOUBLE_EQ(flat.high, 0.9);
+    EXPECT_NEAR(flat.low, 0.9, 1e-12);
+    EXPECT_NEAR(flat.high, 0.9, 1e-12);
 }
 
 TEST(TradePickTest, TooFewPairsGiveNoIntervalAndNoPick) {
@@ -241,6 +244,68 @@ TEST(TradePickTest, TooFewPairsGiveNoIntervalAndNoPick) {
     ASSERT_TRUE(report.rows[1].paired.known());
     EXPECT_LT(report.rows[1].paired.low, report.rows[1].paired.high) << "the rounds' spread";
     EXPECT_EQ(pickName(report, report.bestExact), "cull cones");
+}
+
+// What each candidate repeats, from fingerprints made up round by round (lab/Trades.h repeatedDraws).
+TEST(TradePickTest, ACandidateThatRepeatsTheDrawsOfOneItAddsToIsFound) {
+    const std::vector<TradeCandidate> candidates = tradeCandidates(Settings{}, true, false);
+    const auto at = [&candidates](const std::string& name) {
+        for (std::size_t i = 0; i < candidates.size(); ++i)
+            if (candidates[i].name == name) return i;
+        ADD_FAILURE() << "no candidate " << name;
+        return std::size_t(0);
+    };
+    const Settings plainSettings = candidates[0].settings;
+    std::vector<std::vector<DrawRecord>> rounds;
+    for (std::uint64_t r = 0; r < 3; ++r) {
+        // By default: the cull's list is the cull's own (the whole scene's, the plain render's
+        // draws, without a cull), and a candidate that adds an order, a plan or reuse draws
+        // otherwise.
+        const std::uint64_t plain = 1000 * (r + 1);
+        std::vector<DrawRecord>& drew = rounds.emplace_back();
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            const Settings& c = candidates[i].settings;
+            const std::uint64_t culled = c.cull == Cull::None ? plain : plain + 100 + std::uint64_t(c.cull);
+            const bool after = c.order != plainSettings.order || c.hsr != plainSettings.hsr || c.reuse;
+            drew.push_back({after ? plain + 500 + i : culled, culled});
+        }
+        drew[at("order key")].drawn = plain;    // one draw ordered
+        drew[at("cull sphere")] = {plain, plain};  // everything in view
+        if (r < 2) drew[at("order greedy")].drawn = plain;  // reordered in the last round
+        // Occlusion culling skipped its pass in one round in one renderer: the combination drew
+        // otherwise than occlusion alone there, but its order never changed its culled list.
+        drew[at("cull occlusion + order key")] = drew[at("cull occlusion")];
+        if (r == 1) drew[at("cull occlusion + order key")] = {77, 77};
+        // The ahead form draws what occlusion does: another cull, not one added to it.
+        drew[at("cull occlusion-ahead")] = drew[at("cull occlusion")];
+        // Conservative culling kept everything, in one run, and the order changed nothing.
+        drew[at("cull conservative + order key")] = {plain, plain};
+        drew[at("cull oracle")] = {};  // the floor draws its own scene
+    }
+    const std::vector<std::optional<std::size_t>> same = repeatedDraws(candidates, rounds);
+    ASSERT_EQ(same.size(), candidates.size());
+    EXPECT_FALSE(same[0]) << "the plain render";
+    EXPECT_EQ(same[at("order key")], 0u);
+    EXPECT_EQ(same[at("cull sphere")], 0u);
+    EXPECT_FALSE(same[at("order greedy")]) << "not in every round";
+    EXPECT_EQ(same[at("cull occlusion + order key")], at("cull occlusion"));
+    EXPECT_FALSE(same[at("cull occlusion-ahead")]);
+    EXPECT_EQ(same[at("cull conservative + order key")], 0u) << "its draws were the plain render's";
+    EXPECT_FALSE(same[at("hsr depthsort")]);
+    EXPECT_FALSE(same[at("cull oracle")]);
+    EXPECT_FALSE(same[at("cull conservative")]);
+    EXPECT_FALSE(same[at("reuse")]);
+
+    // Conservative culling kept everything and the key order reordered: the combination draws what
+    // the order alone draws, not the plain render's draws.
+    for (std::vector<DrawRecord>& drew : rounds) {
+        drew[at("order key")].drawn = 9000;
+        drew[at("cull conservative + order key")] = {9000, drew[0].drawn};
+    }
+    EXPECT_EQ(repeatedDraws(candidates, rounds)[at("cull conservative + order key")], at("order key"));
+    rounds.back().resize(3);
+    EXPECT_FALSE(repeatedDraws(candidates, rounds)[at("cull conservative + order key")])
+        << "a round without it draws otherwise";
 }
 
 }  // namespace
