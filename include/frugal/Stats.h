@@ -119,6 +119,16 @@ struct FrameStats {
     // before this one (between the two frames, outside every timing), and the costs it gave.
     std::optional<std::vector<double>> refinedCostsUs;
     double refineMs = 0.0;
+    // What the backend was asked to do, as a hash (taken after the clock stops): the clears, copies
+    // and draws in order, each draw's instance, depth mode and triangles (adjacent ranges of one
+    // instance count as one run), and the interpolator. Two frames with one fingerprint drew the same
+    // triangles in the same order with the same state. 0: not recorded (cull oracle, which draws
+    // its own scene).
+    std::uint64_t drawFingerprint = 0;
+    // The same for the frame the cull's list alone would have been (the whole scene's without a
+    // cull): a full clear, the list as culled, the exact interpolator. Equal to drawFingerprint when
+    // what comes after the cull (order, hidden-surface planning, reuse, interpolator) changed nothing.
+    std::uint64_t culledFingerprint = 0;
 };
 
 // The state-change costs a cost-driven order uses (Order paper, greedy, best), measured on the

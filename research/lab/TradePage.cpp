@@ -115,6 +115,15 @@ std::string bytesText(std::uint64_t bytes) {
 
 std::string psnrText(double psnr) { return std::isinf(psnr) ? "&infin;" : fixed(psnr, 1); }
 
+int levelPercent() { return int(std::lround(100.0 * kIntervalLevel)); }
+
+// "0.891 [0.874, 0.905]": a row's paired ratio to the plain render and its interval.
+std::string pairedText(const PairedRatio& p) {
+    if (p.pairs == 0) return "";
+    if (!p.known()) return fixed(p.estimate, 3) + " <small>(too few pairs for an interval)</small>";
+    return fixed(p.estimate, 3) + " <small>[" + fixed(p.low, 3) + ", " + fixed(p.high, 3) + "]</small>";
+}
+
 const char* familyColor(const std::string& family) {
     static const std::map<std::string, const char*> colors{
         {"plain", "#333333"}, {"cull", "#1f77b4"},  {"order", "#ff7f0e"},       {"hsr", "#2ca02c"},
@@ -216,12 +225,16 @@ std::string recommendationHtml(const TradeReport& report, const TradeSettings& s
     const auto line = [&](const std::string& what, const std::optional<std::size_t>& pick) {
         std::string s = "<p><b>" + escape(what) + ":</b> ";
         if (!pick)
-            return s + "plain render (" + fixed(plain.medianMs, 2) + " ms a frame): no method is at least " +
-                   fixed(100.0 * (1.0 - kPays), 0) + " % faster on this scene.</p>\n";
+            return s + "plain render (" + fixed(plain.medianMs, 2) + " ms a frame): no method is surely at least " +
+                   fixed(100.0 * (1.0 - kPays), 0) + " % faster on this scene (none has the " +
+                   std::to_string(levelPercent()) + " % interval of its paired ratio below " + fixed(kPays, 2) +
+                   ", a no-op aside).</p>\n";
         const TradeRow& row = report.rows[*pick];
         return s + "<code>" + escape(row.candidate.name) + "</code>, " + fixed(row.medianMs, 2) + " ms a frame, " +
                fixed(row.medianMs / plain.medianMs, 2) + "&times; the plain render's " + fixed(plain.medianMs, 2) +
-               " ms, " + grouped(row.differingPx) + " pixels differ.</p>\n";
+               " ms; paired with it shot by shot, " + fixed(row.paired.estimate, 3) + "&times; (" +
+               std::to_string(levelPercent()) + " % interval " + fixed(row.paired.low, 3) + "&ndash;" +
+               fixed(row.paired.high, 3) + "); " + grouped(row.differingPx) + " pixels differ.</p>\n";
     };
     return "<section id=\"recommendation\">\n" + line("Fastest exact", report.bestExact) +
            line("Fastest within " + grouped(settings.budgetPx) + " differing pixels a frame", report.bestWithinBudget) +
@@ -233,7 +246,7 @@ std::string recommendationHtml(const TradeReport& report, const TradeSettings& s
 std::string methodsTable(const TradeReport& report, const std::map<std::size_t, std::string>& thumbnails) {
     std::ostringstream s;
     s << "<table id=\"methods\">\n<thead><tr><th>method</th><th>family</th><th>median ms</th><th>&times; plain</th>"
-         "<th>&times; floor</th><th>differing px</th><th>worst frame px</th><th>misses</th><th>worst PSNR dB</th>"
+         "<th>paired &times; plain [" << levelPercent() << " %]</th><th>&times; floor</th><th>differing px</th><th>worst frame px</th><th>misses</th><th>worst PSNR dB</th>"
          "<th>worst depth</th><th>submitted</th><th>binds a frame</th><th>extra memory</th><th>prepare ms</th>"
          "<th>front</th><th>error mask (worst frame)</th></tr></thead>\n<tbody>\n";
     for (std::size_t i = 0; i < report.rows.size(); ++i) {
@@ -241,8 +254,14 @@ std::string methodsTable(const TradeReport& report, const std::map<std::size_t, 
         const bool picked = report.bestExact == i || report.bestWithinBudget == i;
         s << "<tr" << (picked ? " class=\"picked\"" : r.candidate.floor ? " class=\"floor\"" : "") << "><td>"
           << escape(r.candidate.name) << "</td><td>" << escape(r.candidate.family) << "</td><td>" << fixed(r.medianMs, 3)
-          << "</td><td>" << fixed(report.xPlain(r), 3) << "</td><td>"
-          << (report.xFloor(r) ? fixed(*report.xFloor(r), 2) : "") << "</td><td>" << grouped(r.differingPx)
+          << "</td><td>" << fixed(report.xPlain(r), 3) << "</td><td" << (report.pays(i) ? " class=\"pays\"" : "")
+          << ">" << (i > 0 ? pairedText(r.paired) : "");
+        if (r.noOp())
+            s << "<br><small>no-op: draws the plain render's draws</small>";
+        else if (r.sameDrawsAs)
+            s << "<br><small>adds nothing to " << escape(report.rows[*r.sameDrawsAs].candidate.name)
+              << ": draws its draws</small>";
+        s << "</td><td>" << (report.xFloor(r) ? fixed(*report.xFloor(r), 2) : "") << "</td><td>" << grouped(r.differingPx)
           << "</td><td>" << grouped(r.worstFramePx) << "</td><td>" << grouped(r.misses) << "</td><td>"
           << psnrText(r.worstPsnr) << "</td><td>"
           << r.worstDepth << "</td><td>" << fixed(100.0 * r.submittedShare, 1) << " %</td><td>"
@@ -297,6 +316,7 @@ th,td{border:1px solid #ccc;padding:3px 7px;text-align:right;vertical-align:midd
 th{background:#f3f3f3}
 td:first-child,td:nth-child(2),#papers td{text-align:left}
 tr.picked td{background:#eef6ee;font-weight:600}
+td.pays{font-weight:600}
 tr.floor td{color:#777}
 img.mask{width:160px;image-rendering:pixelated;border:1px solid #999;display:block}
 code{background:#f3f3f3;padding:0 3px}
@@ -336,15 +356,25 @@ Result<TradePageFiles> tradePage(const TradeReport& report, const TradeSettings&
       << plain.candidate.settings.width << "&times;" << plain.candidate.settings.height << " on "
       << escape(report.backend) << "; " << settings.shots.size() << (settings.sequence ? " frames of a sequence" : " views")
       << ", each rendered " << (settings.sequence ? 1 : settings.repeat) << " time(s) by every method, interleaved; "
-      << report.rows.size() << " methods. A method pays when its median is below " << fixed(kPays, 2)
-      << "&times; the plain render's.</p>\n";
+      << report.rows.size() << " methods. A method pays when, paired with the plain render shot by shot and round by "
+         "round, the " << levelPercent() << " % interval of its time's ratio to the plain render's lies below "
+      << fixed(kPays, 2) << " (a bootstrap of the " << int(std::lround(100 * kTrim))
+      << " % trimmed geometric mean over the shots, " << kBootstrapResamples
+      << " resamples, seed " << kBootstrapSeed << "), and when its draws are not the plain render's: a no-op is never "
+         "picked.</p>\n";
     h << recommendationHtml(report, settings);
     h << "<h2>Time against error</h2>\n" << paretoSvg(report);
     h << "<p>Each point is a method: its median time a frame and the pixels that differ from the plain render over all "
          "frames. The line joins the methods no other beats in both. The floor is the oracle: it submits exactly the "
          "visible triangles, a bound no culling method can pass.</p>\n";
     h << "<h2>Every method</h2>\n" << methodsTable(report, thumbnails);
-    h << "<p><i>differing px</i>: over all frames, against the plain render; <i>misses</i>: triangles the plain "
+    h << "<p><i>paired &times; plain</i>: per shot, the median over its rounds of the method's time &divide; the plain "
+         "render's in the same round, then the geometric mean over the shots without the lowest and highest "
+      << int(std::lround(100 * kTrim)) << " %, and in brackets its "
+      << levelPercent() << " % interval; bold where it pays. <i>no-op</i>: in every timed frame the method asked the "
+         "backend for exactly the plain render's clears, copies and draws (an order of a single draw, a cull that keeps "
+         "every triangle), so whatever its time says it cannot pay. "
+         "<i>differing px</i>: over all frames, against the plain render; <i>misses</i>: triangles the plain "
          "render shows that the method's image lacks, summed over the frames (for culling: visible triangles it did "
          "not submit); <i>worst depth</i>: the largest depth "
          "difference where both cover, in LSB (d24) or ULP (d32f); <i>submitted</i>: triangles submitted &divide; the "

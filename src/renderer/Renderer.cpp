@@ -10,6 +10,7 @@
 #include "pipeline/Frame.h"
 #include "pipeline/SceneRenderer.h"
 #include "renderer/Backends.h"
+#include "renderer/DrawFingerprint.h"
 #include "renderer/Oracle.h"
 #include "renderer/Stage.h"
 #include "renderer/StateOrder.h"
@@ -53,6 +54,12 @@ struct Renderer::Impl {
     // one draws and waited for before render() returns. Declared last: destroyed first.
     std::optional<std::pair<Camera, double>> nextFrame;
     CullAhead ahead;
+    // What draw() asked the backend to do in this frame, kept (moved, not copied) until the clock
+    // has stopped, when render() takes its fingerprint: reuse's plan, or the list drawn after a full
+    // clear. A plan's steps point only to lists the reuse planner keeps.
+    FramePlan drawnPlan;
+    DrawList drawnList;
+    bool drewPlan = false;
 
     ~Impl() {
         if (backend && staticTarget != kNoHandle) backend->destroyTarget(staticTarget);
@@ -125,21 +132,26 @@ void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, Fr
     const Settings& s = settings;
     if (reuse) {
         // A culled list, or the whole scene (the planner's own, faster list).
-        const FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, s.background)
+        FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, s.background)
                                       : reuse->plan(setup.params, setup.world, s.background);
         renderer->execute(plan, target, staticTarget, setup.params, setup.world, s.background);
         stats.reuse = reuse->stats();
+        drawnPlan = std::move(plan);
+        drewPlan = true;
         return;
     }
-    const DrawList list = orderFrameDraws(*scene, submitted, s.order, orderCosts->costsUs());
+    drewPlan = false;
+    DrawList list = orderFrameDraws(*scene, submitted, s.order, orderCosts->costsUs());
     if (!planner) {
         renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, list);
+        drawnList = std::move(list);
         return;
     }
     HsrStats hsrStats;
-    const DrawList planned = planner->plan(s.hsr, setup.params, setup.world, list, s.width, s.height, &hsrStats);
+    DrawList planned = planner->plan(s.hsr, setup.params, setup.world, list, s.width, s.height, &hsrStats);
     stats.hsr = hsrStats;
     renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, planned);
+    drawnList = std::move(planned);
 }
 
 // After setTransform: the envelope grows to hold where the moved instances are now (and can go,
@@ -178,6 +190,9 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     }
 
     const StateChanges changesBefore = backend->stateChanges();
+    // The list the cull gave (or the whole scene's), kept for its fingerprint after the clock stops.
+    DrawList culled;
+    const DrawList* submitted = &renderer->fullList();
     auto t0 = Clock::now();
     if (traitsOf(s.cull).idPass) {
         // The id pass and the oracle's own index buffers come before the clock starts.
@@ -190,7 +205,9 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     } else if (culler) {
         const OcclusionTarget cullTarget = occlusionTarget(*backend, s);
         std::optional<DrawList> madeAhead = ahead.take(s.cull, setup->world, setup->view, cullTarget);
-        const DrawList list = madeAhead ? std::move(*madeAhead) : culler->cull(s.cull, *scene, setup->world, setup->view, cullTarget);
+        culled = madeAhead ? std::move(*madeAhead) : culler->cull(s.cull, *scene, setup->world, setup->view, cullTarget);
+        const DrawList& list = culled;
+        submitted = &culled;
         const double cullMs = msBetween(t0, Clock::now());
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();
@@ -230,6 +247,13 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     stats.renderMs = msBetween(t0, t1);
     stats.readbackMs = msBetween(t1, t2);
     stats.stateChanges = backend->stateChanges() - changesBefore;
+    if (s.cull != Cull::Oracle) {
+        // The interpolator changes how the backend draws the same calls (software backend).
+        const auto seed = std::uint64_t(s.interp);
+        stats.drawFingerprint = drewPlan ? drawFingerprint(drawnPlan, seed)
+                                         : drawFingerprint(drawnList, s.width, s.height, seed);
+        stats.culledFingerprint = drawFingerprint(*submitted, s.width, s.height, std::uint64_t(DepthInterp::Exact));
+    }
     if (s.interp != DepthInterp::Exact)
         if (const std::optional<InterpStats> counters = softwareInterpStats(*backend)) {
             // The backend's counters run from its start: per frame, the difference.

@@ -1,6 +1,8 @@
 // `frugal report`: every trade on one scene in one run, judged against the plain render; the
 // recommendation is exact (or within the budget) and its settings.json renders what the plain
-// render does. No test here depends on which method is fastest: timings decide that.
+// render does; the pick is never a no-op (a method whose draws are the plain render's) and always a
+// row whose paired interval lies below 0.97, and every interval is what its timings in report.json
+// give again. No test here depends on which method is fastest: timings decide that.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +18,7 @@
 
 #include "io/ImageIO.h"
 #include "lab/TradePage.h"
+#include "lab/Trades.h"
 
 #include "CliSupport.h"
 #include "JsonSupport.h"
@@ -44,16 +47,48 @@ const nlohmann::json& row(const nlohmann::json& report, const std::string& name)
     return none;
 }
 
+// Every row's paired ratio and interval in report.json is what its own timings ("shot_ms", against
+// the plain row's) give again; what pays is what the rule says; the picks pay.
+void checkIntervals(const nlohmann::json& report, std::size_t pairs) {
+    const auto timings = [](const nlohmann::json& r) { return r["shot_ms"].get<std::vector<std::vector<double>>>(); };
+    const std::vector<std::vector<double>> plain = timings(report["rows"][0]);
+    EXPECT_EQ(report["interval"]["resamples"], kBootstrapResamples);
+    EXPECT_EQ(report["interval"]["seed"], kBootstrapSeed);
+    for (const nlohmann::json& r : report["rows"]) {
+        const PairedRatio p = pairedRatio(timings(r), plain);
+        EXPECT_EQ(r["pairs"], pairs) << r["name"];
+        EXPECT_EQ(r["x_plain_paired"].get<double>(), p.estimate) << r["name"];
+        EXPECT_EQ(r["x_plain_low"].get<double>(), p.low) << r["name"];
+        EXPECT_EQ(r["x_plain_high"].get<double>(), p.high) << r["name"];
+        EXPECT_LE(p.low, p.estimate) << r["name"];
+        EXPECT_GE(p.high, p.estimate) << r["name"];
+        const bool pays = r["name"] != "plain" && !r["floor"].get<bool>() && r["same_draws_as"].is_null() && p.high < kPays;
+        EXPECT_EQ(r["no_op"].get<bool>(), r["same_draws_as"] == "plain") << r["name"];
+        EXPECT_EQ(r["pays"].get<bool>(), pays) << r["name"];
+    }
+    for (const char* pick : {"exact", "within_budget"}) {
+        const std::string name = report["recommended"][pick];
+        if (name == "plain") continue;
+        const nlohmann::json& picked = row(report, name);
+        EXPECT_TRUE(picked["pays"].get<bool>()) << name;
+        EXPECT_FALSE(picked["no_op"].get<bool>()) << name;
+        EXPECT_LT(picked["x_plain_high"].get<double>(), kPays) << name;
+    }
+}
+
 TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     const fs::path dir = test::freshDir("ReportViews");
     const CliRun run = runFrugal(dir, {"report", "builtin:cubes?count=12", "--views", "4", "--size", "96x72",
                                        "--repeat", "2", "--budget-px", "50", "-o", "out"});
     ASSERT_EQ(run.status, 0) << run.err;
     ASSERT_EQ(run.out.substr(0, 15), "fastest exact: ") << run.out;
+    EXPECT_EQ(occurrences(run.out, "% interval ["), 2u) << "each line gives its pick's interval, or the nearest miss's\n"
+                                                         << run.out;
     EXPECT_NE(run.out.find("\nfastest within 50 px a frame: "), std::string::npos) << run.out;
     EXPECT_NE(run.err.find("report: 14 candidates on "), std::string::npos) << run.err;
 
     const nlohmann::json report = test::readJson(dir / "out" / "report.json");
+    checkIntervals(report, 4 * 2);
     EXPECT_EQ(report["shots"], 4);
     EXPECT_EQ(report["rows"][0]["name"], "plain");
     EXPECT_EQ(report["rows"].size(), 14u);
@@ -94,6 +129,8 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
     const std::string csv = readAll(dir / "out" / "report.csv");
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 15) << "a header and a line a row";
+    EXPECT_NE(csv.find(",misses,x_plain_paired,x_plain_low,x_plain_high,pairs,no_op,pays,same_draws_as\n"), std::string::npos)
+        << "the paired columns after the ones pareto.gp reads";
 
     // The page: this run's figures, a mask for each inexact method (inline, and full size beside it).
     const std::string html = readAll(dir / "out" / "index.html");
@@ -120,6 +157,55 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     if (!test::haveGnuplot()) FRUGAL_SKIP_IF_MISSING("gnuplot (Debian: gnuplot-nox): pareto.gp not checked");
     ASSERT_EQ(std::system(("cd '" + (dir / "out").string() + "' && gnuplot pareto.gp").c_str()), 0);
     EXPECT_NE(readAll(dir / "out" / "pareto.svg").find("<svg"), std::string::npos);
+}
+
+// A single mesh: an order of its one draw changes nothing, and a cull that keeps all of it neither;
+// the report calls them no-ops, says so on the page, and never picks one, whatever their times; a
+// combination whose order changed nothing is not picked either.
+TEST(ReportCliTest, ASingleMeshSceneNeverGetsAnOrderOrANoOpPick) {
+    const fs::path dir = test::freshDir("ReportSingleMesh");
+    const CliRun run = runFrugal(dir, {"report", "builtin:cubes?count=1", "--views", "6", "--size", "64x48",
+                                       "--repeat", "2", "--budget-px", "1000000", "-q", "-o", "out"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json report = test::readJson(dir / "out" / "report.json");
+    checkIntervals(report, 6 * 2);
+    EXPECT_TRUE(row(report, "order key")["no_op"].get<bool>());
+    EXPECT_TRUE(row(report, "order greedy")["no_op"].get<bool>());
+    EXPECT_FALSE(row(report, "plain")["no_op"].get<bool>());
+    EXPECT_FALSE(row(report, "cull oracle")["no_op"].get<bool>()) << "the floor draws its own scene";
+    EXPECT_FALSE(row(report, "hsr depthsort")["no_op"].get<bool>()) << "it draws polygons of its own";
+    // Ordering one culled draw adds nothing to the cull: the combination repeats it (or the plain
+    // render, where the cull kept everything) and never pays. Occlusion culling skips its pass by
+    // its own timing, so two renderers that use it need not draw alike: the order is seen to do
+    // nothing against the combination's own culled list.
+    for (const std::string cull : {"cull conservative", "cull occlusion"}) {
+        const nlohmann::json& combination = row(report, cull + " + order key");
+        EXPECT_TRUE(combination["same_draws_as"] == cull || combination["same_draws_as"] == "plain")
+            << cull << ": " << combination["same_draws_as"];
+        EXPECT_FALSE(combination["pays"].get<bool>()) << cull;
+    }
+    std::size_t noOps = 0;
+    for (const nlohmann::json& r : report["rows"]) {
+        noOps += r["no_op"].get<bool>();
+        if (r["no_op"].get<bool>()) {
+            EXPECT_FALSE(r["pays"].get<bool>()) << r["name"];
+        }
+    }
+    for (const char* pick : {"exact", "within_budget"}) {
+        const std::string name = report["recommended"][pick];
+        EXPECT_NE(name.substr(0, 6), "order ") << pick;
+        if (name != "plain") {
+            EXPECT_FALSE(row(report, name)["no_op"].get<bool>()) << name;
+        }
+    }
+    const std::string html = readAll(dir / "out" / "index.html");
+    EXPECT_EQ(occurrences(html, "no-op: draws the plain render's draws"), noOps);
+    const std::string csv = readAll(dir / "out" / "report.csv");
+    EXPECT_NE(csv.find("\norder greedy,order,"), std::string::npos);
+    for (const std::string& line : test::lines(csv))
+        if (line.rfind("order ", 0) == 0) {
+            EXPECT_TRUE(line.ends_with(",1,0,plain")) << "no_op 1, pays 0, the plain render's draws: " << line;
+        }
 }
 
 TEST(ReportCliTest, ASequenceWeighsReuseAndItsSettingsRenderThePlainImages) {

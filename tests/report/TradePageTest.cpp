@@ -98,7 +98,16 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     report.backend = "software (test)";
     report.rows = {row("plain", "plain", 10.0, 0),          row("cull paper", "cull", 4.25, 1234),
                    row("cull oracle", "floor", 3.0, 0, true), row("order key", "order", 9.0, 0),
-                   row("hsr depthsort", "hsr", 12.0, 56)};
+                   row("hsr depthsort", "hsr", 12.0, 56),     row("order greedy", "order", 9.5, 0),
+                   row("cull conservative + order key", "combination", 9.1, 0)};
+    report.rows[0].paired = {1.0, 1.0, 1.0, 64};
+    report.rows[1].paired = {0.43, 0.41, 0.452, 64};
+    report.rows[3].paired = {0.9, 0.88, 0.925, 64};
+    report.rows[4].paired = {1.2, 1.1, 1.3, 64};
+    report.rows[5].paired = {0.95, 0.93, 0.96, 64};
+    report.rows[5].sameDrawsAs = 0;
+    report.rows[6].paired = {0.91, 0.89, 0.93, 64};
+    report.rows[6].sameDrawsAs = 3;
     report.bestExact = 3;
     report.pareto = {1, 3};
     TradeSettings settings;
@@ -113,7 +122,7 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     EXPECT_EQ(count(html, "<script"), 0u) << "no script: nothing to fail, nothing from elsewhere";
     EXPECT_EQ(std::regex_search(html, std::regex(R"((src|href)="(https?:)?//)")), false) << "nothing from the network";
     EXPECT_EQ(count(html, "<svg id=\"pareto\""), 1u);
-    EXPECT_EQ(count(html, "<circle cx="), report.rows.size() + 5) << "a point per row and a legend dot per family";
+    EXPECT_EQ(count(html, "<circle cx="), report.rows.size() + 6) << "a point per row and a legend dot per family";
     EXPECT_EQ(count(html, "<table id=\"methods\">"), 1u);
     EXPECT_EQ(count(html, "<table id=\"papers\">"), 1u);
 
@@ -129,12 +138,29 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     EXPECT_EQ(full->height, 30);
 
     // The figures are the report's.
-    EXPECT_NE(html.find("<td>cull paper</td><td>cull</td><td>4.250</td><td>0.425</td><td>1.42</td><td>1,234</td><td>1,234</td>"
-                        "<td>12</td>"),
+    EXPECT_NE(html.find("<td>cull paper</td><td>cull</td><td>4.250</td><td>0.425</td><td class=\"pays\">0.430 "
+                        "<small>[0.410, 0.452]</small></td><td>1.42</td><td>1,234</td><td>1,234</td><td>12</td>"),
+              std::string::npos)
+        << "the paired ratio and its interval beside the ratio of medians";
+    EXPECT_NE(html.find("<td>hsr depthsort</td><td>hsr</td><td>12.000</td><td>1.200</td><td>1.200 "
+                        "<small>[1.100, 1.300]</small></td>"),
+              std::string::npos)
+        << "an interval above the line does not pay";
+    EXPECT_NE(html.find("<td>0.950 <small>[0.930, 0.960]</small><br><small>no-op: draws the plain render's "
+                        "draws</small></td>"),
+              std::string::npos)
+        << "a no-op says so, and does not pay though its interval is below the line";
+    EXPECT_EQ(count(html, "no-op: draws the plain render's draws</small>"), 1u);
+    EXPECT_NE(html.find("<td>0.910 <small>[0.890, 0.930]</small><br><small>adds nothing to order key: draws its "
+                        "draws</small></td>"),
+              std::string::npos)
+        << "a combination whose cull changed nothing";
+    EXPECT_NE(html.find("<b>Fastest exact:</b> <code>order key</code>, 9.00 ms a frame, 0.90&times; the plain "
+                        "render's 10.00 ms; paired with it shot by shot, 0.900&times; (95 % interval "
+                        "0.880&ndash;0.925); 0 pixels differ."),
               std::string::npos);
-    EXPECT_NE(html.find("<b>Fastest exact:</b> <code>order key</code>, 9.00 ms a frame, 0.90&times;"),
-              std::string::npos);
-    EXPECT_NE(html.find("no method is at least 3 % faster"), std::string::npos) << "no pick within the budget";
+    EXPECT_NE(html.find("no method is surely at least 3 % faster"), std::string::npos) << "no pick within the budget";
+    EXPECT_NE(html.find("2000 resamples, seed 20261203"), std::string::npos) << "how the intervals were drawn";
     EXPECT_NE(html.find("view 1 (partial): 1,234 px"), std::string::npos);
 
     // The papers' figures only for the methods measured: no reuse row here.
