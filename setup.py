@@ -68,6 +68,8 @@ setup(
     description="Offscreen OpenGL renderer that does only the work a scene requires",
     packages=["frugal"],
     package_dir={"": "python"},
+    # The extension's type stubs and the marker that the package has them (PEP 561).
+    package_data={"frugal": ["_frugal.pyi", "py.typed"]},
     ext_modules=[CMakeExtension("frugal._frugal")],
     cmdclass={"build_ext": CMakeBuild},
     python_requires=">=3.9",

@@ -7,6 +7,7 @@ Not a benchmark itself: overhead.py and vs_moderngl.py import it from their own 
 import argparse
 import ctypes
 import datetime
+import importlib
 import json
 import os
 import platform
@@ -24,20 +25,22 @@ def log(message):
     print(message, file=sys.stderr, flush=True)
 
 
-def import_frugal():
-    """The frugal module, or an exit with a line that says where it is expected."""
+def import_frugal(name="frugal"):
+    """The frugal module, or frugal_bench (overhead.py's: frugal's binding plus cpp_loop, built into
+    <build>/bench/python with FRUGAL_BUILD_BENCH), or an exit with a line that says where it is expected."""
+    folder = "bench/python" if name == "frugal_bench" else "python"
     try:
-        import frugal
+        module = importlib.import_module(name)
     except ImportError as e:
-        sys.exit(f"error: cannot import frugal ({e}); run with PYTHONPATH=<build>/python, "
-                 "e.g. PYTHONPATH=build/python /usr/bin/python3 ...")
-    return frugal
+        sys.exit(f"error: cannot import {name} ({e}); run with PYTHONPATH=<build>/{folder}, "
+                 f"e.g. PYTHONPATH=build/{folder} /usr/bin/python3 ...")
+    return module
 
 
 def frugal_build(frugal):
     """Which frugal was measured: its version and its extension module's file and build time (the
     build folder may be rebuilt between two runs)."""
-    path = frugal._frugal.__file__
+    path = getattr(frugal, "_frugal", frugal).__file__
     built = datetime.datetime.fromtimestamp(os.path.getmtime(path), datetime.timezone.utc)
     return {"version": frugal.__version__, "extension": path, "extension_mtime": built.isoformat(timespec="seconds")}
 
@@ -82,15 +85,16 @@ def add_common_args(parser, malloc, frames=200, block=10, warmup=20):
     parser.add_argument("--json", metavar="FILE", help="also write the JSON object to FILE")
 
 
-def start(description):
-    """What both benchmarks do first: parse the options, set the allocator, import frugal, load the
-    scene and make a renderer of the size asked for (its defaults otherwise). Returns (args, the
-    allocator's description, the module, the scene, the renderer); a frugal error exits with its line."""
+def start(description, module="frugal"):
+    """What both benchmarks do first: parse the options, set the allocator, import `module` (frugal,
+    or frugal_bench), load the scene and make a renderer of the size asked for (its defaults
+    otherwise). Returns (args, the allocator's description, the module, the scene, the renderer); a
+    frugal error exits with its line."""
     parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_common_args(parser, malloc="default")
     args = parser.parse_args()
     malloc = set_malloc(args.malloc)
-    frugal = import_frugal()
+    frugal = import_frugal(module)
     try:
         scene = frugal.load(args.scene)
         renderer = frugal.Renderer(scene, size=args.size)

@@ -7,7 +7,7 @@ blocks of --block frames that alternate within one process (their order rotates 
   python_render       f = r.render(cam), each call timed with time.perf_counter: the binding's
                       own cost (arguments, GIL release, the mutex, making the context current and
                       releasing it, the Frame object) on top of the C++ render.
-  cpp_loop            frugal._frugal._cpp_loop(r, cam, 0.0, K): the same renders in a C++ loop into
+  cpp_loop            frugal_bench.cpp_loop(r, cam, 0.0, K): the same renders in a C++ loop into
                       one reused Frame, each followed by the context release render() does, timed
                       per frame in C++ (std::chrono::steady_clock), no Python between frames.
   python_render_read  as python_render, plus f.color and f.depth, what a user reads: colour is a
@@ -20,7 +20,11 @@ Python into a frame the renderer takes back once nothing refers to it), so neith
 pages in a frame; --malloc pinned fixes glibc's thresholds to check that the allocator does not
 decide the ratio.
 
-Run: PYTHONPATH=build/python /usr/bin/python3 bench/python/overhead.py [--json FILE]
+The module is frugal_bench (bench/python/BenchModule.cpp, built with -DFRUGAL_BUILD_BENCH=ON and
+-DFRUGAL_BUILD_PYTHON=ON): frugal's binding itself, the same object files as frugal._frugal, plus
+cpp_loop, so that the module users import has no benchmark hook. Both loops run on one renderer.
+
+Run: PYTHONPATH=build/bench/python /usr/bin/python3 bench/python/overhead.py [--json FILE]
 """
 
 import time
@@ -31,7 +35,7 @@ GOAL = 1.03  # python_render / cpp_loop, medians
 
 WHAT = {
     "python_render": "f = r.render(cam) in a Python loop, each call timed with time.perf_counter",
-    "cpp_loop": "frugal._frugal._cpp_loop(r, cam, 0.0, K): the same renders in C++, timed per frame in C++",
+    "cpp_loop": "frugal_bench.cpp_loop(r, cam, 0.0, K): the same renders in C++, timed per frame in C++",
     "python_render_read": "f = r.render(cam); f.color; f.depth in a Python loop, timed together",
 }
 
@@ -50,13 +54,13 @@ def python_block(r, cam, frames, read):
 
 
 def main():
-    args, malloc, frugal, scene, r = benchutil.start(__doc__)
+    args, malloc, frugal, scene, r = benchutil.start(__doc__, module="frugal_bench")
     cam = frugal.Camera.automatic()
 
     started, machine = benchutil.now_utc(), benchutil.machine()
     results, _ = benchutil.run_interleaved({
         "python_render": lambda n: python_block(r, cam, n, read=False),
-        "cpp_loop": lambda n: (frugal._frugal._cpp_loop(r, cam, 0.0, n), None),
+        "cpp_loop": lambda n: (frugal.cpp_loop(r, cam, 0.0, n), None),
         "python_render_read": lambda n: python_block(r, cam, n, read=True),
     }, args.frames, args.block, args.warmup)
     for method, what in WHAT.items():

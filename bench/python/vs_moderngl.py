@@ -161,7 +161,8 @@ def frugal_phases(r, cam, frames=20):
     """Medians of frugal's own timings of its phases (render_ms: clear, draws and glFinish;
     readback_ms) over `frames` more frames, rendered after the timed ones."""
     stats = [r.render(cam).stats for _ in range(frames)]
-    return {key: round(float(np.median([s[key] for s in stats])), 4) for key in ("render_ms", "readback_ms")}
+    return {"render_ms": round(float(np.median([s.render_ms for s in stats])), 4),
+            "readback_ms": round(float(np.median([s.readback_ms for s in stats])), 4)}
 
 
 def agreement(frame, moderngl_images):
@@ -203,11 +204,11 @@ def main():
     camera = r.render(cam).camera
     result = {
         **benchutil.run_header("vs_moderngl", benchutil.now_utc(), frugal, args, r),
-        "camera": {k: camera[k] for k in ("eye", "forward", "yfov_degrees", "znear", "zfar")},
+        "camera": {k: getattr(camera, k) for k in ("eye", "forward", "yfov_degrees", "znear", "zfar")},
     }
 
     try:
-        mgl = ModernglRenderer(mesh, (width, height), camera["view_matrix"], camera["projection_matrix"],
+        mgl = ModernglRenderer(mesh, (width, height), camera.view_matrix, camera.projection_matrix,
                             r.settings["background"])
     except Skipped as e:
         benchutil.log(f"skipped: {e}")

@@ -4,8 +4,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include <frugal/Camera.h>
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
+#include <frugal/Settings.h>
+#include <frugal/Stats.h>
 
 namespace frugal::python {
 
@@ -35,11 +38,18 @@ struct PyScene {
     }
 };
 
+void defineModule(py::module_& m);  // Module.cpp: all of frugal._frugal, each part below in turn
 void defineErrors(py::module_& m);  // Module.cpp: frugal.Error and a class a kind
+void bindStats(py::module_& m);     // StatsBindings.cpp: FrameStats and its parts, View, StateCosts, CullPreparation
 void bindScene(py::module_& m);     // SceneBindings.cpp: Scene
 void bindLoad(py::module_& m);      // SceneBindings.cpp: load
 void bindCamera(py::module_& m);    // SceneBindings.cpp: Camera
 void bindFrame(py::module_& m);     // RenderBindings.cpp: Frame
 void bindRenderer(py::module_& m);  // RenderBindings.cpp: Renderer
+
+// A frame's statistics and the camera it was drawn with as bindStats' objects (frugal.FrameStats,
+// frugal.View); the renderer's settings say what of them the render JSON's record shows.
+py::object frameStatsObject(const FrameStats& stats, const Settings& settings);
+py::object viewObject(const View& view, const Settings& settings);
 
 }  // namespace frugal::python

@@ -2,7 +2,8 @@
 // from numpy arrays), cameras, a renderer whose keyword arguments are the command line's options,
 // and frames whose images are numpy arrays. The GIL is released while anything renders, loads or
 // writes; errors are exceptions under frugal.Error, one class per frugal::ErrorKind. This file: the
-// exception classes and the module; SceneBindings.cpp and RenderBindings.cpp: the classes.
+// exception classes and the module's contents (defineModule); SceneBindings.cpp, RenderBindings.cpp
+// and StatsBindings.cpp: the classes; Extension.cpp: the extension _frugal itself.
 #include <string>
 
 #include <pybind11/pybind11.h>
@@ -73,14 +74,11 @@ void defineErrors(py::module_& m) {
     });
 }
 
-}  // namespace frugal::python
-
-PYBIND11_MODULE(_frugal, m) {
-    using namespace frugal;
-    using namespace frugal::python;
+void defineModule(py::module_& m) {
     m.doc() = "frugal: an offscreen OpenGL renderer that does only the work a scene requires.";
     m.attr("__version__") = version();
     defineErrors(m);
+    bindStats(m);
     bindScene(m);
     bindLoad(m);
     bindCamera(m);
@@ -98,3 +96,5 @@ PYBIND11_MODULE(_frugal, m) {
           "over it), checked as it checks them: raises InputError on a value out of its range or settings that may "
           "not go together.");
 }
+
+}  // namespace frugal::python

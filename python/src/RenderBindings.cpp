@@ -1,6 +1,5 @@
 // The rendering half of the module: frugal.Renderer (a frugal::Renderer with its keyword arguments,
 // a lock and a pool of frames to fill again) and frugal.Frame (the images as numpy arrays).
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -16,10 +15,10 @@
 
 #include <frugal/Files.h>
 #include <frugal/Renderer.h>
-#include <frugal/Stats.h>
 
 #include "Arrays.h"
 #include "Bindings.h"
+#include "RenderBindings.h"
 #include "Settings.h"
 
 namespace frugal::python {
@@ -27,41 +26,6 @@ namespace frugal::python {
 namespace {
 
 // --- frames ------------------------------------------------------------------------------------
-
-// Frames whose Python objects are gone, kept for the next render() to fill (Renderer::render into a
-// Frame: no allocation, no page faults a frame). A frame goes back only when nothing views it: its
-// arrays keep the Python frame, and so the memory they show, alive.
-struct FramePool {
-    static constexpr std::size_t kKept = 2;
-    std::mutex lock;
-    std::vector<Frame> frames;
-
-    Frame take() {
-        std::lock_guard<std::mutex> held(lock);
-        if (frames.empty()) return {};
-        Frame frame = std::move(frames.back());
-        frames.pop_back();
-        return frame;
-    }
-    void give(Frame&& frame) {
-        std::lock_guard<std::mutex> held(lock);
-        if (frames.size() < kKept) frames.push_back(std::move(frame));
-    }
-};
-
-struct PyFrame {
-    Frame frame;
-    Settings settings;
-    py::object depth, stats;           // made on first use
-    std::shared_ptr<FramePool> pool;  // where the frame's memory goes when this object does
-
-    PyFrame() = default;
-    PyFrame(PyFrame&&) noexcept = default;
-    PyFrame& operator=(PyFrame&&) noexcept = default;
-    ~PyFrame() {
-        if (pool) pool->give(std::move(frame));
-    }
-};
 
 py::array depthArray(py::object self) {
     PyFrame& f = self.cast<PyFrame&>();
@@ -82,8 +46,6 @@ py::array depthArray(py::object self) {
     }
     return out;
 }
-
-py::object jsonLoads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
 // png_level="auto" or 0..12 (frugal/Files.h).
 int pngLevelFrom(const py::object& level) {
@@ -177,115 +139,57 @@ struct PyWriter {
     }
 };
 
+}  // namespace
+
 // --- the renderer ------------------------------------------------------------------------------
 
-// One frugal::Renderer, used by one thread at a time (the lock), with its context released after
-// every call so that the next may come from another thread. close() frees it before the garbage
-// collector would.
-struct PyRenderer {
-    std::optional<Renderer> renderer;
-    std::mutex lock;
-    std::shared_ptr<FramePool> pool = std::make_shared<FramePool>();
-
-    PyRenderer(PyScene& scene, const py::kwargs& kwargs) {
-        const Settings settings = settingsFrom(kwargs);
-        Scene copy = scene.built();
-        py::gil_scoped_release unlocked;
-        Result<Renderer> made = Renderer::create(std::move(copy), settings);
-        if (made) made->releaseThread();
-        renderer.emplace(take(std::move(made)));
-    }
-    ~PyRenderer() { close(); }
-
-    void close() {
-        py::gil_scoped_release unlocked;  // a GL context's teardown may wait for its threads
-        std::lock_guard<std::mutex> held(lock);
-        renderer.reset();
-    }
-
-    // The renderer, or InputError once closed. Callers hold the lock where it renders.
-    Renderer& live() {
-        if (!renderer) throw InputError{"the renderer is closed"};
-        return *renderer;
-    }
-
-    PyFrame render(const std::optional<Camera>& camera, double time, const std::optional<Camera>& nextCamera,
-                   const std::optional<double>& nextTime) {
-        if (!std::isfinite(time)) throw InputError{"time: " + std::to_string(time) + " is not finite"};
-        if (nextTime && !std::isfinite(*nextTime))
-            throw InputError{"next_time: " + std::to_string(*nextTime) + " is not finite"};
-        PyFrame out;
-        {
-            py::gil_scoped_release unlocked;
-            std::lock_guard<std::mutex> held(lock);
-            Renderer& r = live();
-            if (nextCamera || nextTime)
-                r.setNextFrame(nextCamera.value_or(camera.value_or(Camera{})), nextTime.value_or(time));
-            out.frame = pool->take();
-            Result<bool> rendered = r.render(camera.value_or(Camera{}), time, out.frame);
-            r.releaseThread();
-            take(std::move(rendered));
-            out.settings = r.settings();
-        }
-        out.pool = pool;
-        return out;
-    }
-
-    void setTransform(int node, const py::handle& transform) {
-        const glm::mat4 m = matrixFrom(transform, "transform");
-        std::lock_guard<std::mutex> held(lock);
-        take(live().setTransform(node, m));
-    }
-};
-
-// The C++ loop a benchmark compares Python's with: `frames` renders through the same renderer into
-// one Frame (as a C++ program does best), without Python between them; the wall time of each, in
-// milliseconds, with the context released after each as render() does.
-std::vector<double> cppLoop(PyRenderer& r, const std::optional<Camera>& camera, double time, int frames) {
-    std::vector<double> ms;
+PyRenderer::PyRenderer(PyScene& scene, const py::kwargs& kwargs) {
+    const Settings settings = settingsFrom(kwargs);
+    Scene copy = scene.built();
     py::gil_scoped_release unlocked;
-    std::lock_guard<std::mutex> held(r.lock);
-    Renderer& renderer = r.live();
-    std::optional<Error> failed;
-    Frame frame;
-    for (int i = 0; i < frames && !failed; ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        Result<bool> rendered = renderer.render(camera.value_or(Camera{}), time, frame);
-        renderer.releaseThread();
-        if (!rendered) failed = rendered.failure();
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    Result<Renderer> made = Renderer::create(std::move(copy), settings);
+    if (made) made->releaseThread();
+    renderer.emplace(take(std::move(made)));
+}
+
+void PyRenderer::close() {
+    py::gil_scoped_release unlocked;  // a GL context's teardown may wait for its threads
+    std::lock_guard<std::mutex> held(lock);
+    renderer.reset();
+}
+
+Renderer& PyRenderer::live() {
+    if (!renderer) throw InputError{"the renderer is closed"};
+    return *renderer;
+}
+
+PyFrame PyRenderer::render(const std::optional<Camera>& camera, double time, const std::optional<Camera>& nextCamera,
+                           const std::optional<double>& nextTime) {
+    if (!std::isfinite(time)) throw InputError{"time: " + std::to_string(time) + " is not finite"};
+    if (nextTime && !std::isfinite(*nextTime))
+        throw InputError{"next_time: " + std::to_string(*nextTime) + " is not finite"};
+    PyFrame out;
+    {
+        py::gil_scoped_release unlocked;
+        std::lock_guard<std::mutex> held(lock);
+        Renderer& r = live();
+        if (nextCamera || nextTime)
+            r.setNextFrame(nextCamera.value_or(camera.value_or(Camera{})), nextTime.value_or(time));
+        out.frame = pool->take();
+        Result<bool> rendered = r.render(camera.value_or(Camera{}), time, out.frame);
+        r.releaseThread();
+        take(std::move(rendered));
+        out.settings = r.settings();
     }
-    if (failed) throw Failure{*failed};
-    return ms;
+    out.pool = pool;
+    return out;
 }
 
-py::object cullPreparationDict(const Renderer& r) {
-    const std::optional<Renderer::CullPreparation> p = r.cullPreparation();
-    if (!p) return py::none();
-    py::dict d;
-    d["sphere_ms"] = p->sphereMs;
-    d["map_ms"] = p->mapMs;
-    d["cluster_ms"] = p->clusterMs;
-    d["hull_ms"] = p->hullMs;
-    d["total_ms"] = p->totalMs;
-    d["hull"] = p->hull;
-    d["bytes"] = p->bytes;
-    return d;
+void PyRenderer::setTransform(int node, const py::handle& transform) {
+    const glm::mat4 m = matrixFrom(transform, "transform");
+    std::lock_guard<std::mutex> held(lock);
+    take(live().setTransform(node, m));
 }
-
-py::object stateCostsDict(const Renderer& r) {
-    const std::optional<StateCosts> costs = r.stateCosts();
-    if (!costs) return py::none();
-    py::dict d;
-    d["kinds"] = costs->kinds;
-    d["start_us"] = costs->startUs;
-    d["us"] = costs->us;
-    d["rounds"] = costs->rounds;
-    d["refine_every"] = costs->refineEvery;
-    return d;
-}
-
-}  // namespace
 
 void bindFrame(py::module_& m) {
     py::class_<PyFrame>(m, "Frame", "One rendered frame: images as numpy arrays (top row first) and its stats.")
@@ -323,19 +227,15 @@ void bindFrame(py::module_& m) {
         .def_property_readonly(
             "stats",
             [](PyFrame& f) {
-                if (!f.stats) f.stats = jsonLoads(frameStatsJsonText(f.frame.stats, f.settings));
+                if (!f.stats) f.stats = frameStatsObject(f.frame.stats, f.settings);
                 return f.stats;
             },
-            "The render JSON's record of this frame: time, render_ms, readback_ms, culling, reuse, ...")
+            "frugal.FrameStats: what this frame cost and did (render_ms, readback_ms, cull, reuse, hsr,\n"
+            "state_changes, ...); to_dict() is the render JSON's record of it.")
         .def_property_readonly(
-            "camera",
-            [](PyFrame& f) {
-                py::dict d = jsonLoads(viewJsonText(f.frame.view, f.settings));
-                d["view_matrix"] = matrixArray(f.frame.view.view);
-                d["projection_matrix"] = matrixArray(f.frame.view.projection);
-                return d;
-            },
-            "The camera as resolved for this frame (the render JSON's 'camera') and its 4x4 matrices.")
+            "camera", [](PyFrame& f) { return viewObject(f.frame.view, f.settings); },
+            "frugal.View: the camera as resolved for this frame (the render JSON's 'camera') and its 4x4\n"
+            "matrices.")
         .def("write", &writeFiles, py::kw_only(), py::arg("color") = py::none(), py::arg("depth") = py::none(),
              py::arg("ids") = py::none(), py::arg("png_level") = "auto",
              "Writes the images as frugal render does, as one set (all of them or, on an error, none):\n"
@@ -370,11 +270,12 @@ void bindRenderer(py::module_& m) {
                                "One line per GL context tried.")
         .def_property_readonly("settings", [](PyRenderer& r) { return settingsDict(r.live().settings()); })
         .def_property_readonly("triangle_count", [](PyRenderer& r) { return r.live().scene().triangleCount(); })
-        .def_property_readonly("cull_preparation", [](PyRenderer& r) { return cullPreparationDict(r.live()); },
-                               "With culling: what preparing it took (ms: sphere, map, cluster, hull, total) and the bytes it "
-                               "keeps; else None.")
-        .def_property_readonly("state_costs", [](PyRenderer& r) { return stateCostsDict(r.live()); },
-                               "With order paper, greedy or best: the state costs measured (us a change, by kind).")
+        .def_property_readonly("cull_preparation", [](PyRenderer& r) { return r.live().cullPreparation(); },
+                               "frugal.CullPreparation with culling: what preparing it took (ms: sphere, map, cluster, "
+                               "hull, total) and the bytes it keeps; else None.")
+        .def_property_readonly("state_costs", [](PyRenderer& r) { return r.live().stateCosts(); },
+                               "frugal.StateCosts with order paper, greedy or best: the state costs measured (us a "
+                               "change, by kind); else None.")
         .def_property_readonly("static_pair_bytes", [](PyRenderer& r) { return r.live().staticPairBytes(); },
                                "With reuse: the bytes of the static pair (one more target); else 0.")
         .def_property_readonly("extra_bytes", [](PyRenderer& r) { return r.live().extraBytes(); },
@@ -407,7 +308,6 @@ void bindRenderer(py::module_& m) {
         .def("__exit__", [](PyWriter& w, const py::object& type, const py::object&, const py::object&) {
             w.close(type.is_none());  // an exception already leaving the block is not replaced
         });
-    m.def("_cpp_loop", &cppLoop, py::arg("renderer"), py::arg("camera"), py::arg("time"), py::arg("frames"));
 }
 
 }  // namespace frugal::python

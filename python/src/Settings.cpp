@@ -92,7 +92,10 @@ Settings settingsFrom(const py::kwargs& kwargs) {
         const SettingInfo* info = findSetting(name);
         if (!info || info->pythonName() != name) {
             std::string names;
-            for (const SettingInfo& known : settingInfos()) names += (names.empty() ? "" : ", ") + known.pythonName();
+            for (const SettingInfo& known : settingInfos()) {  // appended, not `a + b`: GCC 12's LTO warns of
+                if (!names.empty()) names += ", ";               // that (-Wstringop-overflow, a false alarm)
+                names += known.pythonName();
+            }
             throw InputError{"unknown setting '" + name + "' (" + names + ")"};
         }
         const std::optional<SettingValue> v = valueOf(*info, value);

@@ -57,7 +57,7 @@ def test_sequence_with_reuse_equals_the_command_line(tmp_path, cli):
     modes = []
     for i in range(6):
         frame = renderer.render(time=i / scene.fps)
-        modes.append(frame.stats["reuse"]["mode"])
+        modes.append(frame.stats.reuse.mode)
         np.testing.assert_array_equal(frame.color, read_png(tmp_path / f"f_{i:04d}.png"))
         np.testing.assert_array_equal(frame.depth, read_pfm(tmp_path / f"d_{i:04d}.pfm"))
     assert "reuse" in modes, modes

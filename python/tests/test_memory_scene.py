@@ -170,12 +170,12 @@ def test_moving_an_instance_with_reuse_stays_exact():
         a, b = reuse.render(camera), plain.render(camera)
         np.testing.assert_array_equal(a.color, b.color)
         np.testing.assert_array_equal(a.ids, b.ids)
-        stats = a.stats["reuse"]
-        modes.append(stats["mode"])
-        moved.append(stats["instances"]["p_dd"] + stats["instances"]["p_sd"])
+        stats = a.stats.reuse
+        modes.append(stats.mode)
+        moved.append(stats.instances.p_dd + stats.instances.p_sd)
     assert modes[2:5] == ["reuse"] * 3, modes
     assert moved[2:5] == [1, 1, 1], moved
-    assert modes[5] == "full" and a.camera["zfar"] > 12.0
+    assert modes[5] == "full" and a.camera.zfar > 12.0
 
 
 def test_instances_materials_and_ids_name_what_drew_each_pixel():

@@ -13,9 +13,11 @@ def test_settings_round_trip_and_defaults():
     assert r.backend in ("egl-surfaceless", "egl-device", "osmesa", "software")
     assert r.backend_log and r.backend_renderer
     assert r.triangle_count == scene.triangle_count == 36
-    assert set(r.cull_preparation) >= {"sphere_ms", "map_ms", "total_ms"} and r.state_costs is None
+    prepared = r.cull_preparation
+    assert isinstance(prepared, frugal.CullPreparation) and r.state_costs is None
+    assert prepared.total_ms >= prepared.map_ms >= 0 and prepared.sphere_ms >= 0 and not prepared.hull
     assert r.static_pair_bytes == 0
-    assert r.extra_bytes == r.cull_preparation["bytes"] > 0, "culling's maps, nothing else"
+    assert r.extra_bytes == prepared.bytes > 0, "culling's maps, nothing else"
     reusing = frugal.Renderer(scene, size=(64, 48), reuse=True)
     assert reusing.extra_bytes == reusing.static_pair_bytes > 0
     assert frugal.Renderer(scene, size=(64, 48)).extra_bytes == 0
@@ -29,10 +31,12 @@ def test_occlusion_culling_gives_the_same_image_and_says_what_it_did():
         a, b = plain.render(), culled.render()
         assert np.array_equal(a.color, b.color) and np.array_equal(a.ids, b.ids)
         assert np.array_equal(a.depth, b.depth)
-        assert set(b.stats["occlusion"]) == {"ran", "ms", "triangles_hidden"}
-        assert b.stats["pvs"] <= a.stats["pvs"]
-        assert "occlusion" not in a.stats
-        assert culled.extra_bytes > plain.extra_bytes or not b.stats["occlusion"]["ran"]
+        occlusion = b.stats.cull.occlusion
+        assert set(occlusion.to_dict()) == {"ran", "ms", "triangles_hidden"}
+        assert occlusion.ahead is None and occlusion.ahead_wait_ms is None, "occlusion-ahead's only"
+        assert b.stats.cull.pvs <= a.stats.cull.pvs
+        assert a.stats.cull.occlusion is None and "occlusion" not in a.stats.to_dict()
+        assert culled.extra_bytes > plain.extra_bytes or not occlusion.ran
     with pytest.raises(frugal.InputError, match="reuse=True with cull='occlusion'"):
         frugal.Renderer(scene, size=(32, 24), cull="occlusion", reuse=True)
 
@@ -48,11 +52,11 @@ def test_occlusion_ahead_makes_the_next_frames_plan_and_changes_no_image():
             a, b = plain.render(camera), ahead.render(camera, next_camera=following)
             assert np.array_equal(a.color, b.color) and np.array_equal(a.ids, b.ids)
             assert np.array_equal(a.depth, b.depth)
-            assert b.stats["occlusion"]["ahead"] == (i > 0)
+            assert b.stats.cull.occlusion.ahead == (i > 0)
         # A wrong guess costs a plan, not an image.
         b = ahead.render(cameras[0], next_camera=cameras[2])
         b = ahead.render(cameras[1])
-        assert not b.stats["occlusion"]["ahead"]
+        assert b.stats.cull.occlusion.ahead is False
         assert np.array_equal(b.color, plain.render(cameras[1]).color)
         with pytest.raises(frugal.InputError, match="next_time: .* is not finite"):
             ahead.render(cameras[0], next_time=float("nan"))

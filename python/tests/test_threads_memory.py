@@ -71,7 +71,8 @@ def test_a_thousand_frames_without_memory_growth():
 
     def one(i):
         frame = renderer.render(camera, time=(i % 60) / scene.fps)
-        return int(frame.color[0, 0, 0]) + int(frame.ids.max()) + float(frame.depth.min()) + len(frame.stats)
+        return int(frame.color[0, 0, 0]) + int(frame.ids.max()) + float(frame.depth.min()) + \
+            frame.stats.reuse.redrawn_tris + len(frame.stats.to_dict()) + len(repr(frame.camera))
 
     for i in range(100):
         one(i)
