@@ -1,5 +1,5 @@
 // How the reports (CullReport, ReuseReport) write their JSON, CSV and gnuplot text: one definition,
-// so a NaN, a comma or a quote comes out the same in every report. Internal to src/lab/, not
+// so a NaN, a comma or a quote comes out the same in every report. Internal to research/lab/, not
 // installed.
 #pragma once
 

@@ -340,9 +340,15 @@ std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
 
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
-    for (const Cull cull : {Cull::Sphere, Cull::Backface, Cull::Cones, Cull::Paper, Cull::Conservative, Cull::Occlusion})
-        out.push_back(with(base, std::string("cull ") + toString(cull), "cull", [cull](Settings& s) { s.cull = cull; }));
-    out.push_back(with(base, "cull oracle", "floor", [](Settings& s) { s.cull = Cull::Oracle; }, true));
+    // Every culling method by its traits: the plain render has none; an id pass is the floor, not a
+    // method; a plan made ahead needs a sequence (below).
+    const auto cullCandidate = [&base](Cull cull, const char* family, bool floor = false) {
+        return with(base, std::string("cull ") + toString(cull), family, [cull](Settings& s) { s.cull = cull; }, floor);
+    };
+    for (const Cull cull : kCulls)
+        if (traitsOf(cull).prepares && !traitsOf(cull).idPass && !traitsOf(cull).ahead) out.push_back(cullCandidate(cull, "cull"));
+    for (const Cull cull : kCulls)
+        if (traitsOf(cull).idPass) out.push_back(cullCandidate(cull, "floor", true));
     for (const Order order : {Order::Key, Order::Greedy})
         out.push_back(with(base, std::string("order ") + toString(order), "order", [order](Settings& s) { s.order = order; }));
     for (const Hsr hsr : {Hsr::DepthSort, Hsr::Adaptive})
@@ -360,8 +366,9 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
         s.order = Order::Key;
     }));
     if (sequence) {
-        // Occlusion's plan made while the frame before draws: only a sequence knows its next frame.
-        out.push_back(with(base, "cull occlusion-ahead", "cull", [](Settings& s) { s.cull = Cull::OcclusionAhead; }));
+        // A plan made while the frame before draws: only a sequence knows its next frame.
+        for (const Cull cull : kCulls)
+            if (traitsOf(cull).ahead) out.push_back(cullCandidate(cull, "cull"));
         out.push_back(with(base, "reuse", "reuse", [](Settings& s) { s.reuse = true; }));
         out.push_back(with(base, "cull conservative + reuse", "combination", [](Settings& s) {
             s.cull = Cull::Conservative;

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "render/Plan.h"
+#include "pipeline/Plan.h"
 
 namespace frugal {
 

@@ -247,7 +247,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     stats.renderMs = msBetween(t0, t1);
     stats.readbackMs = msBetween(t1, t2);
     stats.stateChanges = backend->stateChanges() - changesBefore;
-    if (s.cull != Cull::Oracle) {
+    if (!traitsOf(s.cull).idPass) {
         // The interpolator changes how the backend draws the same calls (software backend).
         const auto seed = std::uint64_t(s.interp);
         stats.drawFingerprint = drewPlan ? drawFingerprint(drawnPlan, seed)

@@ -1,5 +1,5 @@
 // A stage: a backend, one target of a frame's size and a scene uploaded into it. It is what a
-// Renderer draws into, and what the research harnesses (src/lab/) time directly when they need the
+// Renderer draws into, and what the research harnesses (research/lab/) time directly when they need the
 // lower-level calls (SceneRenderer, Backend) that a Renderer hides. Move-only; it releases the
 // uploads, then the target, then the backend.
 #pragma once
