@@ -1,7 +1,8 @@
 # Types of frugal's extension module (python/src). Checked against the module built: by mypy's
 # stubtest (every name, class, method and property, and their kinds: python/tests/check-stubs.sh,
-# CTest PythonStubs), and the settings below against the library's schema, frugal.settings_schema()
-# (python/tests/test_stubs.py: a setting added to the library fails there until it is added here).
+# CTest PythonStubs). The settings' parts, between '# <settings: ...>' lines, are written by
+# python/stubgen.py from the library's schema, frugal.settings_schema(); python/tests/test_stubs.py
+# checks they are current.
 import os
 from types import TracebackType
 from typing import Any, Literal, Sequence, TypedDict
@@ -32,6 +33,8 @@ _Path = str | os.PathLike[str]
 _Pair = tuple[int, int] | str  # (A, B), or "AxB" as the command line writes it
 _Colour = Sequence[float]  # r, g, b or r, g, b, a, each 0 to 1
 
+# The Literal of each choice setting.
+# <settings: choices>
 _Backend = Literal["auto", "egl", "egl-device", "egl-surfaceless", "osmesa", "software"]
 _Interp = Literal["exact", "span", "dda"]
 _Cull = Literal["none", "sphere", "backface", "cones", "paper", "conservative", "occlusion", "occlusion-ahead",
@@ -39,9 +42,11 @@ _Cull = Literal["none", "sphere", "backface", "cones", "paper", "conservative", 
 _Order = Literal["submit", "key", "paper", "greedy", "best"]
 _Hsr = Literal["zbuffer", "depthsort", "adaptive", "adaptive-convex"]
 _DepthFormat = Literal["d24", "d32f"]
+# </settings: choices>
 
 # Every setting with its value, as default_settings(), settings() and Renderer.settings give them.
 class _Settings(TypedDict):
+    # <settings: dict>
     size: tuple[int, int]
     backend: _Backend
     threads: int
@@ -59,6 +64,7 @@ class _Settings(TypedDict):
     depth_format: _DepthFormat
     background: tuple[float, float, float, float]
     ids: bool
+    # </settings: dict>
 
 # One setting of settings_schema().
 class _SettingInfo(TypedDict):
@@ -76,6 +82,7 @@ class _SettingInfo(TypedDict):
 def settings(
     *,
     settings: _Path | None = ...,
+    # <settings: keywords>
     size: _Pair = ...,
     backend: _Backend = ...,
     threads: int = ...,
@@ -93,6 +100,7 @@ def settings(
     depth_format: _DepthFormat = ...,
     background: _Colour = ...,
     ids: bool = ...,
+    # </settings: keywords>
 ) -> _Settings: ...
 def settings_names() -> list[str]: ...
 def default_settings() -> _Settings: ...
@@ -410,6 +418,7 @@ class Renderer(_pybind11_object):
         scene: Scene,
         *,
         settings: _Path | None = ...,
+        # <settings: renderer keywords>
         size: _Pair = ...,
         backend: _Backend = ...,
         threads: int = ...,
@@ -427,6 +436,7 @@ class Renderer(_pybind11_object):
         depth_format: _DepthFormat = ...,
         background: _Colour = ...,
         ids: bool = ...,
+        # </settings: renderer keywords>
     ) -> None: ...
     def render(self, camera: Camera | None = ..., time: float = ..., *, next_camera: Camera | None = ...,
                next_time: float | None = ...) -> Frame: ...

@@ -1,23 +1,23 @@
-"""The type stubs (frugal/_frugal.pyi) say what the library's schema says: the keyword arguments of
-Renderer and frugal.settings() are the settings (settings_names(), in their order, after settings=),
-each typed by its kind, a choice as a Literal of exactly the schema's choices; the dict of settings
-(_Settings) has every setting. A setting added to, renamed in or removed from the library fails
-here until the stubs follow. (That every name, class and property exists: stubtest, CTest
-PythonStubs.)"""
+"""The type stubs (frugal/_frugal.pyi) say what the library's schema says. Their settings' parts
+are python/stubgen.py's, made from frugal.settings_schema(): the file must be what it makes, so a
+setting added to, renamed in or removed from the library fails here until `stubgen.py` is run.
+And what the parts say is checked as Python reads them: the keyword arguments of Renderer and
+frugal.settings() are the settings in their order after settings=, a choice a Literal of exactly
+its choices. (That every name, class and property exists: stubtest, CTest PythonStubs.)"""
 import ast
+import sys
 from pathlib import Path
 
 import pytest
 
 import frugal
 
-STUB = Path(__file__).resolve().parents[1] / "frugal" / "_frugal.pyi"
+PYTHON = Path(__file__).resolve().parents[1]
+STUB = PYTHON / "frugal" / "_frugal.pyi"
 TREE = ast.parse(STUB.read_text())
 SCHEMA = frugal.settings_schema()
-
-# The annotation of a keyword argument, and of the value in the dict of settings, by kind.
-KEYWORD = {"switch": "bool", "whole": "int", "pair": "_Pair", "colour": "_Colour"}
-VALUE = {"switch": "bool", "whole": "int", "pair": "tuple[int, int]", "colour": "tuple[float, float, float, float]"}
+sys.path.insert(0, str(PYTHON))
+import stubgen  # noqa: E402  (python/stubgen.py)
 
 
 def aliases():
@@ -44,48 +44,26 @@ def literal(annotation):
     return [item.value for item in items]
 
 
-def stub_line(info, value=False):
-    """What the stub should say of a setting (the failure's hint)."""
-    if info["kind"] == "choice":
-        return f"{info['name']}: Literal[{', '.join(repr(c) for c in info['choices'])}]"
-    return f"{info['name']}: {(VALUE if value else KEYWORD)[info['kind']]}"
-
-
-def check_setting(info, annotation, where, value=False):
-    hint = f"{where}: {info['name']} should be '{stub_line(info, value)}' (a {info['kind']}), not '{ast.unparse(annotation)}'"
-    if info["kind"] == "choice":
-        assert literal(annotation) == info["choices"], hint
-    else:
-        assert ast.unparse(annotation) == (VALUE if value else KEYWORD)[info["kind"]], hint
-
-
-def keyword_arguments(function):
-    assert not function.args.kwarg, f"{function.name} takes **kwargs in the stubs: list the settings"
-    return [(a.arg, a.annotation) for a in function.args.kwonlyargs]
+def test_the_settings_parts_are_what_stubgen_makes_from_the_schema():
+    text = STUB.read_text()
+    assert stubgen.render(text, SCHEMA) == text, \
+        "python/frugal/_frugal.pyi is stale: run PYTHONPATH=<build>/python python3 python/stubgen.py"
 
 
 def test_the_stubs_take_every_setting_as_a_keyword_typed_by_its_kind():
     names = frugal.settings_names()
     assert [s["name"] for s in SCHEMA] == names
-    for where, function in (("Renderer.__init__", definition("__init__", "Renderer")),
-                            ("settings()", definition("settings"))):
-        keywords = keyword_arguments(function)
-        given = [name for name, _ in keywords]
-        missing = [stub_line(s) for s in SCHEMA if s["name"] not in given]
-        assert given == ["settings"] + names, \
-            f"{where} in {STUB.name} takes {given}; the settings are {names}; add: {missing}"
-        assert ast.unparse(keywords[0][1]) == "_Path | None"
+    for function in (definition("__init__", "Renderer"), definition("settings")):
+        assert not function.args.kwarg, f"{function.name} takes **kwargs in the stubs"
+        keywords = [(a.arg, a.annotation) for a in function.args.kwonlyargs]
+        assert [name for name, _ in keywords] == ["settings"] + names
         for info, (_, annotation) in zip(SCHEMA, keywords[1:]):
-            check_setting(info, annotation, where)
-
-
-def test_the_dict_of_settings_has_every_setting():
-    fields = [(node.target.id, node.annotation) for node in definition("_Settings").body
-              if isinstance(node, ast.AnnAssign)]
-    assert [name for name, _ in fields] == frugal.settings_names(), \
-        f"_Settings in {STUB.name}: add {[stub_line(s, True) for s in SCHEMA if s['name'] not in dict(fields)]}"
-    for info, (_, annotation) in zip(SCHEMA, fields):
-        check_setting(info, annotation, "_Settings", value=True)
+            if info["kind"] == "choice":
+                assert literal(annotation) == info["choices"], info["name"]
+            else:
+                assert ast.unparse(annotation) == stubgen.KEYWORD[info["kind"]], info["name"]
+    fields = [node.target.id for node in definition("_Settings").body if isinstance(node, ast.AnnAssign)]
+    assert fields == names
     defaults = frugal.default_settings()
     for info in SCHEMA:  # what the module gives has the stubs' kind of value
         value = defaults[info["name"]]
