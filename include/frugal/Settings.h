@@ -355,5 +355,9 @@ Result<SettingsFile> readSettingsFile(const std::string& path, const Settings& b
 Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string& name, const Settings& base = {});
 // `settings` as a settings file: every key, one a line, in settingInfos()' order.
 std::string settingsJson(const Settings& settings);
+// One setting's value as a settings file gives it (JSON text: `[640, 480]`, `"auto"`), set in
+// `settings`: "" when done, or why not, as the file's reader says it ("\"x\" is not a backend
+// (auto, ...)"; also "... is not JSON").
+std::string setSettingJson(Settings& settings, const SettingInfo& info, std::string_view json);
 
 }  // namespace frugal

@@ -5,7 +5,7 @@ And what the parts say is checked as Python reads them: the keyword arguments of
 frugal.settings() are the settings in their order after settings=, a choice a Literal of exactly
 its choices. (That every name, class and property exists: stubtest, CTest PythonStubs.)"""
 import ast
-import sys
+import importlib.util
 from pathlib import Path
 
 import pytest
@@ -16,8 +16,11 @@ PYTHON = Path(__file__).resolve().parents[1]
 STUB = PYTHON / "frugal" / "_frugal.pyi"
 TREE = ast.parse(STUB.read_text())
 SCHEMA = frugal.settings_schema()
-sys.path.insert(0, str(PYTHON))
-import stubgen  # noqa: E402  (python/stubgen.py)
+# python/stubgen.py, loaded from its file: python/ on sys.path would hide the module built behind
+# the package's sources (and the tests that start interpreters pass sys.path on).
+_spec = importlib.util.spec_from_file_location("stubgen", PYTHON / "stubgen.py")
+stubgen = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(stubgen)
 
 
 def aliases():

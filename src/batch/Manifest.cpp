@@ -232,29 +232,18 @@ private:
         job_.args.insert(job_.args.begin(), job_.scene);
         return "";
     }
-    std::string size(const Json& v) {
-        long long w = 0, h = 0;
-        if (v.is_array() && v.size() == 2 && wholeIn(v[0], 1, 16384) && wholeIn(v[1], 1, 16384)) {
-            w = v[0].get<long long>();
-            h = v[1].get<long long>();
-        } else if (v.is_string()) {
-            const std::string s = v.get<std::string>();
-            char x = 0, extra = 0;
-            std::istringstream in(s);
-            if (!(in >> w >> x >> h) || x != 'x' || (in >> extra) || w < 1 || h < 1 || w > 16384 || h > 16384)
-                w = 0;
-        }
-        if (w == 0) return quoted(v) + " is not a size (\"WxH\" or [W, H], 1 to 16384 a side)";
-        job_.pixels = w * h;
-        flag("--size", std::to_string(w) + "x" + std::to_string(h));
+    // A key that is a renderer setting (size, backend): read as a settings file reads it (the
+    // library's schema, frugal/Settings.h), given to the command as its flag.
+    std::string setting(const char* name, const Json& v) {
+        const SettingInfo& info = *findSetting(name);
+        Settings s;
+        if (std::string why = setSettingJson(s, info, v.dump()); !why.empty()) return why;
+        flag("--" + info.name, settingText(info, info.get(s)));
+        if (info.name == "size") job_.pixels = std::int64_t(s.width) * s.height;
         return "";
     }
-    std::string backend(const Json& v) {
-        if (!v.is_string() || !fromString(v.get<std::string>(), kBackendKinds))
-            return quoted(v) + " is not a backend (" + namesOf(kBackendKinds) + ")";
-        flag("--backend", v.get<std::string>());
-        return "";
-    }
+    std::string size(const Json& v) { return setting("size", v); }
+    std::string backend(const Json& v) { return setting("backend", v); }
     std::string camera(const Json& v) {
         if (wholeIn(v, 0, 1 << 30)) {
             flag("--camera", std::to_string(v.get<long long>()));

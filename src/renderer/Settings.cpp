@@ -439,6 +439,18 @@ std::string describe(const SettingsProblem& problem, const Settings& settings, c
     return head + (problem.value ? " " : ": ") + problem.why;
 }
 
+std::string setSettingJson(Settings& settings, const SettingInfo& info, std::string_view json) {
+    Json value;
+    try {
+        value = Json::parse(json);
+    } catch (const Json::exception&) {
+        return std::string(json) + " is not JSON";
+    }
+    const std::optional<SettingValue> v = fromJson(info, value);
+    const std::string why = v ? setSetting(settings, info, *v) : "is not " + expected(info);
+    return why.empty() ? why : value.dump() + " " + why;
+}
+
 Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string& name, const Settings& base) {
     Json doc;
     try {
@@ -457,9 +469,8 @@ Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string&
             for (const SettingInfo& known : settingInfos()) names += (names.empty() ? "" : ", ") + known.name;
             return fileProblem(name, "'" + key + "' is not a setting (" + names + ")");
         }
-        const std::optional<SettingValue> v = fromJson(*info, value);
-        const std::string why = v ? setSetting(file.settings, *info, *v) : "is not " + expected(*info);
-        if (!why.empty()) return fileProblem(name, "key '" + key + "': " + value.dump() + " " + why);
+        if (const std::string why = setSettingJson(file.settings, *info, value.dump()); !why.empty())
+            return fileProblem(name, "key '" + key + "': " + why);
         file.keys.push_back(key);
     }
     return file;
