@@ -34,7 +34,7 @@ void softwareFrame(benchmark::State& state, const std::string& spec) {
     }
     Result<Scene> scene = loadScene(spec);
     if (!scene) {
-        state.SkipWithError(scene.error().c_str());
+        state.SkipWithError(scene.error().message.c_str());
         return;
     }
     SoftwareOptions options;
@@ -150,13 +150,13 @@ void occlusionPass(benchmark::State& state, const std::string& scenePath, int th
     }
     Result<Scene> scene = loadScene(scenePath, LoadOptions{.objDoubleSided = false});
     if (!scene) {
-        state.SkipWithError(scene.error().c_str());
+        state.SkipWithError(scene.error().message.c_str());
         return;
     }
     const SceneCuller culler = SceneCuller::prepare(*scene);
     Result<FrameSetup> frame = setUpFrame(*scene, {}, 0.0, 800, 600, false);
     if (!frame) {
-        state.SkipWithError(frame.error().c_str());
+        state.SkipWithError(frame.error().message.c_str());
         return;
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
@@ -200,14 +200,14 @@ BENCHMARK(BM_CullOcclusionBunny)->Arg(1)->Arg(kCores)->ArgName("threads")->Unit(
 void BM_CullOcclusionDominoes(benchmark::State& state) {
     Result<Scene> scene = loadScene("builtin:dominoes?polygons=24000");
     if (!scene) {
-        state.SkipWithError(scene.error().c_str());
+        state.SkipWithError(scene.error().message.c_str());
         return;
     }
     const SceneCuller culler = SceneCuller::prepare(*scene);
     Result<FrameSetup> frame =
         setUpFrame(*scene, Camera::lookAt({0.0f, 3.0f, 70.0f}, {0.0f, 2.0f, 0.0f}), 0.0, 800, 600, false);
     if (!frame) {
-        state.SkipWithError(frame.error().c_str());
+        state.SkipWithError(frame.error().message.c_str());
         return;
     }
     OcclusionTarget target{.width = 800, .height = 600, .exactRules = true, .adaptive = false,
@@ -236,7 +236,7 @@ BENCHMARK(BM_CullOcclusionDominoes)->Arg(1)->Arg(kCores)->ArgName("threads")->Un
 void BM_ReusePlan(benchmark::State& state) {
     Result<Scene> scene = loadScene("builtin:dominoes?polygons=50000&static=0.9866");
     if (!scene) {
-        state.SkipWithError(scene.error().c_str());
+        state.SkipWithError(scene.error().message.c_str());
         return;
     }
     std::vector<FrameSetup> frames;

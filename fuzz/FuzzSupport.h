@@ -31,7 +31,7 @@ inline std::string inputName(const char* extension) {
 template <class T>
 void checkError(const Result<T>& result, std::string_view name) {
     if (result) return;
-    const std::string& message = result.error();
+    const std::string& message = result.error().message;
     if (message.empty() || message.find_first_of("\r\n") != std::string::npos)
         broken("error message is not one line: '" + message + "'");
     if (!name.empty() && (message.rfind(std::string(name) + ": ", 0) != 0 || message.size() <= name.size() + 2))

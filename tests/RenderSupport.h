@@ -24,8 +24,8 @@ inline RenderedFrame renderScene(Backend& backend, const Scene& scene, int width
     EXPECT_NE(target, kNoHandle);
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
     Result<FrameSetup> setup = setUpFrame(scene, camera, time, width, height, ids, format);
-    EXPECT_TRUE(renderer) << renderer.error();
-    EXPECT_TRUE(setup) << setup.error();
+    EXPECT_TRUE(renderer) << renderer.error().message;
+    EXPECT_TRUE(setup) << setup.error().message;
     if (target == kNoHandle || !renderer || !setup) return {};
     renderer->renderFrame(target, width, height, setup->params, setup->world, background);
     RenderedFrame frame{backend.readBack(target), setup->view};

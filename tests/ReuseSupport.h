@@ -71,7 +71,7 @@ inline SequenceResult runSequence(Backend& backend, const Scene& scene, int widt
                                   const FrameInspector& inspect = {}, bool wholeScene = false) {
     SequenceResult result;
     Result<SceneRenderer> made = SceneRenderer::create(backend, scene);
-    EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error());
+    EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error().message);
     if (!made) return result;
     SceneRenderer& renderer = *made;
     const TargetHandle full = backend.createTarget(width, height);
@@ -104,7 +104,7 @@ inline SequenceResult runSequence(Backend& backend, const Scene& scene, int widt
 // Frame `i` of `scene` at scene time `time` through `camera`, drawn whole.
 inline SequenceFrame frameAt(const Scene& scene, const Camera& camera, double time, int width, int height) {
     Result<FrameSetup> setup = setUpFrame(scene, camera, time, width, height, true);
-    EXPECT_TRUE(setup.ok()) << (setup.ok() ? "" : setup.error());
+    EXPECT_TRUE(setup.ok()) << (setup.ok() ? "" : setup.error().message);
     SequenceFrame f;
     if (!setup) return f;
     f.world = std::move(setup->world);
@@ -120,7 +120,7 @@ inline std::function<SequenceFrame(int)> animated(const Scene& scene, const Came
 
 inline Scene loadOrFail(const std::string& spec) {
     Result<Scene> scene = loadScene(spec, LoadOptions{});
-    EXPECT_TRUE(scene.ok()) << spec << ": " << (scene.ok() ? "" : scene.error());
+    EXPECT_TRUE(scene.ok()) << spec << ": " << (scene.ok() ? "" : scene.error().message);
     return scene ? std::move(*scene) : Scene{};
 }
 
@@ -339,7 +339,7 @@ inline Frames culledFrames(const Scene& scene, const SceneCuller& culler, Cull m
         const Camera camera = eyeAt(bounds.center() + glm::vec3(std::sin(a) * 0.4f, 0.35f, std::cos(a) * 0.5f) * r,
                                     bounds.center() + glm::vec3(0.2f * r, 0.0f, 0.0f), 50.0f, 0.05f, r * 6.0f);
         Result<FrameSetup> setup = setUpFrame(scene, camera, frameTime(i, scene.fps), width, height, true);
-        EXPECT_TRUE(setup) << (setup ? "" : setup.error());
+        EXPECT_TRUE(setup) << (setup ? "" : setup.error().message);
         SequenceFrame f;
         if (!setup) return f;
         f.world = setup->world;

@@ -31,7 +31,7 @@ std::vector<double> cppLoop(PyRenderer& r, const std::optional<Camera>& camera, 
         const auto t0 = std::chrono::steady_clock::now();
         Result<bool> rendered = renderer.render(camera.value_or(Camera{}), time, frame);
         renderer.releaseThread();
-        if (!rendered) failed = rendered.failure();
+        if (!rendered) failed = rendered.error();
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     if (failed) throw Failure{*failed};

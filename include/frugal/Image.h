@@ -6,11 +6,9 @@
 // rows from the last. Both backends store the same values, so images compare exactly.
 #pragma once
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <optional>
-#include <string_view>
 #include <vector>
 
 namespace frugal {
@@ -29,26 +27,8 @@ inline constexpr std::uint32_t kDepthMax = 0xFFFFFFu;
 enum class DepthFormat : std::uint8_t { D24, D32F };
 
 inline const char* depthFormatName(DepthFormat format) { return format == DepthFormat::D32F ? "d32f" : "d24"; }
-inline std::optional<DepthFormat> parseDepthFormat(std::string_view name) {
-    if (name == "d24") return DepthFormat::D24;
-    if (name == "d32f") return DepthFormat::D32F;
-    return std::nullopt;
-}
 // Window z of the far plane: what a target of `format` is cleared to.
 inline float farDepth(DepthFormat format) { return format == DepthFormat::D32F ? 0.0f : 1.0f; }
-
-struct Rect {
-    int x = 0, y = 0, width = 0, height = 0;  // window coordinates, origin bottom-left
-    bool empty() const { return width <= 0 || height <= 0; }
-};
-
-// The part of `rect` inside a width × height target (empty when they do not meet).
-inline Rect clipRect(const Rect& rect, int width, int height) {
-    const int x0 = std::max(rect.x, 0), y0 = std::max(rect.y, 0);
-    const int x1 = std::min(rect.x + std::max(rect.width, 0), width);
-    const int y1 = std::min(rect.y + std::max(rect.height, 0), height);
-    return Rect{x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
-}
 
 // Window z in [0, 1] of a stored depth value (D24: exactly value / 16777215, rounded to float;
 // D32F: the float whose bits `value` holds, 1 near, 0 far). Both operands of the D24 quotient are
@@ -80,22 +60,6 @@ struct DepthImage {
 struct IdImage {
     int width = 0, height = 0;
     std::vector<std::uint32_t> ids;  // rows bottom-up; 0 = background
-};
-
-// The three planes of a target as read back at once (the comparisons and reports read them so).
-struct Buffers {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> rgba;  // 4 bytes a pixel
-    // D24: the 24-bit values. D32F: the floats' bits; window z is never negative, so these order as
-    // the floats do and their difference counts the floats between two values (ULPs).
-    std::vector<std::uint32_t> depth;
-    std::vector<std::uint32_t> ids;  // triangle ids
-    DepthFormat depthFormat = DepthFormat::D24;
-
-    std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
-    // Window z of pixel i, in [0, 1].
-    float windowDepth(std::size_t i) const { return frugal::windowDepth(depthFormat, depth[i]); }
 };
 
 }  // namespace frugal

@@ -1,12 +1,13 @@
 // Errors and results. frugal never throws on bad input and never aborts on it: a function that can
-// fail returns Result<T>, a value or an Error. An error is one line, "<what>: <why, with the
+// fail returns Result<T>, a value or an Error (reaching for the value of an error is the caller's
+// mistake, and throws: BadResultAccess). An error is one line, "<what>: <why, with the
 // numbers>" ("bunny.obj: line 12: 'nan' in a v line is not finite"), without the "error: " a command
 // line puts before it, and has a kind that says what to do about it.
 #pragma once
 
-#include <cassert>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -21,29 +22,26 @@ enum class ErrorKind : std::uint8_t {
     Io,                  // a file that cannot be read or written
 };
 
-// "bad input", "backend unavailable", "out of memory", "interrupted", "i/o".
-inline const char* errorKindName(ErrorKind kind) {
-    switch (kind) {
-        case ErrorKind::BadInput:
-            return "bad input";
-        case ErrorKind::BackendUnavailable:
-            return "backend unavailable";
-        case ErrorKind::OutOfMemory:
-            return "out of memory";
-        case ErrorKind::Interrupted:
-            return "interrupted";
-        case ErrorKind::Io:
-            return "i/o";
-    }
-    return "?";
-}
-
 struct Error {
     std::string message;
     ErrorKind kind = ErrorKind::BadInput;
     // The message starts with the name of a renderer setting as the command line spells it without
     // "--" ("size 16384x16384: needs about 9.7 GB ..."), so that a command line can name its flag.
     bool aboutSetting = false;
+};
+
+// What Result::value() (and * and ->) throws when the result holds an error: asking for a value
+// that is not there is a mistake in the calling code, not bad input, so it fails loudly in every
+// build, as std::optional::value() does, instead of reading memory that holds no value. what() is
+// "frugal::Result::value() on an error: <the error's message>"; error() is the error itself.
+class BadResultAccess : public std::logic_error {
+public:
+    explicit BadResultAccess(Error error)
+        : std::logic_error("frugal::Result::value() on an error: " + error.message), error_(std::move(error)) {}
+    const Error& error() const { return error_; }
+
+private:
+    Error error_;
 };
 
 template <class T>
@@ -59,23 +57,21 @@ public:
 
     explicit operator bool() const { return value_.has_value(); }
     bool ok() const { return value_.has_value(); }
+    // The value; on an error, throws BadResultAccess (check ok() first).
     T& value() {
-        assert(value_);
+        if (!value_) throw BadResultAccess(error_);
         return *value_;
     }
     const T& value() const {
-        assert(value_);
+        if (!value_) throw BadResultAccess(error_);
         return *value_;
     }
     T& operator*() { return value(); }
     const T& operator*() const { return value(); }
     T* operator->() { return &value(); }
     const T* operator->() const { return &value(); }
-    // The message, when !ok().
-    const std::string& error() const { return error_.message; }
-    // The whole error (message, kind), when !ok(): to pass it on as it is.
-    const Error& failure() const { return error_; }
-    ErrorKind errorKind() const { return error_.kind; }
+    // The error, when !ok(): its message (one line), its kind, whether it is about a setting.
+    const Error& error() const { return error_; }
 
 private:
     template <class>

@@ -54,20 +54,26 @@ struct CullStats {
 };
 
 // Temporal reuse in one frame (paper 000): the mode, its reason, and what was copied, cleared and
-// drawn again. States: kDD dynamic then and now, kDS dynamic then, static now, kSD static then,
-// dynamic now, kSS static both.
+// drawn again.
 enum class ReuseMode : std::uint8_t { Full, Rebuild, Reuse };
 inline const char* toString(ReuseMode v) {
     constexpr const char* names[] = {"full", "rebuild", "reuse"};
     return names[std::size_t(v)];
 }
-enum ReuseState : int { kDD = 0, kDS = 1, kSD = 2, kSS = 3 };
+// Instances, or their triangles, by how they moved between the frame before and this one.
+struct ReuseCounts {
+    std::uint64_t dd = 0;  // dynamic then and now
+    std::uint64_t ds = 0;  // dynamic then, static now
+    std::uint64_t sd = 0;  // static then, dynamic now
+    std::uint64_t ss = 0;  // static then and now
+    bool operator==(const ReuseCounts&) const = default;
+};
 
 struct ReuseStats {
     ReuseMode mode = ReuseMode::Full;
     std::string reason;                        // why this mode: "camera moved", "first still frame", ...
-    std::array<std::uint64_t, 4> instances{};  // per ReuseState
-    std::array<std::uint64_t, 4> triangles{};  // the instances' mesh triangles, per ReuseState
+    ReuseCounts instances;
+    ReuseCounts triangles;  // the instances' mesh triangles
     std::uint64_t copiedPx = 0;           // static → render (step 1) and render → static (step 5 or the rebuild)
     std::uint64_t clearedPx = 0;          // step 2 (and the whole target on full and rebuild frames)
     std::uint64_t redrawnTris = 0;        // every triangle this frame drew (all of them on full frames)
@@ -102,7 +108,6 @@ struct InterpStats {
     std::uint64_t overflow = 0;     // calls that reported an overflow: their values were clamped (or the
                                     // span zeroed), never wrapped. A call fills its run from the run's
                                     // first column, so a run across several tiles may count once per tile.
-    std::uint8_t overflowBits = 0;  // span/Engine.h OverflowBits of all those calls, or'ed
 };
 
 // One frame.
@@ -140,13 +145,5 @@ struct StateCosts {
     std::size_t rounds = 0;
     int refineEvery = 0;
 };
-
-struct View;
-
-// The render JSON's objects (docs/cli.md), as JSON text: a frame's record without "frame" and
-// "file" ({"time", "render_ms", "readback_ms", ...}, with "refined_state_costs_us" and "refine_ms"
-// when a cost round ran before it), and the camera it was drawn with ({"source", "eye", ...}).
-std::string frameStatsJsonText(const FrameStats& stats, const Settings& settings);
-std::string viewJsonText(const View& view, const Settings& settings);
 
 }  // namespace frugal

@@ -21,7 +21,7 @@ struct Failure {
 
 template <class T>
 T take(Result<T>&& result) {
-    if (!result) throw Failure{result.failure()};
+    if (!result) throw Failure{result.error()};
     return std::move(*result);
 }
 

@@ -45,9 +45,6 @@ struct PyCullStats {
     bool ranges = true;  // not the oracle, which submits no index ranges
     bool ahead = false;
 };
-struct PyReuseCounts {  // a count per reuse state (frugal::ReuseState)
-    std::array<std::uint64_t, 4> counts{};
-};
 struct PyHsrStats {
     HsrStats stats;
     Hsr mode = Hsr::ZBuffer;
@@ -214,23 +211,22 @@ void bindStats(py::module_& m) {
               },
               "the occlusion pass (cull occlusion and occlusion-ahead); else None", Key::WhenSet);
 
-    const auto counts = [](const PyReuseCounts& c, ReuseState state) { return c.counts[std::size_t(state)]; };
-    Record<PyReuseCounts>(m, "ReuseCounts", "A count per reuse state: dynamic or static before and now.")
-        .attr("p_dd", [counts](const PyReuseCounts& c) { return counts(c, kDD); }, "dynamic then and now")
-        .attr("p_ds", [counts](const PyReuseCounts& c) { return counts(c, kDS); }, "dynamic then, static now")
-        .attr("p_sd", [counts](const PyReuseCounts& c) { return counts(c, kSD); }, "static then, dynamic now")
-        .attr("p_ss", [counts](const PyReuseCounts& c) { return counts(c, kSS); }, "static then and now");
+    Record<ReuseCounts>(m, "ReuseCounts", "A count per reuse state: dynamic or static before and now.")
+        .attr("p_dd", [](const ReuseCounts& c) { return c.dd; }, "dynamic then and now")
+        .attr("p_ds", [](const ReuseCounts& c) { return c.ds; }, "dynamic then, static now")
+        .attr("p_sd", [](const ReuseCounts& c) { return c.sd; }, "static then, dynamic now")
+        .attr("p_ss", [](const ReuseCounts& c) { return c.ss; }, "static then and now");
 
     Record<ReuseStats>(m, "ReuseStats",
                        "Temporal reuse in one frame (reuse=True): the mode, its reason, what was copied, cleared and "
                        "drawn again.")
         .attr("mode", [](const ReuseStats& s) { return std::string(toString(s.mode)); }, "full, rebuild or reuse")
         .attr("reason", [](const ReuseStats& s) { return s.reason; }, "why this mode: 'camera moved', ...")
-        .attr("p_dd", [](const ReuseStats& s) { return s.triangles[kDD]; }, "triangles of instances dynamic then and now")
-        .attr("p_ds", [](const ReuseStats& s) { return s.triangles[kDS]; }, "triangles dynamic then, static now")
-        .attr("p_sd", [](const ReuseStats& s) { return s.triangles[kSD]; }, "triangles static then, dynamic now")
-        .attr("p_ss", [](const ReuseStats& s) { return s.triangles[kSS]; }, "triangles static then and now")
-        .attr("instances", [](const ReuseStats& s) { return PyReuseCounts{s.instances}; }, "instances per state")
+        .attr("p_dd", [](const ReuseStats& s) { return s.triangles.dd; }, "triangles of instances dynamic then and now")
+        .attr("p_ds", [](const ReuseStats& s) { return s.triangles.ds; }, "triangles dynamic then, static now")
+        .attr("p_sd", [](const ReuseStats& s) { return s.triangles.sd; }, "triangles static then, dynamic now")
+        .attr("p_ss", [](const ReuseStats& s) { return s.triangles.ss; }, "triangles static then and now")
+        .attr("instances", [](const ReuseStats& s) { return s.instances; }, "instances per state")
         .attr("copied_px", [](const ReuseStats& s) { return s.copiedPx; }, "pixels copied between the targets")
         .attr("cleared_px", [](const ReuseStats& s) { return s.clearedPx; }, "pixels cleared")
         .attr("redrawn_tris", [](const ReuseStats& s) { return s.redrawnTris; }, "every triangle this frame drew")

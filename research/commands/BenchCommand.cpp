@@ -70,9 +70,9 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     LoadOptions cacheOrder = options.load;
     cacheOrder.optimizeOrder = true;
     Result<Scene> optimized = loadScene(options.scene, cacheOrder);
-    if (!optimized) return fail(err, optimized.failure());
+    if (!optimized) return fail(err, optimized.error());
     Result<Scene> original = loadScene(options.scene, fileOrder);
-    if (!original) return fail(err, original.failure());
+    if (!original) return fail(err, original.error());
     if (const std::string warning = fitSizeToCamera(options, *optimized); !warning.empty() && !options.quiet)
         err << "warning: " << warning << "\n";
 
@@ -86,7 +86,7 @@ int runBench(const std::vector<std::string>& args, std::ostream& out, std::ostre
     settings.time = frameTimeOf(options, *optimized, frame);
     settings.render.ids = ids;
     Result<RenderBench> bench = measureRenderBench(*optimized, *original, settings, progressTo(err, options.quiet));
-    if (!bench) return fail(err, bench.failure());
+    if (!bench) return fail(err, bench.error());
     out << renderBenchJson(*bench);
     return kExitOk;
 }

@@ -94,15 +94,15 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
     if (!options.frames) options.frames = FrameRange{0, 99, true};
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     const HsrBenchSettings settings{options.scene,        options.settings, options.frames->first,
                                     options.frames->last, repeat,                    warmup,
                                     !masksDir.empty()};
     const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(options, *loaded, frame, false); };
     Result<HsrBenchResult> measured = measureHsr(*loaded, settings, setupOf, progressTo(err, options.quiet));
-    if (!measured) return fail(err, measured.failure());
+    if (!measured) return fail(err, measured.error());
     if (!masksDir.empty())
-        if (Result<bool> written = writeMasks(masksDir, measured->worst); !written) return fail(err, written.failure());
+        if (Result<bool> written = writeMasks(masksDir, measured->worst); !written) return fail(err, written.error());
 
     const HsrReport& report = measured->report;
     out << hsrReportText(report);

@@ -49,12 +49,12 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     Result<FrameSetup> setup = setUpFrame(options, *loaded, options.frames ? options.frames->first : 0, false);
-    if (!setup) return fail(err, setup.failure());
+    if (!setup) return fail(err, setup.error());
     const OrderBenchSettings settings{options.scene, options.settings, runs, warmup};
     Result<OrderBenchResult> measured = measureOrders(*loaded, *setup, settings, progressTo(err, options.quiet));
-    if (!measured) return fail(err, measured.failure());
+    if (!measured) return fail(err, measured.error());
     out << measured->text;
     const ReportTexts texts{[&measured] { return measured->json; }, [&measured] { return measured->csv; },
                             [&options](const std::string& csvPath, const std::string& svgPath) {

@@ -104,12 +104,12 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     ReuseBenchArgs a;
     if (std::optional<int> status = parseReuseBench(a, args, out, err)) return *status;
     Result<Scene> loaded = loadForRender(a.options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(a.options, *loaded, frame, a.ids); };
     Result<ReuseMeasurement> measured = measureReuse(*loaded, settingsOf(a), setupOf, [&](const std::string& line) {
         if (!a.options.quiet) err << line << "\n";
     });
-    if (!measured) return fail(err, measured.failure());
+    if (!measured) return fail(err, measured.error());
 
     const ReuseBench& bench = measured->report;
     const int first = a.options.frames->first;

@@ -130,7 +130,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     settings.scene = options.scene;
     settings.render = options.settings;
     settings.camera = options.camera;
@@ -139,7 +139,7 @@ int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     settings.period = period.value_or(options.time ? 1 : std::max(1, int(std::lround(loaded->duration() * settings.fps))));
     settings.maxGrowthPct = maxGrowth;
     Result<SoakReport> report = frugal::runSoak(*loaded, settings, progressTo(err, options.quiet));
-    if (!report) return fail(err, report.failure());
+    if (!report) return fail(err, report.error());
 
     out << soakReportText(*report);
     const ReportTexts texts{

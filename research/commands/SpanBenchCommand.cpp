@@ -83,7 +83,7 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     const Result<span::BenchReport> report = span::runBenchmark(bench);
-    if (!report) return fail(err, report.failure());
+    if (!report) return fail(err, report.error());
     const ReportTexts texts{[&report] { return span::benchJson(*report); }, [&report] { return span::benchCsv(*report); },
                             [&report](const std::string& csvPath, const std::string& svgPath) {
                                 return span::benchGnuplot(*report, csvPath, svgPath);

@@ -68,7 +68,7 @@ int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::os
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     const Result<order::SimReport> report = order::runSimulation(settings);
-    if (!report) return fail(err, report.failure());
+    if (!report) return fail(err, report.error());
     const ReportTexts texts{[&report] { return order::simJson(*report); }, [&report] { return order::simCsv(*report); },
                             [](const std::string& csvPath, const std::string& svgPath) { return order::simGnuplot(csvPath, svgPath); }};
     if (const int status = writeReportFiles(outputs, texts, err); status != kExitOk) return status;

@@ -95,12 +95,12 @@ int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::
     for (const std::string& name : scenes) {
         options.scene = name;
         Result<Scene> scene = loadForRender(options, err);
-        if (!scene) return fail(err, scene.failure());
+        if (!scene) return fail(err, scene.error());
         loaded.emplace_back(name, std::move(*scene));
     }
     settings.render = options.settings;
     Result<WriteBench> bench = measureWriteBench(loaded, settings, progressTo(err, options.quiet));
-    if (!bench) return fail(err, bench.failure());
+    if (!bench) return fail(err, bench.error());
     const ReportTexts texts{[&bench] { return writeBenchJson(*bench); }, [&bench] { return writeBenchCsv(*bench); },
                             [&bench](const std::string& csvPath, const std::string& svgPath) {
                                 return writeBenchGnuplot(*bench, csvPath, svgPath);

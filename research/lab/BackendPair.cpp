@@ -16,16 +16,16 @@ Result<BackendPair> BackendPair::open(const Scene& scene, const Settings& settin
     std::vector<Stage> stages;
     for (const Settings* s : std::array<const Settings*, 2>{&settings, &reference}) {
         Result<Stage> stage = Stage::open(*s);
-        if (!stage) return stage.failure();
+        if (!stage) return stage.error();
         stages.push_back(std::move(*stage));
     }
     progress("backend: " + describe(stages[0].backend()));
     progress("reference: " + describe(stages[1].backend()));
     for (Stage& stage : stages)
-        if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.failure();
+        if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.error();
     Result<OrderCosts> costs = OrderCosts::start(settings.order, stages[0].backend(), 0);
     if (!costs)
-        return Error{std::string("order ") + toString(settings.order) + ": " + costs.error(), ErrorKind::BadInput, true};
+        return Error{std::string("order ") + toString(settings.order) + ": " + costs.error().message, ErrorKind::BadInput, true};
     if (const std::optional<StateCosts> measured = costs->report())
         progress(stateCostsLine(settings.order, stages[0].backend().name(), *measured));
     return BackendPair(scene, settings, std::move(stages), std::move(*costs));

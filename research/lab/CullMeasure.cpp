@@ -85,7 +85,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     const TargetHandle target = stage_.target();
     Result<FrameSetup> setup =
         setUpFrame(scene_, reportView.camera, s_.time, s.width, s.height, false, s.depthFormat);
-    if (!setup) return Error{"view " + std::to_string(v) + " (" + reportView.viewClass + "): " + setup.error()};
+    if (!setup) return Error{"view " + std::to_string(v) + " (" + reportView.viewClass + "): " + setup.error().message};
     setup_.emplace(std::move(*setup));
     const FrameParams& params = setup_->params;
     const std::vector<glm::mat4>& world = setup_->world;
@@ -94,7 +94,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     renderer.renderFrame(target, s.width, s.height, params, world, s.background);
     const Buffers reference = backend.readBack(target);
     Result<Oracle> oracle = makeOracle(renderer, target, s.width, s.height, params, world, s.background);
-    if (!oracle) return Error{"view " + std::to_string(v) + ": " + oracle.error()};
+    if (!oracle) return Error{"view " + std::to_string(v) + ": " + oracle.error().message};
     oracle_.emplace(std::move(*oracle));
     if (planner_) oraclePlanner_.emplace(*oracle_->scene);
 
@@ -162,7 +162,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
             int w = 0, h = 0;
             const std::vector<std::uint8_t> rgba = culler_.occlusion().image(w, h);
             Result<Bytes> png = encodePng(w, h, 4, 8, rgba.data());
-            if (!png) return Error{"view " + std::to_string(v) + ": occlusion buffer: " + png.error()};
+            if (!png) return Error{"view " + std::to_string(v) + ": occlusion buffer: " + png.error().message};
             occlusionView->image = s_.masksDir + "/occlusion-view-" + std::to_string(v) + ".png";
             images_.emplace_back(occlusionView->image, std::move(*png));
         }
@@ -276,9 +276,9 @@ Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportVie
     const SceneCuller culler = prepareCulling(scene, bins, progress);
 
     Result<Stage> stage = Stage::open(s);
-    if (!stage) return stage.failure();
+    if (!stage) return stage.error();
     progress("backend: " + describe(stage->backend()));
-    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
+    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.error();
     std::optional<hsr::Planner> planner;
     if (s.hsr != Hsr::ZBuffer) planner.emplace(scene);
 
@@ -293,7 +293,7 @@ Result<CullMeasurement> measureCulling(Scene& scene, const std::vector<ReportVie
         ViewMeasure measure(scene, culler, *stage, settings, planner, measured.images);
         std::string line;
         Result<ViewResult> view = measure.run(v, views[v], line);
-        if (!view) return view.failure();
+        if (!view) return view.error();
         progress("view " + std::to_string(v + 1) + "/" + std::to_string(views.size()) + " (" + view->viewClass +
                  "): " + line);
         report.views.push_back(std::move(*view));

@@ -91,7 +91,7 @@ public:
         std::vector<HsrWorstImages> images;
         for (int m = 1; m <= 3; ++m) {
             Result<FrameSetup> setup = setupOf(worst[m].frame);
-            if (!setup) return setup.failure();
+            if (!setup) return setup.error();
             hsr::PlanStats stats;
             HsrWorstImages image;
             image.mode = kModes[m].name;
@@ -100,7 +100,7 @@ public:
             draw(kModes[m], *setup, stats);
             image.actual = stage_.backend().readBack(stage_.target());
             Result<ImageComparison> compared = compareBuffers(image.actual, image.reference, CompareOptions{});
-            if (!compared) return Error{"masks: " + compared.error(), ErrorKind::BadInput, true};
+            if (!compared) return Error{"masks: " + compared.error().message, ErrorKind::BadInput, true};
             image.compared = std::move(*compared);
             images.push_back(std::move(image));
         }
@@ -120,9 +120,9 @@ private:
 Result<HsrBenchResult> measureHsr(const Scene& scene, const HsrBenchSettings& settings, const FrameSetupOf& setupOf,
                                   const std::function<void(const std::string&)>& progress) {
     Result<Stage> stage = Stage::open(settings.render);
-    if (!stage) return stage.failure();
+    if (!stage) return stage.error();
     progress("backend: " + describe(stage->backend()));
-    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
+    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.error();
     const Bench bench(scene, settings, *stage);
 
     HsrBenchResult result;
@@ -143,7 +143,7 @@ Result<HsrBenchResult> measureHsr(const Scene& scene, const HsrBenchSettings& se
     const int first = settings.firstFrame, last = settings.lastFrame, count = last - first + 1;
     for (int frame = first; frame <= last; ++frame) {
         Result<FrameSetup> setup = setupOf(frame);
-        if (!setup) return setup.failure();
+        if (!setup) return setup.error();
         bench.frame(frame, *setup, report, worst);
         if (frame == last || (frame - first + 1) % 10 == 0)
             progress("frame " + std::to_string(frame) + " (" + std::to_string(frame - first + 1) + "/" +
@@ -151,7 +151,7 @@ Result<HsrBenchResult> measureHsr(const Scene& scene, const HsrBenchSettings& se
     }
     if (settings.worstImages) {
         Result<std::vector<HsrWorstImages>> images = bench.worstImages(worst, setupOf);
-        if (!images) return images.failure();
+        if (!images) return images.error();
         result.worst = std::move(*images);
     }
     return result;

@@ -284,7 +284,7 @@ Result<std::unique_ptr<MinimalFrame>> createMinimalFrame(ContextKind kind, const
     const std::string name = "minimal frame: ";
     if (std::string reason = minimalFrameUnsupported(scene); !reason.empty()) return Error{name + reason};
     Result<std::unique_ptr<GlContext>> context = createContext(kind);
-    if (!context) return Error{name + context.error()};
+    if (!context) return Error{name + context.error().message};
     auto frame = std::make_unique<Minimal>(std::move(*context), scene);
     if (std::string reason = frame->initialise(width, height, format); !reason.empty()) return Error{name + reason};
     return std::unique_ptr<MinimalFrame>(std::move(frame));

@@ -60,17 +60,17 @@ Result<OrderBenchResult> measureOrders(const Scene& scene, const FrameSetup& set
         stageSettings.backend = choice;
         std::string unavailable;
         Result<std::optional<Stage>> opened = Stage::openIfAvailable(stageSettings, unavailable);
-        if (!opened) return opened.failure();
+        if (!opened) return opened.error();
         if (!*opened) {
             progress(std::string("skipped ") + toString(choice) + ": " + unavailable);
             continue;
         }
         Stage& stage = **opened;
-        if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.failure();
+        if (Result<bool> uploaded = stage.upload(scene); !uploaded) return uploaded.error();
         Backend& backend = stage.backend();
         SceneRenderer& renderer = stage.renderer();
         Result<OrderCosts> costs = OrderCosts::start(Order::Best, backend, 0);
-        if (!costs) return costs.failure();
+        if (!costs) return costs.error();
         if (const std::optional<StateCosts> measured = costs->report())
             progress(stateCostsLine(Order::Best, backend.name(), *measured));
         DrawList lists[kOrderCount];

@@ -86,7 +86,7 @@ const RenderBenchSample* find(const std::vector<RenderBenchSample>& samples, con
 Result<FrameSetup> frameOf(const RenderBenchSettings& s, const Scene& scene, DepthFormat format) {
     Result<FrameSetup> setup =
         setUpFrame(scene, s.camera, s.time, s.render.width, s.render.height, s.render.ids, format);
-    if (!setup) return Error{s.scene + ": " + setup.error(), setup.errorKind()};
+    if (!setup) return Error{s.scene + ": " + setup.error().message, setup.error().kind};
     return setup;
 }
 
@@ -115,18 +115,18 @@ public:
         makeMinimal(software, skipped);
         Result<OrderCosts> costs = OrderCosts::start(r_.order, backend_, 0);
         if (!costs)
-            return Error{std::string("order ") + toString(r_.order) + ": " + costs.error(), ErrorKind::BadInput, true};
+            return Error{std::string("order ") + toString(r_.order) + ": " + costs.error().message, ErrorKind::BadInput, true};
         if (const std::optional<StateCosts> report = costs->report())
             progress(stateCostsLine(r_.order, backend_.name(), *report));
         list_ = orderFrameDraws(scene_, renderer_.fullList(), r_.order, costs->costsUs());
         Result<FrameSetup> otherSetup = frameOf(s_, scene_, otherFormat(r_.depthFormat));
-        if (!otherSetup) return otherSetup.failure();
+        if (!otherSetup) return otherSetup.error();
         otherSetup_ = std::move(*otherSetup);
         makeOtherTarget(skipped);
         if (variants_) {
             merged_ = premergedScene(scene_, setup_.world);
             Result<SceneRenderer> made = SceneRenderer::create(backend_, merged_);
-            if (!made) return Error{"bench: the premerged scene: " + made.error()};
+            if (!made) return Error{"bench: the premerged scene: " + made.error().message};
             mergedRenderer_.emplace(std::move(*made));
         }
         timeFrames();
@@ -168,7 +168,7 @@ private:
             if (made)
                 minimal_ = std::move(*made);
             else
-                skipped.push_back(label + made.error());
+                skipped.push_back(label + made.error().message);
         }
     }
 
@@ -291,11 +291,11 @@ Result<bool> measureBackend(BackendKind kind, const Scene& cacheOrder, const Sce
     for (const auto& [order, scene] :
          {std::pair<const char*, const Scene*>{"optimized", &cacheOrder}, {"file", &fileOrder}}) {
         Result<FrameSetup> setup = frameOf(s, *scene, s.render.depthFormat);
-        if (!setup) return setup.failure();
-        if (!stage) return stage.failure();  // after the camera's problem, as the command always said them
+        if (!setup) return setup.error();
+        if (!stage) return stage.error();  // after the camera's problem, as the command always said them
         Stage& opened = **stage;
         // Each order is its own upload, drawn into the one target.
-        if (Result<bool> uploaded = opened.upload(*scene); !uploaded) return uploaded.failure();
+        if (Result<bool> uploaded = opened.upload(*scene); !uploaded) return uploaded.error();
         OrderRun run(s, opened, *scene, order, *setup);
         if (Result<bool> done = run.run(kind == BackendKind::Software, bench.samples, bench.skipped, progress); !done)
             return done;
@@ -349,7 +349,7 @@ Result<RenderBench> measureRenderBench(const Scene& cacheOrder, const Scene& fil
         kinds = {BackendKind::EglDevice, BackendKind::EglSurfaceless, BackendKind::OsMesa, BackendKind::Software};
     for (const BackendKind kind : kinds)
         if (Result<bool> done = measureBackend(kind, cacheOrder, fileOrder, bench, progress); !done)
-            return done.failure();
+            return done.error();
     if (bench.samples.empty()) {
         std::string message = "bench: no backend available:";
         for (const std::string& why : bench.skipped) message += " [" + why + "]";

@@ -97,10 +97,10 @@ ReuseBenchFrame describeFrame(int frame, const ReuseFrameStats& stats, std::size
     result.frame = frame;
     result.mode = toString(stats.mode);
     result.reason = stats.reason;
-    result.pDD = stats.triangles[kDD];
-    result.pDS = stats.triangles[kDS];
-    result.pSD = stats.triangles[kSD];
-    result.pSS = stats.triangles[kSS];
+    result.pDD = stats.triangles.dd;
+    result.pDS = stats.triangles.ds;
+    result.pSD = stats.triangles.sd;
+    result.pSS = stats.triangles.ss;
     result.copiedPx = stats.copiedPx;
     result.clearedPx = stats.clearedPx;
     result.redrawnTris = stats.redrawnTris;
@@ -175,7 +175,7 @@ public:
         for (int i = 0; i < count_; ++i) {
             const int frame = s_.firstFrame + i;
             Result<FrameSetup> setup = setupOf(frame);
-            if (!setup) return Error{"frame " + std::to_string(frame) + ": " + setup.error(), setup.errorKind()};
+            if (!setup) return Error{"frame " + std::to_string(frame) + ": " + setup.error().message, setup.error().kind};
             const PlannedFrame planned = planFrame(reuse, std::move(*setup));
             const FrameTimes t = timeFrame(round, planned);
             if (round < 0) {
@@ -359,16 +359,16 @@ Result<ReuseMeasurement> measureReuse(Scene& scene, const ReuseBenchSettings& se
                                       const Progress& progress) {
     std::optional<SceneCuller> culler = cullingOf(scene, settings.render, progress);
     Result<Stage> stage = Stage::open(settings.render);
-    if (!stage) return stage.failure();
+    if (!stage) return stage.error();
     Backend& backend = stage->backend();
     progress("backend: " + describe(backend));
-    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.failure();
+    if (Result<bool> uploaded = stage->upload(scene); !uploaded) return uploaded.error();
     Targets targets(backend);
-    if (Result<bool> made = targets.make(backend, settings.render); !made) return made.failure();
+    if (Result<bool> made = targets.make(backend, settings.render); !made) return made.error();
 
     ReuseRun run(scene, settings, *stage, culler, targets);
     for (int round = -1; round < settings.repeat; ++round)  // round -1: the warm-up, untimed, and the check
-        if (Result<bool> done = run.runRound(round, setupOf, progress); !done) return done.failure();
+        if (Result<bool> done = run.runRound(round, setupOf, progress); !done) return done.error();
     return run.result();
 }
 

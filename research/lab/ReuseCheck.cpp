@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cstring>
+#include "renderer/Research.h"
 
 namespace frugal {
 

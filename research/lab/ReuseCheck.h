@@ -6,6 +6,7 @@
 #include <cstddef>
 
 #include <frugal/Image.h>
+#include "renderer/Research.h"
 
 namespace frugal {
 

@@ -54,7 +54,7 @@ void printDepthPrecision(const Scene& scene, std::optional<int> index, double de
     spec.depthRange = DepthRange::File;
     Result<View> given = resolveCamera(scene, world, 0.0, spec, width, height);
     if (!fitted || !given) {
-        out << "    " << (fitted ? given.error() : fitted.error()) << "\n";
+        out << "    " << (fitted ? given.error().message : fitted.error().message) << "\n";
         return;
     }
     const DepthExtent extent = depthExtent(fitted->view, scene.envelope);
@@ -147,10 +147,10 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
 Result<StateCostsOutput> stateCostsReport(const Settings& settings) {
     Result<std::unique_ptr<Backend>> backend = openBackend(settings.backend, nullptr, settings.threads, settings.interp);
     if (!backend)
-        return Error{std::string("backend ") + toString(settings.backend) + ": " + backend.error(), backend.errorKind(),
+        return Error{std::string("backend ") + toString(settings.backend) + ": " + backend.error().message, backend.error().kind,
                      true};
     Result<StateCostReport> measured = measureStateCosts(**backend);
-    if (!measured) return measured.failure();
+    if (!measured) return measured.error();
     std::ostringstream out;
     const StateCostReport& r = *measured;
     out << "state costs on " << r.backend << " (" << r.renderer << "), " << r.rounds << " rounds of " << r.draws

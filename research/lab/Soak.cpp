@@ -120,13 +120,13 @@ private:
 Result<Buffers> Soak::drawFrame(Stage& stage, TargetHandle target, double time) const {
     const Settings& r = s_.render;
     Result<FrameSetup> setup = setUpFrame(scene_, s_.camera, time, r.width, r.height, s_.ids, r.depthFormat);
-    if (!setup) return Error{s_.scene + ": " + setup.error()};
+    if (!setup) return Error{s_.scene + ": " + setup.error().message};
     stage.renderer().renderFrame(target, r.width, r.height, setup->params, setup->world, r.background);
     return stage.backend().readBack(target);
 }
 
 Result<std::uint64_t> Soak::cycleImage(Result<Buffers> image) const {
-    if (!image) return image.failure();
+    if (!image) return image.error();
     if (isBlank(*image, background_)) return Error{"blank image (background only)"};
     return imageHash(*image);
 }
@@ -145,7 +145,7 @@ Result<bool> Soak::frames(SoakFrames& run, Draw&& draw) {
     run.samples.push_back(sampleNow(0, 0.0));
     for (std::int64_t f = 0; f < s_.frames; ++f) {
         Result<FrameDigest> image = draw(timeOfFrame(s_.firstFrame + f));
-        if (!image) return image.failure();
+        if (!image) return image.error();
         run.images.add(f, image->hash, image->blank);
         const std::int64_t done = f + 1;
         if (done % every == 0 || done == run.warmup || done == s_.frames) {
@@ -178,7 +178,7 @@ void Soak::cycles(std::uint64_t reference, SoakCycles& run, Cycle&& cycle) {
         Result<std::uint64_t> hash = cycle();
         std::string failure;
         if (!hash)
-            failure = hash.error();
+            failure = hash.error().message;
         else if (*hash != reference)
             failure = "the image differs from the one drawn before the cycles";
         if (!failure.empty()) {
@@ -210,12 +210,12 @@ Result<bool> Soak::framesOn(BackendKind kind, SoakFrames run, SoakReport& report
             return ContextKind::EglSurfaceless;
         }();
         Result<std::unique_ptr<MinimalFrame>> minimal = createMinimalFrame(context, scene_, r.width, r.height);
-        if (!minimal) return Error{"minimal: " + run.backend + ": " + minimal.error(), ErrorKind::BadInput, true};
+        if (!minimal) return Error{"minimal: " + run.backend + ": " + minimal.error().message, ErrorKind::BadInput, true};
         run.backend += " (minimal)";
         MinimalFrame& frame = **minimal;
         const auto draw = [&](double time) -> Result<FrameDigest> {
             Result<FrameSetup> setup = setUpFrame(scene_, s_.camera, time, r.width, r.height, false, r.depthFormat);
-            if (!setup) return Error{s_.scene + ": " + setup.error()};
+            if (!setup) return Error{s_.scene + ": " + setup.error().message};
             frame.render(setup->params, setup->world, r.background);
             const Buffers image = frame.readBack();
             return FrameDigest{imageHash(image), isBlank(image, background_)};
@@ -223,10 +223,10 @@ Result<bool> Soak::framesOn(BackendKind kind, SoakFrames run, SoakReport& report
         if (Result<bool> done = frames(run, draw); !done) return done;
     } else {
         Result<Renderer> renderer = Renderer::create(scene_, settingsFor(kind));
-        if (!renderer) return renderer.failure();
+        if (!renderer) return renderer.error();
         const auto draw = [&](double time) -> Result<FrameDigest> {
             Result<Frame> frame = renderer->render(s_.camera, time);
-            if (!frame) return frame.failure();
+            if (!frame) return frame.error();
             return FrameDigest{imageHash(*frame), isBlank(frame->color, background_)};
         };
         if (Result<bool> done = frames(run, draw); !done) return done;
@@ -249,16 +249,16 @@ Result<bool> Soak::allCycles(BackendKind kind, const std::string& name, SoakRepo
     };
     const auto failureText = [](const Error& error) { return (error.aboutSetting ? "--" : "") + error.message; };
     Result<Stage> stage = Stage::open(rendering);
-    if (!stage) return stage.failure();
-    if (Result<bool> uploaded = stage->upload(scene_); !uploaded) return uploaded.failure();
+    if (!stage) return stage.error();
+    if (Result<bool> uploaded = stage->upload(scene_); !uploaded) return uploaded.error();
     Result<std::uint64_t> reference = cycleImage(drawFrame(*stage, stage->target(), time));
-    if (!reference) return Error{"soak: " + name + ": " + reference.error()};
+    if (!reference) return Error{"soak: " + name + ": " + reference.error().message};
 
     SoakCycles backends = cyclesOf("backend");
     cycles(*reference, backends, [&]() -> Result<std::uint64_t> {
         Result<Stage> cycle = Stage::open(rendering);
-        if (!cycle) return Error{failureText(cycle.failure())};
-        if (Result<bool> uploaded = cycle->upload(scene_); !uploaded) return Error{failureText(uploaded.failure())};
+        if (!cycle) return Error{failureText(cycle.error())};
+        if (Result<bool> uploaded = cycle->upload(scene_); !uploaded) return Error{failureText(uploaded.error())};
         return cycleImage(drawFrame(*cycle, cycle->target(), time));
     });
     report.cycles.push_back(std::move(backends));
@@ -278,7 +278,7 @@ Result<bool> Soak::allCycles(BackendKind kind, const std::string& name, SoakRepo
     // same names back (what a stale state cache would trip over).
     SoakCycles uploads = cyclesOf("scene");
     cycles(*reference, uploads, [&]() -> Result<std::uint64_t> {
-        if (Result<bool> uploaded = stage->upload(scene_); !uploaded) return uploaded.failure();
+        if (Result<bool> uploaded = stage->upload(scene_); !uploaded) return uploaded.error();
         return cycleImage(drawFrame(*stage, stage->target(), time));
     });
     report.cycles.push_back(std::move(uploads));
@@ -306,8 +306,8 @@ Result<SoakReport> Soak::run() {
     for (const BackendKind kind : choices) {
         Result<std::unique_ptr<Backend>> backend = openBackend(kind, nullptr, s_.render.threads, s_.render.interp);
         if (!backend) {
-            report.skipped.push_back({toString(kind), backend.error()});
-            out_(std::string("skipped ") + toString(kind) + ": " + backend.error());
+            report.skipped.push_back({toString(kind), backend.error().message});
+            out_(std::string("skipped ") + toString(kind) + ": " + backend.error().message);
             continue;
         }
         opened.emplace_back(kind, (*backend)->name());
@@ -316,12 +316,12 @@ Result<SoakReport> Soak::run() {
         run.backend = (*backend)->name();
         run.renderer = (*backend)->renderer();
         backend->reset();
-        if (Result<bool> done = framesOn(kind, std::move(run), report); !done) return done.failure();
+        if (Result<bool> done = framesOn(kind, std::move(run), report); !done) return done.error();
     }
     if (opened.empty()) return Error{"soak: no backend available", ErrorKind::BackendUnavailable};
     if (s_.cycles > 0 && !s_.minimal)
         for (const auto& [kind, name] : opened)
-            if (Result<bool> done = allCycles(kind, name, report); !done) return done.failure();
+            if (Result<bool> done = allCycles(kind, name, report); !done) return done.error();
     return report;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "lab/ReportText.h"
+#include "renderer/Research.h"
 
 namespace frugal {
 

@@ -19,6 +19,7 @@
 
 #include <frugal/Image.h>
 #include <frugal/Renderer.h>
+#include "renderer/Research.h"
 
 namespace frugal {
 

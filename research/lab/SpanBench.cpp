@@ -58,21 +58,21 @@ Result<SceneCase> loadSceneCase(const std::string& spec, int width, int height) 
     const auto named = [&spec](const Error& why) {
         return Error{why.message.rfind(spec + ":", 0) == 0 ? why.message : spec + ": " + why.message, why.kind};
     };
-    if (!scene) return named(scene.failure());
+    if (!scene) return named(scene.error());
     // The camera's own planes, not fitted to the scene (render/Camera.h): the engine's error grows
     // with the depth's slope across a span, which the fit makes steeper (builtin:cubes: worst 14 LSB
     // against 2), and this reports the engine as paper 001 measured it.
     Camera camera;
     camera.depthRange = DepthRange::File;
     Result<FrameSetup> setup = setUpFrame(*scene, camera, 0.0, width, height, true);
-    if (!setup) return named(setup.failure());
+    if (!setup) return named(setup.error());
     return SceneCase{spec, std::move(*scene), std::move(*setup)};
 }
 
 struct ModeRender {
     Buffers image;
     double bestSeconds = 0.0;
-    InterpStats frame;  // the slow path's counters of one frame
+    InterpCounters frame;  // the slow path's counters of one frame
 };
 
 // kBenchRenders frames of `c` in `mode` on a one-thread software backend: the first image, the best
@@ -88,7 +88,7 @@ Result<ModeRender> renderMode(const SceneCase& c, Interp mode, int width, int he
         return Error{c.spec + ": the software backend cannot make a " + std::to_string(width) + "x" + std::to_string(height) + " target",
                      ErrorKind::OutOfMemory};
     Result<SceneRenderer> renderer = SceneRenderer::create(*backend, c.scene);
-    if (!renderer) return Error{c.spec + ": " + renderer.error(), renderer.errorKind()};
+    if (!renderer) return Error{c.spec + ": " + renderer.error().message, renderer.error().kind};
     const glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
     ModeRender out;
     out.bestSeconds = 1e30;
@@ -100,7 +100,7 @@ Result<ModeRender> renderMode(const SceneCase& c, Interp mode, int width, int he
         out.bestSeconds = std::min(out.bestSeconds, seconds);
         if (r == 0) {
             out.image = backend->readBack(target);
-            out.frame = softwareInterpStats(*backend).value_or(InterpStats{});
+            out.frame = softwareInterpStats(*backend).value_or(InterpCounters{});
         }
     }
     backend->destroyTarget(target);
@@ -132,7 +132,7 @@ Result<std::vector<RenderRow>> renderScene(const SceneCase& c, int width, int he
     std::optional<ModeRender> exact;
     for (Interp mode : {Interp::Exact, Interp::Span, Interp::Dda}) {
         Result<ModeRender> done = renderMode(c, mode, width, height);
-        if (!done) return done.failure();
+        if (!done) return done.error();
         if (mode == Interp::Exact) exact = std::move(*done);
         const ModeRender& m = mode == Interp::Exact ? *exact : *done;
         RenderRow row;
@@ -157,14 +157,14 @@ Result<std::vector<RenderRow>> renderScenes(const BenchSettings& settings, const
     std::vector<SceneCase> cases;
     for (const std::string& spec : settings.scenes) {
         Result<SceneCase> c = loadSceneCase(spec, width, height);
-        if (!c) return c.failure();
+        if (!c) return c.error();
         cases.push_back(std::move(*c));
     }
     std::vector<RenderRow> rows;
     for (const SceneCase& c : cases) {
         if (progress) progress(c.spec + " " + std::to_string(width) + "x" + std::to_string(height) + ": exact, span, dda");
         Result<std::vector<RenderRow>> scene = renderScene(c, width, height);
-        if (!scene) return scene.failure();
+        if (!scene) return scene.error();
         rows.insert(rows.end(), scene->begin(), scene->end());
     }
     return rows;
@@ -177,7 +177,7 @@ Result<BenchReport> runBenchmark(const BenchSettings& settings, const std::funct
     BenchReport report;
     report.settings = settings.table;
     Result<std::vector<RenderRow>> render = renderScenes(settings, progress);
-    if (!render) return render.failure();
+    if (!render) return render.error();
     report.render = std::move(*render);
 
     for (const Fig11Scheme& scheme : fig11Schemes()) report.fig11.push_back(runFig11(scheme));

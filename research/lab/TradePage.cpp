@@ -341,9 +341,9 @@ Result<TradePageFiles> tradePage(const TradeReport& report, const TradeSettings&
         const TradeRow& r = report.rows[i];
         if (r.worstMask.rgba.empty()) continue;
         Result<Bytes> full = encodeColorPng(r.worstMask);
-        if (!full) return Error{"mask of " + r.candidate.name + ": " + full.error()};
+        if (!full) return Error{"mask of " + r.candidate.name + ": " + full.error().message};
         Result<Bytes> small = encodeColorPng(maskThumbnail(r.worstMask, kMaskThumbnailWidth));
-        if (!small) return Error{"mask of " + r.candidate.name + ": " + small.error()};
+        if (!small) return Error{"mask of " + r.candidate.name + ": " + small.error().message};
         files.masks.emplace_back("masks/" + methodSlug(r.candidate.name) + ".png", std::move(*full));
         thumbnails[i] = base64(*small);
     }

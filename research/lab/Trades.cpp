@@ -89,7 +89,7 @@ Result<bool> judge(std::vector<TradeRow>& rows, std::vector<Frame>& frames, cons
         rows[i].misses += misses.missing(actual.ids);
         giveBack(actual, frames[i]);
         if (!c) {
-            judged = Error{rows[i].candidate.name + ": " + c.error()};
+            judged = Error{rows[i].candidate.name + ": " + c.error().message};
             break;
         }
         TradeRow& row = rows[i];
@@ -389,7 +389,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
         Settings measured = c.settings;
         measured.ids = true;
         Result<Renderer> made = Renderer::create(scene, measured);
-        if (!made) return Error{c.name + ": " + made.error(), made.errorKind(), made.failure().aboutSetting};
+        if (!made) return Error{c.name + ": " + made.error().message, made.error().kind, made.error().aboutSetting};
         TradeRow row;
         row.candidate = c;
         row.shotMs.resize(settings.shots.size());
@@ -410,7 +410,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
     // Candidate i's render of `shot` into its frame; an error names both.
     const auto renderShot = [&](std::size_t i, const TradeShot& shot) -> Result<bool> {
         if (Result<bool> done = renderers[i].render(shot.camera, shot.time, frames[i]); !done)
-            return Error{candidates[i].name + ": " + shot.label + ": " + done.error(), done.errorKind()};
+            return Error{candidates[i].name + ": " + shot.label + ": " + done.error().message, done.error().kind};
         return true;
     };
     // One untimed render of the first shot each: llvmpipe compiles a state's shaders on its first
@@ -418,7 +418,7 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
     // sequence then starts again from its first frame, which reuse sees as a still camera.)
     if (!settings.shots.empty())
         for (std::size_t i = 0; i < candidates.size(); ++i)
-            if (Result<bool> done = renderShot(i, settings.shots[0]); !done) return done.failure();
+            if (Result<bool> done = renderShot(i, settings.shots[0]); !done) return done.error();
     const int repeat = settings.sequence ? 1 : std::max(settings.repeat, 1);
     for (std::size_t s = 0; s < settings.shots.size(); ++s) {
         const TradeShot& shot = settings.shots[s];
@@ -427,14 +427,14 @@ Result<TradeReport> measureTrades(const Scene& scene, const std::vector<TradeCan
                 const std::size_t i = (k + s + std::size_t(r)) % candidates.size();  // the order rotates
                 if (settings.sequence && s + 1 < settings.shots.size())  // occlusion-ahead's next frame
                     renderers[i].setNextFrame(settings.shots[s + 1].camera, settings.shots[s + 1].time);
-                if (Result<bool> done = renderShot(i, shot); !done) return done.failure();
+                if (Result<bool> done = renderShot(i, shot); !done) return done.error();
                 note(report.rows[i], s, frames[i].stats, triangles);
             }
             std::vector<DrawRecord>& drew = rounds.emplace_back();
             for (const Frame& frame : frames) drew.push_back({frame.stats.drawFingerprint, frame.stats.culledFingerprint});
         }
         if (Result<bool> judged = judge(report.rows, frames, shot, candidates[0].settings.background, misses); !judged)
-            return judged.failure();
+            return judged.error();
         progress(shot.label + " (" + std::to_string(s + 1) + "/" + std::to_string(settings.shots.size()) + ")");
     }
     const std::vector<std::optional<std::size_t>> repeated = repeatedDraws(candidates, rounds);

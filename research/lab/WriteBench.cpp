@@ -111,9 +111,9 @@ Result<bool> encoderTable(const std::vector<std::pair<std::string, Scene>>& scen
         Settings settings = s.render;
         settings.ids = true;
         Result<Renderer> renderer = Renderer::create(scene, settings);
-        if (!renderer) return renderer.failure();
+        if (!renderer) return renderer.error();
         Result<Frame> frame = renderer->render(Camera::automatic(), 0.0);
-        if (!frame) return frame.failure();
+        if (!frame) return frame.error();
         progress("write-bench: " + name + ": encoding its colour, depth and ids at " + std::to_string(settings.width) +
                  "x" + std::to_string(settings.height));
         for (int plane = 0; plane < 3; ++plane) {
@@ -125,16 +125,16 @@ Result<bool> encoderTable(const std::vector<std::pair<std::string, Scene>>& scen
                     const auto start = Clock::now();
                     Result<Bytes> encoded = encodePlane(*frame, plane, options);
                     ms.push_back(msSince(start));
-                    if (!encoded) return encoded.failure();
+                    if (!encoded) return encoded.error();
                     bytes = std::move(*encoded);
                 }
                 return std::pair{median(ms), *std::min_element(ms.begin(), ms.end())};
             };
             Bytes baselineBytes;
             Result<std::pair<double, double>> baselineMs = timed(baselineOptions(), baselineBytes);
-            if (!baselineMs) return baselineMs.failure();
+            if (!baselineMs) return baselineMs.error();
             Result<DecodedImage> baselinePixels = decodePng(baselineBytes, name + " baseline");
-            if (!baselinePixels) return baselinePixels.failure();
+            if (!baselinePixels) return baselinePixels.error();
             bench.encodes.push_back({name, kPlanes[plane], "baseline", 6, "none", baselineMs->first, baselineMs->second,
                                      baselineBytes.size(), 1.0, 1.0, true});
             for (const int level : s.levels)
@@ -143,9 +143,9 @@ Result<bool> encoderTable(const std::vector<std::pair<std::string, Scene>>& scen
                     options.filter = filter;
                     Bytes bytes;
                     Result<std::pair<double, double>> ms = timed(options, bytes);
-                    if (!ms) return ms.failure();
+                    if (!ms) return ms.error();
                     Result<DecodedImage> pixels = decodePng(bytes, name);
-                    if (!pixels) return pixels.failure();
+                    if (!pixels) return pixels.error();
                     bench.encodes.push_back({name, kPlanes[plane], encoderName(level), level, filterName(filter),
                                              ms->first, ms->second, bytes.size(),
                                              double(bytes.size()) / double(baselineBytes.size()),
@@ -206,7 +206,7 @@ Result<bool> sequence(const std::string& name, const Scene& scene, const WriteBe
         Settings settings = s.render;
         settings.ids = planes.all;
         Result<Renderer> made = Renderer::create(scene, settings);
-        if (!made) return made.failure();
+        if (!made) return made.error();
         Renderer& renderer = *made;
         const auto pathsOf = [&](const std::string& variant, int frame) {
             char number[16];
@@ -284,7 +284,7 @@ Result<bool> readBackRun(const std::string& name, const Scene& scene, const Writ
     std::optional<ContextKind> kind;
     {
         Result<Renderer> renderer = Renderer::create(scene, r);  // which context `frugal render` would use
-        if (!renderer) return renderer.failure();
+        if (!renderer) return renderer.error();
         kind = contextKindNamed(renderer->backendName());
         if (!kind) {
             bench.readbackSkipped = "the " + renderer->backendName() + " backend reads no GL framebuffer";
@@ -296,10 +296,10 @@ Result<bool> readBackRun(const std::string& name, const Scene& scene, const Writ
         return true;
     }
     Result<std::unique_ptr<MinimalFrame>> made = createMinimalFrame(*kind, scene, r.width, r.height, r.depthFormat);
-    if (!made) return made.failure();
+    if (!made) return made.error();
     MinimalFrame& minimal = **made;
     Result<FrameSetup> setup = setUpFrame(scene, Camera::automatic(), 0.0, r.width, r.height, false, r.depthFormat);
-    if (!setup) return Error{name + ": " + setup.error()};
+    if (!setup) return Error{name + ": " + setup.error().message};
     const auto draw = [&] { minimal.render(setup->params, setup->world, r.background); };
     const std::vector<std::string> variants = {"draw", "readpixels", "pbo", "pbo, a frame late"};
     for (const bool depth : {false, true}) {
@@ -359,16 +359,16 @@ Result<WriteBench> measureWriteBench(const std::vector<std::pair<std::string, Sc
     WriteBench bench;
     bench.settings = settings;
     for (const auto& [name, scene] : scenes) bench.scenes.push_back(name);
-    if (Result<bool> table = encoderTable(scenes, settings, bench, progress); !table) return table.failure();
+    if (Result<bool> table = encoderTable(scenes, settings, bench, progress); !table) return table.error();
     if (settings.frames > 0 && !scenes.empty()) {
         bench.sequenceScene = scenes.front().first;
         if (Result<bool> run = sequence(scenes.front().first, scenes.front().second, settings, bench, progress); !run)
-            return run.failure();
+            return run.error();
     }
     if (settings.readbackFrames > 0 && !scenes.empty())
         if (Result<bool> run = readBackRun(scenes.front().first, scenes.front().second, settings, bench, progress);
             !run)
-            return run.failure();
+            return run.error();
     return bench;
 }
 

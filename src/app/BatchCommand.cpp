@@ -132,7 +132,7 @@ Result<std::vector<double>> costsOf(const Manifest& manifest) {
         if (triangles.count(job.scene)) continue;
         Result<Scene> loaded = loadScene(job.scene);
         if (!loaded)
-            return Error{"manifest " + manifest.path + " line " + std::to_string(job.line) + ": scene: " + loaded.error(),
+            return Error{"manifest " + manifest.path + " line " + std::to_string(job.line) + ": scene: " + loaded.error().message,
                          ErrorKind::BadInput};
         triangles[job.scene] = loaded->triangleCount();
     }
@@ -171,7 +171,7 @@ Result<std::vector<std::optional<double>>> doneSecondsOf(const Manifest& manifes
             continue;
         }
         Result<InputsHash> hash = inputsHash(job, version(), out);
-        if (!hash) return hash.failure();
+        if (!hash) return hash.error();
         seconds.push_back(current(*record, hash->hash) ? std::optional<double>(record->seconds) : std::nullopt);
     }
     return seconds;
@@ -181,14 +181,14 @@ Result<std::vector<std::optional<double>>> doneSecondsOf(const Manifest& manifes
 Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
                        int count) {
     Result<std::vector<std::optional<double>>> done = doneSecondsOf(manifest, out);
-    if (!done) return done.failure();
+    if (!done) return done.error();
     Plan plan;
     plan.manifest = manifestHash(manifest);
     plan.count = count;
     plan.costs = correctedCosts(manifest, estimates, *done);
     plan.shardOf = assignShards(plan.costs, groupsOf(manifest), count);
     if (Result<bool> w = writeFileAtomic((fs::path(out) / kPlan).string(), bytesOf(planJson(plan))); !w)
-        return w.failure();
+        return w.error();
     return plan;
 }
 
@@ -236,10 +236,10 @@ std::string runJob(const Job& job, const InputsHash& inputs, const RunOptions& o
     const Json running = {{"host", hostName()}, {"pid", long(getpid())}, {"shard", std::to_string(o.shard.index) + "/" +
                                                                               std::to_string(o.shard.count)}};
     if (Result<bool> w = writeFileAtomic((dir / kRunning).string(), bytesOf(running.dump() + "\n")); !w)
-        return "error: " + w.error();
+        return "error: " + w.error().message;
     if (!job.settingsText.empty())
         if (Result<bool> w = writeFileAtomic((dir / "settings.json").string(), bytesOf(job.settingsText)); !w)
-            return "error: " + w.error();
+            return "error: " + w.error().message;
 
     std::ostringstream out, err;
     const std::vector<std::string> line = commandLine(job, o.out);
@@ -255,7 +255,7 @@ std::string runJob(const Job& job, const InputsHash& inputs, const RunOptions& o
     if (status == kExitOk) {
         const DoneRecord record{job.id, inputs.hash, version(), seconds, inputs.reads};
         if (Result<bool> w = writeFileAtomic((dir / kDone).string(), bytesOf(doneJson(record))); !w)
-            problem = "error: " + w.error();
+            problem = "error: " + w.error().message;
     } else {
         problem = errorLine(err.str());
         if (problem.empty()) problem = "error: " + std::string(toString(job.command)) + " exited " + std::to_string(status);
@@ -283,7 +283,7 @@ struct Checked {
 };
 Result<Checked> check(const std::string& manifestPath) {
     Result<Manifest> manifest = readManifest(manifestPath);
-    if (!manifest) return manifest.failure();
+    if (!manifest) return manifest.error();
     // A job runs in this process: a research command (reuse-bench) needs frugal-lab.
     for (std::size_t i = 0; i < manifest->jobs.size(); ++i) {
         const Job& job = manifest->jobs[i];
@@ -294,7 +294,7 @@ Result<Checked> check(const std::string& manifestPath) {
                          " (a research command: run this manifest with frugal-lab batch)"};
     }
     Result<std::vector<double>> costs = costsOf(*manifest);
-    if (!costs) return costs.failure();
+    if (!costs) return costs.error();
     return Checked{std::move(*manifest), std::move(*costs)};
 }
 
@@ -307,17 +307,17 @@ Result<Checked> checkInto(const std::string& manifestPath, const std::string& ou
     fs::create_directories(out, ec);
     if (ec) return Error{out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io};
     const std::string list = jobListJson(checked->manifest, checked->costs);
-    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(list)); !w) return w.failure();
+    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(list)); !w) return w.error();
     return checked;
 }
 
 // `--plan N`: OUT/plan.json, and what each shard is to run.
 int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     Result<Checked> checked = checkInto(o.manifest, o.out);
-    if (!checked) return fail(err, checked.failure());
+    if (!checked) return fail(err, checked.error());
     const Manifest* manifest = &checked->manifest;
     Result<Plan> plan = writePlan(*manifest, checked->costs, o.out, o.plan);
-    if (!plan) return fail(err, plan.failure());
+    if (!plan) return fail(err, plan.error());
     std::vector<int> jobs(std::size_t(o.plan), 0), left(std::size_t(o.plan), 0);
     std::vector<double> load(std::size_t(o.plan), 0.0);
     for (std::size_t i = 0; i < plan->shardOf.size(); ++i) {
@@ -335,7 +335,7 @@ int planBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
 
 int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
     Result<Checked> checked = checkInto(o.manifest, o.out);
-    if (!checked) return fail(err, checked.failure());
+    if (!checked) return fail(err, checked.error());
     const Manifest* manifest = &checked->manifest;
     std::string splitFrom;
     const std::vector<int> shardOf = splitOf(*manifest, checked->costs, o.out, o.shard.count, splitFrom);
@@ -362,7 +362,7 @@ int runBatch(const RunOptions& o, std::ostream& out, std::ostream& err) {
                           "' failed, so this job, which reads it, did not run";
         Result<InputsHash> hash =
             problem.empty() ? inputsHash(job, version(), o.out) : Result<InputsHash>(InputsHash{});
-        if (problem.empty() && !hash) problem = "error: " + hash.error();
+        if (problem.empty() && !hash) problem = "error: " + hash.error().message;
         if (!problem.empty()) {
             recordNotRun(job, problem, o);
             failedHere[mine[k]] = true;
@@ -420,11 +420,11 @@ Result<std::string> jobIdOf(const std::string& printed) {
 
 int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
     Result<Checked> checked = check(o.manifest);  // OUT is written only once the dry run is ruled out
-    if (!checked) return fail(err, checked.failure());
+    if (!checked) return fail(err, checked.error());
     const Manifest* manifest = &checked->manifest;
     const std::vector<double>* costs = &checked->costs;
     Result<std::vector<std::string>> extra = splitWords(o.sbatchArgs);
-    if (!extra) return fail(err, Error{"--sbatch-args: " + extra.error(), ErrorKind::BadInput});
+    if (!extra) return fail(err, Error{"--sbatch-args: " + extra.error().message, ErrorKind::BadInput});
     const std::string dir = fs::absolute(o.out).lexically_normal().string();
     if (dir.find_first_of(" \t\n%") != std::string::npos)
         return fail(err, Error{"--out " + o.out + ": the Slurm scripts' #SBATCH --output takes no space or '%' in a path",
@@ -452,21 +452,21 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
     files.add(shardsPath, bytesOf(scripts.shards));
     files.add(mergePath, bytesOf(scripts.merge));
     files.add(dir + "/" + kJobList, bytesOf(jobListJson(*manifest, *costs)));
-    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
-    if (Result<Plan> plan = writePlan(*manifest, *costs, dir, o.slurm); !plan) return fail(err, plan.failure());
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
+    if (Result<Plan> plan = writePlan(*manifest, *costs, dir, o.slurm); !plan) return fail(err, plan.error());
     Result<std::string> array = runProgram(arrayCommand);
-    if (!array) return fail(err, array.failure());
+    if (!array) return fail(err, array.error());
     Result<std::string> arrayId = jobIdOf(*array);
-    if (!arrayId) return fail(err, arrayId.failure());
+    if (!arrayId) return fail(err, arrayId.error());
     mergeCommand.push_back("--dependency=afterany:" + *arrayId);
     mergeCommand.push_back(mergePath);
     Result<std::string> merge = runProgram(mergeCommand);
-    if (!merge) return fail(err, Error{"the array is job " + *arrayId + "; the merge job: " + merge.error(), merge.errorKind()});
+    if (!merge) return fail(err, Error{"the array is job " + *arrayId + "; the merge job: " + merge.error().message, merge.error().kind});
     Result<std::string> mergeId = jobIdOf(*merge);
-    if (!mergeId) return fail(err, mergeId.failure());
+    if (!mergeId) return fail(err, mergeId.error());
     const Json jobs = {{"array", *arrayId}, {"merge", *mergeId}, {"shards", o.slurm}};
     if (Result<bool> w = writeFileAtomic(dir + "/slurm/jobs.json", bytesOf(jobs.dump(2) + "\n")); !w)
-        return fail(err, w.failure());
+        return fail(err, w.error());
     out << "submitted: job array " << *arrayId << " (" << o.slurm << " shards of " << manifest->jobs.size()
         << " jobs), then merge job " << *mergeId << "; 'frugal batch status " << o.out << "' follows them\n";
     return kExitOk;
@@ -484,7 +484,7 @@ Result<Json> jobList(const std::string& dir) {
 
 int runStatus(const std::string& dir, std::ostream& out, std::ostream& err) {
     Result<Json> list = jobList(dir);
-    if (!list) return fail(err, list.failure());
+    if (!list) return fail(err, list.error());
     int done = 0, running = 0, stale = 0, left = 0;
     double doneSeconds = 0, doneCost = 0, leftCost = 0;
     std::vector<std::string> failures;
@@ -527,7 +527,7 @@ int runStatus(const std::string& dir, std::ostream& out, std::ostream& err) {
 
 int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
     Result<Json> list = jobList(dir);
-    if (!list) return fail(err, list.failure());
+    if (!list) return fail(err, list.error());
     Json jobs = Json::array();
     std::string times = "id,command,seconds\n";
     // The jobs' CSV tables joined by file name, each row led by its job's id: merged-<name>.csv.
@@ -583,7 +583,7 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
         files.add(dir + "/merged-" + name, bytesOf(table));
         joined += ", merged-" + name;
     }
-    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
     out << "merged " << jobs.size() << " jobs into " << dir << "/merged.json" << joined << " and times.csv\n";
     return kExitOk;
 }
@@ -626,13 +626,13 @@ int runBatch(const std::vector<std::string>& args, std::ostream& out, std::ostre
         const bool fromArray = shard.rfind("array/", 0) == 0;
         Result<Shard> s = parseShard(fromArray ? "0/" + shard.substr(6) : shardGiven ? shard : "0/1");
         if (o.manifest.empty()) cursor.fail("batch: no manifest (frugal batch MANIFEST.json; 'frugal help batch')");
-        else if (!s) cursor.fail(s.error());
+        else if (!s) cursor.fail(s.error().message);
         else if (o.slurm > 0 && shardGiven) cursor.fail("--slurm: each array task picks its shard; give no --shard");
         else if (o.plan > 0 && (shardGiven || o.slurm > 0)) cursor.fail("--plan: it runs nothing; give no --shard or --slurm");
         else if (o.dryRun && o.slurm == 0) cursor.fail("--dry-run: only with --slurm N");
         else if (!o.sbatchArgs.empty() && o.slurm == 0) cursor.fail("--sbatch-args: only with --slurm N");
         else if (!fromArray) o.shard = *s;
-        else if (Result<int> index = arrayTaskIndex(s->count); !index) cursor.fail(index.error());
+        else if (Result<int> index = arrayTaskIndex(s->count); !index) cursor.fail(index.error().message);
         else o.shard = Shard{*index, s->count};
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;

@@ -35,15 +35,15 @@ Result<ImageComparison> compareFiles(const std::string& actualPath, const std::s
                                      const std::string& referencePath, const std::string& referenceIds,
                                      const CompareOptions& options) {
     Result<Buffers> actual = readRenderPngs(actualPath, actualIds);
-    if (!actual) return actual.failure();
+    if (!actual) return actual.error();
     Result<Buffers> reference = readRenderPngs(referencePath, referenceIds);
-    if (!reference) return reference.failure();
+    if (!reference) return reference.error();
     if (actual->width != reference->width || actual->height != reference->height)
         return Error{referencePath + ": " + std::to_string(reference->width) + "x" + std::to_string(reference->height) +
                      ", but " + actualPath + " is " + std::to_string(actual->width) + "x" +
                      std::to_string(actual->height)};
     Result<ImageComparison> compared = compareBuffers(*actual, *reference, options);
-    if (!compared) return Error{referencePath + ": " + compared.error()};
+    if (!compared) return Error{referencePath + ": " + compared.error().message};
     return compared;
 }
 
@@ -86,7 +86,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     const std::string& referencePath = images[1];
 
     Result<ImageComparison> compared = compareFiles(actualPath, actualIds, referencePath, referenceIds, options);
-    if (!compared) return fail(err, compared.failure());
+    if (!compared) return fail(err, compared.error());
     const ImageComparison& c = *compared;
 
     // The mask and the JSON appear together or not at all.
@@ -101,7 +101,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
         const std::string text = j.dump(2) + "\n";
         files.add(jsonPath, Bytes(text.begin(), text.end()));
     }
-    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
 
     out << actualPath << " vs " << referencePath << " (reference), " << c.width << "x" << c.height << ": "
         << (c.passed() ? "PASS" : "FAIL") << "\n"

@@ -59,7 +59,7 @@ Result<std::vector<ReportView>> viewsOf(const RenderOptions& options, const std:
     std::vector<ReportView> views;
     if (!cameraPath.empty()) {
         Result<std::vector<Camera>> path = readCameraPath(cameraPath);
-        if (!path) return path.failure();
+        if (!path) return path.error();
         for (const Camera& camera : *path) views.push_back(ReportView{"path", camera});
         settings.timing = "path";
     } else {
@@ -129,14 +129,14 @@ int runCullReport(const std::vector<std::string>& args, std::ostream& out, std::
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     CullMeasureSettings settings{options.scene, options.settings, methods, repeat, options.time.value_or(0.0), "cold",
                                  masksDir};
     Result<std::vector<ReportView>> views = viewsOf(options, outputs.cameraPath, viewCount, *loaded, settings);
-    if (!views) return fail(err, views.failure());
+    if (!views) return fail(err, views.error());
 
     Result<CullMeasurement> measured = measureCulling(*loaded, *views, settings, progressTo(err, options.quiet));
-    if (!measured) return fail(err, measured.failure());
+    if (!measured) return fail(err, measured.error());
     const ReportTexts texts{[&measured] { return measured->json; },
                             [&measured] { return cullReportCsv(measured->report); }, cullReportGnuplot};
     if (!measured->images.empty()) {

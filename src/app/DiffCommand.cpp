@@ -48,7 +48,7 @@ Result<nlohmann::ordered_json> writeFrameImages(const std::string& imageDir, con
     set.add(names[0], encodeColorPng(images[0]));
     set.add(names[1], encodeColorPng(images[1]));
     set.add(names[2], encodeMaskPng(c));
-    if (Result<bool> written = set.commit(); !written) return written.failure();
+    if (Result<bool> written = set.commit(); !written) return written.error();
     return nlohmann::ordered_json{{"actual", names[0]}, {"reference", names[1]}, {"mask", names[2]}};
 }
 
@@ -131,10 +131,10 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     compare.background = colorBytes(options.settings.background);
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     const Settings& settings = options.settings;
     Result<BackendPair> pair = BackendPair::open(*loaded, settings, progressTo(err, options.quiet));
-    if (!pair) return fail(err, pair.failure());
+    if (!pair) return fail(err, pair.error());
 
     const FrameRange range = options.frames.value_or(FrameRange{});
     const std::string imageDir = outDir.empty() ? kDefaultFailureDir : outDir;
@@ -147,17 +147,17 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             return fail(err, Error{interruptedAfter(caught, frame - range.first, range.last - range.first + 1),
                                    ErrorKind::Interrupted});
         Result<FrameSetup> setup = setUpFrame(options, *loaded, frame, true);
-        if (!setup) return fail(err, setup.failure());
+        if (!setup) return fail(err, setup.error());
         const std::array<Buffers, 2> images = pair->render(*setup);
         Result<ImageComparison> compared = compareBuffers(images[0], images[1], compare);
         if (!compared)  // both targets were created at the same size: a backend broke its contract
-            return fail(err, Error{"frame " + std::to_string(frame) + ": " + compared.error()});
+            return fail(err, Error{"frame " + std::to_string(frame) + ": " + compared.error().message});
         const ImageComparison& c = *compared;
         if (!c.passed()) ++failedFrames;
         nlohmann::ordered_json files = nullptr;
         if (!outDir.empty() || !c.passed()) {
             Result<nlohmann::ordered_json> written = writeFrameImages(imageDir, range, frame, images, c);
-            if (!written) return fail(err, written.failure());
+            if (!written) return fail(err, written.error());
             files = std::move(*written);
         }
         out << frameSummary(*pair, frame, setup->time, c, files);
@@ -173,7 +173,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (!jsonPath.empty()) {
         const std::string text = diffJson(options, settings, compare.tolerance, failedFrames, *pair, frames);
         if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(text.begin(), text.end())); !written)
-            return fail(err, written.failure());
+            return fail(err, written.error());
     }
     return failedFrames == 0 ? kExitOk : kExitError;
 }

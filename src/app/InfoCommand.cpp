@@ -53,16 +53,16 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
     if (stateCosts) {
         Result<StateCostsOutput> report = stateCostsReport(options.settings);
-        if (!report) return fail(err, report.failure());
+        if (!report) return fail(err, report.error());
         out << report->text;
         if (!jsonPath.empty())
             if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(report->json.begin(), report->json.end()));
                 !written)
-                return fail(err, written.failure());
+                return fail(err, written.error());
         return kExitOk;
     }
     Result<Scene> loaded = loadScene(options.scene, options.load);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     out << sceneInfoText(*loaded, kLongSide);
     return kExitOk;
 }

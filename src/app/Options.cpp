@@ -113,7 +113,7 @@ void checkSharedOptions(RenderOptions& o, ArgCursor& cursor) {
         cursor.fail("--far " + fmt(*far) + ": must exceed --near " + fmt(*near));
     if (cursor.error.empty() && !o.cameraPathFile.empty()) {
         Result<std::vector<Camera>> cameras = readCameraPath(o.cameraPathFile);
-        if (!cameras) cursor.fail("--" + cameras.error());
+        if (!cameras) cursor.fail("--" + cameras.error().message);
         else o.cameraPath = std::move(*cameras);
     }
 }
@@ -162,7 +162,7 @@ Result<Scene> loadForRender(RenderOptions& options, std::ostream& err) {
     const std::string aspectWarning = fitSizeToCamera(options, *scene);
     // Check the first frame's camera before a backend is opened, so a bad camera is the only line.
     const int first = options.frames ? options.frames->first : 0;
-    if (Result<FrameSetup> setup = setUpFrame(options, *scene, first, false); !setup) return Error{setup.error()};
+    if (Result<FrameSetup> setup = setUpFrame(options, *scene, first, false); !setup) return Error{setup.error().message};
     for (const std::string& warning : scene->warnings) err << "warning: " << warning << "\n";
     if (!aspectWarning.empty()) err << "warning: " << aspectWarning << "\n";
     if (!scene->unsupported.empty()) {
@@ -201,7 +201,7 @@ Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, 
     const Settings& s = options.settings;
     Result<FrameSetup> setup =
         frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), s.width, s.height, writeIds, s.depthFormat);
-    if (!setup) return Error{options.scene + ": " + setup.error()};
+    if (!setup) return Error{options.scene + ": " + setup.error().message};
     return setup;
 }
 

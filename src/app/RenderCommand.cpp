@@ -76,7 +76,7 @@ Result<bool> applySettingsFile(const std::vector<std::string>& args, RenderOptio
     const auto given = std::find(args.begin(), args.end(), "--settings");
     if (given == args.end() || std::next(given) == args.end()) return true;  // the flag reports a missing value
     Result<SettingsFile> file = readSettingsFile(*std::next(given), o.settings);
-    if (!file) return file.failure();
+    if (!file) return file.error();
     o.settings = file->settings;
     o.given = file->keys;
     return true;
@@ -123,7 +123,7 @@ Flag pngLevelFlag(int& level) {
 // The command line into `request`: the exit status to return, or nothing to go on.
 std::optional<int> parseRender(const std::vector<std::string>& args, RenderRequest& r, std::ostream& out,
                                std::ostream& err) {
-    if (Result<bool> applied = applySettingsFile(args, r.options); !applied) return fail(err, applied.failure());
+    if (Result<bool> applied = applySettingsFile(args, r.options); !applied) return fail(err, applied.error());
     CommandLine command{"render", renderHelp(), &r.options};
     Outputs& files = r.outputs;
     RenderOptions& o = r.options;
@@ -179,7 +179,7 @@ public:
         if (!enabled()) return true;
         if (!spool_) {
             Result<Spool> made = Spool::create(path_);
-            if (!made) return made.failure();
+            if (!made) return made.error();
             spool_.emplace(std::move(*made));
         }
         if (!pending_.is_null()) {
@@ -258,14 +258,14 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const RenderOptions& options = r.options;
 
     Result<Scene> loaded = loadForRender(r.options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     if (!r.outputs.settings.empty()) {
         const std::string text = settingsJson(options.settings);
         if (Result<bool> saved = writeFileAtomic(r.outputs.settings, Bytes(text.begin(), text.end())); !saved)
-            return fail(err, saved.failure());
+            return fail(err, saved.error());
     }
     Result<Renderer> made = Renderer::create(std::move(*loaded), options.settings);
-    if (!made) return fail(err, made.failure());
+    if (!made) return fail(err, made.error());
     Renderer& renderer = *made;
     const Settings& s = renderer.settings();
     if (!options.quiet) printRendererStart(renderer, err);
@@ -281,7 +281,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
     // Files are encoded and written on the writer's threads while the next frame renders; a frame's
     // record and progress line wait until its files exist (in order: FrameWriter).
     Result<FrameWriter> madeWriter = FrameWriter::create({.threads = 0, .queue = 0, .pngLevel = r.outputs.pngLevel});
-    if (!madeWriter) return fail(err, madeWriter.failure());
+    if (!madeWriter) return fail(err, madeWriter.error());
     FrameWriter& writer = *madeWriter;
     struct Waiting {
         nlohmann::json record;
@@ -306,8 +306,8 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         if (const int caught = interrupts.arrived()) {
             // The frames rendered are written first; then the run stops.
             const Result<bool> finished = writer.finish();
-            if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
-            if (!finished) return fail(err, finished.failure());
+            if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
+            if (!finished) return fail(err, finished.error());
             return fail(err, Error{interruptedAfter(caught, framesWritten, frameCount), ErrorKind::Interrupted});
         }
         // With --cull occlusion-ahead, the next frame's plan is made while this one draws.
@@ -316,7 +316,7 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         // The depth is read back only for a file that holds it.
         Result<bool> rendered = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index),
                                                 frame, {.depth = !r.outputs.depth.empty()});
-        if (!rendered) return fail(err, rendered.failure());
+        if (!rendered) return fail(err, rendered.error());
         const std::string file = framePath(r.outputs.color, index, range.sequence);
         if (index == range.first) camera = viewJson(frame.view, s);
         nlohmann::json record = frameStatsJson(frame.stats, s);
@@ -327,17 +327,17 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
                                          : progressLine(s, renderer.scene().triangleCount(), frame.stats, index,
                                                         index - range.first + 1, frameCount, file)});
         if (Result<bool> queued = writer.write(framePaths(r.outputs, index, range.sequence), frame); !queued)
-            return fail(err, queued.failure());
-        if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
+            return fail(err, queued.error());
+        if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
     }
     const Result<bool> finished = writer.finish();
-    if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.failure());
-    if (!finished) return fail(err, finished.failure());
+    if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
+    if (!finished) return fail(err, finished.error());
     if (overflow > 0)
         err << "warning: --interp " << toString(s.interp) << ": " << overflow
             << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";
     if (Result<bool> written = json.finish(renderJsonMeta(renderer, r.options.scene, camera)); !written)
-        return fail(err, written.failure());
+        return fail(err, written.error());
     if (!options.quiet && !range.sequence) out << "wrote " << r.outputs.color << "\n";
     return kExitOk;
 }

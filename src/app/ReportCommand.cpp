@@ -63,7 +63,7 @@ Result<TradeSettings> shotsOf(const RenderOptions& options, const Scene& scene, 
         return t;
     }
     Result<std::vector<ReportView>> views = viewsAround(options, scene, count, time);
-    if (!views) return views.failure();
+    if (!views) return views.error();
     for (std::size_t i = 0; i < views->size(); ++i)
         t.shots.push_back({"view " + std::to_string(i) + " (" + (*views)[i].viewClass + ")", (*views)[i].camera, time});
     return t;
@@ -105,9 +105,9 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
     Result<Scene> loaded = loadForRender(options, err);
-    if (!loaded) return fail(err, loaded.failure());
+    if (!loaded) return fail(err, loaded.error());
     Result<TradeSettings> shots = shotsOf(options, *loaded, views);
-    if (!shots) return fail(err, shots.failure());
+    if (!shots) return fail(err, shots.error());
     TradeSettings& settings = *shots;
     settings.repeat = repeat;
     settings.budgetPx = std::uint64_t(budget);
@@ -115,11 +115,11 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const std::vector<TradeCandidate> candidates =
         tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software);
     Result<TradeReport> report = measureTrades(*loaded, candidates, settings, progressTo(err, options.quiet));
-    if (!report) return fail(err, report.failure());
+    if (!report) return fail(err, report.error());
     out << tradeRecommendationText(*report, settings);
 
     Result<TradePageFiles> page = tradePage(*report, settings);
-    if (!page) return fail(err, page.failure());
+    if (!page) return fail(err, page.error());
     std::error_code made;
     std::filesystem::create_directories(page->masks.empty() ? dir : dir + "/masks", made);
     if (made) return fail(err, Error{dir + ": cannot make the folder (" + made.message() + ")", ErrorKind::Io});
@@ -133,7 +133,7 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     files.add(dir + "/papers.csv", bytes(page->papersCsv));
     files.add(dir + "/pareto.gp", bytes(page->gnuplot));
     for (auto& [name, png] : page->masks) files.add(dir + "/" + name, std::move(png));
-    if (Result<bool> written = files.commit(); !written) return fail(err, written.failure());
+    if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
     if (!options.quiet)
         err << "wrote " << dir << "/index.html (" << page->html.size() / 1024 << " KiB), report.json, report.csv, "
             << "papers.csv, settings.json, pareto.gp, " << page->masks.size() << " masks\n";

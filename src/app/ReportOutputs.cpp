@@ -29,7 +29,7 @@ std::string plotProblem(const ReportPaths& paths, bool pngToo) {
 int writeReportFiles(const ReportPaths& paths, const ReportTexts& texts, std::ostream& err,
                      std::vector<std::pair<std::string, std::vector<std::uint8_t>>> extra) {
     if (Result<bool> written = writeReport(paths, texts, std::move(extra)); !written)
-        return fail(err, written.failure());
+        return fail(err, written.error());
     return kExitOk;
 }
 

@@ -342,14 +342,14 @@ private:
     std::string settings(const Json& v) {
         if (v.is_object()) {
             Result<SettingsFile> parsed = parseSettingsJson(v.dump(), "settings");
-            if (!parsed) return parsed.error().substr(parsed.error().find(": ") + 2);
+            if (!parsed) return parsed.error().message.substr(parsed.error().message.find(": ") + 2);
             job_.settingsText = v.dump(2) + "\n";
             return "";
         }
         if (std::optional<std::string> why = produced(v, "--settings", FileKind::Settings)) return *why;
         std::string path;
         if (std::string why = file(v, path); !why.empty()) return why;
-        if (Result<SettingsFile> parsed = readSettingsFile(path); !parsed) return parsed.error();
+        if (Result<SettingsFile> parsed = readSettingsFile(path); !parsed) return parsed.error().message;
         flag("--settings", path);
         return "";
     }

@@ -308,9 +308,9 @@ Result<std::unique_ptr<Backend>> createGlBackend(BackendChoice choice, std::vect
                     log->push_back((*backend)->name() + ": ok (" + description + "; " + (*backend)->renderer() + ")");
                 return backend;
             }
-            line = backend.error();
+            line = backend.error().message;
         } else {
-            line = context.error();
+            line = context.error().message;
         }
         if (log) log->push_back(line);
         reasons += (reasons.empty() ? "" : "; ") + line;

@@ -17,6 +17,7 @@
 #include <frugal/Stats.h>
 
 #include "gl/GlApi.h"
+#include "pipeline/Buffers.h"
 
 namespace frugal::gl {
 

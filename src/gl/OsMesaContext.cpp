@@ -128,7 +128,7 @@ Result<std::unique_ptr<GlContext>> createOsMesaContext() {
         0};
     // clang-format on
     const Result<OsMesaApi>& api = osMesa();
-    if (!api) return api.failure();
+    if (!api) return api.error();
     OSMesaContext raw = api->createContextAttribs(attribs, nullptr);
     if (raw == nullptr) return Error{"osmesa: OSMesaCreateContextAttribs(OpenGL 3.3 core) failed"};
     auto context = std::make_unique<OsMesaContext>(raw);

@@ -186,7 +186,7 @@ Result<StateCostReport> measureStateCosts(Backend& backend, int rounds, int draw
     rounds = std::max(rounds, 1);
     draws = std::max(draws, 1);
     Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(backend);
-    if (!probe) return Error{probe.error()};
+    if (!probe) return Error{probe.error().message};
     std::vector<StateCostSample> samples;
     for (int r = 0; r < rounds; ++r) samples.push_back((*probe)->round(draws, r));
 
@@ -204,7 +204,7 @@ Result<StateCostReport> measureStateCosts(Backend& backend, int rounds, int draw
         report.costs.push_back(StateCost{kStateKindNames[k], medianOf(v), *lo, *hi});
     }
     Result<bool> firstUse = (*probe)->measureFirstUse(report);
-    if (!firstUse) return Error{firstUse.error()};
+    if (!firstUse) return Error{firstUse.error().message};
     return report;
 }
 

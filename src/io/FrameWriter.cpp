@@ -58,7 +58,7 @@ Result<Content> encodeFile(const std::string& path, Plane plane, const Frame& fr
         case Plane::Depth:
             if (hasExtension(path, ".pfm")) {
                 Result<Bytes> pfm = encodeDepthPfm(frame.depth);
-                if (!pfm) return pfm.failure();
+                if (!pfm) return pfm.error();
                 return Content(std::move(*pfm));
             }
             return encodeDepthPng(frame.depth, PngOptions::atLevel(level));
@@ -181,7 +181,7 @@ struct FrameWriter::Impl {
             job.writeMs = ms;
             job.done = true;
             job.wrote = !skip && committed;
-            if (!committed && !error) error = committed.failure();
+            if (!committed && !error) error = committed.error();
             moved.notify_all();
         }
         committing = false;

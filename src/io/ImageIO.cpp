@@ -145,7 +145,7 @@ Result<bool> compressRows(std::span<const std::uint8_t> rows, std::size_t pixelB
                           Bytes& out) {
     if (options.compress) {
         Result<Bytes> packed = options.compress(rows);
-        if (!packed) return packed.failure();
+        if (!packed) return packed.error();
         out.insert(out.end(), packed->begin(), packed->end());
         return true;
     }
@@ -220,7 +220,7 @@ Result<Bytes> encodeRows(int width, int height, int channels, int bitDepth, PngF
     // and type; a stream over 1 GiB (a huge image at level 0) is cut into several chunks.
     const std::size_t idat = out.size();
     out.resize(idat + 8);
-    if (Result<bool> packed = compressRows({raw.data(), rawSize}, pixelBytes, options, out); !packed) return packed.failure();
+    if (Result<bool> packed = compressRows({raw.data(), rawSize}, pixelBytes, options, out); !packed) return packed.error();
     const std::size_t packedSize = out.size() - idat - 8;
     constexpr std::size_t kMaxIdat = std::size_t(1) << 30;  // a chunk holds at most 2^31 - 1 bytes
     if (packedSize <= kMaxIdat) {
@@ -407,7 +407,7 @@ Result<bool> writePng(const std::string& path, const DepthImage& image, int leve
 }
 Result<bool> writePfm(const std::string& path, const DepthImage& image) {
     Result<Bytes> pfm = encodeDepthPfm(image);
-    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.failure()));
+    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.error()));
     return writeFileAtomic(path, std::move(*pfm));
 }
 Result<bool> writePng(const std::string& path, const IdImage& image, int level) {
@@ -534,7 +534,7 @@ void OutputSet::add(std::string path, Result<Content> content) {
 
 Result<bool> OutputSet::commit() {
     for (const auto& [path, bytes] : files_)
-        if (!bytes) return Error{path + ": cannot encode: " + bytes.error(), bytes.failure().kind};
+        if (!bytes) return Error{path + ": cannot encode: " + bytes.error().message, bytes.error().kind};
 
     // Devices and pipes first: what they took cannot be taken back.
     struct Replaced {
@@ -636,7 +636,7 @@ Result<DecodedImage> decodePng(std::span<const std::uint8_t> data, const std::st
     if (data.size() > std::size_t(INT32_MAX)) return Error{path + ": file too large"};
     const int size = int(data.size());
     int w = 0, h = 0, n = 0;
-    if (const Result<ImageSize> checked = checkPng(data); !checked) return Error{path + ": " + checked.error()};
+    if (const Result<ImageSize> checked = checkPng(data); !checked) return Error{path + ": " + checked.error().message};
     if (!stbi_info_from_memory(data.data(), size, &w, &h, &n))
         return Error{path + ": not a PNG: " + stbReason()};
     image.width = w;

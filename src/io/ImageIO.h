@@ -26,6 +26,8 @@
 #include <frugal/Image.h>
 #include <frugal/Result.h>
 
+#include "pipeline/Buffers.h"
+
 namespace frugal {
 
 using Bytes = std::vector<std::uint8_t>;

@@ -23,6 +23,8 @@
 #include <frugal/Scene.h>
 #include <frugal/Stats.h>
 
+#include "pipeline/Buffers.h"
+
 namespace frugal {
 
 // A backend object's handle: its slot + 1, 0 for none (render/Handles.h). Each kind of object has a

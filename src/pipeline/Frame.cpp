@@ -13,7 +13,7 @@ Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double t
     setup.time = time;
     setup.world = scene.worldTransforms(time);
     Result<View> view = resolveCamera(scene, setup.world, time, camera, width, height, format, knownBounds);
-    if (!view) return Error{view.error()};
+    if (!view) return Error{view.error().message};
     setup.view = *view;
     setup.params.view = view->view;
     setup.params.projection = view->projection;

@@ -26,7 +26,7 @@ Result<std::unique_ptr<Backend>> openBackend(BackendKind kind, std::vector<std::
         constexpr BackendChoice kChoices[] = {BackendChoice::Auto, BackendChoice::Egl, BackendChoice::EglDevice,
                                               BackendChoice::EglSurfaceless, BackendChoice::OsMesa};
         Result<std::unique_ptr<Backend>> gl = createGlBackend(kChoices[std::size_t(kind)], log);
-        if (!gl) return Error{gl.error(), ErrorKind::BackendUnavailable};
+        if (!gl) return Error{gl.error().message, ErrorKind::BackendUnavailable};
         return gl;
     }
     SoftwareOptions options;

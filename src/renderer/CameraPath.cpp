@@ -48,9 +48,9 @@ Result<std::vector<Camera>> readCameraPath(const std::string& path) {
         };
         Camera view;
         Result<std::optional<glm::vec3>> eye = vec("eye", true), target = vec("target", true), up = vec("up", false);
-        if (!eye) return eye.failure();
-        if (!target) return target.failure();
-        if (!up) return up.failure();
+        if (!eye) return eye.error();
+        if (!target) return target.error();
+        if (!up) return up.error();
         view.eye = **eye;
         view.target = **target;
         if (*up) view.up = **up;

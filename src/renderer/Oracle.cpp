@@ -11,13 +11,13 @@ Result<Oracle> makeOracle(SceneRenderer& full, TargetHandle target, int width, i
     frame.writeIds = true;
     full.renderFrame(target, width, height, frame, world, background);
     Result<TriangleSet> rvs = visibleSet(full.scene(), full.backend().readBack(target));
-    if (!rvs) return Error{rvs.error()};
+    if (!rvs) return Error{rvs.error().message};
     Oracle oracle;
     oracle.rvs = std::move(*rvs);
     oracle.scene = std::make_unique<Scene>(oracleScene(full.scene(), oracle.rvs));
     oracle.ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     Result<SceneRenderer> renderer = SceneRenderer::create(full.backend(), *oracle.scene);
-    if (!renderer) return Error{"oracle: " + renderer.error()};
+    if (!renderer) return Error{"oracle: " + renderer.error().message};
     oracle.renderer.emplace(std::move(*renderer));
     return oracle;
 }

@@ -44,7 +44,7 @@ struct Renderer::Impl {
     std::optional<OrderCosts> orderCosts;
     TargetHandle staticTarget = kNoHandle;
     std::optional<TemporalReuse> reuse;
-    InterpStats interpSeen;  // the software backend's counters after the previous frame
+    InterpCounters interpSeen;  // the software backend's counters after the previous frame
     int framesDone = 0;
     bool moved = false;  // setTransform since the last frame: the envelope may have to grow
     // A scene without animations has the same bounds at every time: kept from the first frame that
@@ -89,17 +89,17 @@ Result<bool> Renderer::Impl::open() {
     if (traitsOf(s.hsr).plans) planner.emplace(*scene);
 
     Result<Stage> opened = Stage::open(s);
-    if (!opened) return opened.failure();
+    if (!opened) return opened.error();
     stage.emplace(std::move(*opened));
     backend = &stage->backend();
     target = stage->target();
-    if (Result<bool> uploaded = stage->upload(*scene); !uploaded) return uploaded.failure();
+    if (Result<bool> uploaded = stage->upload(*scene); !uploaded) return uploaded.error();
     renderer = &stage->renderer();
 
     // paper, greedy and best order by costs measured on this backend, refined between frames.
     Result<OrderCosts> costs = OrderCosts::start(s.order, *backend, s.refineCosts);
     if (!costs)
-        return Error{std::string("order ") + toString(s.order) + ": " + costs.error(), ErrorKind::BadInput, true};
+        return Error{std::string("order ") + toString(s.order) + ": " + costs.error().message, ErrorKind::BadInput, true};
     orderCosts.emplace(std::move(*costs));
 
     if (s.reuse) {
@@ -122,7 +122,7 @@ Result<bool> Renderer::Impl::open() {
                          ErrorKind::OutOfMemory, true};
         reuse.emplace(*scene, s.width, s.height, reuseOptionsFrom(s.reuseSettings));
     }
-    if (const std::optional<InterpStats> counters = softwareInterpStats(*backend)) interpSeen = *counters;
+    if (const std::optional<InterpCounters> counters = softwareInterpStats(*backend)) interpSeen = *counters;
     return true;
 }
 
@@ -176,7 +176,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         stillBounds = scene->bounds(0.0);
     Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat,
                                           stillBounds ? &*stillBounds : nullptr);
-    if (!setup) return Error{scene->source + ": " + setup.error()};
+    if (!setup) return Error{scene->source + ": " + setup.error().message};
     frame.stats = FrameStats{};
     FrameStats& stats = frame.stats;
     stats.time = seconds;
@@ -198,7 +198,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         // The id pass and the oracle's own index buffers come before the clock starts.
         Result<Oracle> oracle =
             makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, s.background);
-        if (!oracle) return Error{scene->source + ": " + oracle.error()};
+        if (!oracle) return Error{scene->source + ": " + oracle.error().message};
         stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
         t0 = Clock::now();
         oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
@@ -255,10 +255,10 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         stats.culledFingerprint = drawFingerprint(*submitted, s.width, s.height, std::uint64_t(DepthInterp::Exact));
     }
     if (s.interp != DepthInterp::Exact)
-        if (const std::optional<InterpStats> counters = softwareInterpStats(*backend)) {
+        if (const std::optional<InterpCounters> counters = softwareInterpStats(*backend)) {
             // The backend's counters run from its start: per frame, the difference.
             stats.interp = InterpStats{counters->spans - interpSeen.spans, counters->pixels - interpSeen.pixels,
-                                       counters->overflow - interpSeen.overflow, counters->overflowBits};
+                                       counters->overflow - interpSeen.overflow};
             interpSeen = *counters;
         }
     ++framesDone;
@@ -276,7 +276,7 @@ Result<Renderer> Renderer::create(Scene scene, const Settings& settings) {
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
     impl->scene = std::make_unique<Scene>(std::move(scene));
-    if (Result<bool> opened = impl->open(); !opened) return opened.failure();
+    if (Result<bool> opened = impl->open(); !opened) return opened.error();
     return Renderer(std::move(impl));
 }
 
@@ -287,7 +287,7 @@ Renderer::~Renderer() = default;
 
 Result<Frame> Renderer::render(const Camera& camera, double seconds) {
     Frame frame;
-    if (Result<bool> rendered = impl_->render(camera, seconds, frame, {}); !rendered) return rendered.failure();
+    if (Result<bool> rendered = impl_->render(camera, seconds, frame, {}); !rendered) return rendered.error();
     return frame;
 }
 Result<bool> Renderer::render(const Camera& camera, double seconds, Frame& frame) {

@@ -16,7 +16,7 @@ Result<Stage> Stage::open(const Settings& s) {
     std::vector<std::string> log;
     Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
     if (!opened)
-        return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error(), opened.errorKind(), true};
+        return Error{std::string("backend ") + toString(s.backend) + ": " + opened.error().message, opened.error().kind, true};
     return on(std::move(*opened), s, std::move(log));
 }
 
@@ -24,11 +24,11 @@ Result<std::optional<Stage>> Stage::openIfAvailable(const Settings& s, std::stri
     std::vector<std::string> log;
     Result<std::unique_ptr<Backend>> opened = openBackend(s.backend, &log, s.threads, s.interp);
     if (!opened) {
-        unavailable = opened.error();
+        unavailable = opened.error().message;
         return std::optional<Stage>();
     }
     Result<Stage> stage = on(std::move(*opened), s, std::move(log));
-    if (!stage) return stage.failure();
+    if (!stage) return stage.error();
     return std::optional<Stage>(std::move(*stage));
 }
 
@@ -57,7 +57,7 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
 Result<bool> Stage::upload(const Scene& scene) {
     parts_->renderer.reset();  // released before the next are made (a backend may reuse the names)
     Result<SceneRenderer> uploaded = SceneRenderer::create(*parts_->backend, scene);
-    if (!uploaded) return Error{scene.source + ": " + uploaded.error()};
+    if (!uploaded) return Error{scene.source + ": " + uploaded.error().message};
     parts_->renderer.emplace(std::move(*uploaded));
     return true;
 }

@@ -45,7 +45,7 @@ Result<OrderCosts> OrderCosts::start(Order order, Backend& backend, int refineEv
     OrderCosts costs;
     if (order == Order::Submit || order == Order::Key) return costs;
     Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(backend);
-    if (!probe) return Error{probe.error()};
+    if (!probe) return Error{probe.error().message};
     costs.probe_ = std::move(*probe);
     for (int r = 0; r < 5; ++r) costs.running_.add(costs.probe_->round(200, r));
     costs.start_ = costs.costs_ = costs.running_.costsUs();

@@ -14,15 +14,15 @@ nlohmann::json stateChangesJson(const StateChanges& c) {
 nlohmann::json reuseStatsJson(const ReuseStats& s) {
     return {{"mode", toString(s.mode)},
             {"reason", s.reason},
-            {"p_dd", s.triangles[kDD]},
-            {"p_ds", s.triangles[kDS]},
-            {"p_sd", s.triangles[kSD]},
-            {"p_ss", s.triangles[kSS]},
+            {"p_dd", s.triangles.dd},
+            {"p_ds", s.triangles.ds},
+            {"p_sd", s.triangles.sd},
+            {"p_ss", s.triangles.ss},
             {"instances",
-             {{"p_dd", s.instances[kDD]},
-              {"p_ds", s.instances[kDS]},
-              {"p_sd", s.instances[kSD]},
-              {"p_ss", s.instances[kSS]}}},
+             {{"p_dd", s.instances.dd},
+              {"p_ds", s.instances.ds},
+              {"p_sd", s.instances.sd},
+              {"p_ss", s.instances.ss}}},
             {"copied_px", s.copiedPx},
             {"cleared_px", s.clearedPx},
             {"redrawn_tris", s.redrawnTris},
@@ -125,12 +125,6 @@ nlohmann::json viewJson(const View& view, const Settings& s) {
             {"aspect_ratio_differs", aspectDiffers(view.fileAspect, s.width, s.height)}};
 }
 
-std::string frameStatsJsonText(const FrameStats& stats, const Settings& settings) {
-    nlohmann::json record = frameStatsJson(stats, settings);
-    if (stats.refinedCostsUs) record.update(refinementJson(stats));
-    return record.dump();
-}
 
-std::string viewJsonText(const View& view, const Settings& settings) { return viewJson(view, settings).dump(); }
 
 }  // namespace frugal

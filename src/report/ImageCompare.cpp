@@ -213,14 +213,14 @@ Result<bool> addIdsFromPng(Buffers& buffers, const DecodedImage& image) {
 
 Result<Buffers> readRenderPngs(const std::string& colorPath, const std::string& idsPath) {
     Result<DecodedImage> color = readPng(colorPath);
-    if (!color) return Error{color.error()};
+    if (!color) return Error{color.error().message};
     Result<Buffers> buffers = buffersFromPng(*color);
-    if (!buffers) return Error{colorPath + ": " + buffers.error()};
+    if (!buffers) return Error{colorPath + ": " + buffers.error().message};
     if (!idsPath.empty()) {
         Result<DecodedImage> ids = readPng(idsPath);
-        if (!ids) return Error{ids.error()};
+        if (!ids) return Error{ids.error().message};
         Result<bool> added = addIdsFromPng(*buffers, *ids);
-        if (!added) return Error{idsPath + ": " + added.error()};
+        if (!added) return Error{idsPath + ": " + added.error().message};
     }
     return buffers;
 }

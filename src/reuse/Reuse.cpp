@@ -227,8 +227,8 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
         }
         nowDynamic_[i] = changed ? 1 : 0;
         const int state = (wasDynamic_[i] ? 0 : 2) + (changed ? 0 : 1);
-        stats_.instances[state] += 1;
-        stats_.triangles[state] += info.triangles;
+        countOf(stats_.instances, state) += 1;
+        countOf(stats_.triangles, state) += info.triangles;
         stats_.drawnTris += record.drawnTris;
         if (changed) changes.triangles += record.drawnTris;
         if (changed && record.drawn) ++changes.draws;

@@ -60,11 +60,25 @@
 #include <vector>
 
 #include <frugal/Settings.h>
+#include <frugal/Stats.h>
 
 #include "pipeline/Plan.h"
 #include "reuse/CellGrid.h"
 
 namespace frugal {
+
+// An instance's state between the frame before and this one, as the planner numbers them: dynamic
+// then and now, dynamic then and static now, static then and dynamic now, static both.
+enum ReuseState : int { kDD = 0, kDS = 1, kSD = 2, kSS = 3 };
+// The count of `state` among `counts` (frugal/Stats.h ReuseCounts).
+inline std::uint64_t& countOf(ReuseCounts& counts, int state) {
+    std::uint64_t* const each[] = {&counts.dd, &counts.ds, &counts.sd, &counts.ss};
+    return *each[state];
+}
+inline std::uint64_t countOf(const ReuseCounts& counts, int state) {
+    const std::uint64_t each[] = {counts.dd, counts.ds, counts.sd, counts.ss};
+    return each[state];
+}
 
 // The fallback's cost model, in units of one triangle drawn. The defaults are rough fits to
 // llvmpipe and the software backend (the timings they come from: docs/gl/README.md, "Outside the GL

@@ -697,7 +697,7 @@ int Converter::useTexture(int gltfTexture, int material) {
         return result;
     }
     if (const Result<ImageSize> checked = checkTextureImage({bytes, size}); !checked) {
-        warn(cat(imageName, " cannot be decoded (", checked.error(), ")", drawn));
+        warn(cat(imageName, " cannot be decoded (", checked.error().message, ")", drawn));
         return result;
     }
     tinygltf::Image decoded;

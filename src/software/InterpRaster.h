@@ -30,7 +30,7 @@ namespace frugal::sw {
 // One worker's output buffer and counters (no sharing between threads).
 struct InterpScratch {
     std::vector<std::uint32_t> values;  // at least the target's width (a run is at most one row)
-    InterpStats stats;
+    InterpCounters stats;
 };
 
 // The covered columns of row `y` of `t`: [*left, *right] inside the triangle's bounds; false when none.

@@ -50,7 +50,7 @@ public:
     bool fusedViewport() const { return fused_; }
     span::Interp interp() const { return interp_; }
     // The slow path's counters, summed over every flush so far (zero in Exact mode).
-    const InterpStats& interpStats() const { return interpStats_; }
+    const InterpCounters& interpStats() const { return interpStats_; }
     ThreadPool& pool() { return pool_; }
 
     // Queues `ranges` of `mesh` for a target of `width` × `height`. Every draw queued until the next
@@ -95,7 +95,7 @@ private:
     ThreadPool pool_;
     std::vector<std::unique_ptr<TileState>> tiles_;  // one per thread
     std::vector<InterpScratch> interpScratch_;       // one per thread; used when interp_ != Exact
-    InterpStats interpStats_;
+    InterpCounters interpStats_;
     std::uint64_t drawSerial_ = 0;
 
     // Queued work; records and segments are reused from flush to flush.

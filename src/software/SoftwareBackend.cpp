@@ -55,7 +55,7 @@ public:
         return std::string("frugal software rasterizer (llvmpipe rules, ") + pipeline_.kernelName() + " kernels, " +
                std::to_string(pipeline_.threads()) + (pipeline_.threads() == 1 ? " thread" : " threads") + interp + ")";
     }
-    const InterpStats& interpStats() const { return pipeline_.interpStats(); }
+    const InterpCounters& interpStats() const { return pipeline_.interpStats(); }
     int maxTargetSize() const override { return kMaxSize; }
     int maxTextureSize() const override { return kMaxSize; }
 
@@ -294,7 +294,7 @@ std::unique_ptr<Backend> makeSoftwareBackend(const SoftwareOptions& options) {
     return std::make_unique<SoftwareBackend>(options);
 }
 
-std::optional<InterpStats> softwareInterpStats(const Backend& backend) {
+std::optional<InterpCounters> softwareInterpStats(const Backend& backend) {
     const auto* software = dynamic_cast<const SoftwareBackend*>(&backend);
     if (software == nullptr) return std::nullopt;
     return software->interpStats();

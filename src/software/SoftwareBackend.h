@@ -39,9 +39,16 @@ struct SoftwareOptions {
 
 std::unique_ptr<Backend> makeSoftwareBackend(const SoftwareOptions& options = {});
 
-// The interpolation slow path's counters (frugal/Stats.h InterpStats) since a backend made by
-// makeSoftwareBackend was made (all zero in Exact mode); nothing for any other backend.
-// Read them after readBack or finish (pending draws are not rasterized yet).
-std::optional<InterpStats> softwareInterpStats(const Backend& backend);
+// The interpolation slow path's counters: a frame's InterpStats (frugal/Stats.h) and which of the
+// span engine's outputs overflowed (span/Engine.h OverflowBits of every call, or'ed).
+struct InterpCounters {
+    std::uint64_t spans = 0, pixels = 0, overflow = 0;  // as InterpStats
+    std::uint8_t overflowBits = 0;
+};
+
+// The counters since a backend made by makeSoftwareBackend was made (all zero in Exact mode);
+// nothing for any other backend. Read them after readBack or finish (pending draws are not
+// rasterized yet).
+std::optional<InterpCounters> softwareInterpStats(const Backend& backend);
 
 }  // namespace frugal

@@ -107,7 +107,7 @@ TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
 
     // Each shard's share of the jobs: every job once, whatever N.
     Result<batch::Manifest> manifest = batch::readManifest((dir / "m.json").string());
-    ASSERT_TRUE(manifest) << manifest.error();
+    ASSERT_TRUE(manifest) << manifest.error().message;
     const std::vector<int> shards = batch::assignShards(std::vector<double>(7, 1.0), 4);
     EXPECT_EQ(shards, (std::vector<int>{0, 1, 2, 3, 0, 1, 2})) << "equal costs: round robin in manifest order";
 }
@@ -148,8 +148,8 @@ TEST(BatchManifestTest, DamagedTextGivesAManifestOrOneErrorLine) {
             continue;
         }
         ++refused;
-        ASSERT_EQ(m.error().rfind("manifest " + path, 0), 0u) << m.error();
-        ASSERT_EQ(m.error().find('\n'), std::string::npos) << m.error();
+        ASSERT_EQ(m.error().message.rfind("manifest " + path, 0), 0u) << m.error().message;
+        ASSERT_EQ(m.error().message.find('\n'), std::string::npos) << m.error().message;
     }
     EXPECT_GT(refused, 1000);
     EXPECT_GT(parsed, 10) << "some edits leave a valid manifest (in a string, in whitespace)";
@@ -483,7 +483,7 @@ TEST(BatchCliTest, AJobReadsOnlyWhatAnEarlierJobWrites) {
     const std::string own = manifest("own.json", "  {\"id\": \"a\", \"scene\": \"builtin:cubes\",\n"
                                                  "   \"settings\": \"./a/settings.json\"}");
     Result<batch::Manifest> parsed = batch::readManifest(own);
-    ASSERT_TRUE(parsed) << parsed.error();
+    ASSERT_TRUE(parsed) << parsed.error().message;
     EXPECT_TRUE(parsed->jobs[0].reads.empty());
     EXPECT_EQ(parsed->jobs[0].inputFiles, std::vector<std::string>{(m / "a" / "settings.json").string()});
 }

@@ -101,7 +101,7 @@ TEST(CliTest, RendersTheDefaultSceneWithEveryOutput) {
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"d.png", "f.png", "i.png", "m.json"}));
     Result<DecodedImage> color = readPng((dir / "f.png").string());
-    ASSERT_TRUE(color) << color.error();
+    ASSERT_TRUE(color) << color.error().message;
     EXPECT_EQ(color->width, 160);
     EXPECT_EQ(color->height, 120);
     // Not a blank frame: some pixels differ from the background colour (0.12,0.13,0.15 → 31,33,38).

@@ -65,7 +65,7 @@ TEST(CompareCliTest, ExitStatusFollowsTheTolerance) {
 
     // The mask: red at the failing pixel, the reference's grey elsewhere.
     Result<DecodedImage> mask = readPng((dir / "m.png").string());
-    ASSERT_TRUE(mask) << mask.error();
+    ASSERT_TRUE(mask) << mask.error().message;
     ASSERT_EQ(mask->channels, 4);
     const std::vector<std::uint8_t>& m = mask->pixels8;
     EXPECT_EQ(std::vector<std::uint8_t>(m.begin() + 4, m.begin() + 8), (std::vector<std::uint8_t>{255, 0, 0, 255}));

@@ -30,7 +30,7 @@ const char* const kMethodList = "none, sphere, backface, cones, paper, conservat
 // The number of distinct triangle ids (background 0 excluded) in frugal's id PNG.
 std::size_t distinctIds(const fs::path& path) {
     Result<DecodedImage> image = readPng(path.string());
-    EXPECT_TRUE(image) << path << ": " << (image ? "" : image.error());
+    EXPECT_TRUE(image) << path << ": " << (image ? "" : image.error().message);
     if (!image) return 0;
     EXPECT_EQ(image->channels, 4);
     EXPECT_EQ(image->bitDepth, 8);
@@ -57,7 +57,7 @@ TEST(CullCliTest, RenderConservativeWritesThePngAndCullFiguresOfEveryFrame) {
     EXPECT_NE(run.err.find("(conservative: "), std::string::npos) << run.err;
     for (const char* png : {"c_0000.png", "c_0001.png", "c_0002.png"}) {
         Result<DecodedImage> image = readPng((dir / png).string());
-        ASSERT_TRUE(image) << png << ": " << image.error();
+        ASSERT_TRUE(image) << png << ": " << image.error().message;
         EXPECT_EQ(image->width, 64);
         EXPECT_EQ(image->height, 48);
     }
@@ -206,8 +206,8 @@ TEST(CullCliTest, ConservativeMethodsLeaveTheImageUnchanged) {
                 SCOPED_TRACE(suffix);
                 Result<DecodedImage> reference = readPng((dir / ("none" + suffix)).string());
                 Result<DecodedImage> culled = readPng((dir / ("culled" + suffix)).string());
-                ASSERT_TRUE(reference) << reference.error();
-                ASSERT_TRUE(culled) << culled.error();
+                ASSERT_TRUE(reference) << reference.error().message;
+                ASSERT_TRUE(culled) << culled.error().message;
                 EXPECT_EQ(culled->width, reference->width);
                 EXPECT_EQ(culled->height, reference->height);
                 std::size_t differing = 0;
@@ -500,7 +500,7 @@ TEST(CullCliTest, CullReportGivesTheOcclusionPassAndItsBuffers) {
         const std::string image = "m/occlusion-view-" + std::to_string(v) + ".png";
         EXPECT_EQ(o["image"], image);
         Result<DecodedImage> png = readPng((dir / image).string());
-        ASSERT_TRUE(png) << png.error();
+        ASSERT_TRUE(png) << png.error().message;
         EXPECT_EQ(png->width, 96);
         EXPECT_EQ(png->height, 72);
         // Each view's conservative plan less what occlusion hides is what the occlusion row submits

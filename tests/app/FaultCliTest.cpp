@@ -85,7 +85,7 @@ void expectSequencesStopCleanly(const std::string& name, const std::string& back
         EXPECT_EQ(filesIn(run.work()), expected) << "the finished frames, and no temporary file";
         for (const std::string& file : filesIn(run.work())) {
             Result<DecodedImage> image = readPng((run.work() / file).string());
-            ASSERT_TRUE(image) << image.error();
+            ASSERT_TRUE(image) << image.error().message;
             EXPECT_EQ(image->width * 1000 + image->height, 160120) << file;
         }
     }
@@ -127,7 +127,7 @@ TEST(FaultCliTest, ASecondSignalWhileFramesAreWrittenLeavesWholeFilesOnly) {
         EXPECT_EQ(files, expected) << "whole sets of a prefix of the frames";
         for (const std::string& file : files) {
             Result<DecodedImage> image = readPng((run.work() / file).string());
-            ASSERT_TRUE(image) << file << ": " << image.error();
+            ASSERT_TRUE(image) << file << ": " << image.error().message;
             EXPECT_EQ(image->width * 1000 + image->height, 640480) << file;
         }
     }

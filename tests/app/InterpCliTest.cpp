@@ -53,7 +53,7 @@ TEST(InterpCliTest, RendersWithEachModeOnTheSoftwareBackend) {
         ASSERT_EQ(run.status, 0) << run.err;
         EXPECT_EQ(run.err.find(" depth interpolation") != std::string::npos, std::string(mode) != "exact") << run.err;
         Result<DecodedImage> image = readPng((dir / out).string());
-        ASSERT_TRUE(image) << image.error();
+        ASSERT_TRUE(image) << image.error().message;
         EXPECT_EQ(image->width, 48);
     }
 }

@@ -123,7 +123,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
 
     // settings.json is the exact pick's settings, which the library reads back.
     Result<SettingsFile> settings = readSettingsFile((dir / "out" / "settings.json").string());
-    ASSERT_TRUE(settings) << settings.error();
+    ASSERT_TRUE(settings) << settings.error().message;
     EXPECT_EQ(settingsJson(settings->settings) + "", readAll(dir / "out" / "settings.json"));
     EXPECT_EQ(nlohmann::json::parse(readAll(dir / "out" / "settings.json")),
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
@@ -145,7 +145,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
         ++inexact;
         const fs::path maskFile = dir / "out" / "masks" / (methodSlug(r["name"].get<std::string>()) + ".png");
         Result<DecodedImage> m = readPng(maskFile.string());
-        ASSERT_TRUE(m) << m.error();
+        ASSERT_TRUE(m) << m.error().message;
         EXPECT_EQ(m->width, 96);
         EXPECT_EQ(m->height, 72);
     }

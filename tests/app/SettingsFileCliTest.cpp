@@ -44,7 +44,7 @@ TEST(SettingsFileTest, EverySettingReadsBackAsItWasWritten) {
     s.background = {0.1f, 0.2f, 0.3f, 0.5f};
     s.ids = true;
     Result<SettingsFile> read = parseSettingsJson(settingsJson(s), "x");
-    ASSERT_TRUE(read) << read.error();
+    ASSERT_TRUE(read) << read.error().message;
     EXPECT_EQ(settingsJson(read->settings), settingsJson(s));
     EXPECT_EQ(read->settings.background, s.background);
     std::vector<std::string> names;
@@ -57,7 +57,7 @@ TEST(SettingsFileTest, OnlyTheKeysGivenChangeTheBase) {
     Settings base;
     base.order = Order::Key;
     Result<SettingsFile> read = parseSettingsJson(R"({"cull": "paper", "size": "64x48", "cull-bins": [4, 8]})", "f", base);
-    ASSERT_TRUE(read) << read.error();
+    ASSERT_TRUE(read) << read.error().message;
     EXPECT_EQ(read->settings.cull, Cull::Paper);
     EXPECT_EQ(read->settings.order, Order::Key);
     EXPECT_EQ(read->settings.width, 64);
@@ -66,7 +66,7 @@ TEST(SettingsFileTest, OnlyTheKeysGivenChangeTheBase) {
 }
 
 TEST(SettingsFileTest, BadFilesAreOneLineNamingTheKey) {
-    const auto error = [](const std::string& text) { return parseSettingsJson(text, "s.json").error(); };
+    const auto error = [](const std::string& text) { return parseSettingsJson(text, "s.json").error().message; };
     EXPECT_EQ(error(R"({"cull": "x"})"),
               "settings s.json: key 'cull': \"x\" is not a method (none, sphere, backface, cones, paper, conservative, "
               "occlusion, occlusion-ahead, oracle)");
@@ -79,8 +79,8 @@ TEST(SettingsFileTest, BadFilesAreOneLineNamingTheKey) {
     EXPECT_TRUE(error("{").starts_with("settings s.json: not JSON ("));
     EXPECT_TRUE(error(R"({"culll": "none"})").starts_with("settings s.json: 'culll' is not a setting (size, backend,"));
     Result<SettingsFile> missing = readSettingsFile("/nonexistent/s.json");
-    EXPECT_EQ(missing.error(), "settings /nonexistent/s.json: cannot read the file");
-    EXPECT_EQ(missing.errorKind(), ErrorKind::Io);
+    EXPECT_EQ(missing.error().message, "settings /nonexistent/s.json: cannot read the file");
+    EXPECT_EQ(missing.error().kind, ErrorKind::Io);
 }
 
 TEST(SettingsFileCliTest, RenderStartsFromTheFileAndFlagsWin) {

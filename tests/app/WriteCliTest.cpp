@@ -43,7 +43,7 @@ TEST(WriteCliTest, EveryPngLevelGivesTheSamePixels) {
             for (const char* kind : {"c", "d", "i"}) {
                 Result<DecodedImage> image =
                     readPng((dir / (kind + level + "_" + std::to_string(f) + ".png")).string());
-                ASSERT_TRUE(image) << image.error();
+                ASSERT_TRUE(image) << image.error().message;
                 images.push_back(*image);
             }
         if (first.empty()) {

@@ -846,7 +846,7 @@ TEST(ViewsTest, ViewClassesHoldAgainstTheirFrustum) {
             spec.zfar = s.radius * 1e4f;
             spec.depthRange = DepthRange::File;  // the frustum around the report view's sphere, as given
             const Result<View> view = resolveCamera(scene, world, 0.0, spec, s.width, s.height);
-            ASSERT_TRUE(view) << view.error();
+            ASSERT_TRUE(view) << view.error().message;
             // Also resolvable with fitted near/far (the up vector is never parallel to the view).
             EXPECT_TRUE(resolveCamera(scene, world, 0.0, rv.camera, s.width, s.height));
 
@@ -893,7 +893,7 @@ TEST(ViewsTest, GrazingViewsAreLessThanTenPercentDeep) {
             spec.znear = 1e-4f;
             spec.zfar = 1e4f;
             const Result<View> view = resolveCamera(scene, scene.worldTransforms(0.0), 0.0, spec, width, height);
-            ASSERT_TRUE(view) << view.error();
+            ASSERT_TRUE(view) << view.error().message;
             double minDistance = INFINITY;
             for (const glm::dvec4& p : frustumPlanes(*view)) minDistance = std::min(minDistance, p.w);
             EXPECT_GT(minDistance, -1.0) << "view " << k << ": the sphere meets the frustum";

@@ -19,13 +19,13 @@ Scene aheadScene() {
         }
     }
     Result<Scene> boxes = makeBuiltin("cubes");
-    EXPECT_TRUE(boxes) << boxes.error();
+    EXPECT_TRUE(boxes) << boxes.error().message;
     return boxes ? std::move(*boxes) : Scene{};
 }
 
 FrameSetup setupOf(const CullBench& bench, const Camera& camera) {
     Result<FrameSetup> setup = setUpFrame(bench.scene, camera, 0.0, bench.width, bench.height, true);
-    EXPECT_TRUE(setup) << setup.error();
+    EXPECT_TRUE(setup) << setup.error().message;
     return setup ? std::move(*setup) : FrameSetup{};
 }
 

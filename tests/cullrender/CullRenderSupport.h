@@ -54,7 +54,7 @@ public:
         if (made)
             renderer.emplace(std::move(*made));
         else
-            uploadError = made.error();
+            uploadError = made.error().message;
     }
     ~CullBench() {
         renderer.reset();
@@ -240,7 +240,7 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
     bench.renderer->renderFrame(bench.target, bench.width, bench.height, params, setup.world, kBackground);
     const Buffers reference = bench.backend->readBack(bench.target);
     Result<TriangleSet> rvs = visibleSet(scene, reference);
-    EXPECT_TRUE(rvs) << rvs.error();
+    EXPECT_TRUE(rvs) << rvs.error().message;
     if (!rvs) return result;
     result.rendered = true;
     result.rvs = rvs->count;
@@ -268,7 +268,7 @@ inline FrameResult checkSetup(CullBench& bench, const FrameSetup& setup, const s
 inline FrameResult checkFrame(CullBench& bench, const Camera& camera, const std::string& label, double time = 0.0) {
     Result<FrameSetup> setup =
         setUpFrame(bench.scene, camera, time, bench.width, bench.height, true, bench.depthFormat);
-    EXPECT_TRUE(setup) << label << ": " << setup.error();
+    EXPECT_TRUE(setup) << label << ": " << setup.error().message;
     if (!setup) return {};
     return checkSetup(bench, *setup, label);
 }

@@ -322,7 +322,7 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
         std::unique_ptr<Backend> backend = makeSoftwareBackend();
         const TargetHandle target = backend->createTarget(96, 72);
         Result<SceneRenderer> finiteRenderer = SceneRenderer::create(*backend, finiteScene);
-        ASSERT_TRUE(finiteRenderer) << finiteRenderer.error();
+        ASSERT_TRUE(finiteRenderer) << finiteRenderer.error().message;
 
         std::vector<Camera> views = aroundTheOrigin(3.0f);
         for (const ReportView& view : reportViews(glm::vec3(0.0f), 1.2f, 8)) views.push_back(view.camera);
@@ -331,14 +331,14 @@ TEST(CullExtremesTest, NonFiniteVerticesReachingTheMesh) {
             const std::string label = "view " + std::to_string(k);
             SCOPED_TRACE(label);
             Result<FrameSetup> setup = setUpFrame(finiteScene, views[k], 0.0, 96, 72, true);
-            ASSERT_TRUE(setup) << setup.error();
+            ASSERT_TRUE(setup) << setup.error().message;
             // Culling the mesh with the non-finite triangles: plans well-formed, and when the backend
             // took the mesh, rendered and compared as usual.
             const test::FrameResult result = test::checkSetup(bench, *setup, label);
             // Every finite triangle visible without the non-finite ones is kept by the never-miss methods.
             finiteRenderer->renderFrame(target, 96, 72, setup->params, setup->world, test::kBackground);
             Result<TriangleSet> rvs = visibleSet(finiteScene, backend->readBack(target));
-            ASSERT_TRUE(rvs) << rvs.error();
+            ASSERT_TRUE(rvs) << rvs.error().message;
             seen += rvs->count;
             for (Cull method : test::kNeverMiss) {
                 const DrawList* list = result.list(method);

@@ -51,7 +51,7 @@ TEST(CullMethodsTest, NoneAndOracleGiveTheFullList) {
     for (const Camera& spec : {test::lookAt({3, 0, 8}, {3, 0, 0}), test::lookAt({3, 0, -8}, {3, 0, 0}),
                                test::lookAt({40, 0, 0}, {80, 0, 0})}) {
         Result<FrameSetup> setup = setUpFrame(bench.scene, spec, 0.0, 96, 72, true);
-        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE(setup) << setup.error().message;
         for (Cull method : {Cull::None, Cull::Oracle}) {
             const DrawList list = bench.culler.cull(method, bench.scene, setup->world, setup->view);
             EXPECT_TRUE(test::sameList(list, full)) << toString(method);
@@ -114,7 +114,7 @@ TEST(CullMethodsTest, InstanceBehindTheCameraIsDropped) {
 
 TEST(CullMethodsTest, PlansAreInInstanceOrderWithRangesInsideTheMesh) {
     Result<Scene> scene = loadScene("builtin:cubes?count=40&seed=3");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     CullBench bench(std::move(*scene), 96, 72);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
     test::Tallies tallies;
@@ -138,11 +138,11 @@ TEST(CullMethodsTest, TheCheckSeesASingleDroppedTriangle) {
     CullBench bench(threeBlobs(3.0f), 96, 72);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
     Result<FrameSetup> setup = setUpFrame(bench.scene, test::lookAt({3, 1, 7}, {3, 0, 0}), 0.0, 96, 72, true);
-    ASSERT_TRUE(setup) << setup.error();
+    ASSERT_TRUE(setup) << setup.error().message;
     bench.renderer->renderFrame(bench.target, 96, 72, setup->params, setup->world, test::kBackground);
     const Buffers full = bench.backend->readBack(bench.target);
     Result<TriangleSet> rvs = visibleSet(bench.scene, full);
-    ASSERT_TRUE(rvs) << rvs.error();
+    ASSERT_TRUE(rvs) << rvs.error().message;
     // Drop the visible triangle of the first drawn instance that has one.
     DrawList list = fullDrawList(bench.scene);
     bool dropped = false;

@@ -52,7 +52,7 @@ TEST(NeverMissTest, ThreeBunnies) {
     Result<Scene> scene = loadScene(std::string("builtin:copies?count=3&of=") + FRUGAL_BUNNY_OBJ,
                                     LoadOptions{true, false});
     if (!std::filesystem::exists(FRUGAL_BUNNY_OBJ)) FRUGAL_SKIP_IF_MISSING(FRUGAL_BUNNY_OBJ << " (glmark2-data)");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     ASSERT_EQ(scene->instances.size(), 3u);
     CullBench bench(std::move(*scene), 96, 72);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
@@ -80,7 +80,7 @@ TEST(NeverMissTest, BackFacesNearlyEdgeOnThatSnappingTurns) {
     // pixel), at 800x600 as cull-report drew it.
     if (!std::filesystem::exists(FRUGAL_BUNNY_OBJ)) FRUGAL_SKIP_IF_MISSING(FRUGAL_BUNNY_OBJ << " (glmark2-data)");
     Result<Scene> three = loadScene(std::string("builtin:copies?count=3&of=") + FRUGAL_BUNNY_OBJ, LoadOptions{true, false});
-    ASSERT_TRUE(three) << three.error();
+    ASSERT_TRUE(three) << three.error().message;
     for (Material& m : three->materials) m.doubleSided = false;
     CullBench bunnies(std::move(*three), 800, 600);
     ASSERT_TRUE(bunnies.canRender()) << bunnies.uploadError;
@@ -131,7 +131,7 @@ TEST(NeverMissTest, BackFacesNearlyEdgeOnThatSnappingTurns) {
 
 TEST(NeverMissTest, DefaultDominoesOverTime) {
     Result<Scene> scene = loadScene("builtin:default");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     CullBench bench(std::move(*scene), 160, 120);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
     Tallies tallies;

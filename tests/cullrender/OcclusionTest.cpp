@@ -274,7 +274,7 @@ TEST(OcclusionTest, ThreeBunniesComeCloseToTheVisibleSet) {
     std::optional<Scene> bunny = test::loadBunny(false);
     if (!bunny) GTEST_SKIP() << "no bunny (glmark2-data)";
     Result<Scene> three = makeBuiltin("copies?count=3&of=/usr/share/glmark2/models/bunny.obj");
-    ASSERT_TRUE(three) << three.error();
+    ASSERT_TRUE(three) << three.error().message;
     for (Material& m : three->materials) m.doubleSided = false;
     CullBench bench(std::move(*three), 400, 300);
     ASSERT_TRUE(bench.canRender()) << bench.uploadError;
@@ -291,7 +291,7 @@ TEST(OcclusionTest, BandsOfRowsGiveWhatOneWalkGives) {
     std::vector<Scene> scenes;
     if (test::loadBunny(false)) {
         Result<Scene> three = makeBuiltin("copies?count=3&of=/usr/share/glmark2/models/bunny.obj");
-        ASSERT_TRUE(three) << three.error();
+        ASSERT_TRUE(three) << three.error().message;
         for (Material& m : three->materials) m.doubleSided = false;
         scenes.push_back(std::move(*three));
     }
@@ -304,7 +304,7 @@ TEST(OcclusionTest, BandsOfRowsGiveWhatOneWalkGives) {
     for (Scene& scene : scenes) {
         CullBench bench(std::move(scene), 200, 150);
         Result<FrameSetup> setup = setUpFrame(bench.scene, {}, 0.0, 200, 150, true);
-        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE(setup) << setup.error().message;
         OcclusionTarget target = bench.occlusionTarget();
         target.threads = 1;
         const DrawList one = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
@@ -330,7 +330,7 @@ TEST(OcclusionTest, TheAvx2LoopsGiveTheScalarPlan) {
     std::size_t compared = 0;
     const auto compare = [&compared](CullBench& bench, const Camera& camera, const std::string& label) {
         Result<FrameSetup> setup = setUpFrame(bench.scene, camera, 0.0, bench.width, bench.height, true);
-        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE(setup) << setup.error().message;
         OcclusionTarget target = bench.occlusionTarget();
         target.simd = false;
         const DrawList scalar = bench.culler.cull(Cull::Occlusion, bench.scene, setup->world, setup->view, target);
@@ -348,7 +348,7 @@ TEST(OcclusionTest, TheAvx2LoopsGiveTheScalarPlan) {
     if (test::loadBunny(false)) {
         for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
             Result<Scene> three = makeBuiltin("copies?count=3&of=/usr/share/glmark2/models/bunny.obj");
-            ASSERT_TRUE(three) << three.error();
+            ASSERT_TRUE(three) << three.error().message;
             for (Material& m : three->materials) m.doubleSided = false;
             CullBench bench(std::move(*three), 320, 240, {}, format);
             const Bounds bounds = bench.scene.bounds(0.0);

@@ -32,12 +32,12 @@ const glm::vec4 kBackground{0.2f, 0.4f, 0.6f, 1.0f};  // exact in 8 bits: 51, 10
 std::unique_ptr<Backend> makeBackend(ContextKind kind) {
     Result<std::unique_ptr<GlContext>> context = createContext(kind);
     if (!context) {
-        ADD_FAILURE() << context.error();
+        ADD_FAILURE() << context.error().message;
         return nullptr;
     }
     Result<std::unique_ptr<Backend>> backend = makeGlBackend(std::move(*context));
     if (!backend) {
-        ADD_FAILURE() << backend.error();
+        ADD_FAILURE() << backend.error().message;
         return nullptr;
     }
     return std::move(*backend);

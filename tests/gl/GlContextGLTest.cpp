@@ -34,12 +34,12 @@ std::string childAction(const std::string& action) {
     Result<std::unique_ptr<Backend>> backend = Error{"unknown child action " + action};
     if (action == "osmesa-context") {
         Result<std::unique_ptr<GlContext>> context = createOsMesaContext();
-        return context ? "ok context" : "error " + context.error();
+        return context ? "ok context" : "error " + context.error().message;
     }
     std::vector<std::string> log;
     if (action == "osmesa") backend = createGlBackend(BackendChoice::OsMesa, &log);
     if (action == "egl") backend = createGlBackend(BackendChoice::Egl, &log);
-    if (!backend) return "error " + backend.error();
+    if (!backend) return "error " + backend.error().message;
     return "ok " + (*backend)->renderer();
 }
 
@@ -95,7 +95,7 @@ TEST(GlContextGLTest, EachKindGivesACurrentCoreContext) {
         Result<std::unique_ptr<GlContext>> context = kind == ContextKind::EglDevice ? createEglDeviceContext(true)
                                                      : kind == ContextKind::OsMesa  ? createOsMesaContext()
                                                                                     : createEglSurfacelessContext();
-        ASSERT_TRUE(context) << context.error();
+        ASSERT_TRUE(context) << context.error().message;
         EXPECT_EQ((*context)->kind(), kind);
         EXPECT_FALSE((*context)->description().empty());
         EXPECT_NE((*context)->getProcAddress("glBlitFramebuffer"), nullptr);
@@ -123,7 +123,7 @@ TEST(GlContextGLTest, ContextsOfDifferentKindsTakeTurns) {
         Result<std::unique_ptr<GlContext>> context = kind == ContextKind::EglDevice ? createEglDeviceContext(true)
                                                      : kind == ContextKind::OsMesa  ? createOsMesaContext()
                                                                                     : createEglSurfacelessContext();
-        ASSERT_TRUE(context) << context.error();
+        ASSERT_TRUE(context) << context.error().message;
         contexts.push_back(std::move(*context));
     }
     if (contexts.size() < 2) GTEST_SKIP() << "one context kind only";
@@ -197,7 +197,7 @@ TEST(GlContextGLTest, AMissingEntryPointIsNamed) {
     // And no backend is made on such a context.
     std::unique_ptr<GlContext> again = anyContext();
     ASSERT_NE(again, nullptr);
-    EXPECT_EQ(makeGlBackend(std::make_unique<DoctoredContext>(std::move(again), "glBlitFramebuffer", nullptr)).error(),
+    EXPECT_EQ(makeGlBackend(std::make_unique<DoctoredContext>(std::move(again), "glBlitFramebuffer", nullptr)).error().message,
               kind + ": GL entry point glBlitFramebuffer not found (" + kind + ")");
 }
 
@@ -216,22 +216,22 @@ TEST(GlContextGLTest, AShaderThatDoesNotCompileFailsTheBackend) {
     Result<std::unique_ptr<Backend>> backend = makeGlBackend(
         std::make_unique<DoctoredContext>(std::move(real), "glShaderSource", reinterpret_cast<void*>(&brokenShaderSource)));
     ASSERT_FALSE(backend);
-    EXPECT_NE(backend.error().find("mesh"), std::string::npos) << backend.error();
-    EXPECT_EQ(backend.error().find('\n'), std::string::npos) << "one line";
+    EXPECT_NE(backend.error().message.find("mesh"), std::string::npos) << backend.error().message;
+    EXPECT_EQ(backend.error().message.find('\n'), std::string::npos) << "one line";
 }
 
 TEST(GlContextGLTest, EglDeviceSkipsSoftwareDevicesUnlessAllowed) {
     if (!built(ContextKind::EglDevice)) GTEST_SKIP() << "EGL not built";
     Result<std::unique_ptr<GlContext>> any = createEglDeviceContext(true);
-    ASSERT_TRUE(any) << any.error();
+    ASSERT_TRUE(any) << any.error().message;
     Result<std::unique_ptr<GlContext>> hardware = createEglDeviceContext(false);
     if (hardware) {
         EXPECT_EQ(hardware.value()->description().find("(software)"), std::string::npos)
             << hardware.value()->description();
     } else {
         // A machine without a GPU (this project's CI): the one software device is skipped, and said so.
-        EXPECT_EQ(hardware.error().rfind("egl-device: no hardware EGL device (", 0), 0u) << hardware.error();
-        EXPECT_NE(hardware.error().find("software device"), std::string::npos) << hardware.error();
+        EXPECT_EQ(hardware.error().message.rfind("egl-device: no hardware EGL device (", 0), 0u) << hardware.error().message;
+        EXPECT_NE(hardware.error().message.find("software device"), std::string::npos) << hardware.error().message;
         EXPECT_NE(any.value()->description().find("(software)"), std::string::npos) << any.value()->description();
     }
 }
@@ -253,7 +253,7 @@ TEST(GlContextGLTest, ParseBackendChoice) {
     for (const char* bad : {"", "EGL", "gl", "osmesa "}) {
         Result<BackendChoice> r = parseBackendChoice(bad);
         EXPECT_FALSE(r) << "'" << bad << "'";
-        EXPECT_EQ(r.error(), std::string("unknown GL backend '") + bad +
+        EXPECT_EQ(r.error().message, std::string("unknown GL backend '") + bad +
                                  "' (expected auto, egl, egl-device, egl-surfaceless or osmesa)");
     }
 }
@@ -261,7 +261,7 @@ TEST(GlContextGLTest, ParseBackendChoice) {
 TEST(GlContextGLTest, AutoLogsEveryAttemptAndSaysWhatItChose) {
     std::vector<std::string> log;
     Result<std::unique_ptr<Backend>> backend = createGlBackend(BackendChoice::Auto, &log);
-    ASSERT_TRUE(backend) << backend.error();
+    ASSERT_TRUE(backend) << backend.error().message;
     ASSERT_FALSE(log.empty());
     const std::string& last = log.back();
     EXPECT_EQ(last.rfind((*backend)->name() + ": ok (", 0), 0u) << last;
@@ -284,7 +284,7 @@ TEST(GlContextGLTest, EachChoiceCreatesItsKind) {
         if (!built(c.kind)) continue;
         std::vector<std::string> log;
         Result<std::unique_ptr<Backend>> backend = createGlBackend(c.choice, &log);
-        ASSERT_TRUE(backend) << backend.error();
+        ASSERT_TRUE(backend) << backend.error().message;
         EXPECT_EQ((*backend)->name(), contextKindName(c.kind));
         EXPECT_EQ(log.size(), 1u);
     }

@@ -33,21 +33,21 @@ protected:
     void expectSamePixels(const std::string& spec, const LoadOptions& load, double time, int width, int height,
                           const std::string& name) {
         Result<Scene> scene = loadScene(spec, load);
-        ASSERT_TRUE(scene) << scene.error();
+        ASSERT_TRUE(scene) << scene.error().message;
         Result<FrameSetup> setup = setUpFrame(*scene, Camera{}, time, width, height, /*writeIds=*/false);
-        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE(setup) << setup.error().message;
 
         Result<std::unique_ptr<GlContext>> context = createContext(GetParam());
-        ASSERT_TRUE(context) << context.error();
+        ASSERT_TRUE(context) << context.error().message;
         Result<std::unique_ptr<Backend>> backend = makeGlBackend(std::move(*context));
-        ASSERT_TRUE(backend) << backend.error();
+        ASSERT_TRUE(backend) << backend.error().message;
         Result<SceneRenderer> renderer = SceneRenderer::create(**backend, *scene);
-        ASSERT_TRUE(renderer) << renderer.error();
+        ASSERT_TRUE(renderer) << renderer.error().message;
         const TargetHandle target = (*backend)->createTarget(width, height);
         ASSERT_NE(target, kNoHandle);
 
         Result<std::unique_ptr<MinimalFrame>> minimal = createMinimalFrame(GetParam(), *scene, width, height);
-        ASSERT_TRUE(minimal) << minimal.error();
+        ASSERT_TRUE(minimal) << minimal.error().message;
 
         // Two frames each, interleaved as the bench runs them (the contexts take turns).
         for (int i = 0; i < 2; ++i) {
@@ -95,11 +95,11 @@ TEST_P(MinimalFrameGLTest, BuiltinScenesMatchTheBackend) {
 
 TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
     Result<Scene> textured = loadScene("builtin:default");
-    ASSERT_TRUE(textured) << textured.error();
+    ASSERT_TRUE(textured) << textured.error().message;
     EXPECT_NE(minimalFrameUnsupported(*textured).find("has a texture"), std::string::npos);
     Result<std::unique_ptr<MinimalFrame>> refused = createMinimalFrame(GetParam(), *textured, 64, 48);
     ASSERT_FALSE(refused);
-    EXPECT_EQ(refused.error().rfind("minimal frame: material ", 0), 0u) << refused.error();
+    EXPECT_EQ(refused.error().message.rfind("minimal frame: material ", 0), 0u) << refused.error().message;
 
     Mesh mesh;
     mesh.name = "painted";
@@ -112,7 +112,7 @@ TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
               "mesh 0 'painted' has vertex colours, which the minimal frame does not draw");
 
     Result<Scene> cubes = loadScene("builtin:cubes");
-    ASSERT_TRUE(cubes) << cubes.error();
+    ASSERT_TRUE(cubes) << cubes.error().message;
     EXPECT_EQ(minimalFrameUnsupported(*cubes), "");
 }
 
@@ -120,16 +120,16 @@ TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
 // the images are glReadPixels' own, in both depth formats.
 TEST_P(MinimalFrameGLTest, PixelBuffersReadWhatReadPixelsReads) {
     Result<Scene> scene = loadScene("builtin:cubes");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F}) {
         SCOPED_TRACE(depthFormatName(format));
         Result<std::unique_ptr<MinimalFrame>> made = createMinimalFrame(GetParam(), *scene, 64, 48, format);
         if (!made && format == DepthFormat::D32F) continue;  // no glClipControl
-        ASSERT_TRUE(made) << made.error();
+        ASSERT_TRUE(made) << made.error().message;
         MinimalFrame& minimal = **made;
         const auto draw = [&](double time) {
             Result<FrameSetup> setup = setUpFrame(*scene, Camera{}, time, 64, 48, false, format);
-            ASSERT_TRUE(setup) << setup.error();
+            ASSERT_TRUE(setup) << setup.error().message;
             minimal.render(setup->params, setup->world, kBackground);
         };
         draw(0.0);

@@ -19,7 +19,7 @@ class ReuseGLTest : public ::testing::Test {
 protected:
     void SetUp() override {
         Result<std::unique_ptr<Backend>> created = createGlBackend(BackendChoice::Auto);
-        if (!created) FRUGAL_SKIP_IF_NO_GL(created.error());
+        if (!created) FRUGAL_SKIP_IF_NO_GL(created.error().message);
         backend = std::move(*created);
     }
 

@@ -61,7 +61,7 @@ class SceneRenderGLTest : public ::testing::TestWithParam<BackendChoice> {
 protected:
     void SetUp() override {
         Result<std::unique_ptr<Backend>> created = createGlBackend(GetParam());
-        ASSERT_TRUE(created) << created.error();
+        ASSERT_TRUE(created) << created.error().message;
         backend = std::move(*created);
     }
     std::unique_ptr<Backend> backend;
@@ -109,7 +109,7 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
 
 TEST_P(SceneRenderGLTest, BunnyIsLitWhiteInTheMiddleAndBackgroundAtTheCorners) {
     Result<Scene> scene = loadScene(FRUGAL_BUNNY_OBJ);
-    ASSERT_TRUE(scene) << scene.error() << " (install glmark2-data: scripts/install-deps --tests)";
+    ASSERT_TRUE(scene) << scene.error().message << " (install glmark2-data: scripts/install-deps --tests)";
     ASSERT_EQ(scene->triangleCount(), 69666u);
     const Frame frame = render(*backend, *scene, 200, 150);
     const Buffers& b = frame.buffers;
@@ -136,7 +136,7 @@ TEST_P(SceneRenderGLTest, BunnyIsLitWhiteInTheMiddleAndBackgroundAtTheCorners) {
 
 TEST_P(SceneRenderGLTest, RepeatedRendersAreBitIdentical) {
     Result<Scene> scene = loadScene("builtin:default");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     const Frame a = render(*backend, *scene, 160, 120, 1.0);
     const Frame b = render(*backend, *scene, 160, 120, 1.0);
     expectIdentical(a.buffers, b.buffers, "repeat");
@@ -155,8 +155,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, SceneRenderGLTest, ::testing::ValuesIn(builtC
 TEST(BackendsAgreeGLTest, EglAndOsMesaImagesAreIdentical) {
     Result<std::unique_ptr<Backend>> egl = createGlBackend(BackendChoice::EglSurfaceless);
     Result<std::unique_ptr<Backend>> osmesa = createGlBackend(BackendChoice::OsMesa);
-    ASSERT_TRUE(egl) << egl.error();
-    if (!osmesa) FRUGAL_SKIP_IF_NO_GL("OSMesa: " << osmesa.error());
+    ASSERT_TRUE(egl) << egl.error().message;
+    if (!osmesa) FRUGAL_SKIP_IF_NO_GL("OSMesa: " << osmesa.error().message);
 
     std::vector<std::string> specs = {"builtin:default", "builtin:dominoes?polygons=1404&static=0.9866", "builtin:cubes",
                                       FRUGAL_BUNNY_OBJ};

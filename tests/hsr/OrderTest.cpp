@@ -174,11 +174,11 @@ TEST(HsrOrder, PapersCubesFlaggedShare) {
     // shared edge nearly parallel to the screen does not count (Order.h); the share counted between
     // different cubes only is printed beside, as what a per-object grain would give.
     Result<Scene> scene = loadScene("builtin:cubes");
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->triangleCount(), 336u);
     for (const double time : {0.0, 1.0, 2.5}) {
         Result<FrameSetup> frame = setUpFrame(*scene, {}, time, 240, 320, false);
-        ASSERT_TRUE(frame.ok()) << frame.error();
+        ASSERT_TRUE(frame.ok()) << frame.error().message;
         const ScreenTriangles screen = hsr::screenTriangles(*scene, frame->params, frame->world, fullDrawList(*scene), 240, 320);
         EXPECT_GE(screen.size(), 28u * 2u);  // every cube shows at least one face
         EXPECT_LE(screen.size(), 28u * 3u * 2u);  // and at most three

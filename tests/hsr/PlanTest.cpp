@@ -37,7 +37,7 @@ Mesh indexedMesh(std::vector<glm::vec3> positions, std::vector<std::uint32_t> in
 TEST(HsrPolygons, CubesAreSixQuadsEach) {
     for (const char* name : {"builtin:cubes", "builtin:dominoes?polygons=120"}) {
         Result<Scene> scene = loadScene(name);
-        ASSERT_TRUE(scene.ok()) << scene.error();
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
         const hsr::Planner planner(*scene);
         EXPECT_EQ(planner.polygonCount(), 3 * scene->triangleCount() / 6) << name;  // two triangles a quad
         for (std::size_t m = 0; m < scene->meshes.size(); ++m)
@@ -125,7 +125,7 @@ TEST(HsrPolygons, ConvexSolids) {
         }
     }
     Result<Scene> bunny = loadScene(FRUGAL_BUNNY_OBJ);
-    ASSERT_TRUE(bunny.ok()) << bunny.error();
+    ASSERT_TRUE(bunny.ok()) << bunny.error().message;
     EXPECT_FALSE(hsr::groupPolygons(bunny->meshes[0]).convexSolid);
 }
 
@@ -168,10 +168,10 @@ std::size_t differingPixels(const Buffers& a, const Buffers& b) {
 TEST(HsrPlan, AdaptiveEqualsTheZBufferOnThePapersCubesAndTheDominoes) {
     for (const char* name : {"builtin:cubes", "builtin:dominoes?polygons=804"}) {
         Result<Scene> scene = loadScene(name);
-        ASSERT_TRUE(scene.ok()) << scene.error();
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
         for (const double time : {0.0, 0.7, 1.9, 4.2}) {
             Result<FrameSetup> setup = setUpFrame(*scene, {}, time, 240, 320, true);
-            ASSERT_TRUE(setup.ok()) << setup.error();
+            ASSERT_TRUE(setup.ok()) << setup.error().message;
             const Rendered r = renderModes(*scene, setup->params, setup->world, 240, 320);
             EXPECT_EQ(differingPixels(r.adaptive, r.zbuffer), 0u) << name << " t=" << time;
             EXPECT_EQ(r.adaptive.ids, r.zbuffer.ids) << name << " t=" << time;

@@ -116,8 +116,8 @@ TEST(FrameWriterTest, TheFirstErrorStopsItAndNothingHalfWrittenIsLeft) {
     }
     const Result<bool> finished = writer->finish();
     ASSERT_FALSE(finished);
-    EXPECT_EQ(finished.error(), missing.color + ": cannot write: No such file or directory");
-    EXPECT_EQ(finished.failure().kind, ErrorKind::Io);
+    EXPECT_EQ(finished.error().message, missing.color + ": cannot write: No such file or directory");
+    EXPECT_EQ(finished.error().kind, ErrorKind::Io);
     // Frame 0 whole; frame 1 not at all (its depth file neither); nothing after it; no temporary.
     EXPECT_EQ(test::filesIn(dir), (std::vector<std::string>{"f0-depth.png", "f0-ids.png", "f0.png"}));
 }
@@ -125,8 +125,8 @@ TEST(FrameWriterTest, TheFirstErrorStopsItAndNothingHalfWrittenIsLeft) {
 TEST(FrameWriterTest, BadRequestsGetOneLine) {
     Result<FrameWriter> level = FrameWriter::create({.threads = 0, .queue = 0, .pngLevel = 13});
     ASSERT_FALSE(level);
-    EXPECT_EQ(level.error(), "png-level 13: must be 0 (fastest, largest) to 12 (smallest, slowest), or auto (-1)");
-    EXPECT_TRUE(level.failure().aboutSetting);
+    EXPECT_EQ(level.error().message, "png-level 13: must be 0 (fastest, largest) to 12 (smallest, slowest), or auto (-1)");
+    EXPECT_TRUE(level.error().aboutSetting);
     EXPECT_FALSE(FrameWriter::create({.threads = -1, .queue = 0, .pngLevel = 1}));
     EXPECT_FALSE(FrameWriter::create({.threads = 0, .queue = 5000, .pngLevel = 1}));
 
@@ -135,7 +135,7 @@ TEST(FrameWriterTest, BadRequestsGetOneLine) {
     Frame frame = numbered(0, false);
     const Result<bool> queued = writer.write(pathsOf(dir, 0), frame);
     ASSERT_FALSE(queued);
-    EXPECT_EQ(queued.error(), "ids " + pathsOf(dir, 0).ids + ": the frame has no ids (Settings::ids)");
+    EXPECT_EQ(queued.error().message, "ids " + pathsOf(dir, 0).ids + ": the frame has no ids (Settings::ids)");
     EXPECT_FALSE(frame.color.rgba.empty()) << "a refused frame stays the caller's";
     EXPECT_TRUE(writer.finish()) << "a refused frame is not an error of the writer";
     EXPECT_TRUE(test::filesIn(dir).empty());
@@ -148,19 +148,19 @@ TEST(FrameWriterTest, AnImageTheFrameDoesNotHoldIsOneLineAndNoFile) {
     FrameWriter writer;
     const Result<bool> queued = writer.write(pathsOf(dir, 0), frame);
     ASSERT_FALSE(queued);
-    EXPECT_EQ(queued.error(),
+    EXPECT_EQ(queued.error().message,
               "depth " + pathsOf(dir, 0).depth + ": the frame has no depth (rendered with ReadBack{.depth = false})");
     const Result<bool> direct = writeFrame({"", (dir / "d.pfm").string(), ""}, frame);
     ASSERT_FALSE(direct);
-    EXPECT_EQ(direct.error(), "depth " + (dir / "d.pfm").string() +
+    EXPECT_EQ(direct.error().message, "depth " + (dir / "d.pfm").string() +
                                   ": the frame has no depth (rendered with ReadBack{.depth = false})");
     // An image whose values do not fill it (a library caller's mistake) is refused, never read past.
     Frame short_ = numbered(1);
     short_.color.rgba.resize(10);
     short_.depth.values.resize(7);
-    EXPECT_EQ(writePng((dir / "c.png").string(), short_.color).error(),
+    EXPECT_EQ(writePng((dir / "c.png").string(), short_.color).error().message,
               (dir / "c.png").string() + ": cannot encode: PNG encoder: the colour image holds 10 values, 40x30 needs 4800");
-    EXPECT_EQ(writePfm((dir / "d.pfm").string(), short_.depth).error(),
+    EXPECT_EQ(writePfm((dir / "d.pfm").string(), short_.depth).error().message,
               (dir / "d.pfm").string() + ": cannot encode: PFM encoder: the depth image holds 7 values, 40x30 needs 1200");
     EXPECT_TRUE(writer.finish());
     EXPECT_TRUE(test::filesIn(dir).empty());

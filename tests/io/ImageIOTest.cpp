@@ -33,7 +33,7 @@ TEST(ImageIOTest, ColourPngIsTopRowFirst) {
     const std::string path = (test::freshDir("ImageIOTest") / "c.png").string();
     ASSERT_TRUE(writeFileAtomic(path, encodeColorPng(b)));
     Result<DecodedImage> image = readPng(path);
-    ASSERT_TRUE(image) << image.error();
+    ASSERT_TRUE(image) << image.error().message;
     EXPECT_EQ(image->width, 7);
     EXPECT_EQ(image->height, 5);
     EXPECT_EQ(image->channels, 4);
@@ -53,7 +53,7 @@ TEST(ImageIOTest, DepthPngHoldsTheTop16BitsAndPfmTheExactValue) {
     const std::filesystem::path dir = test::freshDir("ImageIOTestDepth");
     ASSERT_TRUE(writeFileAtomic((dir / "d.png").string(), encodeDepthPng(b)));
     Result<DecodedImage> image = readPng((dir / "d.png").string());
-    ASSERT_TRUE(image) << image.error();
+    ASSERT_TRUE(image) << image.error().message;
     EXPECT_EQ(image->bitDepth, 16);
     EXPECT_EQ(image->channels, 1);
     for (int row = 0; row < 2; ++row)
@@ -73,7 +73,7 @@ TEST(ImageIOTest, IdPngBytesAreTheLittleEndianId) {
     const std::string path = (test::freshDir("ImageIOTestIds") / "i.png").string();
     ASSERT_TRUE(writeFileAtomic(path, encodeIdPng(b)));
     Result<DecodedImage> image = readPng(path);
-    ASSERT_TRUE(image) << image.error();
+    ASSERT_TRUE(image) << image.error().message;
     for (int row = 0; row < 3; ++row)
         for (int x = 0; x < 4; ++x) {
             const std::uint8_t* p = &image->pixels8[(std::size_t(row) * 4 + x) * 4];
@@ -89,7 +89,7 @@ TEST(ImageIOTest, OutputSetLeavesNothingWhenAWriteFails) {
     set.add((dir / "missing-folder" / "b.png").string(), Bytes{4});
     Result<bool> result = set.commit();
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error(), (dir / "missing-folder" / "b.png").string() + ": cannot write: No such file or directory");
+    EXPECT_EQ(result.error().message, (dir / "missing-folder" / "b.png").string() + ": cannot write: No such file or directory");
     EXPECT_TRUE(std::filesystem::is_empty(dir)) << "no final file and no temporary file may remain";
 }
 
@@ -114,7 +114,7 @@ TEST(ImageIOTest, WriteFrameWritesTheSetOrNothing) {
     const std::string other = (dir / "other.png").string(), ids = (dir / "i.png").string();
     Result<bool> noIds = writeFrame({other, "", ids}, frame);
     ASSERT_FALSE(noIds);
-    EXPECT_EQ(noIds.error(), "ids " + ids + ": the frame has no ids (Settings::ids)");
+    EXPECT_EQ(noIds.error().message, "ids " + ids + ": the frame has no ids (Settings::ids)");
     Result<bool> failed = writeFrame({other, (dir / "missing-folder" / "d.png").string(), ""}, frame);
     ASSERT_FALSE(failed);
     EXPECT_FALSE(std::filesystem::exists(other)) << "a set is written whole or not at all";
@@ -132,8 +132,8 @@ TEST(ImageIOTest, OutputSetTakesBackEarlierFilesWhenALaterRenameFails) {
     set.add((dir / "blocked.png").string(), Bytes{2});
     Result<bool> result = set.commit();
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error().rfind((dir / "blocked.png").string() + ": cannot rename the finished file into place: ", 0), 0u)
-        << result.error();
+    EXPECT_EQ(result.error().message.rfind((dir / "blocked.png").string() + ": cannot rename the finished file into place: ", 0), 0u)
+        << result.error().message;
     EXPECT_EQ(test::readAll(dir / "old.png"), "old contents");
     EXPECT_EQ(test::filesIn(dir), (std::vector<std::string>{"blocked.png", "old.png"}))
         << "the new file is taken back; no temporary or backup remains";
@@ -152,10 +152,10 @@ TEST(ImageIOTest, OutputSetReplacesExistingFilesAndLeavesNoBackup) {
 
 TEST(ImageIOTest, PngEncoderRefusesWhatPngCannotHoldAndWritesNothing) {
     const std::uint8_t pixel[8] = {};
-    EXPECT_EQ(encodePng(1, 1, 5, 8, pixel).error(), "PNG encoder: channels must be 1 to 4, got 5");
-    EXPECT_EQ(encodePng(1, 1, 0, 8, pixel).error(), "PNG encoder: channels must be 1 to 4, got 0");
-    EXPECT_EQ(encodePng(1, 1, 4, 12, pixel).error(), "PNG encoder: bit depth must be 8 or 16, got 12");
-    EXPECT_EQ(encodePng(0, 1, 4, 8, pixel).error(), "PNG encoder: width and height must be at least 1, got 0x1");
+    EXPECT_EQ(encodePng(1, 1, 5, 8, pixel).error().message, "PNG encoder: channels must be 1 to 4, got 5");
+    EXPECT_EQ(encodePng(1, 1, 0, 8, pixel).error().message, "PNG encoder: channels must be 1 to 4, got 0");
+    EXPECT_EQ(encodePng(1, 1, 4, 12, pixel).error().message, "PNG encoder: bit depth must be 8 or 16, got 12");
+    EXPECT_EQ(encodePng(0, 1, 4, 8, pixel).error().message, "PNG encoder: width and height must be at least 1, got 0x1");
     for (int channels = 1; channels <= 4; ++channels) EXPECT_TRUE(encodePng(1, 1, channels, 16, pixel)) << channels;
 
     const std::filesystem::path dir = test::freshDir("ImageIOTestEncoderError");
@@ -164,7 +164,7 @@ TEST(ImageIOTest, PngEncoderRefusesWhatPngCannotHoldAndWritesNothing) {
     set.add((dir / "bad.png").string(), encodePng(1, 1, 7, 8, pixel));
     Result<bool> result = set.commit();
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error(), (dir / "bad.png").string() + ": cannot encode: PNG encoder: channels must be 1 to 4, got 7");
+    EXPECT_EQ(result.error().message, (dir / "bad.png").string() + ": cannot encode: PNG encoder: channels must be 1 to 4, got 7");
     EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
@@ -173,7 +173,7 @@ TEST(ImageIOTest, ReadPngRejectsGarbage) {
     test::writeFile(path, "not a png at all");
     Result<DecodedImage> image = readPng(path.string());
     ASSERT_FALSE(image);
-    EXPECT_EQ(image.error().rfind(path.string() + ": not a PNG", 0), 0u) << image.error();
+    EXPECT_EQ(image.error().message.rfind(path.string() + ": not a PNG", 0), 0u) << image.error().message;
 }
 
 }  // namespace

@@ -64,14 +64,14 @@ TEST_P(PngFuzzFinding, EndsInItsOutcome) {
     const std::string path = (kDir / finding.file).string();
     const Result<DecodedImage> image = readPng(path);
     if (!finding.error) {
-        ASSERT_TRUE(image.ok()) << image.error();
+        ASSERT_TRUE(image.ok()) << image.error().message;
         const std::size_t samples =
             std::size_t(image->width) * std::size_t(image->height) * std::size_t(image->channels);
         EXPECT_EQ(image->bitDepth == 16 ? image->pixels16.size() : image->pixels8.size(), samples);
         return;
     }
     ASSERT_FALSE(image.ok()) << path << " decoded";
-    EXPECT_EQ(image.error(), path + ": " + finding.error);
+    EXPECT_EQ(image.error().message, path + ": " + finding.error);
 }
 
 void PrintTo(const Finding& finding, std::ostream* out) { *out << finding.file; }

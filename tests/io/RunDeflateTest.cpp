@@ -103,9 +103,9 @@ Frame testFrame(int w, int h) {
 TEST(RunDeflateTest, PngsAtEveryLevelDecodeToTheirPixels) {
     const Frame frame = testFrame(67, 41);  // odd sizes: rows that are not a multiple of anything
     const auto decoded = [](const Result<Bytes>& png) {
-        EXPECT_TRUE(png) << (png ? "" : png.error());
+        EXPECT_TRUE(png) << (png ? "" : png.error().message);
         Result<DecodedImage> image = decodePng(*png, "test");
-        EXPECT_TRUE(image) << (image ? "" : image.error());
+        EXPECT_TRUE(image) << (image ? "" : image.error().message);
         return *image;
     };
     const DecodedImage color = decoded(encodeColorPng(frame.color, PngOptions::atLevel(6)));
@@ -128,9 +128,9 @@ TEST(RunDeflateTest, PngsAtEveryLevelDecodeToTheirPixels) {
 
 TEST(RunDeflateTest, LevelsOutOfRangeAreRefused) {
     const Frame frame = testFrame(4, 4);
-    EXPECT_EQ(encodeColorPng(frame.color, PngOptions::atLevel(13)).error(),
+    EXPECT_EQ(encodeColorPng(frame.color, PngOptions::atLevel(13)).error().message,
               "PNG encoder: the level must be 0 to 12 (or -1: auto), got 13");
-    EXPECT_EQ(encodeIdPng(frame.ids, PngOptions::atLevel(-2)).error(),
+    EXPECT_EQ(encodeIdPng(frame.ids, PngOptions::atLevel(-2)).error().message,
               "PNG encoder: the level must be 0 to 12 (or -1: auto), got -2");
 }
 

@@ -35,7 +35,7 @@ TEST(WriterFaultTest, ADeviceIsWrittenInPlaceAndNeverReplaced) {
     EXPECT_TRUE(writeFileAtomic((dir / "null.png").string(), Bytes{1, 2, 3}));
     Result<bool> full = writeFileAtomic((dir / "full.png").string(), Bytes{1, 2, 3});
     ASSERT_FALSE(full);
-    EXPECT_EQ(full.error(), (dir / "full.png").string() + ": write failed after 0 of 3 bytes: No space left on device");
+    EXPECT_EQ(full.error().message, (dir / "full.png").string() + ": write failed after 0 of 3 bytes: No space left on device");
     EXPECT_TRUE(fs::is_symlink(dir / "null.png") && fs::is_symlink(dir / "full.png"))
         << "written in place, not replaced";
     EXPECT_EQ(test::filesIn(dir), (std::vector<std::string>{"full.png", "null.png"}));
@@ -50,7 +50,7 @@ TEST(WriterFaultTest, AFullDeviceInASetLeavesNoOtherFile) {
     set.add((dir / "depth.png").string(), Bytes(1000, 8));
     Result<bool> result = set.commit();
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error(),
+    EXPECT_EQ(result.error().message,
               (dir / "depth.png").string() + ": write failed after 0 of 1000 bytes: No space left on device");
     EXPECT_EQ(test::filesIn(dir), std::vector<std::string>{"depth.png"});
     EXPECT_TRUE(fs::is_symlink(dir / "depth.png"));
@@ -78,7 +78,7 @@ TEST(WriterFaultTest, ALinkIsFollowedAndStaysALink) {
 
     Result<bool> dangling = writeFileAtomic((dir / "dangling.png").string(), Bytes{1});
     ASSERT_FALSE(dangling);
-    EXPECT_EQ(dangling.error(), (dir / "dangling.png").string() + ": cannot write: No such file or directory");
+    EXPECT_EQ(dangling.error().message, (dir / "dangling.png").string() + ": cannot write: No such file or directory");
     EXPECT_TRUE(fs::is_symlink(dir / "dangling.png"));
 
     const int fd = ::open((dir / "redirect.json").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -103,7 +103,7 @@ TEST(WriterFaultTest, AFileSizeLimitFailsTheWriteAndLeavesNoTemporaryFile) {
             setrlimit(RLIMIT_FSIZE, &limit);
             // (The child's stderr is a file under the same limit: only the exit status tells.)
             Result<bool> result = writeFileAtomic(path, Bytes(1000, 1));
-            if (result || result.error() != path + ": write failed after 100 of 1000 bytes: File too large")
+            if (result || result.error().message != path + ": write failed after 100 of 1000 bytes: File too large")
                 std::_Exit(1);
             std::_Exit(test::filesIn(dir).empty() ? 0 : 2);
         },
@@ -116,14 +116,14 @@ TEST(WriterFaultTest, AFolderThatRefusesFilesGivesOneErrorAndNoFile) {
     const std::string underAFile = (dir / "file.txt" / "x.png").string();
     Result<bool> result = writeFileAtomic(underAFile, Bytes{1});
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error(), underAFile + ": cannot write: Not a directory");
+    EXPECT_EQ(result.error().message, underAFile + ": cannot write: Not a directory");
     EXPECT_EQ(test::filesIn(dir), std::vector<std::string>{"file.txt"});
 
     // sysfs takes no new file, even from root (whom permission bits do not stop).
     if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no sysfs mounted at /sys";
     result = writeFileAtomic("/sys/frugal-test.png", Bytes{1});
     ASSERT_FALSE(result);
-    EXPECT_EQ(result.error().rfind("/sys/frugal-test.png: cannot write: ", 0), 0u) << result.error();
+    EXPECT_EQ(result.error().message.rfind("/sys/frugal-test.png: cannot write: ", 0), 0u) << result.error().message;
     EXPECT_FALSE(fs::exists("/sys/frugal-test.png"));
 }
 
@@ -156,7 +156,7 @@ TEST(WriterFaultTest, ProcessesWritingOneFileAtOnceLeaveOneWholeFile) {
         if (children[writer] == 0) {
             for (int round = 0; round < 200; ++round)
                 if (Result<bool> written = writeFileAtomic(path, bytes); !written) {
-                    std::fprintf(stderr, "%s\n", written.error().c_str());
+                    std::fprintf(stderr, "%s\n", written.error().message.c_str());
                     _exit(1);
                 }
             _exit(0);

@@ -28,7 +28,7 @@ glm::vec3 toNdc(const View& v, const glm::vec3& p) {
 TEST(CameraTest, AutoFramingKeepsTheBoundsInsideTheFrustum) {
     const Scene scene = unitScene();
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, {}, 800, 600);
-    ASSERT_TRUE(view) << view.error();
+    ASSERT_TRUE(view) << view.error().message;
     for (const glm::vec3& p : scene.meshes[0].positions) {
         const glm::vec3 ndc = toNdc(*view, p);
         EXPECT_LE(std::abs(ndc.x), 1.0f);
@@ -44,7 +44,7 @@ TEST(CameraTest, LookAtPutsTheTargetAtTheCentreAndUpIsUp) {
     spec.eye = glm::vec3(0, 0, 10);
     spec.target = glm::vec3(0, 0, 0);
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 64, 64);
-    ASSERT_TRUE(view) << view.error();
+    ASSERT_TRUE(view) << view.error().message;
     const glm::vec3 centre = toNdc(*view, {0, 0, 0});
     EXPECT_NEAR(centre.x, 0.0f, 1e-6f);
     EXPECT_NEAR(centre.y, 0.0f, 1e-6f);
@@ -64,7 +64,7 @@ TEST(CameraTest, SceneCamerasFollowTheirNodeAndAnInfiniteFar) {
     Camera spec;
     spec.depthRange = DepthRange::File;  // the camera's own planes
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, spec, 100, 100);
-    ASSERT_TRUE(view) << view.error();
+    ASSERT_TRUE(view) << view.error().message;
     EXPECT_EQ(view->source, "scene camera 0");
     EXPECT_NEAR(toNdc(*view, {0, 0, 0}).x, 0.0f, 1e-6f);
     EXPECT_LT(toNdc(*view, {0, 0, -1e6f}).z, 1.0f);  // far away is still in front of the far plane
@@ -76,21 +76,21 @@ TEST(CameraTest, BadCamerasAreErrorsWithNumbers) {
     const auto world = scene.worldTransforms(0);
     Camera spec;
     spec.sceneCamera = 2;
-    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera 2: the scene has 0 cameras");
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error().message, "camera 2: the scene has 0 cameras");
     spec = {};
     spec.eye = glm::vec3(0, 5, 0);
     spec.target = glm::vec3(0, 0, 0);
-    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera: up (0,1,0) is parallel to the view direction");
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error().message, "camera: up (0,1,0) is parallel to the view direction");
     spec.eye = glm::vec3(0, 0, 0);
-    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera: eye and target must differ and be finite");
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error().message, "camera: eye and target must differ and be finite");
     spec = {};
     spec.znear = 5.0f;
     spec.zfar = 1.0f;
-    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error(), "camera: far plane 1 must exceed the near plane 5");
+    EXPECT_EQ(resolveCamera(scene, world, 0, spec, 8, 8).error().message, "camera: far plane 1 must exceed the near plane 5");
     // The library speaks of values; it says which one it fitted, never a command-line flag.
     spec.zfar.reset();
     spec.znear = 1e6f;
-    const std::string error = resolveCamera(scene, world, 0, spec, 8, 8).error();
+    const std::string error = resolveCamera(scene, world, 0, spec, 8, 8).error().message;
     EXPECT_EQ(error.find("--"), std::string::npos) << error;
     EXPECT_NE(error.find("(fitted to the scene) must exceed the near plane 1e+06"), std::string::npos) << error;
 }
@@ -108,7 +108,7 @@ TEST(CameraTest, AFileCamerasAspectRatioIsNotStretchedOntoTheImage) {
     const auto world = scene.worldTransforms(0);
     for (const auto& [width, height] : {std::pair{800, 600}, {1920, 1080}, {600, 800}}) {
         Result<View> view = resolveCamera(scene, world, 0, {}, width, height);
-        ASSERT_TRUE(view) << view.error();
+        ASSERT_TRUE(view) << view.error().message;
         EXPECT_EQ(view->fileAspect, 1.0f);
         EXPECT_FLOAT_EQ(view->aspect, float(width) / float(height));
         // The same projection as an explicit camera with the image's aspect ratio.
@@ -142,7 +142,7 @@ TEST(CameraTest, AnOrthographicCameraKeepsYmagAndTakesTheImagesAspectRatio) {
     ortho.zfar = 50.0f;
     test::addCameraNode(scene, ortho, {0, 0, 6});
     Result<View> view = resolveCamera(scene, scene.worldTransforms(0), 0, {}, 300, 100);
-    ASSERT_TRUE(view) << view.error();
+    ASSERT_TRUE(view) << view.error().message;
     EXPECT_EQ(view->fileAspect, 0.5f);
     EXPECT_NEAR(toNdc(*view, {0, 2, 0}).y, 1.0f, 1e-6f);
     EXPECT_NEAR(toNdc(*view, {6, 0, 0}).x, 1.0f, 1e-6f);  // xmag = ymag × 3
@@ -159,7 +159,7 @@ TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
     test::addCameraNode(scene, camera, {0, 0, 10});
     const auto world = scene.worldTransforms(0);
     Result<View> fit = resolveCamera(scene, world, 0, {}, 64, 64);
-    ASSERT_TRUE(fit) << fit.error();
+    ASSERT_TRUE(fit) << fit.error().message;
     EXPECT_EQ(fit->depthRange, DepthRange::Fit);
     EXPECT_EQ(fit->givenNear, 0.05f);
     EXPECT_EQ(fit->givenFar, 1e6f);
@@ -177,19 +177,19 @@ TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
     spec.znear = 9.5f;
     spec.zfar = 10.5f;
     Result<View> tight = resolveCamera(scene, world, 0, spec, 64, 64);
-    ASSERT_TRUE(tight) << tight.error();
+    ASSERT_TRUE(tight) << tight.error().message;
     EXPECT_EQ(tight->znear, 9.5f);
     EXPECT_EQ(tight->zfar, 10.5f);
     // An infinite far plane becomes the scene's far side; `file` keeps it infinite.
     spec = {};
     spec.zfar = 0.0f;
     Result<View> infinite = resolveCamera(scene, world, 0, spec, 64, 64);
-    ASSERT_TRUE(infinite) << infinite.error();
+    ASSERT_TRUE(infinite) << infinite.error().message;
     EXPECT_GT(infinite->zfar, 11.0f);
     EXPECT_EQ(infinite->givenFar, 0.0f);
     spec.depthRange = DepthRange::File;
     Result<View> file = resolveCamera(scene, world, 0, spec, 64, 64);
-    ASSERT_TRUE(file) << file.error();
+    ASSERT_TRUE(file) << file.error().message;
     EXPECT_EQ(file->znear, 0.05f);
     EXPECT_EQ(file->zfar, 0.0f);
     // A scene wholly behind the camera leaves the planes as given.
@@ -199,7 +199,7 @@ TEST(CameraTest, TheDepthRangeIsFittedToTheSceneInsideTheGivenPlanes) {
     spec.znear = 0.5f;
     spec.zfar = 100.0f;
     Result<View> behind = resolveCamera(scene, world, 0, spec, 64, 64);
-    ASSERT_TRUE(behind) << behind.error();
+    ASSERT_TRUE(behind) << behind.error().message;
     EXPECT_EQ(behind->znear, 0.5f);
     EXPECT_EQ(behind->zfar, 100.0f);
 }
@@ -217,7 +217,7 @@ TEST(CameraTest, D32fProjectionsAreReversedZeroToOne) {
         spec.znear = 2.0f;
         spec.zfar = far;
         Result<View> view = resolveCamera(scene, world, 0, spec, 64, 64, DepthFormat::D32F);
-        ASSERT_TRUE(view) << view.error();
+        ASSERT_TRUE(view) << view.error().message;
         EXPECT_EQ(view->depthFormat, DepthFormat::D32F);
         const auto windowZ = [&](float distance) {  // clip z / w: window z for zero-to-one
             const glm::vec4 clip = view->projection * view->view * glm::vec4(0, 0, 10.0f - distance, 1.0f);

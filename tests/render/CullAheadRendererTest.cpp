@@ -34,7 +34,7 @@ Pair makePair(BackendKind backend) {
         // Single-sided: conservative culling alone then drops the back faces, whatever the
         // occlusion pass decides (it skips itself on frames where it does not pay, by their times).
         Result<Scene> scene = loadScene(aheadSceneName(), LoadOptions{true, false});
-        EXPECT_TRUE(scene) << scene.error();
+        EXPECT_TRUE(scene) << scene.error().message;
         if (!scene) return {};
         Settings settings;
         settings.backend = backend;
@@ -44,7 +44,7 @@ Pair makePair(BackendKind backend) {
         settings.cull = cull;
         Result<Renderer> made = Renderer::create(std::move(*scene), settings);
         if (!made) {
-            EXPECT_EQ(made.failure().kind, ErrorKind::BackendUnavailable) << made.error();
+            EXPECT_EQ(made.error().kind, ErrorKind::BackendUnavailable) << made.error().message;
             return {};
         }
         (cull == Cull::None ? out.plain : out.ahead).emplace(std::move(*made));
@@ -101,14 +101,14 @@ TEST(CullAheadRendererTest, ASequenceOnGl) { checkSequence(BackendKind::Auto); }
 
 TEST(CullAheadRendererTest, OtherMethodsIgnoreTheNextFrame) {
     Result<Scene> scene = loadScene("builtin:cubes?count=8");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     Settings settings;
     settings.backend = BackendKind::Software;
     settings.width = 64;
     settings.height = 48;
     settings.cull = Cull::Occlusion;
     Result<Renderer> renderer = Renderer::create(std::move(*scene), settings);
-    ASSERT_TRUE(renderer) << renderer.error();
+    ASSERT_TRUE(renderer) << renderer.error().message;
     Frame frame;
     for (int i = 0; i < 3; ++i) {
         renderer->setNextFrame(orbit(i + 1), 0.0);
@@ -120,14 +120,14 @@ TEST(CullAheadRendererTest, OtherMethodsIgnoreTheNextFrame) {
 
 TEST(CullAheadRendererTest, ReuseIsRefusedWithIt) {
     Result<Scene> scene = loadScene("builtin:cubes?count=8");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     Settings settings;
     settings.backend = BackendKind::Software;
     settings.cull = Cull::OcclusionAhead;
     settings.reuse = true;
     Result<Renderer> renderer = Renderer::create(std::move(*scene), settings);
     ASSERT_FALSE(renderer);
-    EXPECT_NE(renderer.error().find("reuse with cull occlusion-ahead"), std::string::npos) << renderer.error();
+    EXPECT_NE(renderer.error().message.find("reuse with cull occlusion-ahead"), std::string::npos) << renderer.error().message;
 }
 
 }  // namespace

@@ -124,14 +124,14 @@ TEST(PlanTest, SetUpFrameSamplesTheSceneAndTheCameraAtItsTime) {
     camera.eye = glm::vec3(0, 0, 10);
     camera.target = glm::vec3(0, 0, 0);
     Result<FrameSetup> setup = setUpFrame(scene, camera, frameTime(15, 30.0), 64, 48, true);
-    ASSERT_TRUE(setup) << setup.error();
+    ASSERT_TRUE(setup) << setup.error().message;
     EXPECT_DOUBLE_EQ(setup->time, 0.5);
     EXPECT_FLOAT_EQ(setup->world[0][3].x, 2.0f);
     EXPECT_TRUE(setup->params.writeIds);
     EXPECT_EQ(setup->params.view, setup->view.view);
     EXPECT_EQ(setup->params.projection, setup->view.projection);
     camera.target = camera.eye;
-    EXPECT_EQ(setUpFrame(scene, camera, 0.0, 64, 48, false).error(), "camera: eye and target must differ and be finite");
+    EXPECT_EQ(setUpFrame(scene, camera, 0.0, 64, 48, false).error().message, "camera: eye and target must differ and be finite");
 }
 
 TEST(PlanTest, ColorBytesRoundAndClampLikeTheUnormConversion) {

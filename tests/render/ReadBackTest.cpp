@@ -9,15 +9,15 @@ namespace {
 
 void expectDepthLeftOut(BackendKind backend) {
     Result<Scene> scene = loadScene("builtin:cubes?count=4");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     Settings settings;
     settings.backend = backend;
     settings.width = 64;
     settings.height = 48;
     settings.ids = true;
     Result<Renderer> renderer = Renderer::create(std::move(*scene), settings);
-    if (!renderer && renderer.failure().kind == ErrorKind::BackendUnavailable) GTEST_SKIP() << renderer.error();
-    ASSERT_TRUE(renderer) << renderer.error();
+    if (!renderer && renderer.error().kind == ErrorKind::BackendUnavailable) GTEST_SKIP() << renderer.error().message;
+    ASSERT_TRUE(renderer) << renderer.error().message;
     Frame full, colorOnly;
     ASSERT_TRUE(renderer->render(Camera::automatic(), 0.0, full));
     ASSERT_TRUE(renderer->render(Camera::automatic(), 0.0, colorOnly, {.depth = false}));

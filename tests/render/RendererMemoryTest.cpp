@@ -12,13 +12,13 @@ std::uint64_t extraBytes(const Scene& scene, Settings settings) {
     settings.width = 64;
     settings.height = 48;
     Result<Renderer> renderer = Renderer::create(scene, settings);
-    EXPECT_TRUE(renderer) << renderer.error();
+    EXPECT_TRUE(renderer) << renderer.error().message;
     return renderer ? renderer->extraBytes() : 0;
 }
 
 TEST(RendererMemoryTest, EachMethodCountsWhatItKeeps) {
     Result<Scene> loaded = loadScene("builtin:cubes?count=4");
-    ASSERT_TRUE(loaded) << loaded.error();
+    ASSERT_TRUE(loaded) << loaded.error().message;
     const Scene& scene = *loaded;
     const std::uint64_t triangles = scene.triangleCount();
     Settings s;

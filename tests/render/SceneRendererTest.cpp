@@ -95,7 +95,7 @@ TEST(SceneRendererTest, AFrameIsClearBeginThenEveryInstanceInOrderWithItsMateria
     const Scene scene = twoMeshScene();
     RecordingBackend backend;
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    ASSERT_TRUE(renderer) << renderer.error();
+    ASSERT_TRUE(renderer) << renderer.error().message;
     const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
     renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
     EXPECT_EQ(backend.calls, (std::vector<std::string>{"clear", "begin", "draw", "draw"}));
@@ -119,17 +119,17 @@ TEST(SceneRendererTest, ARefusedUploadIsAnErrorThatNamesIt) {
     Scene scene = twoMeshScene();
     scene.meshes[1].name = "refuse";
     RecordingBackend backend;
-    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error().message,
               "mesh 1 'refuse' (3 vertices, 1 triangles): recording could not store it (out of memory)");
     scene.meshes[1].name = "b";
     scene.meshes[1].indices.push_back(7);  // breaks the upload contract: not a multiple of 3
     scene.meshes[1].name = "refuse";
-    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error().message,
               "mesh 1 'refuse' (3 vertices, 1 triangles): recording refused it: its arrays break the upload "
               "contract (render/Backend.h)");
     scene = twoMeshScene();
     scene.textures[0].name = "refuse";
-    EXPECT_EQ(SceneRenderer::create(backend, scene).error(),
+    EXPECT_EQ(SceneRenderer::create(backend, scene).error().message,
               "texture 0 'refuse' (1x1): recording refused it (its limit is 32 pixels a side; or out of memory)");
 }
 
@@ -138,7 +138,7 @@ TEST(SceneRendererTest, ReleasesWhatItUploadedOnceWhenDestroyedOrWhenAnUploadFai
     RecordingBackend backend;
     {
         Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-        ASSERT_TRUE(renderer) << renderer.error();
+        ASSERT_TRUE(renderer) << renderer.error().message;
         SceneRenderer moved = std::move(*renderer);  // the moved-from renderer releases nothing
         EXPECT_TRUE(backend.calls.empty());
     }
@@ -155,7 +155,7 @@ TEST(SceneRendererTest, CullAllBackFacesOverridesDoubleSidedMaterialsAndDrawsThe
     const Scene scene = twoMeshScene();
     RecordingBackend backend;
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
-    ASSERT_TRUE(renderer) << renderer.error();
+    ASSERT_TRUE(renderer) << renderer.error().message;
     renderer->setCullAllBackFaces(true);
     const DrawList list{DrawCommand{0, {IndexRange{0, 1}}}};
     renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, scene.worldTransforms(0.0), glm::vec4(0.0f), list);

@@ -73,7 +73,7 @@ TEST(SettingsSchemaTest, EveryValueReadsBackFromTextAndJson) {
         EXPECT_EQ(settingsJson(fromText), settingsJson(s)) << info.name;
         // A settings file.
         Result<SettingsFile> file = parseSettingsJson(settingsJson(s), "f");
-        ASSERT_TRUE(file) << file.error();
+        ASSERT_TRUE(file) << file.error().message;
         EXPECT_EQ(settingsJson(file->settings), settingsJson(s)) << info.name;
         EXPECT_NE(settingsJson(s), settingsJson(Settings{})) << info.name << " changed nothing";
     }
@@ -119,8 +119,8 @@ TEST(SettingsSchemaTest, AWholeSettingsIsCheckedValueByValue) {
     s.width = 0;
     Result<Renderer> made = Renderer::create(Scene{}, s);
     ASSERT_FALSE(made);
-    EXPECT_EQ(made.error(), "size 0x600 is not a size (WxH, each 1 to 65536)");
-    EXPECT_TRUE(made.failure().aboutSetting);
+    EXPECT_EQ(made.error().message, "size 0x600 is not a size (WxH, each 1 to 65536)");
+    EXPECT_TRUE(made.error().aboutSetting);
 }
 
 // Every declared conflict is refused, naming its two settings in order; every method whose traits

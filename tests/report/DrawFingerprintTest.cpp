@@ -71,7 +71,7 @@ const Camera kAway = Camera::lookAt({1.5f, 1.2f, 2.5f}, {3.0f, 2.4f, 5.0f});  //
 FrameStats frameStats(const std::string& scene, const std::function<void(Settings&)>& change,
                       const Camera& camera = kFacing) {
     Result<Scene> loaded = loadScene(scene);
-    EXPECT_TRUE(loaded) << loaded.error();
+    EXPECT_TRUE(loaded) << loaded.error().message;
     if (!loaded) return {};
     Settings settings;
     settings.width = 64;
@@ -79,10 +79,10 @@ FrameStats frameStats(const std::string& scene, const std::function<void(Setting
     settings.backend = BackendKind::Software;
     change(settings);
     Result<Renderer> renderer = Renderer::create(std::move(*loaded), settings);
-    EXPECT_TRUE(renderer) << renderer.error();
+    EXPECT_TRUE(renderer) << renderer.error().message;
     if (!renderer) return {};
     Result<Frame> frame = renderer->render(camera, 0.0);
-    EXPECT_TRUE(frame) << frame.error();
+    EXPECT_TRUE(frame) << frame.error().message;
     return frame ? frame->stats : FrameStats{};
 }
 std::uint64_t frameFingerprint(const std::string& scene, const std::function<void(Settings&)>& change,

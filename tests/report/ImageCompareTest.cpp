@@ -32,7 +32,7 @@ std::array<std::uint8_t, 4> pixel(const Buffers& b, std::size_t i) {
 ImageComparison compare(const Buffers& a, const Buffers& r, int tolerance = 0,
                         std::optional<std::array<std::uint8_t, 4>> background = std::nullopt) {
     Result<ImageComparison> c = compareBuffers(a, r, CompareOptions{tolerance, background});
-    EXPECT_TRUE(c) << c.error();
+    EXPECT_TRUE(c) << c.error().message;
     return c ? *c : ImageComparison{};
 }
 
@@ -161,15 +161,15 @@ TEST(ImageCompareTest, BadInputsAreErrorsWithTheNumbers) {
     const Buffers a = solid(4, 3, {0, 0, 0, 255});
     Result<ImageComparison> size = compareBuffers(a, solid(3, 4, {0, 0, 0, 255}));
     ASSERT_FALSE(size);
-    EXPECT_EQ(size.error(), "size differs: actual 4x3, reference 3x4");
+    EXPECT_EQ(size.error().message, "size differs: actual 4x3, reference 3x4");
     Result<ImageComparison> tolerance = compareBuffers(a, a, {256, std::nullopt});
     ASSERT_FALSE(tolerance);
-    EXPECT_EQ(tolerance.error(), "tolerance 256 is outside 0..255 (8-bit steps)");
+    EXPECT_EQ(tolerance.error().message, "tolerance 256 is outside 0..255 (8-bit steps)");
     Buffers shortIds = a;
     shortIds.ids.assign(5, 1);
     Result<ImageComparison> ids = compareBuffers(a, shortIds);
     ASSERT_FALSE(ids);
-    EXPECT_EQ(ids.error(), "reference: 5 ids for 12 pixels");
+    EXPECT_EQ(ids.error().message, "reference: 5 ids for 12 pixels");
 }
 
 TEST(ImageCompareTest, PngsRoundTripIntoBuffers) {
@@ -181,7 +181,7 @@ TEST(ImageCompareTest, PngsRoundTripIntoBuffers) {
     ASSERT_TRUE(writeFileAtomic(color, encodeColorPng(render)));
     ASSERT_TRUE(writeFileAtomic(ids, encodeIdPng(render)));
     Result<Buffers> back = readRenderPngs(color, ids);
-    ASSERT_TRUE(back) << back.error();
+    ASSERT_TRUE(back) << back.error().message;
     EXPECT_EQ(back->rgba, render.rgba);
     EXPECT_EQ(back->ids, render.ids);
 
@@ -197,14 +197,14 @@ TEST(ImageCompareTest, PngsRoundTripIntoBuffers) {
     ASSERT_TRUE(writeFileAtomic((dir / "deep.png").string(), encodePng(1, 1, 1, 16, deep)));
     Result<Buffers> sixteen = readRenderPngs((dir / "deep.png").string());
     ASSERT_FALSE(sixteen);
-    EXPECT_EQ(sixteen.error(), (dir / "deep.png").string() + ": 16-bit PNG; colour images are compared as 8-bit");
+    EXPECT_EQ(sixteen.error().message, (dir / "deep.png").string() + ": 16-bit PNG; colour images are compared as 8-bit");
     Result<Buffers> wrongIds = readRenderPngs(color, (dir / "rgb.png").string());
     ASSERT_FALSE(wrongIds);
-    EXPECT_EQ(wrongIds.error(), (dir / "rgb.png").string() +
+    EXPECT_EQ(wrongIds.error().message, (dir / "rgb.png").string() +
                                     ": not a triangle-id image: 8-bit with 3 channels, expected 8-bit RGBA");
     Result<Buffers> missing = readRenderPngs((dir / "none.png").string());
     ASSERT_FALSE(missing);
-    EXPECT_EQ(missing.error(), (dir / "none.png").string() + ": cannot open");
+    EXPECT_EQ(missing.error().message, (dir / "none.png").string() + ": cannot open");
 }
 
 TEST(ImageCompareTest, SummaryNamesTheSides) {

@@ -114,7 +114,7 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     settings.scene = "a<b>&\"c\".obj";
     settings.shots.resize(2);
     Result<TradePageFiles> page = tradePage(report, settings);
-    ASSERT_TRUE(page) << page.error();
+    ASSERT_TRUE(page) << page.error().message;
     const std::string& html = page->html;
 
     EXPECT_EQ(html.find("a<b>"), std::string::npos) << "the scene's name is escaped";
@@ -133,7 +133,7 @@ TEST(TradePageTest, ThePageShowsTheReportAndAMaskForEachInexactMethod) {
     EXPECT_EQ(page->masks[1].first, "masks/hsr-depthsort.png");
     EXPECT_NE(html.find("<a href=\"masks/cull-paper.png\">"), std::string::npos);
     Result<DecodedImage> full = decodePng(page->masks[0].second, "mask");
-    ASSERT_TRUE(full) << full.error();
+    ASSERT_TRUE(full) << full.error().message;
     EXPECT_EQ(full->width, 40);
     EXPECT_EQ(full->height, 30);
 

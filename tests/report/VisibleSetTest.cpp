@@ -77,7 +77,7 @@ std::uint32_t& idAt(Buffers& b, int x, int imageY) {
 
 TriangleSet visible(const Scene& scene, const Buffers& b) {
     Result<TriangleSet> set = visibleSet(scene, b);
-    EXPECT_TRUE(set) << set.error();
+    EXPECT_TRUE(set) << set.error().message;
     return set ? *set : TriangleSet{};
 }
 
@@ -148,13 +148,13 @@ TEST(VisibleSetTest, UnknownIdIsReportedWithItsImagePosition) {
     idAt(b, 2, 0) = 9;  // between instance 2 (5..7) and instance 0 (20..23)
     Result<TriangleSet> set = visibleSet(scene, b);
     ASSERT_FALSE(set);
-    EXPECT_EQ(set.error(), "id 9 at pixel (2, 0) belongs to no triangle of the scene");
+    EXPECT_EQ(set.error().message, "id 9 at pixel (2, 0) belongs to no triangle of the scene");
 
     Buffers past = idFrame(4, 3);
     idAt(past, 1, 2) = 24;  // one past instance 0's last id
     set = visibleSet(scene, past);
     ASSERT_FALSE(set);
-    EXPECT_EQ(set.error(), "id 24 at pixel (1, 2) belongs to no triangle of the scene");
+    EXPECT_EQ(set.error().message, "id 24 at pixel (1, 2) belongs to no triangle of the scene");
 
     // A source no triangle has (dropped while loading) names no triangle either.
     Scene holes = sharedMeshScene();
@@ -165,7 +165,7 @@ TEST(VisibleSetTest, UnknownIdIsReportedWithItsImagePosition) {
     idAt(hole, 1, 1) = 6;
     set = visibleSet(holes, hole);
     ASSERT_FALSE(set);
-    EXPECT_EQ(set.error(), "id 6 at pixel (1, 1) belongs to no triangle of the scene");
+    EXPECT_EQ(set.error().message, "id 6 at pixel (1, 1) belongs to no triangle of the scene");
 }
 
 TEST(VisibleSetTest, FrameWithoutIdsIsAnError) {
@@ -173,7 +173,7 @@ TEST(VisibleSetTest, FrameWithoutIdsIsAnError) {
     b.ids.clear();
     const Result<TriangleSet> set = visibleSet(sharedMeshScene(), b);
     ASSERT_FALSE(set);
-    EXPECT_EQ(set.error(), "the frame has no id image");
+    EXPECT_EQ(set.error().message, "the frame has no id image");
 }
 
 TEST(VisibleSetTest, CompareSetsCountsMissesAndWaste) {

@@ -69,7 +69,7 @@ public:
         target_ = backend_->createTarget(width, height);
         EXPECT_NE(target_, kNoHandle);
         Result<SceneRenderer> made = SceneRenderer::create(*backend_, scene_);
-        EXPECT_TRUE(made) << (made ? "" : made.error());
+        EXPECT_TRUE(made) << (made ? "" : made.error().message);
         if (made) renderer_.emplace(std::move(*made));
         // As TemporalReuse does: view-projection × world, in float with glm.
         builder_.project(projection * view * world_[0], scene_.meshes[0].positions);

@@ -134,7 +134,7 @@ public:
     }
 
     bool dynamic(int instance) const { return dynamic_[std::size_t(instance)] != 0; }
-    const std::array<std::uint64_t, 4>& expectedStates() const { return expected_; }
+    const ReuseCounts& expectedStates() const { return expected_; }
     const ReuseFrameStats& stats() const { return reuse_.stats(); }
     const ReuseOptions& options() const { return reuse_.options(); }
     bool staticValid() const { return reuse_.staticValid(); }
@@ -181,7 +181,7 @@ private:
         expected_ = {};
         for (std::size_t i = 0; i < n; ++i) {
             dynamic_[i] = !previous_.empty() && !(now[i] == previous_[i]) ? 1 : 0;
-            expected_[std::size_t((was[i] ? 0 : 2) + (dynamic_[i] ? 0 : 1))] += 1;
+            countOf(expected_, (was[i] ? 0 : 2) + (dynamic_[i] ? 0 : 1)) += 1;
         }
         previous_ = std::move(now);
     }
@@ -190,7 +190,7 @@ private:
     const Scene* scene_;
     std::vector<Key> previous_;
     std::vector<std::uint8_t> dynamic_;
-    std::array<std::uint64_t, 4> expected_{};
+    ReuseCounts expected_;
 };
 
 // The checks every plan must pass, whatever its mode: rectangles inside the target, the stats
@@ -359,7 +359,7 @@ protected:
         scene = loadOrFail("builtin:dominoes?polygons=804&static=0.5544");
         ASSERT_FALSE(scene.instances.empty());
         Result<FrameSetup> setup = setUpFrame(scene, {}, 0.0, kW, kH, true);
-        ASSERT_TRUE(setup) << setup.error();
+        ASSERT_TRUE(setup) << setup.error().message;
         params = setup->params;
         world0 = setup->world;
         list = fullDrawList(scene);
@@ -384,8 +384,8 @@ protected:
         const ReuseFrameStats& s = reuse.stats();
         std::uint64_t instances = 0, tris = 0;
         for (int k = 0; k < 4; ++k) {
-            instances += s.instances[std::size_t(k)];
-            tris += s.triangles[std::size_t(k)];
+            instances += countOf(s.instances, k);
+            tris += countOf(s.triangles, k);
         }
         EXPECT_EQ(instances, n()) << label;
         EXPECT_EQ(tris, total) << label;
@@ -408,8 +408,8 @@ TEST_F(ReusePlanner, FirstFrameRebuildsWithEverythingStatic) {
     const ReuseFrameStats& s = reuse.stats();
     EXPECT_EQ(s.mode, ReuseMode::Rebuild);
     EXPECT_EQ(s.reason, "first frame");
-    EXPECT_EQ(s.instances[kSS], n());
-    EXPECT_EQ(s.triangles[kSS], total);
+    EXPECT_EQ(s.instances.ss, n());
+    EXPECT_EQ(s.triangles.ss, total);
     ASSERT_EQ(plan.size(), 3u) << "nothing dynamic: no fourth step";
     EXPECT_EQ(drawsOf(plan[1]).size(), list.size());
     EXPECT_EQ(s.copiedPx, kScreen);
@@ -427,7 +427,7 @@ TEST_F(ReusePlanner, NothingChangedIsAnEmptyReuse) {
         EXPECT_EQ(s.mode, ReuseMode::Reuse);
         EXPECT_EQ(s.reason, "camera still");
         EXPECT_TRUE(plan.empty()) << describe(plan);
-        EXPECT_EQ(s.instances[kSS], n());
+        EXPECT_EQ(s.instances.ss, n());
         EXPECT_EQ(s.redrawnTris, 0u);
         EXPECT_EQ(s.copiedPx + s.clearedPx + s.rects, 0u);
         EXPECT_EQ(s.drawnTris, total);
@@ -452,9 +452,9 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
         FramePlan plan = step(reuse, w1, "frame 1");
         const ReuseFrameStats* s = &reuse.stats();
         EXPECT_EQ(s->mode, ReuseMode::Reuse);
-        EXPECT_EQ(s->instances[kSD], 1u);
-        EXPECT_EQ(s->instances[kSS], n() - 1);
-        EXPECT_EQ(s->triangles[kSD], 12u);
+        EXPECT_EQ(s->instances.sd, 1u);
+        EXPECT_EQ(s->instances.ss, n() - 1);
+        EXPECT_EQ(s->triangles.sd, 12u);
         EXPECT_TRUE(reuse.dynamic(j));
         EXPECT_TRUE(covers(maskOf(clearsOf(plan)), old0));
         if (paper) {
@@ -477,8 +477,8 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
         plan = step(reuse, w2, "frame 2");
         s = &reuse.stats();
         EXPECT_EQ(s->mode, ReuseMode::Reuse);
-        EXPECT_EQ(s->instances[kDD], 1u);
-        EXPECT_EQ(s->instances[kSS], n() - 1);
+        EXPECT_EQ(s->instances.dd, 1u);
+        EXPECT_EQ(s->instances.ss, n() - 1);
         EXPECT_TRUE(clearsOf(plan).empty());
         EXPECT_TRUE(covers(maskOf(rectsOf(plan, Op::Copy, S, R)), old1));
         EXPECT_EQ(s->staticRedrawnTris, 0u);
@@ -488,7 +488,7 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
         plan = step(reuse, w2, "frame 3");
         s = &reuse.stats();
         EXPECT_EQ(s->mode, ReuseMode::Reuse);
-        EXPECT_EQ(s->instances[kDS], 1u);
+        EXPECT_EQ(s->instances.ds, 1u);
         EXPECT_FALSE(reuse.dynamic(j));
         if (paper) {
             // Its pixels from frame 2 are kept and copied back; nothing cleared, nothing drawn.
@@ -509,7 +509,7 @@ TEST_F(ReusePlanner, OneInstanceMovesStopsAndRests) {
 
         // Frame 4, P_ss: nothing at all.
         plan = step(reuse, w2, "frame 4");
-        EXPECT_EQ(reuse.stats().instances[kSS], n());
+        EXPECT_EQ(reuse.stats().instances.ss, n());
         EXPECT_TRUE(plan.empty()) << describe(plan);
     }
 }
@@ -586,7 +586,7 @@ TEST_F(ReusePlanner, EverythingDynamicFallsBackToFull) {
     for (int i = 1; i < 8; ++i) {
         step(reuse, moved(all, 0.05f * float(i)), "frame " + std::to_string(i));
         const ReuseFrameStats& s = reuse.stats();
-        EXPECT_EQ(s.instances[kSD] + s.instances[kDD], n()) << "frame " << i;
+        EXPECT_EQ(s.instances.sd + s.instances.dd, n()) << "frame " << i;
         EXPECT_EQ(s.mode, ReuseMode::Full) << "frame " << i << ": everything moves, reuse cannot pay; " << s.reason
                                            << " (copied " << s.copiedPx << ", cleared " << s.clearedPx << ")";
         modes += toString(s.mode) + std::string(" ");
@@ -634,29 +634,29 @@ TEST_F(ReusePlanner, MaterialChangesMakeTheirInstancesDynamic) {
     scene.materials[2].baseColorFactor.g += 0.01f;
     FramePlan plan = step(reuse, world0, "colour");
     EXPECT_EQ(reuse.stats().mode, ReuseMode::Reuse);
-    EXPECT_EQ(reuse.stats().instances[kSD], users(2));
+    EXPECT_EQ(reuse.stats().instances.sd, users(2));
     ASSERT_FALSE(plan.empty());
     for (const DrawCommand& c : plan.back().draws) EXPECT_EQ(c.instance % 6, 2);
     step(reuse, world0, "after colour");
-    EXPECT_EQ(reuse.stats().instances[kDS], users(2));
+    EXPECT_EQ(reuse.stats().instances.ds, users(2));
 
     scene.materials[4].doubleSided = true;
     step(reuse, world0, "sidedness");
-    EXPECT_EQ(reuse.stats().instances[kSD], users(4));
-    EXPECT_EQ(reuse.stats().instances[kDS], 0u);
+    EXPECT_EQ(reuse.stats().instances.sd, users(4));
+    EXPECT_EQ(reuse.stats().instances.ds, 0u);
     step(reuse, world0, "after sidedness");
-    EXPECT_EQ(reuse.stats().instances[kDS], users(4));
+    EXPECT_EQ(reuse.stats().instances.ds, users(4));
 
     scene.materials[1].baseColorTexture = 0;  // a texture index (the scene has none: never drawn here)
     step(reuse, world0, "texture");
-    EXPECT_EQ(reuse.stats().instances[kSD], users(1));
+    EXPECT_EQ(reuse.stats().instances.sd, users(1));
     scene.materials[1].baseColorTexture = -1;
     step(reuse, world0, "texture back");
-    EXPECT_EQ(reuse.stats().instances[kDD], users(1));
+    EXPECT_EQ(reuse.stats().instances.dd, users(1));
     step(reuse, world0, "rest");
-    EXPECT_EQ(reuse.stats().instances[kDS], users(1));
+    EXPECT_EQ(reuse.stats().instances.ds, users(1));
     step(reuse, world0, "rest 2");
-    EXPECT_EQ(reuse.stats().instances[kSS], n());
+    EXPECT_EQ(reuse.stats().instances.ss, n());
 }
 
 TEST_F(ReusePlanner, LeavingAndJoiningTheDrawListAreChanges) {
@@ -670,20 +670,20 @@ TEST_F(ReusePlanner, LeavingAndJoiningTheDrawListAreChanges) {
 
     FramePlan plan = step(reuse, world0, "left", &without);
     EXPECT_EQ(reuse.stats().mode, ReuseMode::Reuse);
-    EXPECT_EQ(reuse.stats().instances[kSD], 1u);
+    EXPECT_EQ(reuse.stats().instances.sd, 1u);
     EXPECT_EQ(reuse.stats().drawnTris, total - 12);
     EXPECT_TRUE(covers(maskOf(clearsOf(plan)), old));
     for (const PlanStep& s : plan)
         for (const DrawCommand& c : drawsOf(s)) EXPECT_NE(c.instance, j) << "not in the list: never drawn";
 
     step(reuse, world0, "still away", &without);
-    EXPECT_EQ(reuse.stats().instances[kDS], 1u);
+    EXPECT_EQ(reuse.stats().instances.ds, 1u);
     plan = step(reuse, world0, "still away 2", &without);
-    EXPECT_EQ(reuse.stats().instances[kSS], n());
+    EXPECT_EQ(reuse.stats().instances.ss, n());
     EXPECT_TRUE(plan.empty());
 
     plan = step(reuse, world0, "back", &list);
-    EXPECT_EQ(reuse.stats().instances[kSD], 1u);
+    EXPECT_EQ(reuse.stats().instances.sd, 1u);
     ASSERT_FALSE(plan.empty());
     ASSERT_EQ(plan.back().draws.size(), 1u);
     EXPECT_EQ(plan.back().draws[0].instance, j);
@@ -696,14 +696,14 @@ TEST_F(ReusePlanner, LeavingAndJoiningTheDrawListAreChanges) {
     for (DrawCommand& c : split)
         if (c.instance == j) c.ranges = {{0, 5}, {5, 7}};
     step(reuse, world0, "partial", &partial);
-    EXPECT_EQ(reuse.stats().instances[kSD], 1u);
+    EXPECT_EQ(reuse.stats().instances.sd, 1u);
     EXPECT_EQ(reuse.stats().drawnTris, total - 6);
     step(reuse, world0, "whole again", &list);
-    EXPECT_EQ(reuse.stats().instances[kDD], 1u);
+    EXPECT_EQ(reuse.stats().instances.dd, 1u);
     step(reuse, world0, "whole, rest", &list);
-    EXPECT_EQ(reuse.stats().instances[kDS], 1u);
+    EXPECT_EQ(reuse.stats().instances.ds, 1u);
     step(reuse, world0, "split", &split);
-    EXPECT_EQ(reuse.stats().instances[kSS], n()) << "{0,5},{5,7} draws what {0,12} draws";
+    EXPECT_EQ(reuse.stats().instances.ss, n()) << "{0,5},{5,7} draws what {0,12} draws";
 }
 
 TEST_F(ReusePlanner, MatricesAreComparedBitForBit) {
@@ -715,14 +715,14 @@ TEST_F(ReusePlanner, MatricesAreComparedBitForBit) {
     std::vector<glm::mat4> world = world0;
     world[std::size_t(nodeOf(j))][3][1] = nan;
     step(reuse, world, "frame 0");
-    EXPECT_EQ(reuse.stats().instances[kSS], n()) << "the first frame counts everything static";
+    EXPECT_EQ(reuse.stats().instances.ss, n()) << "the first frame counts everything static";
     step(reuse, world, "frame 1: same NaN");
-    EXPECT_EQ(reuse.stats().instances[kSS], n());
+    EXPECT_EQ(reuse.stats().instances.ss, n());
     world[std::size_t(nodeOf(j))][3][0] += 1.0f;  // a NaN pose, other bits
     step(reuse, world, "frame 2: NaN moved");
-    EXPECT_EQ(reuse.stats().instances[kSD], 1u);
+    EXPECT_EQ(reuse.stats().instances.sd, 1u);
     step(reuse, world, "frame 3: same NaN");
-    EXPECT_EQ(reuse.stats().instances[kDS], 1u);
+    EXPECT_EQ(reuse.stats().instances.ds, 1u);
     // -0 for +0 (a model matrix entry that is +0 in world0).
     glm::mat4& m = world[std::size_t(nodeOf(k))];
     int row = -1, column = -1;
@@ -736,8 +736,8 @@ TEST_F(ReusePlanner, MatricesAreComparedBitForBit) {
     ASSERT_GE(row, 0);
     m[column][row] = -0.0f;
     step(reuse, world, "frame 4: -0");
-    EXPECT_EQ(reuse.stats().instances[kSD], 1u);
-    EXPECT_EQ(reuse.stats().instances[kSS], n() - 1);
+    EXPECT_EQ(reuse.stats().instances.sd, 1u);
+    EXPECT_EQ(reuse.stats().instances.ss, n() - 1);
 }
 
 TEST_F(ReusePlanner, RedrawsFollowAnyListOrder) {
@@ -779,12 +779,12 @@ TEST_F(ReusePlanner, StatesFollowTheAnimation) {
             const std::vector<glm::mat4> world = scene.worldTransforms(frameTime(f, scene.fps));
             step(reuse, world, "frame " + std::to_string(f));
             const ReuseFrameStats& s = reuse.stats();
-            std::array<std::uint64_t, 4> expected{};
+            ReuseCounts expected;
             std::vector<bool> dynamic(n(), false);
             for (std::size_t i = 0; i < n(); ++i) {
                 const std::size_t node = std::size_t(nodeOf(int(i)));
                 dynamic[i] = f > 0 && world[node] != previous[node];
-                expected[std::size_t((wasDynamic[i] ? 0 : 2) + (dynamic[i] ? 0 : 1))] += 1;
+                countOf(expected, (wasDynamic[i] ? 0 : 2) + (dynamic[i] ? 0 : 1)) += 1;
             }
             EXPECT_EQ(s.instances, expected) << "frame " << f;
             EXPECT_EQ(s.mode, f == 0 ? ReuseMode::Rebuild : ReuseMode::Reuse) << "frame " << f << ": " << s.reason;

@@ -68,7 +68,7 @@ TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {
     const SequenceResult r = expectExact(scene, 160, 120, 12, animated(scene, {}, 160, 120));
     EXPECT_EQ(r.modes(), "RFFFFFFFFFFF") << r.describe();
     for (std::size_t i = 1; i < r.stats.size(); ++i) {
-        EXPECT_EQ(r.stats[i].instances[kSD] + r.stats[i].instances[kDD], scene.instances.size()) << i;
+        EXPECT_EQ(r.stats[i].instances.sd + r.stats[i].instances.dd, scene.instances.size()) << i;
         EXPECT_FALSE(r.stats[i].reason.empty());
     }
     // Without the fallback the reuse path runs on every frame, and is exact too.
@@ -87,7 +87,7 @@ TEST(ReuseSequence, DefaultSceneWholeAnimationMatchesExactly) {
     for (bool paper : {false, true}) {
         const SequenceResult r = expectExact(scene, 200, 150, frames, animated(scene, {}, 200, 150), reuseOptions(16, 16, true, paper));
         EXPECT_EQ(r.modes(), "R" + std::string(std::size_t(frames - 1), 'U')) << r.describe();
-        EXPECT_EQ(r.stats.back().instances[kSS], scene.instances.size()) << "everything at rest at the end";
+        EXPECT_EQ(r.stats.back().instances.ss, scene.instances.size()) << "everything at rest at the end";
     }
 }
 
@@ -105,7 +105,7 @@ TEST(ReuseSequence, DefaultSceneTiesAreExactFloorDominoTies) {
     const Frames sequence = [&scene](int i) { return frameAt(scene, {}, frameTime(first + i, scene.fps), w, h); };
     auto backend = makeSoftwareBackend();
     Result<SceneRenderer> made = SceneRenderer::create(*backend, scene);
-    ASSERT_TRUE(made) << made.error();
+    ASSERT_TRUE(made) << made.error().message;
     const TargetHandle alone = backend->createTarget(w, h);
     const auto instanceOf = [&scene](std::uint32_t id) {
         int found = -1;
@@ -234,8 +234,8 @@ TEST(ReuseSequence, ObjectsAppear) {
     });
     const std::vector<SequenceResult> results = expectExactEveryWay(scene, 160, 120, 18, frames);
     const SequenceResult& r = results.front();
-    EXPECT_EQ(r.stats[6].instances[kSD], 1u) << "the added instance is dynamic when it appears";
-    EXPECT_EQ(r.stats[14].instances[kSD], 1u) << "and when it leaves";
+    EXPECT_EQ(r.stats[6].instances.sd, 1u) << "the added instance is dynamic when it appears";
+    EXPECT_EQ(r.stats[14].instances.sd, 1u) << "and when it leaves";
 }
 
 TEST(ReuseSequence, NothingDynamic) {
@@ -246,7 +246,7 @@ TEST(ReuseSequence, NothingDynamic) {
     for (std::size_t i = 1; i < r.stats.size(); ++i) {
         EXPECT_EQ(r.stats[i].redrawnTris, 0u) << i;
         EXPECT_EQ(r.stats[i].copiedPx + r.stats[i].clearedPx + r.stats[i].rects, 0u) << i;
-        EXPECT_EQ(r.stats[i].instances[kSS], scene.instances.size()) << i;
+        EXPECT_EQ(r.stats[i].instances.ss, scene.instances.size()) << i;
     }
     // A static scene built here too (no animation at all).
     Scene built;
@@ -560,8 +560,8 @@ TEST(ReuseSequence, GltfWithNodeAnimation) {
     // (the stepped scale only on its key frames); afterwards nothing is.
     const SequenceResult& r = results[2];
     EXPECT_EQ(r.modes(), "R" + std::string(35, 'U')) << r.describe();
-    EXPECT_EQ(r.stats[5].instances[kDD] + r.stats[5].instances[kSD], 4u) << r.describe();
-    EXPECT_EQ(r.stats[35].instances[kSS], 6u);
+    EXPECT_EQ(r.stats[5].instances.dd + r.stats[5].instances.sd, 4u) << r.describe();
+    EXPECT_EQ(r.stats[35].instances.ss, 6u);
 }
 
 // Real files that carry animations (assimp-testmodels), when installed: what they animate may be
@@ -577,12 +577,12 @@ TEST(ReuseSequence, InstalledGltfFilesWithAnimations) {
         if (!fs::exists(file)) continue;
         SCOPED_TRACE(file.string());
         Result<Scene> loaded = loadScene(file.string());
-        ASSERT_TRUE(loaded) << loaded.error();
+        ASSERT_TRUE(loaded) << loaded.error().message;
         const Scene& scene = *loaded;
         if (scene.animations.empty() || scene.instances.empty()) continue;
         // One camera for the whole sequence: fitted at time 0, then held.
         Result<FrameSetup> setup0 = setUpFrame(scene, {}, 0.0, 128, 96, true);
-        ASSERT_TRUE(setup0) << setup0.error();
+        ASSERT_TRUE(setup0) << setup0.error().message;
         const FrameParams params = setup0->params;
         const double duration = std::max(scene.duration(), 0.1);
         const Frames frames = [&scene, params, duration](int i) {
@@ -631,7 +631,7 @@ TEST(ReuseSequence, CoplanarStaticAndDynamicQuadsTie) {
 
     auto backend = makeSoftwareBackend();
     Result<SceneRenderer> made = SceneRenderer::create(*backend, scene);
-    ASSERT_TRUE(made) << made.error();
+    ASSERT_TRUE(made) << made.error().message;
     const int w = 160, h = 120;
     const TargetHandle alone = backend->createTarget(w, h);
     // The pixels each quad covers when drawn alone, at frame i.

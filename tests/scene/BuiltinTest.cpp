@@ -32,7 +32,7 @@ TEST(BuiltinTest, DominoesMatchThePaperSceneSizes) {
     for (const DominoCase& c : cases) {
         SCOPED_TRACE(c.spec);
         Result<Scene> scene = loadScene(c.spec);
-        ASSERT_TRUE(scene) << scene.error();
+        ASSERT_TRUE(scene) << scene.error().message;
         EXPECT_EQ(scene->triangleCount(), 2 * c.polygons);
         for (int frame : {c.moving, c.moving + 5, int(c.polygons / 6) - 1}) EXPECT_EQ(changedInstances(*scene, frame), c.moving);
         EXPECT_EQ(scene->cameras.size(), 1u);
@@ -41,11 +41,11 @@ TEST(BuiltinTest, DominoesMatchThePaperSceneSizes) {
 
 TEST(BuiltinTest, DefaultHasATexturedFloor) {
     Result<Scene> scene = loadScene("builtin:default");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     ASSERT_EQ(scene->textures.size(), 1u);
     EXPECT_EQ(scene->triangleCount(), 2u * 804 + 2);
     Result<Scene> bare = loadScene("builtin:dominoes");
-    ASSERT_TRUE(bare) << bare.error();
+    ASSERT_TRUE(bare) << bare.error().message;
     EXPECT_TRUE(bare->textures.empty()) << "the floor is what builtin:default adds";
 
     // Exactly one instance samples the texture: a flat two-triangle quad facing up, lying under
@@ -126,13 +126,13 @@ TEST(BuiltinTest, BadSpecsGetOneLineErrors) {
     for (const auto& [spec, message] : cases) {
         Result<Scene> scene = loadScene(spec);
         ASSERT_FALSE(scene) << spec;
-        EXPECT_EQ(scene.error(), message);
+        EXPECT_EQ(scene.error().message, message);
     }
 }
 
 TEST(BuiltinTest, UnknownFormatsAndMissingFiles) {
-    EXPECT_EQ(loadScene("/nonexistent/scene.fbx").error(), "/nonexistent/scene.fbx: no such file");
-    EXPECT_EQ(loadScene("/etc/hostname").error(),
+    EXPECT_EQ(loadScene("/nonexistent/scene.fbx").error().message, "/nonexistent/scene.fbx: no such file");
+    EXPECT_EQ(loadScene("/etc/hostname").error().message,
               "/etc/hostname: unknown scene format '' (frugal reads .gltf, .glb, .obj and builtin:NAME)");
 }
 
@@ -145,8 +145,8 @@ namespace {
 TEST(BuiltinTest, CopiesLaySeveralScenesSideBySideWithTheirOwnIds) {
     Result<Scene> one = loadScene("builtin:cubes?count=2&seed=5");
     Result<Scene> three = loadScene("builtin:copies?count=3&of=builtin:cubes?count=2&seed=5");
-    ASSERT_TRUE(one) << one.error();
-    ASSERT_TRUE(three) << three.error();
+    ASSERT_TRUE(one) << one.error().message;
+    ASSERT_TRUE(three) << three.error().message;
     EXPECT_EQ(three->triangleCount(), 3 * 24u);
     EXPECT_EQ(three->meshes.size(), 2u) << "meshes are shared";
     EXPECT_TRUE(three->cameras.empty());
@@ -157,8 +157,8 @@ TEST(BuiltinTest, CopiesLaySeveralScenesSideBySideWithTheirOwnIds) {
     EXPECT_GT(b.max.x - b.min.x, 2.5f * (one->bounds(0.0).max.x - one->bounds(0.0).min.x));
     EXPECT_NE(three->worldTransforms(0.0), three->worldTransforms(1.0));
 
-    EXPECT_EQ(loadScene("builtin:copies?count=2").error(), "builtin:copies?count=2: parameter 'of' (the scene to copy) is missing");
-    EXPECT_EQ(loadScene("builtin:copies?of=/nonexistent.obj").error(), "/nonexistent.obj: no such file");
+    EXPECT_EQ(loadScene("builtin:copies?count=2").error().message, "builtin:copies?count=2: parameter 'of' (the scene to copy) is missing");
+    EXPECT_EQ(loadScene("builtin:copies?of=/nonexistent.obj").error().message, "/nonexistent.obj: no such file");
 }
 
 }  // namespace
@@ -170,7 +170,7 @@ namespace {
 TEST(BuiltinTest, OrbitCirclesAStaticSceneWithCubesThatStartAndStop) {
     Result<Scene> base = loadScene("builtin:cubes?count=3");
     Result<Scene> orbit = loadScene("builtin:orbit?count=5&seconds=2&duty=0.5&of=builtin:cubes?count=3");
-    ASSERT_TRUE(base.ok() && orbit.ok()) << (orbit.ok() ? "" : orbit.error());
+    ASSERT_TRUE(base.ok() && orbit.ok()) << (orbit.ok() ? "" : orbit.error().message);
     EXPECT_EQ(orbit->instances.size(), base->instances.size() + 5);
     ASSERT_EQ(orbit->cameras.size(), 1u);  // one fixed camera of its own
     // The camera node is not animated: the view is the same at every frame.
@@ -198,14 +198,14 @@ TEST(BuiltinTest, OrbitCirclesAStaticSceneWithCubesThatStartAndStop) {
 
     Result<Scene> missing = loadScene("builtin:orbit?count=2");
     ASSERT_FALSE(missing.ok());
-    EXPECT_NE(missing.error().find("parameter 'of'"), std::string::npos) << missing.error();
+    EXPECT_NE(missing.error().message.find("parameter 'of'"), std::string::npos) << missing.error().message;
     EXPECT_FALSE(loadScene("builtin:orbit?duty=0&of=builtin:cubes").ok());
 }
 
 }  // namespace
 TEST(BuiltinTest, MaterialsSpreadsDrawsOverMeshesMaterialsAndTextures) {
     Result<Scene> scene = loadScene("builtin:materials?draws=50&meshes=10&shapes=3&materials=6&textures=2&seed=7");
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->instances.size(), 50u);
     EXPECT_EQ(scene->meshes.size(), 10u);
     EXPECT_EQ(scene->materials.size(), 6u);

@@ -97,10 +97,10 @@ TEST_P(FuzzFinding, EndsInItsOutcome) {
     const Result<Scene> scene = loadAsFuzzed(kDir / finding.file, name);
     if (finding.error) {
         ASSERT_FALSE(scene.ok()) << finding.file << " loaded";
-        EXPECT_EQ(scene.error(), withName(name, finding.error));
+        EXPECT_EQ(scene.error().message, withName(name, finding.error));
         return;
     }
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     const std::vector<std::string> expected =
         finding.warning ? std::vector<std::string>{withName(name, finding.warning)} : std::vector<std::string>{};
     EXPECT_EQ(scene->warnings, expected);
@@ -139,7 +139,7 @@ TEST(FuzzFindingsTest, BuiltinScenesOverTheBudgetAreRefusedWithTheirNumbers) {
     for (const auto& [spec, error] : cases) {
         const Result<Scene> scene = makeBuiltin(spec);
         ASSERT_FALSE(scene.ok()) << spec;
-        EXPECT_EQ(scene.error(), error);
+        EXPECT_EQ(scene.error().message, error);
     }
 }
 
@@ -156,7 +156,7 @@ TEST(FuzzFindingsTest, AMaterialLibraryThatIsNotARegularFileIsNotRead) {
         const fs::path obj = dir / "in.obj";
         test::writeFile(obj, std::string("mtllib ") + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         const Result<Scene> scene = loadObj(obj.string());
-        ASSERT_TRUE(scene.ok()) << scene.error();
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
         EXPECT_EQ(scene->warnings,
                   std::vector<std::string>{obj.string() + ": material library '" + name + "' is not a readable file"});
     }
@@ -167,7 +167,7 @@ TEST(FuzzFindingsTest, AMaterialLibraryWithAnExponentOfTenDigitsIsNotRead) {
     test::writeFile(dir / "m.mtl", "newmtl red\nKd 1 0 0\nNs 1e2147483648\n");
     test::writeFile(dir / "in.obj", "mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const Result<Scene> scene = loadObj((dir / "in.obj").string());
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_FALSE(scene->warnings.empty());
     EXPECT_EQ(scene->warnings[0], (dir / "in.obj").string() +
                                       ": material library 'm.mtl' not read: line 3: a number with an exponent of 10 "

@@ -354,10 +354,10 @@ TEST_P(GltfAssimpModel, LoadsOrFailsAsExpected) {
     const Result<Scene> scene = loadGltf(path);
     if (c.error) {
         ASSERT_FALSE(scene.ok()) << path << " loaded";
-        EXPECT_EQ(scene.error(), path + ": " + c.error);
+        EXPECT_EQ(scene.error().message, path + ": " + c.error);
         return;
     }
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->meshes.size(), c.meshes);
     EXPECT_EQ(scene->triangleCount(), c.triangles);
     EXPECT_EQ(scene->instances.size(), c.instances);
@@ -395,7 +395,7 @@ INSTANTIATE_TEST_SUITE_P(AllFiles, GltfAssimpModel, testing::ValuesIn(assimpCase
 
 TEST(GltfAssimpModelsTest, TexturedBoxHasItsImageSamplerAndUvs) {
     const Result<Scene> scene = loadGltf(std::string(FRUGAL_ASSIMP_GLTF2_DIR) + "/BoxTextured-glTF/BoxTextured.gltf");
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->textures.size(), 1u);
     const Texture& texture = scene->textures[0];
     EXPECT_EQ(texture.width, 211);  // CesiumLogoFlat.png
@@ -412,7 +412,7 @@ TEST(GltfAssimpModelsTest, TexturedBoxHasItsImageSamplerAndUvs) {
 TEST(GltfAssimpModelsTest, APrimitiveWithoutTheUvsOfItsTextureGetsAnUntexturedMaterial) {
     const std::string path = std::string(FRUGAL_ASSIMP_GLTF2_DIR) + "/issue_3269/texcoord_crash.gltf";
     const Result<Scene> scene = loadGltf(path);
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     // Mesh 0 ("TopRightMesh") has only TEXCOORD_1; its material 4 ("TopRightMat") samples TEXCOORD_0.
     ASSERT_EQ(scene->materials.size(), 6u);
     EXPECT_EQ(scene->materials[5].name, "TopRightMat (untextured)");
@@ -766,8 +766,8 @@ TEST_P(GltfBadFile, FailsWithTheExactMessage) {
     const std::string path = writeGltf(test::freshDir(std::string("GltfBadFile_") + c.name), "bad", asset);
     const Result<Scene> scene = load(path);
     ASSERT_FALSE(scene.ok()) << c.name << " loaded";
-    EXPECT_EQ(scene.error(), path + ": " + c.error);
-    EXPECT_EQ(scene.error().find('\n'), std::string::npos);
+    EXPECT_EQ(scene.error().message, path + ": " + c.error);
+    EXPECT_EQ(scene.error().message.find('\n'), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rules, GltfBadFile, testing::ValuesIn(badCases()),
@@ -778,7 +778,7 @@ TEST(GltfLoaderTest, TheUnmodifiedTestQuadLoadsInEveryContainer) {
     for (const std::string& path : {writeGltf(dir, "external", quad()), writeEmbedded(dir, "embedded", quad()),
                                     writeGlb(dir, "binary", quad())}) {
         const Result<Scene> scene = load(path);
-        ASSERT_TRUE(scene.ok()) << scene.error();
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
         ASSERT_EQ(scene->meshes.size(), 1u);
         EXPECT_EQ(scene->meshes[0].name, "quad");
         EXPECT_EQ(scene->meshes[0].indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
@@ -823,29 +823,29 @@ TEST(GltfLoaderTest, FileProblemsAreReported) {
         const std::string path = (dir / c.file).string();
         const Result<Scene> scene = loadGltf(path);
         ASSERT_FALSE(scene.ok()) << c.file;
-        EXPECT_EQ(scene.error(), path + ": " + c.error);
+        EXPECT_EQ(scene.error().message, path + ": " + c.error);
     }
-    EXPECT_EQ(loadGltf((dir / "missing.gltf").string()).error(), (dir / "missing.gltf").string() + ": no such file");
-    EXPECT_EQ(loadGltf(dir.string()).error(), dir.string() + ": is a directory, not a file");
+    EXPECT_EQ(loadGltf((dir / "missing.gltf").string()).error().message, (dir / "missing.gltf").string() + ": no such file");
+    EXPECT_EQ(loadGltf(dir.string()).error().message, dir.string() + ": is a directory, not a file");
 }
 
 TEST(GltfLoaderTest, BufferProblemsAreReportedWithTheirSizes) {
     const fs::path dir = test::freshDir("GltfBufferProblems");
     const std::string path = writeGltf(dir, "short", quad());
     test::writeFile(dir / "short.bin", quad().bin.substr(0, 50));
-    EXPECT_EQ(load(path).error(), path + ": buffers[0].uri: 'short.bin' has 50 bytes, byteLength says 60");
+    EXPECT_EQ(load(path).error().message, path + ": buffers[0].uri: 'short.bin' has 50 bytes, byteLength says 60");
 
     Asset embedded = quad();
     embedded.json["buffers"] = {
         {{"byteLength", 64}, {"uri", "data:application/octet-stream;base64," + base64(embedded.bin)}}};
     test::writeFile(dir / "embedded.gltf", embedded.json.dump());
-    EXPECT_EQ(load((dir / "embedded.gltf").string()).error(),
+    EXPECT_EQ(load((dir / "embedded.gltf").string()).error().message,
               (dir / "embedded.gltf").string() + ": buffers[0].uri: the data URI holds 60 bytes, byteLength says 64");
 
     Asset noUri = quad();
     noUri.json["buffers"] = {{{"byteLength", 60}}};
     test::writeFile(dir / "nouri.gltf", noUri.json.dump());
-    EXPECT_EQ(load((dir / "nouri.gltf").string()).error(),
+    EXPECT_EQ(load((dir / "nouri.gltf").string()).error().message,
               (dir / "nouri.gltf").string() + ": buffers[0]: no uri (only buffer 0 of a .glb may use the BIN chunk)");
 
     // A .glb whose buffer claims more bytes than its BIN chunk holds.
@@ -854,7 +854,7 @@ TEST(GltfLoaderTest, BufferProblemsAreReportedWithTheirSizes) {
     const std::string declared = "\"byteLength\":60";
     glb.replace(glb.find(declared), declared.size(), "\"byteLength\":64");
     test::writeFile(dir / "big.glb", glb);
-    EXPECT_EQ(load((dir / "big.glb").string()).error(),
+    EXPECT_EQ(load((dir / "big.glb").string()).error().message,
               (dir / "big.glb").string() + ": buffers[0]: byteLength 64 exceeds the GLB BIN chunk (60 bytes)");
 }
 
@@ -875,20 +875,20 @@ TEST(GltfLoaderTest, EveryTruncatedPrefixOfAGlbFailsCleanly) {
 
     test::writeFile(file, bytes);
     const Result<Scene> whole = load(path);
-    ASSERT_TRUE(whole.ok()) << whole.error();
+    ASSERT_TRUE(whole.ok()) << whole.error().message;
     ASSERT_EQ(whole->textures.size(), 1u);
 
     for (std::size_t length = 0; length < bytes.size(); ++length) {
         test::writeFile(file, bytes.substr(0, length));
         const Result<Scene> scene = load(path);
         ASSERT_FALSE(scene.ok()) << "prefix of " << length << " bytes loaded";
-        ASSERT_EQ(scene.error().rfind(path + ": ", 0), 0u) << scene.error();
-        ASSERT_EQ(scene.error().find('\n'), std::string::npos) << scene.error();
+        ASSERT_EQ(scene.error().message.rfind(path + ": ", 0), 0u) << scene.error().message;
+        ASSERT_EQ(scene.error().message.find('\n'), std::string::npos) << scene.error().message;
     }
     test::writeFile(file, bytes.substr(0, 7));
-    EXPECT_EQ(load(path).error(), path + ": truncated GLB: 7 bytes, the header alone needs 12");
+    EXPECT_EQ(load(path).error().message, path + ": truncated GLB: 7 bytes, the header alone needs 12");
     test::writeFile(file, bytes.substr(0, 100));
-    EXPECT_EQ(load(path).error(), path + ": truncated GLB: the header declares " + std::to_string(bytes.size()) +
+    EXPECT_EQ(load(path).error().message, path + ": truncated GLB: the header declares " + std::to_string(bytes.size()) +
                                       " bytes, the file has 100");
 }
 
@@ -903,7 +903,7 @@ TEST(GltfLoaderTest, GlbWithUnalignedChunksAndAnExtraChunkIsRepacked) {
     const fs::path dir = test::freshDir("GltfRepackedGlb");
     test::writeFile(dir / "loose.glb", "glTF" + u32(2) + u32(12 + body.size()) + body);
     const Result<Scene> scene = load((dir / "loose.glb").string());
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->triangleCount(), 2u);
 }
 
@@ -928,7 +928,7 @@ TEST(GltfLoaderTest, NodeHierarchyAndTransformsRoundTrip) {
     };
     const std::string path = writeGltf(test::freshDir("GltfHierarchy"), "tree", asset);
     const Result<Scene> scene = load(path);
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->nodes.size(), 4u);
     EXPECT_EQ(scene->roots, (std::vector<int>{0}));
     EXPECT_EQ(scene->nodes[0].name, "root");
@@ -961,20 +961,20 @@ TEST(GltfLoaderTest, SceneChoiceDefaultSceneThenSceneZeroThenAllRoots) {
     asset.json["scene"] = 1;
     const fs::path dir = test::freshDir("GltfSceneChoice");
     Result<Scene> scene = load(writeGltf(dir, "default", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->roots, (std::vector<int>{1, 2}));
     EXPECT_EQ(scene->instances.size(), 2u);
 
     asset.json.erase("scene");
     scene = load(writeGltf(dir, "first", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->roots, (std::vector<int>{0}));
     EXPECT_EQ(scene->instances.size(), 1u);
 
     asset.json.erase("scenes");
     asset.json["nodes"][0]["children"] = {2};
     scene = load(writeGltf(dir, "none", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->roots, (std::vector<int>{0, 1}));
     EXPECT_EQ(scene->instances.size(), 3u);
 }
@@ -995,14 +995,14 @@ TEST(GltfLoaderTest, TriangleStripsAndFansKeepTheirWinding) {
     // Strip with top row 0, 2, 4 and bottom row 1, 3 (spec: triangle i = i, i+1+i%2, i+2-i%2).
     const Result<Scene> strip =
         load(writeGltf(dir, "strip", stripAsset(5, {0, 1, 0, 0, 0, 0, 1, 1, 0, 1, 0, 0, 2, 1, 0}, 5)));
-    ASSERT_TRUE(strip.ok()) << strip.error();
+    ASSERT_TRUE(strip.ok()) << strip.error().message;
     const Mesh& s = strip->meshes[0];
     EXPECT_EQ(s.indices, (std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4}));
     EXPECT_EQ(s.triangleSource, (std::vector<std::uint32_t>{0, 1, 2}));
     // Fan around vertex 0 (spec: triangle i = i+1, i+2, 0).
     const Result<Scene> fan =
         load(writeGltf(dir, "fan", stripAsset(6, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0}, 5)));
-    ASSERT_TRUE(fan.ok()) << fan.error();
+    ASSERT_TRUE(fan.ok()) << fan.error().message;
     const Mesh& f = fan->meshes[0];
     EXPECT_EQ(f.indices, (std::vector<std::uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0}));
     EXPECT_EQ(f.triangleSource, (std::vector<std::uint32_t>{0, 1, 2}));
@@ -1014,7 +1014,7 @@ TEST(GltfLoaderTest, TriangleStripsAndFansKeepTheirWinding) {
         }
     // Fewer than three vertices: no triangle, no error.
     const Result<Scene> tiny = load(writeGltf(dir, "tiny", stripAsset(5, {0, 0, 0, 1, 0, 0}, 2)));
-    ASSERT_TRUE(tiny.ok()) << tiny.error();
+    ASSERT_TRUE(tiny.ok()) << tiny.error().message;
     EXPECT_EQ(tiny->triangleCount(), 0u);
 }
 
@@ -1033,7 +1033,7 @@ TEST(GltfLoaderTest, NormalizedIntegerAttributesFollowTheSpecFormulas) {
     attributes["TEXCOORD_1"] =
         asset.accessor(bytesOf<std::uint16_t>({0, 65535, 32768, 0, 65535, 65535, 1, 2}), kUShort, "VEC2", 4, true);
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfNormalized"), "normalized", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Mesh& mesh = scene->meshes[0];
     ASSERT_EQ(mesh.colors.size(), 4u);
     EXPECT_FLOAT_EQ(mesh.colors[0].r, 1.0f);
@@ -1061,7 +1061,7 @@ TEST(GltfLoaderTest, ColoursAsVec3AndUnsignedShortsGetAlphaOne) {
     asset.primitive()["attributes"]["COLOR_0"] = asset.accessor(
         bytesOf<std::uint16_t>({65535, 0, 0, 0, 65535, 0, 0, 0, 65535, 0, 0, 0}), kUShort, "VEC3", 4, true);
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfColourVec3"), "rgb", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Mesh& mesh = scene->meshes[0];
     ASSERT_EQ(mesh.colors.size(), 4u);
     EXPECT_EQ(mesh.colors[1], glm::vec4(0, 1, 0, 1));
@@ -1082,7 +1082,7 @@ TEST(GltfLoaderTest, StridedAndSparseAccessorsAreRead) {
         {"count", 2}, {"indices", {{"bufferView", 3}, {"componentType", kUByte}}}, {"values", {{"bufferView", 4}}}};
     asset.primitive()["attributes"]["POSITION"] = position;
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfSparse"), "sparse", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     const Mesh& mesh = scene->meshes[0];
     ASSERT_EQ(mesh.positions.size(), 4u);
     expectNear(mesh.positions[0], {0, 0, 0});
@@ -1097,7 +1097,7 @@ TEST(GltfLoaderTest, NonFinitePositionsDropTheirTrianglesWithAWarning) {
     asset.accessor(bytesOf<float>({0, 0, 0, 1, 0, 0, 1, NAN, 0, 0, 1, 0}), kFloat, "VEC3", 4);
     const std::string path = writeGltf(test::freshDir("GltfNonFinite"), "nan", asset);
     const Result<Scene> scene = load(path);
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->triangleCount(), 0u);  // both triangles use vertex 2
     ASSERT_EQ(scene->warnings.size(), 1u);
     EXPECT_EQ(scene->warnings[0], path + ": mesh 'quad' primitive 0: dropped 2 triangles with non-finite positions");
@@ -1119,7 +1119,7 @@ TEST(GltfLoaderTest, CamerasAreAttachedToTheirNodes) {
                            {{"camera", 0}},
                            {{"camera", 2}}};  // node 3 is outside the scene
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfCameras"), "cameras", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->cameras.size(), 2u);
     const SceneCamera& ortho = scene->cameras[0];  // in node order: node 1 first
     EXPECT_EQ(ortho.name, "ortho");
@@ -1144,7 +1144,7 @@ TEST(GltfLoaderTest, CamerasAreAttachedToTheirNodes) {
     // Absent aspect ratio and far plane: 0 (viewport aspect, infinite far plane).
     asset.json["nodes"][2]["camera"] = 2;
     const Result<Scene> infinite = load(writeGltf(test::freshDir("GltfCamerasInfinite"), "cameras", asset));
-    ASSERT_TRUE(infinite.ok()) << infinite.error();
+    ASSERT_TRUE(infinite.ok()) << infinite.error().message;
     EXPECT_FLOAT_EQ(infinite->cameras[1].aspect, 0.0f);
     EXPECT_FLOAT_EQ(infinite->cameras[1].zfar, 0.0f);
 }
@@ -1175,7 +1175,7 @@ TEST(GltfLoaderTest, AnimationChannelsRoundTrip) {
            {{"input", times}, {"output", weights}}}}},
     };
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfAnimation"), "animated", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     ASSERT_EQ(scene->animations.size(), 1u);
     const Animation& animation = scene->animations[0];
     EXPECT_EQ(animation.name, "move");
@@ -1236,7 +1236,7 @@ TEST(GltfLoaderTest, TexturesOfEveryPngFormatBecomeRgba8) {
         asset.primitive()["attributes"]["TEXCOORD_0"] =
             asset.accessor(bytesOf<float>({0, 0, 1, 0, 1, 1, 0, 1}), kFloat, "VEC2", 4);
         const Result<Scene> scene = load(writeGlb(test::freshDir("GltfPng" + std::to_string(i)), "png", asset));
-        ASSERT_TRUE(scene.ok()) << scene.error();
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
         ASSERT_EQ(scene->textures.size(), 1u);
         const Texture& texture = scene->textures[0];
         EXPECT_EQ(texture.name, "tex");
@@ -1262,7 +1262,7 @@ TEST(GltfLoaderTest, UndecodableImageLeavesTheMaterialUntexturedWithAWarning) {
     asset.json["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
     asset.primitive()["material"] = 0;
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfBadImage"), "bad", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->materials[0].baseColorTexture, -1);
     EXPECT_TRUE(scene->textures.empty());
     // Two warnings: the primitive has no TEXCOORD_0, and the image does not decode.
@@ -1294,7 +1294,7 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     asset.json["nodes"][0]["extensions"] = {{"EXT_lights_image_based", Json::object()}};
     asset.json["nodes"][0]["extras"] = {{"extensions", {{"NOT_AN_EXTENSION", Json::object()}}}};
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     const std::vector<std::string> expected = {"KHR_materials_unlit", "EXT_lights_image_based", "skins",
                                                "morph targets",       "primitive mode LINES",   "alphaMode MASK",
                                                "normalTexture",       "occlusionTexture",       "emissiveTexture",
@@ -1311,7 +1311,7 @@ TEST(GltfLoaderTest, APrimitiveWithoutPositionsIsSkippedWithAWarning) {
     asset.primitive()["attributes"] = {{"NORMAL", 0}};
     const std::string path = writeGltf(test::freshDir("GltfNoPosition"), "nopos", asset);
     const Result<Scene> scene = load(path);
-    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_TRUE(scene->meshes.empty());
     EXPECT_EQ(scene->warnings,
               (std::vector<std::string>{path + ": mesh 0 primitive 0: no POSITION attribute, not drawn"}));

@@ -29,35 +29,35 @@ TEST(SceneBuildTest, BadValuesAreRefusedWithTheirNumbers) {
     Scene scene;
     Mesh mesh = quad();
     mesh.indices[4] = 9;
-    EXPECT_EQ(scene.addMesh(mesh).error(), "mesh: index 9 (triangle 1) is past the 4 vertices");
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh: index 9 (triangle 1) is past the 4 vertices");
     mesh = quad();
     mesh.positions[2].y = std::nanf("");
-    EXPECT_EQ(scene.addMesh(mesh).error(), "mesh: position 2 is (1, nan, 0), not finite");
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh: position 2 is (1, nan, 0), not finite");
     mesh = quad();
     mesh.indices.pop_back();
-    EXPECT_EQ(scene.addMesh(mesh).error(), "mesh: 5 indices are not whole triangles (3 a triangle)");
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh: 5 indices are not whole triangles (3 a triangle)");
     mesh = quad();
     mesh.uvs.resize(3);
     mesh.name = "q";
-    EXPECT_EQ(scene.addMesh(mesh).error(), "mesh 'q': 3 uvs for 4 vertices (one a vertex, or none)");
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh 'q': 3 uvs for 4 vertices (one a vertex, or none)");
     mesh = quad();
     mesh.material = 2;
-    EXPECT_EQ(scene.addMesh(mesh).error(), "mesh: material 2 does not exist (the scene has 0)");
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh: material 2 does not exist (the scene has 0)");
     Texture texture;
     texture.width = texture.height = 64;
     texture.rgba.resize(12288);
-    EXPECT_EQ(scene.addTexture(texture).error(), "texture: 12288 bytes for 64x64 RGBA (16384 expected)");
+    EXPECT_EQ(scene.addTexture(texture).error().message, "texture: 12288 bytes for 64x64 RGBA (16384 expected)");
     Material material;
     material.baseColorTexture = 0;
-    EXPECT_EQ(scene.addMaterial(material).error(), "material: texture 0 does not exist (the scene has 0)");
-    EXPECT_EQ(scene.addInstance(0, glm::mat4(1.0f)).error(), "instance: mesh 0 does not exist (the scene has 0)");
+    EXPECT_EQ(scene.addMaterial(material).error().message, "material: texture 0 does not exist (the scene has 0)");
+    EXPECT_EQ(scene.addInstance(0, glm::mat4(1.0f)).error().message, "instance: mesh 0 does not exist (the scene has 0)");
     EXPECT_TRUE(scene.meshes.empty() && scene.textures.empty() && scene.materials.empty() && scene.nodes.empty());
 
     ASSERT_EQ(*scene.addMesh(quad()), 0);
     glm::mat4 infinite(1.0f);
     infinite[3][1] = INFINITY;
-    EXPECT_EQ(scene.addInstance(0, infinite).error(), "instance: transform: row 1, column 3 is inf, not finite");
-    EXPECT_EQ(scene.setTransform(3, glm::mat4(1.0f)).error(), "node 3 does not exist (the scene has 0)");
+    EXPECT_EQ(scene.addInstance(0, infinite).error().message, "instance: transform: row 1, column 3 is inf, not finite");
+    EXPECT_EQ(scene.setTransform(3, glm::mat4(1.0f)).error().message, "node 3 does not exist (the scene has 0)");
 }
 
 TEST(SceneBuildTest, AMeshIsFinishedAsALoaderFinishesIt) {
@@ -88,7 +88,7 @@ TEST(SceneBuildTest, ARendererMovesANodeBetweenFrames) {
     settings.height = 32;
     settings.ids = true;
     Result<Renderer> renderer = Renderer::create(std::move(scene), settings);
-    ASSERT_TRUE(renderer) << renderer.error();
+    ASSERT_TRUE(renderer) << renderer.error().message;
     const Camera camera = Camera::lookAt({0, 0, 8}, {0, 0, 0}, 40.0f);
     const auto covered = [](const Frame& f, bool left) {
         std::size_t n = 0;
@@ -98,7 +98,7 @@ TEST(SceneBuildTest, ARendererMovesANodeBetweenFrames) {
         return n;
     };
     Result<Frame> before = renderer->render(camera, 0.0);
-    ASSERT_TRUE(before) << before.error();
+    ASSERT_TRUE(before) << before.error().message;
     EXPECT_GT(covered(*before, true), 0u);
     EXPECT_EQ(covered(*before, false), 0u);
     ASSERT_TRUE(renderer->setTransform(node, at(2, 0, 0)));
@@ -108,10 +108,10 @@ TEST(SceneBuildTest, ARendererMovesANodeBetweenFrames) {
         after.emplace(renderer->render(camera, 0.0));
         renderer->releaseThread();
     }).join();
-    ASSERT_TRUE(*after) << after->error();
+    ASSERT_TRUE(*after) << after->error().message;
     EXPECT_EQ(covered(**after, true), 0u);
     EXPECT_EQ(covered(**after, false), covered(*before, true));
-    EXPECT_EQ(renderer->setTransform(node, at(0, NAN, 0)).error(), "node 0: transform: row 1, column 3 is nan, not finite");
+    EXPECT_EQ(renderer->setTransform(node, at(0, NAN, 0)).error().message, "node 0: transform: row 1, column 3 is nan, not finite");
 }
 
 }  // namespace

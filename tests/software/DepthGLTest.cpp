@@ -59,8 +59,8 @@ Buffers render(Backend& backend, const Scene& scene, int width, int height, cons
     Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
     Result<FrameSetup> setup = setUpFrame(scene, camera, 0.0, width, height, true, format);
     EXPECT_NE(target, kNoHandle);
-    EXPECT_TRUE(renderer) << renderer.error();
-    EXPECT_TRUE(setup) << setup.error();
+    EXPECT_TRUE(renderer) << renderer.error().message;
+    EXPECT_TRUE(setup) << setup.error().message;
     if (target == kNoHandle || !renderer || !setup) return {};
     if (projection) setup->params.projection = *projection;
     renderer->renderFrame(target, width, height, setup->params, setup->world, kBackground);
@@ -86,7 +86,7 @@ protected:
 // (aspect 1 on a wider image) is the stretched picture the test would catch.
 TEST_F(DepthGLTest, AFileCameraIsNotStretched) {
     Result<Scene> scene = loadScene(enginePath());
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     ASSERT_EQ(scene->cameras.size(), 1u);
     ASSERT_EQ(scene->cameras[0].aspect, 1.0f);
     const glm::mat4 node = scene->worldTransforms(0.0)[std::size_t(scene->cameras[0].node)];
@@ -119,7 +119,7 @@ TEST_F(DepthGLTest, AFileCameraIsNotStretched) {
 // surfaces that flip when the near plane moves by one part in 10^6, and by 1 %. Fitted: none.
 TEST_F(DepthGLTest, TheFittedRangeDoesNotZFight) {
     Result<Scene> scene = loadScene(enginePath());
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     const float near = scene->cameras[0].znear;
     const Buffers reference = render(*llvmpipe, *scene, 800, 600, {}, DepthFormat::D32F);
     std::map<std::string, std::size_t> wrong, flips, bigFlips;
@@ -280,7 +280,7 @@ TEST_F(DepthGLTest, TheFitChangesOnlyPixelsWhereTrianglesTieInDepth) {
     std::size_t changed = 0, explained = 0;
     for (const Frame& f : frames) {
         Result<Scene> scene = loadScene(f.scene);
-        ASSERT_TRUE(scene) << scene.error();
+        ASSERT_TRUE(scene) << scene.error().message;
         const int width = 800, height = 600;
         Camera fileCamera, fitCamera;
         fileCamera.depthRange = DepthRange::File;

@@ -28,7 +28,7 @@ namespace frugal::test {
 inline std::unique_ptr<Backend> makeReference() {
     Result<std::unique_ptr<Backend>> backend = createGlBackend(BackendChoice::EglSurfaceless);
     if (!backend) {
-        ADD_FAILURE() << backend.error();
+        ADD_FAILURE() << backend.error().message;
         return nullptr;
     }
     return std::move(*backend);

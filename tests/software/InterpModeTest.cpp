@@ -73,7 +73,7 @@ Departure departure(const Buffers& exact, const Buffers& other) {
 
 Buffers renderCubes(Backend& backend, int width, int height) {
     Result<Scene> scene = loadScene("builtin:cubes");
-    EXPECT_TRUE(scene) << scene.error();
+    EXPECT_TRUE(scene) << scene.error().message;
     if (!scene) return {};
     // The camera's own planes (0.1 to 42 around cubes 11 to 21 away), as paper 001's engine was
     // measured: the fitted planes make the depth's slope across a span ~50 times steeper, and the
@@ -115,7 +115,7 @@ TEST(InterpModeTest, SpanIsWithinTwoLsbOfExactAndFlipsOnlyNearTies) {
     EXPECT_EQ(d.colourNotFlipped, 0u) << "colour is per fragment: it changes only with the winner";
     // A flip is a near tie: each surface moved by at most 1 LSB, so the two winners' depths are close.
     EXPECT_LE(d.worstFlippedDepth, 2u);
-    const std::optional<InterpStats> stats = softwareInterpStats(*spanned);
+    const std::optional<InterpCounters> stats = softwareInterpStats(*spanned);
     ASSERT_TRUE(stats);
     EXPECT_GT(stats->spans, 0u);
     EXPECT_GE(stats->pixels, stats->spans);
@@ -165,7 +165,7 @@ TEST(InterpModeTest, RunsAreTheKernelsCoverage) {
 
 // One quad across a 4096-pixel-wide target, window depth from 0.05 at the left edge to 0.95 at the
 // right (about 3700 LSB per pixel): rows of runs thousands of pixels long.
-Buffers renderSteepQuad(span::Interp mode, InterpStats* stats) {
+Buffers renderSteepQuad(span::Interp mode, InterpCounters* stats) {
     constexpr int kWidth = 4096, kHeight = 16;
     const std::vector<glm::vec3> positions = {{-1.0f, -1.0f, -0.9f}, {1.0f, -1.0f, 0.9f}, {1.0f, 1.0f, 0.9f},
                                               {-1.0f, -1.0f, -0.9f}, {1.0f, 1.0f, 0.9f},  {-1.0f, 1.0f, -0.9f}};
@@ -186,7 +186,7 @@ Buffers renderSteepQuad(span::Interp mode, InterpStats* stats) {
 }
 
 TEST(InterpModeTest, DdaErrorGrowsAlongALongSteepSpan) {
-    InterpStats stats[3];
+    InterpCounters stats[3];
     const Buffers exact = renderSteepQuad(span::Interp::Exact, &stats[0]);
     const Buffers spanned = renderSteepQuad(span::Interp::Span, &stats[1]);
     const Buffers dda = renderSteepQuad(span::Interp::Dda, &stats[2]);
@@ -220,7 +220,7 @@ TEST(InterpModeTest, DdaErrorGrowsAlongALongSteepSpan) {
 
 // The slow path on its own (rasterInterp, tile by tile) over a triangle of 4096-pixel rows with
 // about 3900 LSB per pixel of depth gradient, in each mode; Exact is the line through each run's ends.
-std::vector<std::uint32_t> rasterDirect(span::Interp mode, InterpStats* stats) {
+std::vector<std::uint32_t> rasterDirect(span::Interp mode, InterpCounters* stats) {
     constexpr int kWidth = 4096, kHeight = 16;
     const sw::Viewport viewport = sw::makeViewport(kWidth, kHeight);
     sw::SetupVertex v[3] = {{0.2f, 0.3f, 0.02f, 1.0f, {}}, {4095.7f, 1.1f, 0.97f, 1.0f, {}}, {0.4f, 15.9f, 0.03f, 1.0f, {}}};
@@ -245,7 +245,7 @@ std::vector<std::uint32_t> rasterDirect(span::Interp mode, InterpStats* stats) {
 }
 
 TEST(InterpModeTest, EngineStaysWithinOneLsbOfTheExactLine) {
-    InterpStats stats[3];
+    InterpCounters stats[3];
     const std::vector<std::uint32_t> line = rasterDirect(span::Interp::Exact, &stats[0]);
     const std::vector<std::uint32_t> spanned = rasterDirect(span::Interp::Span, &stats[1]);
     const std::vector<std::uint32_t> dda = rasterDirect(span::Interp::Dda, &stats[2]);
@@ -260,7 +260,7 @@ TEST(InterpModeTest, EngineStaysWithinOneLsbOfTheExactLine) {
     EXPECT_GT(covered, std::size_t(4096 * 4));
     EXPECT_LE(spanWorst, 1u);
     EXPECT_GT(ddaWorst, spanWorst);
-    for (const InterpStats& s : stats) EXPECT_EQ(s.overflow, 0u) << span::describeOverflow(s.overflowBits);
+    for (const InterpCounters& s : stats) EXPECT_EQ(s.overflow, 0u) << span::describeOverflow(s.overflowBits);
 }
 
 TEST(InterpModeTest, CoveredRunMatchesTheEdgeFunctions) {

@@ -41,7 +41,7 @@ struct MatrixCase {
 
 Scene loaded(const std::string& spec) {
     Result<Scene> scene = loadScene(spec);
-    EXPECT_TRUE(scene) << scene.error();
+    EXPECT_TRUE(scene) << scene.error().message;
     return scene ? std::move(*scene) : Scene{};
 }
 
@@ -198,20 +198,20 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     std::unique_ptr<Backend> software = makeSoftwareBackend();
 
     Result<FrameSetup> setup = setUpFrame(scene, c.camera, 0.0, c.width, c.height, true);
-    ASSERT_TRUE(setup) << setup.error();
+    ASSERT_TRUE(setup) << setup.error().message;
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
         const TargetHandle target = backends[k]->createTarget(c.width, c.height);
         ASSERT_NE(target, kNoHandle);
         Result<SceneRenderer> renderer = SceneRenderer::create(*backends[k], scene);
-        ASSERT_TRUE(renderer) << renderer.error();
+        ASSERT_TRUE(renderer) << renderer.error().message;
         renderer->renderFrame(target, c.width, c.height, setup->params, setup->world, glm::vec4(0.12f, 0.13f, 0.15f, 1.0f));
         images[k] = backends[k]->readBack(target);
     }
 
     Result<ImageComparison> compared = compareBuffers(images[0], images[1]);
-    ASSERT_TRUE(compared) << compared.error();
+    ASSERT_TRUE(compared) << compared.error().message;
     const ImageComparison& r = *compared;
     std::size_t covered = 0;
     for (std::uint32_t id : images[1].ids) covered += id != 0;

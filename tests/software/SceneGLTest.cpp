@@ -60,7 +60,7 @@ protected:
 
 TEST_F(SceneGLTest, BuiltinDefault) {
     Result<Scene> scene = loadScene("builtin:default");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     EXPECT_GT(check(*scene, "builtin:default", 800, 600).covered, 0u);
     check(*scene, "builtin:default", 61, 47);
     check(*scene, "builtin:default", 320, 240, 0.0, false);
@@ -68,13 +68,13 @@ TEST_F(SceneGLTest, BuiltinDefault) {
 
 TEST_F(SceneGLTest, BuiltinCubesOverTime) {
     Result<Scene> scene = loadScene("builtin:cubes");
-    ASSERT_TRUE(scene) << scene.error();
+    ASSERT_TRUE(scene) << scene.error().message;
     for (double time : {0.0, 2.5, 7.0}) EXPECT_GT(check(*scene, "builtin:cubes", 800, 600, time).covered, 0u);
 }
 
 TEST_F(SceneGLTest, Bunny) {
     Result<Scene> scene = loadScene(FRUGAL_BUNNY_OBJ);
-    ASSERT_TRUE(scene) << scene.error() << " (install glmark2-data: scripts/install-deps --tests)";
+    ASSERT_TRUE(scene) << scene.error().message << " (install glmark2-data: scripts/install-deps --tests)";
     EXPECT_GT(check(*scene, "bunny", 800, 600).covered, 0u);
     check(*scene, "bunny", 800, 600, 0.0, false);
     check(*scene, "bunny", 1920, 1080);

@@ -50,7 +50,7 @@ TEST(RunningStateCostsTest, OnePreemptedRoundDoesNotMoveTheAverage) {
 TEST(StateCostProbeTest, EachRoundGivesEveryKindAFiniteCost) {
     const std::unique_ptr<Backend> backend = makeSoftwareBackend();
     Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(*backend);
-    ASSERT_TRUE(probe) << probe.error();
+    ASSERT_TRUE(probe) << probe.error().message;
     for (int phase = 0; phase < 3; ++phase) {
         const StateCostSample s = (*probe)->round(20, phase);
         EXPECT_GT(s.drawUs, 0.0);
@@ -61,7 +61,7 @@ TEST(StateCostProbeTest, EachRoundGivesEveryKindAFiniteCost) {
 TEST(StateCostProbeTest, TheReportNamesEveryKindAndTimesFirstUse) {
     const std::unique_ptr<Backend> backend = makeSoftwareBackend();
     Result<StateCostReport> report = measureStateCosts(*backend, 2, 10);
-    ASSERT_TRUE(report) << report.error();
+    ASSERT_TRUE(report) << report.error().message;
     ASSERT_EQ(report->costs.size(), kStateKinds);
     for (std::size_t k = 0; k < kStateKinds; ++k) {
         EXPECT_EQ(report->costs[k].kind, kStateKindNames[k]);
