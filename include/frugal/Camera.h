@@ -91,6 +91,22 @@ struct View {
     std::string source;  // "scene camera 0 'name'", "eye/target", "auto (fit bounds)"
 };
 
+// True when a scene camera's own aspect ratio (View::fileAspect) and a width × height image's differ
+// by more than rounding the image to whole pixels explains (the image is then drawn with the
+// camera's vertical extent and the image's aspect ratio, not stretched).
+bool aspectDiffers(float fileAspect, int width, int height);
+
+// The image size for a camera of aspect ratio `aspect` when none is asked for: the longer side
+// `longSide` pixels, the other rounded (at least 1). The command line sizes its image so.
+void sizeForAspect(float aspect, int longSide, int& width, int& height);
+
+// `camera` resolved for a width × height frame of `scene` at `seconds`, as Renderer::render
+// resolves it (Frame::view), without rendering: its matrices and planes before any backend opens.
+// Errors (BadInput): "camera 3: the scene has 1 camera", "eye and target coincide at (0, 0, 0)", ...
+struct Scene;
+Result<View> resolveView(const Scene& scene, const Camera& camera, double seconds, int width, int height,
+                         DepthFormat format = DepthFormat::D24);
+
 // A camera path: the JSON file at `path`, a list of {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],
 // "fov":degrees} ("up" and "fov" optional; {"views": [...]} is taken too), one Camera an entry
 // (eye, target, up, yfovDegrees). An entry that makes no view whatever the scene is refused with

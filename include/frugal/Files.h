@@ -12,8 +12,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <frugal/Image.h>
@@ -105,6 +109,32 @@ private:
     struct Impl;
     explicit FrameWriter(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
+};
+
+// Other files, written as the images are: all or nothing. Error (Io): "<path>: <why>".
+Result<bool> writeFile(const std::string& path, std::string_view bytes);
+// A whole file, such as a settings file or a manifest; nothing when it cannot be read.
+std::optional<std::string> readFile(const std::string& path);
+// Whether `path` ends in `extension` (".pfm"), in any case: how writeFrame tells a PFM depth file
+// from a PNG one.
+bool hasExtension(const std::string& path, const std::string& extension);
+
+// Several files that appear together or not at all (a report's JSON, CSV and script; a frame's
+// images). commit() writes each to a temporary name in its folder, created exclusively, and only
+// when every write succeeded renames them into place; if a rename fails, the files already renamed
+// are taken back (a file that existed before gets its old contents back). A file given as an
+// encoder's error fails the commit before anything is written. SIGINT, SIGTERM and SIGHUP wait
+// while it runs. A link is followed (its file replaced, the link kept); a device or a pipe
+// (/dev/null, a terminal) is written in place.
+class FileSet {
+public:
+    void add(std::string path, Result<std::vector<std::uint8_t>> bytes);
+    void add(std::string path, std::string_view text);
+    Result<bool> commit();
+    bool empty() const { return files_.empty(); }
+
+private:
+    std::vector<std::pair<std::string, Result<std::vector<std::uint8_t>>>> files_;
 };
 
 }  // namespace frugal

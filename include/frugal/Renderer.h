@@ -42,6 +42,11 @@ struct Frame {
     View view;  // the camera as resolved for this frame: matrices, planes, aspect ratios
 };
 
+// The line for an allocation that failed all the same (std::bad_alloc), past the memory checks made
+// before a target is made: "out of memory: an allocation failed (ulimit -v: 3.8 GB left once the
+// command's memory was freed)". frugal's main prints it.
+std::string outOfMemoryMessage();
+
 class Renderer {
 public:
     // Opens the backend, prepares what the settings ask for and uploads `scene`, which the renderer

@@ -147,7 +147,7 @@ struct Scene {
     // A world-space box that holds every instance's triangles at every time, animations included:
     // conservative, not tight, where something moves (a part that rotates counts as the ball it can
     // sweep; computeEnvelope). Set by buildInstances(); empty when nothing is drawn. Depth ranges
-    // are fitted to it (render/Camera.h), so a still camera keeps one projection while parts move.
+    // are fitted to it (pipeline/Camera.h), so a still camera keeps one projection while parts move.
     Bounds envelope;
 
     // Rebuilds `instances` (and their ids) from the node hierarchy, and `envelope`. Loaders call it
@@ -200,6 +200,9 @@ struct LoadOptions {
 // drawn as given ("bunny.obj: line 12: 'nan' in a v line is not finite"). Features that are not
 // modelled (skins, morph targets, ...) load, are listed in Scene::unsupported and drawn without.
 Result<Scene> loadScene(const std::string& spec, const LoadOptions& options = {});
+
+// Scene time of frame `frame` (0-based) at `fps` frames per second: frame / fps.
+double frameTime(int frame, double fps);
 
 // Names and one-line descriptions of the built-in scenes, with their parameters.
 std::vector<std::pair<std::string, std::string>> builtinScenes();

@@ -286,7 +286,6 @@ struct SettingInfo {
     long long min = 0, max = 0;        // Whole and Pair: each number's range
     std::vector<ChoiceInfo> choices;   // Choice: every value, in the enum's order
     bool flag = true;       // a flag of the commands that render (ids is not: `render --ids FILE` sets it)
-    std::vector<std::string> conflicts;  // the settings it may not go with (settingsProblem says when)
     std::function<SettingValue(const Settings&)> get;
     std::function<void(Settings&, const SettingValue&)> put;  // a value setSetting accepted
 

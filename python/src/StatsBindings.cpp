@@ -154,15 +154,6 @@ private:
 
 py::tuple vec3(const glm::vec3& v) { return py::make_tuple(v.x, v.y, v.z); }
 
-// The render JSON's "aspect_ratio_differs": a scene camera's own aspect ratio is not the image's,
-// beyond what rounding the image's size from it leaves (src/render/Camera.cpp's aspectDiffers,
-// which is not public).
-bool aspectDiffers(float fileAspect, int width, int height) {
-    if (!(fileAspect > 0.0f)) return false;
-    const double a = fileAspect;
-    return std::abs(double(width) - a * double(height)) > 0.5 * std::max(1.0, a) + 1e-9;
-}
-
 }  // namespace
 
 void bindStats(py::module_& m) {

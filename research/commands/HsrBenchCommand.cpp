@@ -4,14 +4,15 @@
 #include <optional>
 #include <ostream>
 
+#include <frugal/Files.h>
+
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "commands/LabCommands.h"
 #include "app/ReportOutputs.h"
-#include "io/ImageIO.h"
 #include "lab/HsrBench.h"
 #include "lab/HsrReport.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 
@@ -46,7 +47,7 @@ Result<bool> writeMasks(const std::string& masksDir, const std::vector<HsrWorstI
     std::error_code ec;
     std::filesystem::create_directories(masksDir, ec);
     if (ec) return Error{"masks " + masksDir + ": cannot create the folder: " + ec.message(), ErrorKind::Io, true};
-    OutputSet files;
+    FileSet files;
     const std::filesystem::path dir(masksDir);
     for (const HsrWorstImages& image : worst) {
         files.add((dir / (image.mode + "_mask.png")).string(), encodeMaskPng(image.compared));
@@ -98,7 +99,7 @@ int runHsrBench(const std::vector<std::string>& args, std::ostream& out, std::os
     const HsrBenchSettings settings{options.scene,        options.settings, options.frames->first,
                                     options.frames->last, repeat,                    warmup,
                                     !masksDir.empty()};
-    const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(options, *loaded, frame, false); };
+    const FrameSetupOf setupOf = frameSetups(options, *loaded, false);
     Result<HsrBenchResult> measured = measureHsr(*loaded, settings, setupOf, progressTo(err, options.quiet));
     if (!measured) return fail(err, measured.error());
     if (!masksDir.empty())

@@ -50,7 +50,7 @@ int runOrderBench(const std::vector<std::string>& args, std::ostream& out, std::
 
     Result<Scene> loaded = loadForRender(options, err);
     if (!loaded) return fail(err, loaded.error());
-    Result<FrameSetup> setup = setUpFrame(options, *loaded, options.frames ? options.frames->first : 0, false);
+    Result<FrameSetup> setup = frameSetups(options, *loaded, false)(options.frames ? options.frames->first : 0);
     if (!setup) return fail(err, setup.error());
     const OrderBenchSettings settings{options.scene, options.settings, runs, warmup};
     Result<OrderBenchResult> measured = measureOrders(*loaded, *setup, settings, progressTo(err, options.quiet));

@@ -105,7 +105,7 @@ int runReuseBench(const std::vector<std::string>& args, std::ostream& out, std::
     if (std::optional<int> status = parseReuseBench(a, args, out, err)) return *status;
     Result<Scene> loaded = loadForRender(a.options, err);
     if (!loaded) return fail(err, loaded.error());
-    const FrameSetupOf setupOf = [&](int frame) { return setUpFrame(a.options, *loaded, frame, a.ids); };
+    const FrameSetupOf setupOf = frameSetups(a.options, *loaded, a.ids);
     Result<ReuseMeasurement> measured = measureReuse(*loaded, settingsOf(a), setupOf, [&](const std::string& line) {
         if (!a.options.quiet) err << line << "\n";
     });

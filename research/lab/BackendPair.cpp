@@ -1,5 +1,7 @@
 #include "lab/BackendPair.h"
 
+#include "lab/SceneInfo.h"
+
 #include <utility>
 
 namespace frugal {

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lab/ImageCompare.h"
+#include "lab/Views.h"
 #include "renderer/Research.h"
 
 namespace frugal {

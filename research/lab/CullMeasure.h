@@ -15,6 +15,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
+#include "lab/Views.h"
 #include "renderer/Research.h"
 #include "lab/CullReport.h"
 

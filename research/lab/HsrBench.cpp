@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstddef>
 
+#include "lab/ImageCompare.h"
 #include "renderer/Research.h"
 
 namespace frugal {

@@ -15,6 +15,7 @@
 #include <frugal/Settings.h>
 
 #include "lab/HsrReport.h"
+#include "lab/ImageCompare.h"
 #include "renderer/Research.h"
 
 namespace frugal {

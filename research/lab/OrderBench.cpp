@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lab/SceneInfo.h"
+#include "lab/ImageCompare.h"
+#include "lab/RenderRecord.h"
 #include "renderer/Research.h"
 #include "lab/ReportText.h"
 

@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <nlohmann/json.hpp>
 
+#include "lab/SceneInfo.h"
+#include "lab/ImageCompare.h"
 #include "renderer/Research.h"
 #include "lab/MinimalFrame.h"
 

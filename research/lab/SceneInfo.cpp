@@ -179,4 +179,11 @@ Result<StateCostsOutput> stateCostsReport(const Settings& settings) {
 }
 
 
+std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs) {
+    std::string line = std::string("order ") + toString(order) + ": state costs on " + backendName + " (us):";
+    for (std::size_t k = 0; k < costs.us.size(); ++k)
+        line += (k ? ", " : " ") + costs.kinds[k] + " " + fmt(costs.us[k]);
+    return line;
+}
+
 }  // namespace frugal

@@ -7,6 +7,7 @@
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
+#include <frugal/Stats.h>
 
 namespace frugal {
 
@@ -25,5 +26,8 @@ struct StateCostsOutput {
     std::string text, json;
 };
 Result<StateCostsOutput> stateCostsReport(const Settings& settings);
+
+// "order best: state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ..." (no newline).
+std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs);
 
 }  // namespace frugal

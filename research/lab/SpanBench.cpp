@@ -59,7 +59,7 @@ Result<SceneCase> loadSceneCase(const std::string& spec, int width, int height) 
         return Error{why.message.rfind(spec + ":", 0) == 0 ? why.message : spec + ": " + why.message, why.kind};
     };
     if (!scene) return named(scene.error());
-    // The camera's own planes, not fitted to the scene (render/Camera.h): the engine's error grows
+    // The camera's own planes, not fitted to the scene (pipeline/Camera.h): the engine's error grows
     // with the depth's slope across a span, which the fit makes steeper (builtin:cubes: worst 14 LSB
     // against 2), and this reports the engine as paper 001 measured it.
     Camera camera;

@@ -10,6 +10,7 @@
 
 #include <frugal/Renderer.h>
 
+#include "lab/ImageCompare.h"
 #include "renderer/Research.h"
 
 namespace frugal {

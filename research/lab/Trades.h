@@ -22,6 +22,7 @@
 #include <frugal/Result.h>
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
+#include "lab/ImageCompare.h"
 #include "renderer/Research.h"
 
 namespace frugal {

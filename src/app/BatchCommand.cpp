@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <frugal/Files.h>
+#include <frugal/Interrupt.h>
 #include <frugal/Renderer.h>
 #include <frugal/Scene.h>
 #include <frugal/Version.h>
@@ -24,8 +26,6 @@
 #include "batch/Manifest.h"
 #include "batch/Shards.h"
 #include "batch/Slurm.h"
-#include "io/ImageIO.h"
-#include "io/Interrupt.h"
 
 namespace frugal {
 
@@ -81,7 +81,6 @@ constexpr const char* kRunning = "running.json";
 constexpr const char* kJobList = "batch.json";
 constexpr const char* kPlan = "plan.json";
 
-Bytes bytesOf(const std::string& text) { return Bytes(text.begin(), text.end()); }
 
 // The last "error: ..." line of a command's stderr, or its last line.
 std::string errorLine(const std::string& err) {
@@ -97,7 +96,7 @@ std::string errorLine(const std::string& err) {
 
 // OUT/<id>/done.json, when it is one.
 std::optional<DoneRecord> doneRecord(const fs::path& jobDir) {
-    const std::optional<std::string> text = readWholeFile((jobDir / kDone).string());
+    const std::optional<std::string> text = readFile((jobDir / kDone).string());
     return text ? parseDone(*text) : std::nullopt;
 }
 
@@ -187,7 +186,7 @@ Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& esti
     plan.count = count;
     plan.costs = correctedCosts(manifest, estimates, *done);
     plan.shardOf = assignShards(plan.costs, groupsOf(manifest), count);
-    if (Result<bool> w = writeFileAtomic((fs::path(out) / kPlan).string(), bytesOf(planJson(plan))); !w)
+    if (Result<bool> w = writeFile((fs::path(out) / kPlan).string(), planJson(plan)); !w)
         return w.error();
     return plan;
 }
@@ -197,7 +196,7 @@ Result<Plan> writePlan(const Manifest& manifest, const std::vector<double>& esti
 std::vector<int> splitOf(const Manifest& manifest, const std::vector<double>& estimates, const std::string& out,
                          int count, std::string& from) {
     const std::vector<std::size_t> groups = groupsOf(manifest);
-    if (const std::optional<std::string> text = readWholeFile((fs::path(out) / kPlan).string()))
+    if (const std::optional<std::string> text = readFile((fs::path(out) / kPlan).string()))
         if (const std::optional<Plan> plan = parsePlan(*text);
             plan && plan->manifest == manifestHash(manifest) && plan->count == count &&
             plan->shardOf.size() == manifest.jobs.size()) {
@@ -235,10 +234,10 @@ std::string runJob(const Job& job, const InputsHash& inputs, const RunOptions& o
     fs::remove(dir / kFailed, ec);
     const Json running = {{"host", hostName()}, {"pid", long(getpid())}, {"shard", std::to_string(o.shard.index) + "/" +
                                                                               std::to_string(o.shard.count)}};
-    if (Result<bool> w = writeFileAtomic((dir / kRunning).string(), bytesOf(running.dump() + "\n")); !w)
+    if (Result<bool> w = writeFile((dir / kRunning).string(), running.dump() + "\n"); !w)
         return "error: " + w.error().message;
     if (!job.settingsText.empty())
-        if (Result<bool> w = writeFileAtomic((dir / "settings.json").string(), bytesOf(job.settingsText)); !w)
+        if (Result<bool> w = writeFile((dir / "settings.json").string(), job.settingsText); !w)
             return "error: " + w.error().message;
 
     std::ostringstream out, err;
@@ -250,17 +249,17 @@ std::string runJob(const Job& job, const InputsHash& inputs, const RunOptions& o
     std::string log = "$ frugal";
     for (const std::string& word : line) log += " " + shellWord(word);
     log += "\n" + out.str() + err.str();
-    (void)writeFileAtomic((dir / "log.txt").string(), bytesOf(log));
+    (void)writeFile((dir / "log.txt").string(), log);
     std::string problem;
     if (status == kExitOk) {
         const DoneRecord record{job.id, inputs.hash, version(), seconds, inputs.reads};
-        if (Result<bool> w = writeFileAtomic((dir / kDone).string(), bytesOf(doneJson(record))); !w)
+        if (Result<bool> w = writeFile((dir / kDone).string(), doneJson(record)); !w)
             problem = "error: " + w.error().message;
     } else {
         problem = errorLine(err.str());
         if (problem.empty()) problem = "error: " + std::string(toString(job.command)) + " exited " + std::to_string(status);
         const Json failed = {{"id", job.id}, {"status", status}, {"error", problem}};
-        (void)writeFileAtomic((dir / kFailed).string(), bytesOf(failed.dump(2) + "\n"));
+        (void)writeFile((dir / kFailed).string(), failed.dump(2) + "\n");
     }
     fs::remove(dir / kRunning, ec);
     return problem;
@@ -273,7 +272,7 @@ void recordNotRun(const Job& job, const std::string& problem, const RunOptions& 
     fs::create_directories(dir, ec);
     fs::remove(dir / kDone, ec);
     const Json failed = {{"id", job.id}, {"status", kExitError}, {"error", problem}};
-    (void)writeFileAtomic((dir / kFailed).string(), bytesOf(failed.dump(2) + "\n"));
+    (void)writeFile((dir / kFailed).string(), failed.dump(2) + "\n");
 }
 
 // The manifest checked and its jobs' estimated costs.
@@ -307,7 +306,7 @@ Result<Checked> checkInto(const std::string& manifestPath, const std::string& ou
     fs::create_directories(out, ec);
     if (ec) return Error{out + ": cannot make the folder (" + ec.message() + ")", ErrorKind::Io};
     const std::string list = jobListJson(checked->manifest, checked->costs);
-    if (Result<bool> w = writeFileAtomic((fs::path(out) / kJobList).string(), bytesOf(list)); !w) return w.error();
+    if (Result<bool> w = writeFile((fs::path(out) / kJobList).string(), list); !w) return w.error();
     return checked;
 }
 
@@ -448,10 +447,10 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
     std::error_code ec;
     fs::create_directories(dir + "/slurm", ec);
     if (ec) return fail(err, Error{dir + "/slurm: cannot make the folder (" + ec.message() + ")", ErrorKind::Io});
-    OutputSet files;
-    files.add(shardsPath, bytesOf(scripts.shards));
-    files.add(mergePath, bytesOf(scripts.merge));
-    files.add(dir + "/" + kJobList, bytesOf(jobListJson(*manifest, *costs)));
+    FileSet files;
+    files.add(shardsPath, scripts.shards);
+    files.add(mergePath, scripts.merge);
+    files.add(dir + "/" + kJobList, jobListJson(*manifest, *costs));
     if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
     if (Result<Plan> plan = writePlan(*manifest, *costs, dir, o.slurm); !plan) return fail(err, plan.error());
     Result<std::string> array = runProgram(arrayCommand);
@@ -465,7 +464,7 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
     Result<std::string> mergeId = jobIdOf(*merge);
     if (!mergeId) return fail(err, mergeId.error());
     const Json jobs = {{"array", *arrayId}, {"merge", *mergeId}, {"shards", o.slurm}};
-    if (Result<bool> w = writeFileAtomic(dir + "/slurm/jobs.json", bytesOf(jobs.dump(2) + "\n")); !w)
+    if (Result<bool> w = writeFile(dir + "/slurm/jobs.json", jobs.dump(2) + "\n"); !w)
         return fail(err, w.error());
     out << "submitted: job array " << *arrayId << " (" << o.slurm << " shards of " << manifest->jobs.size()
         << " jobs), then merge job " << *mergeId << "; 'frugal batch status " << o.out << "' follows them\n";
@@ -474,7 +473,7 @@ int submitSlurm(const RunOptions& o, std::ostream& out, std::ostream& err) {
 
 // The job list an output folder holds.
 Result<Json> jobList(const std::string& dir) {
-    const std::optional<std::string> text = readWholeFile((fs::path(dir) / kJobList).string());
+    const std::optional<std::string> text = readFile((fs::path(dir) / kJobList).string());
     if (!text) return Error{dir + ": no " + kJobList + " (not the output folder of a batch)", ErrorKind::BadInput};
     Json doc = Json::parse(*text, nullptr, false);
     if (!doc.is_object() || !doc.contains("jobs") || !doc["jobs"].is_array())
@@ -498,11 +497,11 @@ int runStatus(const std::string& dir, std::ostream& out, std::ostream& err) {
             continue;
         }
         leftCost += cost;
-        if (const std::optional<std::string> text = readWholeFile((jobDir / kFailed).string())) {
+        if (const std::optional<std::string> text = readFile((jobDir / kFailed).string())) {
             const Json failed = Json::parse(*text, nullptr, false);
             failures.push_back(job.value("id", "") + ": " +
                                (failed.is_object() ? failed.value("error", std::string("?")) : std::string("?")));
-        } else if (const std::optional<std::string> runningText = readWholeFile((jobDir / kRunning).string())) {
+        } else if (const std::optional<std::string> runningText = readFile((jobDir / kRunning).string())) {
             // A record whose process is gone (killed outright) on this host: the job will not finish.
             const Json r = Json::parse(*runningText, nullptr, false);
             const bool gone = r.is_object() && r.value("host", "") == hostName() && r.contains("pid") &&
@@ -552,11 +551,11 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
         for (const std::string& name : names) {
             Json file = {{"name", name}};
             if (render && (hasExtension(name, ".png") || hasExtension(name, ".pfm") || name == "settings.json")) {
-                const std::optional<std::string> bytes = readWholeFile((jobDir / name).string());
+                const std::optional<std::string> bytes = readFile((jobDir / name).string());
                 if (!bytes) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
                 file["fnv1a"] = fnv1a(bytes->data(), bytes->size());
             } else if (hasExtension(name, ".csv")) {
-                const std::optional<std::string> csv = readWholeFile((jobDir / name).string());
+                const std::optional<std::string> csv = readFile((jobDir / name).string());
                 if (!csv) return fail(err, Error{(jobDir / name).string() + ": cannot read the file", ErrorKind::Io});
                 std::istringstream lines(*csv);
                 std::string header;
@@ -575,12 +574,12 @@ int runMerge(const std::string& dir, std::ostream& out, std::ostream& err) {
                         {"version", record->version}, {"files", files}});
         times += id + "," + entry.value("command", "") + "," + fmt(record->seconds) + "\n";
     }
-    OutputSet files;
-    files.add(dir + "/merged.json", bytesOf(Json{{"frugal_batch", 1}, {"jobs", jobs}}.dump(2) + "\n"));
-    files.add(dir + "/times.csv", bytesOf(times));
+    FileSet files;
+    files.add(dir + "/merged.json", Json{{"frugal_batch", 1}, {"jobs", jobs}}.dump(2) + "\n");
+    files.add(dir + "/times.csv", times);
     std::string joined;
     for (const auto& [name, table] : tables) {
-        files.add(dir + "/merged-" + name, bytesOf(table));
+        files.add(dir + "/merged-" + name, table);
         joined += ", merged-" + name;
     }
     if (Result<bool> written = files.commit(); !written) return fail(err, written.error());

@@ -7,13 +7,13 @@
 
 #include <malloc.h>
 
+#include <frugal/Interrupt.h>
+#include <frugal/Renderer.h>
 #include <frugal/Settings.h>
 #include <frugal/Version.h>
 
 #include "app/Commands.h"
 #include "app/Options.h"
-#include "io/Interrupt.h"
-#include "renderer/Backends.h"
 
 namespace frugal {
 

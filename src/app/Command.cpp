@@ -5,7 +5,7 @@
 
 #include "app/Cli.h"
 #include "lab/CullMeasure.h"
-#include "renderer/StateOrder.h"
+#include "lab/SceneInfo.h"
 
 namespace frugal {
 

@@ -1,15 +1,16 @@
 // `frugal compare A.png B.png`: an image against a reference, with the metrics of
-// report/ImageCompare.h. A is the image under test ("actual"), B the reference.
+// lab/ImageCompare.h. A is the image under test ("actual"), B the reference.
 #include <filesystem>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
 
+#include <frugal/Files.h>
+
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "io/ImageIO.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 
@@ -90,7 +91,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
     const ImageComparison& c = *compared;
 
     // The mask and the JSON appear together or not at all.
-    OutputSet files;
+    FileSet files;
     if (!maskPath.empty()) files.add(maskPath, encodeMaskPng(c));
     if (!jsonPath.empty()) {
         nlohmann::ordered_json j = {{"command", "compare"},
@@ -99,7 +100,7 @@ int runCompare(const std::vector<std::string>& args, std::ostream& out, std::ost
                                     {"mask", maskPath.empty() ? nullptr : nlohmann::ordered_json(maskPath)}};
         j.update(nlohmann::ordered_json::parse(comparisonJson(c)));
         const std::string text = j.dump(2) + "\n";
-        files.add(jsonPath, Bytes(text.begin(), text.end()));
+        files.add(jsonPath, text);
     }
     if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
 

@@ -9,7 +9,7 @@
 #include "app/Command.h"
 #include "app/Commands.h"
 #include "app/ReportOutputs.h"
-#include "cull/Views.h"
+#include "lab/Views.h"
 #include "lab/CullMeasure.h"
 
 namespace frugal {

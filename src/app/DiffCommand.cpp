@@ -1,5 +1,5 @@
 // `frugal diff SCENE`: the same frames rendered on a GL backend and on the software reference,
-// compared colour, ids and depth (report/ImageCompare.h). The GL image is the "actual", the
+// compared colour, ids and depth (lab/ImageCompare.h). The GL image is the "actual", the
 // software image the "reference".
 #include <array>
 #include <cstdio>
@@ -9,13 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <frugal/Files.h>
+#include <frugal/Interrupt.h>
+
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "io/ImageIO.h"
-#include "io/Interrupt.h"
 #include "lab/BackendPair.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 
@@ -44,7 +45,7 @@ Result<nlohmann::ordered_json> writeFrameImages(const std::string& imageDir, con
     const std::string names[3] = {(dir / ("actual" + std::string(suffix) + ".png")).string(),
                                   (dir / ("reference" + std::string(suffix) + ".png")).string(),
                                   (dir / ("mask" + std::string(suffix) + ".png")).string()};
-    OutputSet set;
+    FileSet set;
     set.add(names[0], encodeColorPng(images[0]));
     set.add(names[1], encodeColorPng(images[1]));
     set.add(names[2], encodeMaskPng(c));
@@ -146,7 +147,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         if (const int caught = interrupts.arrived())
             return fail(err, Error{interruptedAfter(caught, frame - range.first, range.last - range.first + 1),
                                    ErrorKind::Interrupted});
-        Result<FrameSetup> setup = setUpFrame(options, *loaded, frame, true);
+        Result<FrameSetup> setup = frameSetups(options, *loaded, true)(frame);
         if (!setup) return fail(err, setup.error());
         const std::array<Buffers, 2> images = pair->render(*setup);
         Result<ImageComparison> compared = compareBuffers(images[0], images[1], compare);
@@ -172,7 +173,7 @@ int runDiff(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         << (frameCount == 1 ? " frame" : " frames") << " within tolerance " << compare.tolerance << "\n";
     if (!jsonPath.empty()) {
         const std::string text = diffJson(options, settings, compare.tolerance, failedFrames, *pair, frames);
-        if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(text.begin(), text.end())); !written)
+        if (Result<bool> written = writeFile(jsonPath, text); !written)
             return fail(err, written.error());
     }
     return failedFrames == 0 ? kExitOk : kExitError;

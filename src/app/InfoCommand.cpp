@@ -1,10 +1,11 @@
 // `frugal info`: what a scene holds, or the backend's state-change costs (lab/SceneInfo.h).
 #include <ostream>
 
+#include <frugal/Files.h>
+
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "io/ImageIO.h"
 #include "lab/SceneInfo.h"
 
 namespace frugal {
@@ -56,7 +57,7 @@ int runInfo(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         if (!report) return fail(err, report.error());
         out << report->text;
         if (!jsonPath.empty())
-            if (Result<bool> written = writeFileAtomic(jsonPath, Bytes(report->json.begin(), report->json.end()));
+            if (Result<bool> written = writeFile(jsonPath, report->json);
                 !written)
                 return fail(err, written.error());
         return kExitOk;

@@ -162,7 +162,11 @@ Result<Scene> loadForRender(RenderOptions& options, std::ostream& err) {
     const std::string aspectWarning = fitSizeToCamera(options, *scene);
     // Check the first frame's camera before a backend is opened, so a bad camera is the only line.
     const int first = options.frames ? options.frames->first : 0;
-    if (Result<FrameSetup> setup = setUpFrame(options, *scene, first, false); !setup) return Error{setup.error().message};
+    const Settings& s = options.settings;
+    if (Result<View> view = resolveView(*scene, cameraOf(options, first), frameTimeOf(options, *scene, first), s.width,
+                                        s.height, s.depthFormat);
+        !view)
+        return Error{options.scene + ": " + view.error().message};
     for (const std::string& warning : scene->warnings) err << "warning: " << warning << "\n";
     if (!aspectWarning.empty()) err << "warning: " << aspectWarning << "\n";
     if (!scene->unsupported.empty()) {
@@ -196,13 +200,13 @@ Camera cameraOf(const RenderOptions& options, int frame) {
     return camera;
 }
 
-Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds) {
-    const Camera camera = cameraOf(options, frame);
+FrameSetupOf frameSetups(const RenderOptions& options, const Scene& scene, bool writeIds) {
     const Settings& s = options.settings;
-    Result<FrameSetup> setup =
-        frugal::setUpFrame(scene, camera, frameTimeOf(options, scene, frame), s.width, s.height, writeIds, s.depthFormat);
-    if (!setup) return Error{options.scene + ": " + setup.error().message};
-    return setup;
+    return frugal::frameSetups(scene, options.scene,
+                               [&options, &scene](int frame) {
+                                   return AskedFrame{cameraOf(options, frame), frameTimeOf(options, scene, frame)};
+                               },
+                               s.width, s.height, writeIds, s.depthFormat);
 }
 
 }  // namespace frugal

@@ -1,6 +1,6 @@
 // Command-line options shared by the commands that render (render, bench, diff): the argument
 // cursor, the shared flags, and the command-line side of frame set-up (which frame, which time).
-// The frame itself is set up by the library (render/Frame.h).
+// The frame itself is set up by the library (pipeline/Frame.h).
 #pragma once
 
 #include <algorithm>
@@ -13,15 +13,14 @@
 #include <string_view>
 #include <vector>
 
-#include "base/Format.h"
-#include "pipeline/Backend.h"
-#include "pipeline/Camera.h"
-#include "pipeline/Frame.h"
-#include "pipeline/Plan.h"
+#include <frugal/Camera.h>
+#include <frugal/Scene.h>
+#include <frugal/Settings.h>
+
 #include "app/Flags.h"
-#include "cull/Views.h"
-#include "renderer/Backends.h"
-#include "scene/Load.h"
+#include "base/Format.h"
+#include "lab/Frames.h"
+#include "lab/Views.h"
 
 namespace frugal {
 
@@ -97,7 +96,7 @@ bool oneCamera(const RenderOptions& options);
 // a view's own planes are replaced by them, given or not.
 void applyDepthOptions(const Camera& options, Camera& view);
 
-// `count` views around the scene's bounding sphere at `time` (cull/Views.h reportViews), with the
+// `count` views around the scene's bounding sphere at `time` (lab/Views.h reportViews), with the
 // options' field of view and aspect ratio, and --near, --far and --depth-range applied to each.
 // Error: "<scene>: the scene has no geometry to view".
 Result<std::vector<ReportView>> viewsAround(const RenderOptions& options, const Scene& scene, int count, double time);
@@ -122,7 +121,8 @@ Result<Scene> loadForRender(RenderOptions& options, std::ostream& err);
 // --depth-range, or the camera the options give.
 Camera cameraOf(const RenderOptions& options, int frame);
 
-// Frame `frame` as the options ask for it (render/Frame.h). Error: "<scene>: <camera problem>".
-Result<FrameSetup> setUpFrame(const RenderOptions& options, const Scene& scene, int frame, bool writeIds);
+// The frames as the options ask for them, set up as a renderer sets them up (lab/Frames.h), for the
+// harnesses. Error of a frame: "<scene>: <camera problem>".
+FrameSetupOf frameSetups(const RenderOptions& options, const Scene& scene, bool writeIds);
 
 }  // namespace frugal

@@ -8,17 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include <frugal/Files.h>
+#include <frugal/Interrupt.h>
 
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "io/ImageIO.h"
-#include "io/Interrupt.h"
-#include "pipeline/SceneRenderer.h"
-#include "renderer/Oracle.h"
-#include "renderer/StateOrder.h"
-#include "renderer/StatsJson.h"
-#include "software/SoftwareBackend.h"
+#include "lab/RenderRecord.h"
 
 namespace frugal {
 
@@ -166,64 +161,6 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
     return status;
 }
 
-// The render JSON, written as frames finish: their records go to a spool (an anonymous file, so
-// that a long sequence holds none of them in memory), and finish() puts the document together,
-// byte for byte what one nlohmann dump(2) of it would be. A record waits for the next frame, which
-// says whether a cost round ran between the two (it belongs to the earlier record).
-class RenderJson {
-public:
-    explicit RenderJson(std::string path) : path_(std::move(path)) {}
-    bool enabled() const { return !path_.empty(); }
-
-    Result<bool> add(nlohmann::json record, const FrameStats& stats) {
-        if (!enabled()) return true;
-        if (!spool_) {
-            Result<Spool> made = Spool::create(path_);
-            if (!made) return made.error();
-            spool_.emplace(std::move(*made));
-        }
-        if (!pending_.is_null()) {
-            if (const nlohmann::json refined = refinementJson(stats); !refined.is_null()) pending_.update(refined);
-            if (Result<bool> put = flush(); !put) return put;
-        }
-        pending_ = std::move(record);
-        return true;
-    }
-
-    // The whole document, "frames" filled from the spool. Error (Io): the path's.
-    Result<bool> finish(nlohmann::json meta) {
-        if (!enabled()) return true;
-        if (Result<bool> put = flush(); !put) return put;
-        meta["frames"] = nlohmann::json::array();
-        const std::string text = meta.dump(2) + "\n";
-        const std::string marker = "\"frames\": []";
-        const std::size_t at = text.find(marker);
-        const std::string head = text.substr(0, at) + "\"frames\": [\n";
-        const std::string tail = "\n  ]" + text.substr(at + marker.size());
-        return writeFileAtomic(path_,
-                               Content(Bytes(head.begin(), head.end()), *spool_, Bytes(tail.begin(), tail.end())));
-    }
-
-private:
-    // The pending record, indented as an element of "frames" (two levels: four spaces).
-    Result<bool> flush() {
-        if (pending_.is_null()) return true;
-        std::string text = (first_ ? "" : ",\n") + std::string("    ");
-        for (const char c : pending_.dump(2)) {
-            text += c;
-            if (c == '\n') text += "    ";
-        }
-        first_ = false;
-        pending_ = nullptr;
-        return spool_->append(text);
-    }
-
-    std::string path_;
-    std::optional<Spool> spool_;
-    nlohmann::json pending_;
-    bool first_ = true;
-};
-
 // The frame's files (FrameWriter writes them as one set).
 FramePaths framePaths(const Outputs& o, int index, bool sequence) {
     const auto path = [&](const std::string& given) { return given.empty() ? given : framePath(given, index, sequence); };
@@ -250,65 +187,69 @@ std::string progressLine(const Settings& s, std::size_t triangles, const FrameSt
     return line + " -> " + file;
 }
 
-}  // namespace
+// Frames whose files the writer has queued: each frame's JSON record and progress line wait until
+// its files exist (FrameWriter writes them in order), then go to the render JSON and stderr.
+class WrittenFrames {
+public:
+    WrittenFrames(RenderJsonFile& json, bool quiet, std::ostream& err) : json_(json), quiet_(quiet), err_(err) {}
 
-int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    RenderRequest r;
-    if (std::optional<int> status = parseRender(args, r, out, err)) return *status;
-    const RenderOptions& options = r.options;
-
-    Result<Scene> loaded = loadForRender(r.options, err);
-    if (!loaded) return fail(err, loaded.error());
-    if (!r.outputs.settings.empty()) {
-        const std::string text = settingsJson(options.settings);
-        if (Result<bool> saved = writeFileAtomic(r.outputs.settings, Bytes(text.begin(), text.end())); !saved)
-            return fail(err, saved.error());
+    void push(nlohmann::json record, const FrameStats& stats, std::string progress) {
+        waiting_.push_back({std::move(record), stats, std::move(progress)});
     }
-    Result<Renderer> made = Renderer::create(std::move(*loaded), options.settings);
-    if (!made) return fail(err, made.error());
-    Renderer& renderer = *made;
-    const Settings& s = renderer.settings();
-    if (!options.quiet) printRendererStart(renderer, err);
+    // Records the frames the writer has finished since the last call.
+    Result<bool> collect(FrameWriter& writer) {
+        for (const FrameWriter::Written& w : writer.takeWritten()) {
+            Waiting next = std::move(waiting_.front());
+            waiting_.pop_front();
+            next.record.update({{"write_ms", w.encodeMs + w.writeMs}, {"encode_ms", w.encodeMs}});
+            if (Result<bool> kept = json_.add(std::move(next.record), next.stats); !kept) return kept;
+            if (!quiet_) err_ << next.progress << "\n";
+            ++written_;
+        }
+        return true;
+    }
+    // Waits for every frame given, then records them; the writer's first error, if any.
+    Result<bool> finish(FrameWriter& writer) {
+        const Result<bool> finished = writer.finish();
+        if (Result<bool> collected = collect(writer); !collected) return collected;
+        return finished;
+    }
+    int written() const { return written_; }
 
-    const FrameRange range = options.frames.value_or(FrameRange{});
-    const int frameCount = range.last - range.first + 1;
-    RenderJson json(r.outputs.json);
-    nlohmann::json camera;
-    std::uint64_t overflow = 0;  // --interp: spans that overflowed, over every frame
-    // SIGINT, SIGTERM and SIGHUP stop the sequence between frames: the frames written stay, the
-    // JSON is not written (io/Interrupt.h).
-    InterruptPoints interrupts;
-    // Files are encoded and written on the writer's threads while the next frame renders; a frame's
-    // record and progress line wait until its files exist (in order: FrameWriter).
-    Result<FrameWriter> madeWriter = FrameWriter::create({.threads = 0, .queue = 0, .pngLevel = r.outputs.pngLevel});
-    if (!madeWriter) return fail(err, madeWriter.error());
-    FrameWriter& writer = *madeWriter;
+private:
     struct Waiting {
         nlohmann::json record;
         FrameStats stats;
         std::string progress;
     };
-    std::deque<Waiting> waiting;
-    int framesWritten = 0;
-    const auto report = [&](const std::vector<FrameWriter::Written>& done) -> Result<bool> {
-        for (const FrameWriter::Written& w : done) {
-            Waiting next = std::move(waiting.front());
-            waiting.pop_front();
-            next.record.update({{"write_ms", w.encodeMs + w.writeMs}, {"encode_ms", w.encodeMs}});
-            if (Result<bool> kept = json.add(std::move(next.record), next.stats); !kept) return kept;
-            if (!options.quiet) err << next.progress << "\n";
-            ++framesWritten;
-        }
-        return true;
-    };
+    RenderJsonFile& json_;
+    bool quiet_;
+    std::ostream& err_;
+    std::deque<Waiting> waiting_;
+    int written_ = 0;
+};
+
+// Renders the frames asked for and queues their files. Files are encoded and written on the
+// writer's threads while the next frame renders. SIGINT, SIGTERM and SIGHUP stop the sequence
+// between frames: the frames rendered are written, the JSON is not (frugal/Interrupt.h). `camera`
+// gets the first frame's view.
+Result<bool> renderFrames(Renderer& renderer, const RenderRequest& r, RenderJsonFile& json, nlohmann::json& camera,
+                          std::ostream& err) {
+    const RenderOptions& options = r.options;
+    const Settings& s = renderer.settings();
+    const FrameRange range = options.frames.value_or(FrameRange{});
+    const int frameCount = range.last - range.first + 1;
+    Result<FrameWriter> madeWriter = FrameWriter::create({.threads = 0, .queue = 0, .pngLevel = r.outputs.pngLevel});
+    if (!madeWriter) return madeWriter.error();
+    FrameWriter& writer = *madeWriter;
+    WrittenFrames written(json, options.quiet, err);
+    InterruptPoints interrupts;
+    std::uint64_t overflow = 0;  // --interp: spans that overflowed, over every frame
     Frame frame;  // the memory of a frame already written comes back here (FrameWriter::write)
     for (int index = range.first; index <= range.last; ++index) {
         if (const int caught = interrupts.arrived()) {
-            // The frames rendered are written first; then the run stops.
-            const Result<bool> finished = writer.finish();
-            if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
-            if (!finished) return fail(err, finished.error());
-            return fail(err, Error{interruptedAfter(caught, framesWritten, frameCount), ErrorKind::Interrupted});
+            if (Result<bool> finished = written.finish(writer); !finished) return finished;
+            return Error{interruptedAfter(caught, written.written(), frameCount), ErrorKind::Interrupted};
         }
         // With --cull occlusion-ahead, the next frame's plan is made while this one draws.
         if (index < range.last)
@@ -316,29 +257,48 @@ int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostr
         // The depth is read back only for a file that holds it.
         Result<bool> rendered = renderer.render(cameraOf(options, index), frameTimeOf(options, renderer.scene(), index),
                                                 frame, {.depth = !r.outputs.depth.empty()});
-        if (!rendered) return fail(err, rendered.error());
+        if (!rendered) return rendered;
         const std::string file = framePath(r.outputs.color, index, range.sequence);
         if (index == range.first) camera = viewJson(frame.view, s);
         nlohmann::json record = frameStatsJson(frame.stats, s);
         record.update({{"frame", index}, {"file", file}});
         if (frame.stats.interp) overflow += frame.stats.interp->overflow;
-        waiting.push_back({std::move(record), frame.stats,
-                           options.quiet ? std::string()
-                                         : progressLine(s, renderer.scene().triangleCount(), frame.stats, index,
-                                                        index - range.first + 1, frameCount, file)});
+        written.push(std::move(record), frame.stats,
+                     options.quiet ? std::string()
+                                   : progressLine(s, renderer.scene().triangleCount(), frame.stats, index,
+                                                  index - range.first + 1, frameCount, file));
         if (Result<bool> queued = writer.write(framePaths(r.outputs, index, range.sequence), frame); !queued)
-            return fail(err, queued.error());
-        if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
+            return queued;
+        if (Result<bool> collected = written.collect(writer); !collected) return collected;
     }
-    const Result<bool> finished = writer.finish();
-    if (Result<bool> reported = report(writer.takeWritten()); !reported) return fail(err, reported.error());
-    if (!finished) return fail(err, finished.error());
+    if (Result<bool> finished = written.finish(writer); !finished) return finished;
     if (overflow > 0)
         err << "warning: --interp " << toString(s.interp) << ": " << overflow
             << " spans overflowed the 24-bit depth and were clamped (see the JSON's per-frame \"interp\")\n";
+    return true;
+}
+
+}  // namespace
+
+int runRender(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    RenderRequest r;
+    if (std::optional<int> status = parseRender(args, r, out, err)) return *status;
+    Result<Scene> loaded = loadForRender(r.options, err);
+    if (!loaded) return fail(err, loaded.error());
+    if (!r.outputs.settings.empty())
+        if (Result<bool> saved = writeFile(r.outputs.settings, settingsJson(r.options.settings)); !saved)
+            return fail(err, saved.error());
+    Result<Renderer> made = Renderer::create(std::move(*loaded), r.options.settings);
+    if (!made) return fail(err, made.error());
+    Renderer& renderer = *made;
+    if (!r.options.quiet) printRendererStart(renderer, err);
+    RenderJsonFile json(r.outputs.json);
+    nlohmann::json camera;
+    if (Result<bool> rendered = renderFrames(renderer, r, json, camera, err); !rendered)
+        return fail(err, rendered.error());
     if (Result<bool> written = json.finish(renderJsonMeta(renderer, r.options.scene, camera)); !written)
         return fail(err, written.error());
-    if (!options.quiet && !range.sequence) out << "wrote " << r.outputs.color << "\n";
+    if (!r.options.quiet && !(r.options.frames && r.options.frames->sequence)) out << "wrote " << r.outputs.color << "\n";
     return kExitOk;
 }
 

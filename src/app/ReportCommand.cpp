@@ -3,10 +3,11 @@
 #include <filesystem>
 #include <ostream>
 
+#include <frugal/Files.h>
+
 #include "app/Cli.h"
 #include "app/Command.h"
 #include "app/Commands.h"
-#include "io/ImageIO.h"
 #include "lab/TradePage.h"
 #include "lab/Trades.h"
 
@@ -124,14 +125,13 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     std::filesystem::create_directories(page->masks.empty() ? dir : dir + "/masks", made);
     if (made) return fail(err, Error{dir + ": cannot make the folder (" + made.message() + ")", ErrorKind::Io});
     const Settings& pick = report->bestExact ? report->rows[*report->bestExact].candidate.settings : base;
-    const auto bytes = [](const std::string& text) { return Bytes(text.begin(), text.end()); };
-    OutputSet files;
-    files.add(dir + "/report.json", bytes(tradeReportJson(*report, settings)));
-    files.add(dir + "/report.csv", bytes(tradeReportCsv(*report)));
-    files.add(dir + "/settings.json", bytes(settingsJson(pick)));
-    files.add(dir + "/index.html", bytes(page->html));
-    files.add(dir + "/papers.csv", bytes(page->papersCsv));
-    files.add(dir + "/pareto.gp", bytes(page->gnuplot));
+    FileSet files;
+    files.add(dir + "/report.json", tradeReportJson(*report, settings));
+    files.add(dir + "/report.csv", tradeReportCsv(*report));
+    files.add(dir + "/settings.json", settingsJson(pick));
+    files.add(dir + "/index.html", page->html);
+    files.add(dir + "/papers.csv", page->papersCsv);
+    files.add(dir + "/pareto.gp", page->gnuplot);
     for (auto& [name, png] : page->masks) files.add(dir + "/" + name, std::move(png));
     if (Result<bool> written = files.commit(); !written) return fail(err, written.error());
     if (!options.quiet)

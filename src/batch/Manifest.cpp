@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <frugal/Files.h>
 #include <frugal/Settings.h>
 
 #include "base/Format.h"
-#include "io/ImageIO.h"
 
 namespace frugal::batch {
 
@@ -379,17 +379,10 @@ private:
     Job& job_;
 };
 
-}  // namespace
-
-Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
-    const auto problem = [&path](int line, const std::string& what) {
-        return Error{"manifest " + path + (line > 0 ? " line " + std::to_string(line) : "") + ": " + what,
-                     ErrorKind::BadInput};
-    };
-    if (depthOf(text) > kMaxDepth) return problem(0, "nested deeper than " + std::to_string(kMaxDepth) + " levels");
-    Json doc = Json::parse(text, nullptr, false);
-    if (doc.is_discarded()) return problem(0, "not JSON");
-    const Lines lines(text);
+// The document's own keys: an object of frugal_batch (1), jobs (a list of one job or more) and
+// optionally defaults (job keys, without an id) and a comment.
+std::optional<Error> checkDocument(const Json& doc, const Lines& lines,
+                                   const std::function<Error(int, const std::string&)>& problem) {
     if (!doc.is_object()) return problem(1, "expected an object with \"frugal_batch\": 1 and \"jobs\"");
     for (const auto& [key, value] : doc.items())
         if (key != "frugal_batch" && key != "defaults" && key != "jobs" && key != "comment")
@@ -402,6 +395,22 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
     if (defaults.contains("id")) return problem(lines.of("defaults/id"), "defaults: id: every job has its own");
     if (!doc.contains("jobs") || !doc["jobs"].is_array() || doc["jobs"].empty())
         return problem(lines.of("jobs"), "jobs: expected a list of one job or more");
+    return std::nullopt;
+}
+
+}  // namespace
+
+Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
+    const auto problem = [&path](int line, const std::string& what) {
+        return Error{"manifest " + path + (line > 0 ? " line " + std::to_string(line) : "") + ": " + what,
+                     ErrorKind::BadInput};
+    };
+    if (depthOf(text) > kMaxDepth) return problem(0, "nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    Json doc = Json::parse(text, nullptr, false);
+    if (doc.is_discarded()) return problem(0, "not JSON");
+    const Lines lines(text);
+    if (std::optional<Error> wrong = checkDocument(doc, lines, problem)) return *wrong;
+    const Json defaults = doc.value("defaults", Json::object());
 
     const fs::path base = fs::path(path).parent_path();
     Manifest manifest;
@@ -467,7 +476,7 @@ Result<Manifest> parseManifest(std::string_view text, const std::string& path) {
 
 Result<Manifest> readManifest(const std::string& path) {
     std::error_code ec;
-    const std::optional<std::string> text = fs::is_directory(path, ec) ? std::nullopt : readWholeFile(path);
+    const std::optional<std::string> text = fs::is_directory(path, ec) ? std::nullopt : readFile(path);
     if (!text) return Error{"manifest " + path + ": cannot read the file", ErrorKind::Io};
     return parseManifest(*text, path);
 }

@@ -181,7 +181,7 @@ struct InstanceView {
     }
 
     InstanceView(const glm::mat4& model, const View& view) {
-        // The frustum of the given planes (render/Camera.h): the fit moves them only where no
+        // The frustum of the given planes (pipeline/Camera.h): the fit moves them only where no
         // triangle is, so every triangle is inside both or neither; paper 002's sphere tests, which
         // look at the bounding sphere and not the triangles, keep their classes and bins this way.
         const glm::dmat4 m(model), v(view.view), p(view.givenProjection);

@@ -1,5 +1,5 @@
 // Culling methods: for one view, which index ranges of which instances may be visible (a DrawList,
-// render/Plan.h). Plans only: nothing here calls GL or a backend, so both backends execute the same
+// pipeline/Plan.h). Plans only: nothing here calls GL or a backend, so both backends execute the same
 // plan and tests run on the CPU.
 //
 // Methods (`--cull`):
@@ -57,7 +57,7 @@ public:
     // before the scene is uploaded. Meshes shared by several instances are prepared once.
     static SceneCuller prepare(Scene& scene, const MapParams& params = {});
 
-    // The plan of `method` for one frame: node transforms `world`, camera `view` (render/Camera.h).
+    // The plan of `method` for one frame: node transforms `world`, camera `view` (pipeline/Camera.h).
     // Instances in scene order; instances with nothing to draw are left out.
     // `target`: the size and rules of the target drawn into (occlusion only).
     DrawList cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world, const View& view,
@@ -97,7 +97,7 @@ private:
     mutable std::vector<std::size_t> clusterStart_;  // per instance: its first cluster, counting over all
 };
 
-// Triangles a list submits, counted as the backends execute ranges (render/IndexRanges.h).
+// Triangles a list submits, counted as the backends execute ranges (pipeline/IndexRanges.h).
 std::size_t submittedTriangles(const Scene& scene, const DrawList& list);
 
 }  // namespace frugal

@@ -8,11 +8,10 @@
 #include <limits>
 #include <thread>
 
+#include "base/ThreadPool.h"
 #include "cull/OcclusionKernels.h"
 #include "pipeline/IndexRanges.h"
-#include "software/Kernels.h"
 #include "raster/Rasterizer.h"
-#include "base/ThreadPool.h"
 
 // The vertex transform below reproduces the software backend's (Kernels.inl transform): every
 // product and sum rounded on its own, the viewport fused only where the CPU fuses it.

@@ -1,4 +1,4 @@
-// The OpenGL backend: render/Backend.h on a GL 3.3 core context, all GL through GlApi.
+// The OpenGL backend: pipeline/Backend.h on a GL 3.3 core context, all GL through GlApi.
 // GlBackendImpl.h declares the class and says which file defines which part; this one holds
 // construction, the choice of context, targets, clears, copies and read-back.
 //

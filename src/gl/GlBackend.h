@@ -1,4 +1,4 @@
-// The OpenGL implementation of the Backend interface (render/Backend.h).
+// The OpenGL implementation of the Backend interface (pipeline/Backend.h).
 #pragma once
 
 #include <memory>

@@ -1,5 +1,5 @@
 // The GL backend's class and the records it keeps (internal to src/gl/; users go through
-// gl/GlBackend.h and render/Backend.h). Its members are defined by concern, each file opening with
+// gl/GlBackend.h and pipeline/Backend.h). Its members are defined by concern, each file opening with
 // the contracts of its part:
 //   GlBackend.cpp     construction, the choice of context, targets, clear, copy, read-back
 //   GlStateCache.h    the cached GL state (GlStateCache.cpp)

@@ -31,7 +31,7 @@
 //
 // What is listed: the triangles a z-buffered draw of the list can show, in draw order (draw
 // commands in list order, ranges in order, triangles in index-buffer order: the order in which depth
-// ties resolve, render/Backend.h). Left out, because they draw nothing in any mode: triangles whose
+// ties resolve, pipeline/Backend.h). Left out, because they draw nothing in any mode: triangles whose
 // three vertices lie outside one clip plane, boxes that miss the target, and back faces of
 // single-sided materials that are clearly back-facing (signed window area below −1e-5 of the product
 // of two edge lengths, computed in double: a sign the backends' float arithmetic cannot flip).

@@ -514,7 +514,7 @@ Result<bool> writeTemporary(const std::string& path, const std::string& target, 
 
 }  // namespace
 
-std::optional<std::string> readWholeFile(const std::string& path) {
+std::optional<std::string> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return std::nullopt;
     std::ostringstream text;
@@ -525,6 +525,26 @@ std::optional<std::string> readWholeFile(const std::string& path) {
 Result<bool> writeFileAtomic(const std::string& path, Result<Content> bytes) {
     OutputSet set;
     set.add(path, std::move(bytes));
+    return set.commit();
+}
+
+Result<bool> writeFile(const std::string& path, std::string_view bytes) {
+    return writeFileAtomic(path, Bytes(bytes.begin(), bytes.end()));
+}
+
+void FileSet::add(std::string path, Result<std::vector<std::uint8_t>> bytes) {
+    files_.emplace_back(std::move(path), std::move(bytes));
+}
+
+void FileSet::add(std::string path, std::string_view text) {
+    files_.emplace_back(std::move(path), std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
+Result<bool> FileSet::commit() {
+    OutputSet set;
+    for (auto& [path, bytes] : files_)
+        set.add(path, bytes ? Result<Content>(Content(std::move(*bytes))) : Result<Content>(bytes.error()));
+    files_.clear();
     return set.commit();
 }
 

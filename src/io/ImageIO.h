@@ -73,7 +73,6 @@ struct DepthInfo {
 };
 
 // Whether `path` ends in `extension` (".png"), in any case.
-bool hasExtension(const std::string& path, const std::string& extension);
 
 Result<Bytes> encodeColorPng(const Buffers& buffers, const PngOptions& options = {});
 Result<Bytes> encodeDepthPng(const Buffers& buffers, const std::optional<DepthInfo>& info = std::nullopt,
@@ -123,8 +122,6 @@ struct Content {
     std::uint64_t size() const { return head.size() + (body ? body->size() : 0) + tail.size(); }
 };
 
-// A whole (text) file, such as a manifest or a settings file; nothing when it cannot be opened.
-std::optional<std::string> readWholeFile(const std::string& path);
 
 // Writes `bytes` to `path` atomically. Error: "<path>: <why>" (also when `bytes` is an encoder's
 // error: then nothing is written), e.g. "out.png: write failed after 4096 of 9120 bytes: File too

@@ -1,4 +1,8 @@
-// SIGINT, SIGTERM and SIGHUP in the middle of a command: the files already written stay whole, no
+// The library's side of interruption (frugal/Interrupt.h says what a program sees): files written
+// with the signals held, so that a temporary file exists only while no handler can run, and the
+// write windows a handler waits for before it ends the process.
+//
+// SIGINT, SIGTERM and SIGHUP in the middle of a command, in detail: the files already written stay whole, no
 // temporary file is left, one line says what happened, and the process still ends by the signal,
 // so that the shell, make or a script's loop sees an interrupted run (exit status 128 + signal).
 //
@@ -23,15 +27,9 @@
 #include <csignal>
 #include <string>
 
-namespace frugal {
+#include <frugal/Interrupt.h>
 
-// Handles SIGINT, SIGTERM and SIGHUP as above (the command line's main calls it first, on its
-// main thread, before any other thread exists). A signal the process was started with ignored
-// (a background job's SIGINT, nohup's SIGHUP) stays ignored. SIGXFSZ is ignored too, so that a file
-// growing past `ulimit -f` fails its write (EFBIG: one error line) instead of dumping core. Without
-// this call (a program that uses frugal as a library) the signals keep their own handling and
-// InterruptPoints never sees one; SignalsHeld still keeps a write whole.
-void installInterruptHandler();
+namespace frugal {
 
 // While one lives, SIGINT, SIGTERM and SIGHUP are blocked on this thread (a signal that arrives
 // waits, and is handled when the last one ends). A child started meanwhile inherits the block.
@@ -61,37 +59,5 @@ public:
 private:
     bool open_ = false;
 };
-
-// A stretch of work on the main thread that stops at points of its own choosing: while one lives, a
-// signal is only noted. One at a time.
-class InterruptPoints {
-public:
-    InterruptPoints();
-    // A signal that came and was not taken through arrived() stops the process now, as outside.
-    ~InterruptPoints();
-    InterruptPoints(const InterruptPoints&) = delete;
-    InterruptPoints& operator=(const InterruptPoints&) = delete;
-
-    // The signal that came since this began, or 0. A non-zero answer is the caller's to report (one
-    // line: what it finished) before it returns; main re-raises the signal after the command.
-    int arrived();
-
-private:
-    bool taken_ = false;
-};
-
-// The signal an InterruptPoints noted and took (a command stopped by it), or 0: a caller that runs
-// commands one after another (frugal batch) stops there; main then ends the process by it.
-int notedSignal();
-
-// Called by main once the command has returned: a signal an InterruptPoints took ends the process
-// now, by that signal's default action. Returns when there was none.
-void raiseNotedSignal();
-
-// "SIGINT", "SIGTERM", "SIGHUP", or "a signal".
-const char* signalName(int signal);
-
-// What a sequence says when it stops for `signal`: "interrupted by SIGTERM after 3 of 10 frames".
-std::string interruptedAfter(int signal, int framesDone, int frameCount);
 
 }  // namespace frugal

@@ -27,7 +27,7 @@
 
 namespace frugal {
 
-// A backend object's handle: its slot + 1, 0 for none (render/Handles.h). Each kind of object has a
+// A backend object's handle: its slot + 1, 0 for none (pipeline/Handles.h). Each kind of object has a
 // type of its own, so a mesh's handle does not compile where a target's is expected.
 template <class Kind>
 struct Handle {

@@ -36,14 +36,6 @@ struct DepthExtent {
 };
 DepthExtent depthExtent(const glm::mat4& view, const Bounds& bounds);
 
-// True when the scene camera's own aspect ratio (fileAspect) and a width × height image's differ by
-// more than rounding the image to whole pixels explains.
-bool aspectDiffers(float fileAspect, int width, int height);
-
-// The image size for a camera of aspect ratio `aspect` when none is asked for: the longer side
-// `longSide` pixels, the other rounded (at least 1).
-void sizeForAspect(float aspect, int longSide, int& width, int& height);
-
 // The smallest difference in distance a depth buffer of `format` separates at distance `d` from the
 // eye with planes `znear`, `zfar` (0 = infinite): one step of the stored value (24-bit unit or
 // float ULP) turned into distance, and at least the float precision of the vertex transform,

@@ -7,6 +7,13 @@ namespace frugal {
 
 double frameTime(int frame, double fps) { return double(frame) / fps; }
 
+Result<View> resolveView(const Scene& scene, const Camera& camera, double seconds, int width, int height,
+                         DepthFormat format) {
+    Result<FrameSetup> setup = setUpFrame(scene, camera, seconds, width, height, false, format);
+    if (!setup) return setup.error();
+    return setup->view;
+}
+
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
                               bool writeIds, DepthFormat format, const Bounds* knownBounds) {
     FrameSetup setup;

@@ -19,9 +19,6 @@
 
 namespace frugal {
 
-// Scene time of frame `frame` (0-based) at `fps` frames per second.
-double frameTime(int frame, double fps);
-
 struct FrameSetup {
     double time = 0.0;
     std::vector<glm::mat4> world;  // per node, at `time`
@@ -30,7 +27,7 @@ struct FrameSetup {
 };
 
 // The frame at scene time `time`, seen through `camera` on a width × height target whose depth
-// buffer has `format`. Errors are resolveCamera's (render/Camera.h): values, never command-line flags.
+// buffer has `format`. Errors are resolveCamera's (pipeline/Camera.h): values, never command-line flags.
 // `knownBounds`: scene.bounds(time) when the caller keeps it (resolveCamera).
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
                               bool writeIds, DepthFormat format = DepthFormat::D24, const Bounds* knownBounds = nullptr);

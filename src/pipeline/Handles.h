@@ -11,7 +11,7 @@
 
 namespace frugal {
 
-// `H` is the handle type (render/Backend.h: TargetHandle, MeshHandle, TextureHandle).
+// `H` is the handle type (pipeline/Backend.h: TargetHandle, MeshHandle, TextureHandle).
 template <class T, class H>
 class HandleTable {
 public:

@@ -32,7 +32,7 @@ inline void forEachRun(std::uint64_t bits, F&& f) {
     }
 }
 
-// A mesh's triangle → source-primitive table (render/Backend.h, DrawParams::firstId): its own
+// A mesh's triangle → source-primitive table (pipeline/Backend.h, DrawParams::firstId): its own
 // triangleSource, or t for triangle t when it has none.
 std::vector<std::uint32_t> triangleSources(const Mesh& mesh);
 

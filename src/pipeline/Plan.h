@@ -11,7 +11,7 @@
 namespace frugal {
 
 // One instance's index ranges. A full draw is one range over the whole mesh. `depth`: how the draw
-// uses the depth buffer (render/Backend.h); plans other than the hidden-surface modes' leave Test.
+// uses the depth buffer (pipeline/Backend.h); plans other than the hidden-surface modes' leave Test.
 struct DrawCommand {
     int instance = -1;
     std::vector<IndexRange> ranges;

@@ -47,7 +47,7 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
             return Error{"mesh " + std::to_string(i) + quotedName(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles): " + backend.name() +
                          (isUploadable(mesh) ? " could not store it (out of memory)"
-                                             : " refused it: its arrays break the upload contract (render/Backend.h)")};
+                                             : " refused it: its arrays break the upload contract (pipeline/Backend.h)")};
         renderer.meshes_.push_back(handle);
     }
     renderer.textures_.reserve(scene.textures.size());

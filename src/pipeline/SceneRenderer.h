@@ -35,7 +35,7 @@ public:
     void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                      const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list);
 
-    // Executes a frame plan (render/Plan.h): Render is `target`, Static is `staticTarget` (both
+    // Executes a frame plan (pipeline/Plan.h): Render is `target`, Static is `staticTarget` (both
     // width × height; kNoHandle for a plan that never names the static pair).
     void execute(const FramePlan& plan, TargetHandle target, TargetHandle staticTarget, const FrameParams& frame,
                  const std::vector<glm::mat4>& world, const glm::vec4& background);

@@ -58,8 +58,5 @@ std::optional<std::string> memoryProblem(std::uint64_t bytes);
 // is known.
 std::optional<std::string> frameMemoryProblem(int width, int height);
 
-// The message for an allocation that failed all the same (std::bad_alloc): "out of memory: an
-// allocation failed (ulimit -v: 3.8 GB left once the command's memory was freed)".
-std::string outOfMemoryMessage();
 
 }  // namespace frugal

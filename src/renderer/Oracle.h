@@ -10,7 +10,7 @@
 #include <frugal/Scene.h>
 
 #include "pipeline/SceneRenderer.h"
-#include "report/VisibleSet.h"
+#include "cull/VisibleSet.h"
 
 namespace frugal {
 

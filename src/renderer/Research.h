@@ -28,12 +28,11 @@
 #include "renderer/Stage.h"
 #include "software/SoftwareBackend.h"
 
-// The methods, run step by step: culling (plans, cull-ahead, report views) and its oracle; temporal
+// The methods, run step by step: culling (plans, cull-ahead) and its oracle; temporal
 // reuse's planner and screen grid; the hidden-surface planner; draw orders on real frames and on
 // state sets; paper 001's span engine.
 #include "cull/CullAhead.h"
 #include "cull/Culling.h"
-#include "cull/Views.h"
 #include "hsr/Plan.h"
 #include "order/Order.h"
 #include "renderer/Oracle.h"
@@ -43,10 +42,8 @@
 #include "span/Engine.h"
 #include "span/Interp.h"
 
-// Judging: image comparison, visible sets (TOS, PVS, RVS); the render JSON's fields.
-#include "renderer/StatsJson.h"
-#include "report/ImageCompare.h"
-#include "report/VisibleSet.h"
+// Judging: visible sets (TOS, PVS, RVS) of a plan and of an id image.
+#include "cull/VisibleSet.h"
 
 // Files: image encoding, whole-or-nothing writes, interruption by signals.
 #include "io/ImageIO.h"

@@ -477,7 +477,7 @@ Result<SettingsFile> parseSettingsJson(std::string_view text, const std::string&
 }
 
 Result<SettingsFile> readSettingsFile(const std::string& path, const Settings& base) {
-    const std::optional<std::string> text = readWholeFile(path);
+    const std::optional<std::string> text = readFile(path);
     if (!text) return fileProblem(path, "cannot read the file", ErrorKind::Io);
     return parseSettingsJson(*text, path, base);
 }

@@ -24,7 +24,7 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
 }
 
 DrawList orderFrameDraws(const Scene& scene, const DrawList& list, Order drawOrder, const std::vector<double>& costs) {
-    if (drawOrder == Order::Submit || drawOrder == Order::Key || list.size() < 2)
+    if (!traitsOf(drawOrder).measuresCosts || list.size() < 2)
         return orderDraws(scene, list, drawOrder);
     const order::DistinctSets distinct = order::distinctSets(drawStates(scene, list));
     const order::Transitions transitions(distinct.sets, costs, order::CostRule::SetNotHeld);
@@ -43,7 +43,7 @@ DrawList orderFrameDraws(const Scene& scene, const DrawList& list, Order drawOrd
 
 Result<OrderCosts> OrderCosts::start(Order order, Backend& backend, int refineEvery) {
     OrderCosts costs;
-    if (order == Order::Submit || order == Order::Key) return costs;
+    if (!traitsOf(order).measuresCosts) return costs;
     Result<std::unique_ptr<StateCostProbe>> probe = StateCostProbe::create(backend);
     if (!probe) return Error{probe.error().message};
     costs.probe_ = std::move(*probe);
@@ -66,11 +66,5 @@ std::optional<StateCosts> OrderCosts::report() const {
                       running_.rounds(), refineEvery_};
 }
 
-std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs) {
-    std::string line = std::string("order ") + toString(order) + ": state costs on " + backendName + " (us):";
-    for (std::size_t k = 0; k < costs.us.size(); ++k)
-        line += (k ? ", " : " ") + costs.kinds[k] + " " + fmt(costs.us[k]);
-    return line;
-}
 
 }  // namespace frugal

@@ -51,7 +51,5 @@ private:
     int refineEvery_ = 0;
 };
 
-// "order best: state costs on egl-surfaceless (us): program 8.3, mesh 0.1, ..." (no newline).
-std::string stateCostsLine(Order order, const std::string& backendName, const StateCosts& costs);
 
 }  // namespace frugal

@@ -23,7 +23,7 @@ void Scene::buildInstances() {
             instances.push_back({n, mesh, nextId});
             // Ids are given per source primitive, so the range is the source count, which equals the
             // triangle count after loading (dropped triangles keep their ids unused). A mesh without
-            // triangleSource has source t for triangle t (render/Backend.h).
+            // triangleSource has source t for triangle t (pipeline/Backend.h).
             const Mesh& m = meshes[mesh];
             auto sourceCount = std::uint32_t(m.triangleSource.empty() ? m.triangleCount() : 0);
             for (std::uint32_t s : m.triangleSource) sourceCount = std::max(sourceCount, s + 1);

@@ -127,7 +127,7 @@ void Pipeline::setup(const SetupJob& job, std::uint64_t skip, std::uint64_t coun
 void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& input,
                     std::span<const IndexRange> ranges) {
     assert((!pending() || (width == width_ && height == height_)) && "Pipeline::draw: flush before changing targets");
-    // The merged ranges (render/IndexRanges.h), as the GL backend submits them: they are what the
+    // The merged ranges (pipeline/IndexRanges.h), as the GL backend submits them: they are what the
     // draw module splits into batches.
     std::vector<IndexRange> merged;
     const std::uint64_t triangles = normalizeRanges(ranges, mesh.triangles, merged);

@@ -1,7 +1,7 @@
 // The software reference backend: renders what the GL backend renders, with the rules of Mesa's
 // llvmpipe (stated in raster/Rasterizer.h), so that every GL image can be compared with it.
 //
-// Same targets, formats and operations as render/Backend.h. The rules it reproduces, with their
+// Same targets, formats and operations as pipeline/Backend.h. The rules it reproduces, with their
 // sources in Mesa 22.3 and the experiments that settled what the sources leave open, are written
 // down in raster/Rasterizer.h (vertex stage, clipping, culling, coverage, depth) and
 // software/Shading.h (varyings, shading, textures, colour conversion, clears). Measured against the

@@ -8,7 +8,7 @@
 
 #include "TestSupport.h"
 #include "io/ImageIO.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 namespace {

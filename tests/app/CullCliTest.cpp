@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <frugal/Settings.h>
+
 #include "JsonSupport.h"
 #include "TestSupport.h"
 #include "io/ImageIO.h"
@@ -25,7 +27,8 @@ using test::filesIn;
 using test::readAll;
 using test::runFrugal;  // the frugal binary in a child process
 
-const char* const kMethodList = "none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle";
+// Every method, as refusals list them (the order is pinned in tests/cullrender/MethodsTest.cpp).
+const std::string kMethodList = namesOf(kCulls);
 
 // The number of distinct triangle ids (background 0 excluded) in frugal's id PNG.
 std::size_t distinctIds(const fs::path& path) {

@@ -114,7 +114,7 @@ Report cullReport(const fs::path& dir, const std::vector<std::string>& sceneArgs
 
 bool isNumberOrNull(const nlohmann::json& j) { return j.is_number() || j.is_null(); }
 
-// The report's shape (src/report/CullReport.h and CullReportCommand.cpp): every key, every view,
+// The report's shape (research/lab/CullReport.h and CullReportCommand.cpp): every key, every view,
 // every method in the default order, the summary consistent with the views.
 void expectReportStructure(const nlohmann::json& j, const std::string& scene, const std::string& backend,
                            std::size_t views, const std::string& timing) {

@@ -23,6 +23,7 @@
 #include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
+#include "lab/Views.h"
 
 namespace frugal {
 namespace {

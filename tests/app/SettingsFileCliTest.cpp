@@ -68,8 +68,7 @@ TEST(SettingsFileTest, OnlyTheKeysGivenChangeTheBase) {
 TEST(SettingsFileTest, BadFilesAreOneLineNamingTheKey) {
     const auto error = [](const std::string& text) { return parseSettingsJson(text, "s.json").error().message; };
     EXPECT_EQ(error(R"({"cull": "x"})"),
-              "settings s.json: key 'cull': \"x\" is not a method (none, sphere, backface, cones, paper, conservative, "
-              "occlusion, occlusion-ahead, oracle)");
+              "settings s.json: key 'cull': \"x\" is not a method (" + namesOf(kCulls) + ")");
     EXPECT_EQ(error(R"({"reuse": 1})"), "settings s.json: key 'reuse': 1 is not true or false");
     EXPECT_EQ(error(R"({"threads": 2.5})"), "settings s.json: key 'threads': 2.5 is not a whole number from 0 to 256");
     EXPECT_EQ(error(R"({"size": "80x"})"), "settings s.json: key 'size': \"80x\" is not a size (WxH, each 1 to 65536)");

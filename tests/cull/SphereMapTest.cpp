@@ -17,7 +17,7 @@
 
 #include "TestSupport.h"
 #include "cull/SphereMap.h"
-#include "cull/Views.h"
+#include "lab/Views.h"
 #include "pipeline/Camera.h"
 #include "scene/MeshBuild.h"
 

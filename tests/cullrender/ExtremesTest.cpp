@@ -11,6 +11,7 @@
 
 #include "CullRenderSupport.h"
 #include "TestSupport.h"
+#include "lab/Views.h"
 
 namespace frugal {
 namespace {

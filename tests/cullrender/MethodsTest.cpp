@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "CullRenderSupport.h"
+#include "lab/Views.h"
 
 namespace frugal {
 namespace {

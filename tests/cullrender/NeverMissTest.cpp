@@ -10,6 +10,7 @@
 
 #include "CullRenderSupport.h"
 #include "TestSupport.h"
+#include "lab/Views.h"
 
 namespace frugal {
 namespace {

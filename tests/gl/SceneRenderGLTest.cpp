@@ -83,7 +83,7 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     camera.zfar = 10.0f;
     test::addCameraNode(scene, camera, {0, 0, 4});
 
-    // The camera's planes as given (the fit would hug the flat square: render/Camera.h).
+    // The camera's planes as given (the fit would hug the flat square: pipeline/Camera.h).
     Camera given;
     given.depthRange = DepthRange::File;
     const Frame frame = render(*backend, scene, 64, 48, 0.0, true, given);

@@ -10,6 +10,8 @@
 
 #include <frugal/Renderer.h>
 
+#include "TestSupport.h"
+
 namespace frugal {
 namespace {
 
@@ -60,7 +62,7 @@ void expectSameImages(const Frame& a, const Frame& b, const std::string& label) 
 
 void checkSequence(BackendKind backend) {
     Pair pair = makePair(backend);
-    if (!pair.ahead || !pair.plain) GTEST_SKIP() << "no such backend here";
+    if (!pair.ahead || !pair.plain) FRUGAL_SKIP_IF_NO_GL("no such backend here");
     Renderer& ahead = *pair.ahead;
     Renderer& plain = *pair.plain;
     Frame got, want;

@@ -126,7 +126,7 @@ TEST(SceneRendererTest, ARefusedUploadIsAnErrorThatNamesIt) {
     scene.meshes[1].name = "refuse";
     EXPECT_EQ(SceneRenderer::create(backend, scene).error().message,
               "mesh 1 'refuse' (3 vertices, 1 triangles): recording refused it: its arrays break the upload "
-              "contract (render/Backend.h)");
+              "contract (pipeline/Backend.h)");
     scene = twoMeshScene();
     scene.textures[0].name = "refuse";
     EXPECT_EQ(SceneRenderer::create(backend, scene).error().message,

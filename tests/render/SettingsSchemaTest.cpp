@@ -91,8 +91,7 @@ TEST(SettingsSchemaTest, ValuesOutOfTheirKindOrRangeAreRefusedWithTheExpectedWor
     EXPECT_EQ(refusal("threads", std::string("4")), "is not a whole number from 0 to 256");
     EXPECT_EQ(refusal("size", std::array<long long, 2>{0, 5}), "is not a size (WxH, each 1 to 65536)");
     EXPECT_EQ(refusal("cull-bins", std::array<long long, 2>{4, 1025}), "is not a bin grid (TxP, each 1 to 1024)");
-    EXPECT_EQ(refusal("cull", std::string("Conservative")),
-              "is not a method (none, sphere, backface, cones, paper, conservative, occlusion, occlusion-ahead, oracle)");
+    EXPECT_EQ(refusal("cull", std::string("Conservative")), "is not a method (" + namesOf(kCulls) + ")");
     EXPECT_EQ(refusal("reuse", 1LL), "is not true or false");
     EXPECT_EQ(refusal("background", std::vector<double>{1, 1}), "is not a colour (r,g,b or r,g,b,a, each 0 to 1)");
     EXPECT_EQ(refusal("background", std::vector<double>{1, 1, 1.5}), "is not a colour (r,g,b or r,g,b,a, each 0 to 1)");

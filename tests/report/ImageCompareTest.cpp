@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 namespace {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lab/TradePage.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 namespace {

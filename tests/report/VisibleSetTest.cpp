@@ -9,7 +9,7 @@
 
 #include "TestSupport.h"
 #include "pipeline/IndexRanges.h"
-#include "report/VisibleSet.h"
+#include "cull/VisibleSet.h"
 
 namespace frugal {
 namespace {

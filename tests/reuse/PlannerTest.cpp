@@ -71,7 +71,7 @@ std::vector<Rect> rectsOf(const FramePlan& plan, PlanStep::Op op, PlanTarget fro
     return rects;
 }
 
-// What a Draw step draws: its own list, or the one it points to (render/Plan.h).
+// What a Draw step draws: its own list, or the one it points to (pipeline/Plan.h).
 const DrawList& drawsOf(const PlanStep& step) { return step.list ? *step.list : step.draws; }
 
 std::string describe(const FramePlan& plan) {

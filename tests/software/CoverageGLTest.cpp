@@ -129,7 +129,7 @@ struct Case {
     glm::mat4 model{1.0f}, view{1.0f}, projection{1.0f};
 };
 
-// GL's perspective projection, or for D32F the reversed zero-to-one one (render/Camera.h).
+// GL's perspective projection, or for D32F the reversed zero-to-one one (pipeline/Camera.h).
 glm::mat4 perspectiveFor(DepthFormat format, float fov, float aspect, float znear, float zfar) {
     return format == DepthFormat::D32F ? glm::perspectiveRH_ZO(fov, aspect, zfar, znear)
                                        : glm::perspective(fov, aspect, znear, zfar);

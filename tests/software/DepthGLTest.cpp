@@ -1,4 +1,4 @@
-// A file's camera as users expect it, and depth that holds at any near/far ratio (render/Camera.h):
+// A file's camera as users expect it, and depth that holds at any near/far ratio (pipeline/Camera.h):
 // - the aspect ratio: a camera whose file says 1.0 frames an 800×600 or 1920×1080 image as the same
 //   camera given explicitly does (the image's aspect ratio, the vertical field of view), not
 //   stretched;

@@ -14,7 +14,7 @@
 #include "GlReference.h"
 #include "pipeline/Frame.h"
 #include "pipeline/SceneRenderer.h"
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 #include "scene/Load.h"
 #include "scene/MeshBuild.h"
 

@@ -19,6 +19,7 @@
 #include "pipeline/Frame.h"
 #include "pipeline/SceneRenderer.h"
 #include "scene/Load.h"
+#include "lab/ImageCompare.h"
 
 namespace frugal {
 namespace {

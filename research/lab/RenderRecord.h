@@ -1,14 +1,19 @@
-// Frame statistics (frugal/Stats.h) as the JSON `frugal render --json` writes, and the same objects
-// for the reports that print some of them (order-bench, reuse-bench).
+// The render JSON (`frugal render --json`): frame statistics (frugal/Stats.h) as its records, the
+// same objects for the reports that print some of them (order-bench, reuse-bench), and the file
+// itself, written as frames finish.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <frugal/Renderer.h>
 #include <frugal/Settings.h>
 #include <frugal/Stats.h>
+
+#include "renderer/Research.h"
 
 namespace frugal {
 
@@ -41,5 +46,27 @@ nlohmann::json viewJson(const View& view, const Settings& settings);
 // "size", "backend", "renderer", "backend_log", "camera", "cull", "hsr", "draw_order",
 // "state_costs", "reuse"}.
 nlohmann::json renderJsonMeta(const Renderer& renderer, const std::string& sceneName, const nlohmann::json& camera);
+
+// The render JSON, written as frames finish: their records go to a spool (an anonymous file, so
+// that a long sequence holds none of them in memory), and finish() puts the document together,
+// byte for byte what one nlohmann dump(2) of it would be. A record waits for the next frame, which
+// says whether a cost round ran between the two (it belongs to the earlier record).
+class RenderJsonFile {
+public:
+    explicit RenderJsonFile(std::string path) : path_(std::move(path)) {}
+    bool enabled() const { return !path_.empty(); }
+    // Adds a frame's record (frameStatsJson, with the command's "frame" and "file"). Error (Io): the spool's.
+    Result<bool> add(nlohmann::json record, const FrameStats& stats);
+    // The whole document, "frames" filled from the spool. Error (Io): the path's.
+    Result<bool> finish(nlohmann::json meta);
+
+private:
+    Result<bool> flush();
+
+    std::string path_;
+    std::optional<Spool> spool_;
+    std::unique_ptr<nlohmann::json> pending_;
+    bool first_ = true;
+};
 
 }  // namespace frugal

@@ -2,7 +2,7 @@
 // per-channel tolerance. Used by `frugal compare`, `frugal diff` and image regression tests.
 //
 // Conventions:
-// - Inputs are Buffers (frugal/Image.h): RGBA8 colour, optional triangle ids and 24-bit depth, rows
+// - Inputs are Buffers (pipeline/Buffers.h): RGBA8 colour, optional triangle ids and 24-bit depth, rows
 //   bottom-up. PNGs are brought into that form by buffersFromPng (rows flipped once).
 // - A pixel FAILS when any of its four channels (alpha included) differs by more than `tolerance`
 //   8-bit steps. The verdict is colour only: a comparison passes when no pixel fails. Ids and depth
@@ -32,7 +32,7 @@
 #include <frugal/Image.h>
 #include <frugal/Result.h>
 
-#include "io/ImageIO.h"
+#include "renderer/Research.h"
 
 namespace frugal {
 

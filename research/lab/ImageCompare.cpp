@@ -1,4 +1,4 @@
-#include "report/ImageCompare.h"
+#include "lab/ImageCompare.h"
 
 #include <algorithm>
 #include <cmath>

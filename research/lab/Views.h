@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "pipeline/Camera.h"
+#include "renderer/Research.h"
 
 namespace frugal {
 

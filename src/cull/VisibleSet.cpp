@@ -1,4 +1,4 @@
-#include "report/VisibleSet.h"
+#include "cull/VisibleSet.h"
 
 #include <algorithm>
 #include <cassert>
@@ -67,7 +67,7 @@ TriangleSet drawnSet(const Scene& scene, const DrawList& list) {
         std::vector<std::uint8_t>& members = set.perInstance[std::size_t(command.instance)];
         const std::uint64_t triangles = members.size();
         for (const IndexRange& range : command.ranges) {
-            // Clamped to the mesh as the backends do (render/IndexRanges.h).
+            // Clamped to the mesh as the backends do (pipeline/IndexRanges.h).
             const std::uint64_t first = std::min<std::uint64_t>(range.firstTriangle, triangles);
             const std::uint64_t end = std::min<std::uint64_t>(first + range.triangleCount, triangles);
             for (std::uint64_t t = first; t < end; ++t) {

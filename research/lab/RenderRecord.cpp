@@ -1,8 +1,7 @@
-#include "renderer/StatsJson.h"
+#include "lab/RenderRecord.h"
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/Camera.h"
 
 namespace frugal {
 
@@ -126,5 +125,45 @@ nlohmann::json viewJson(const View& view, const Settings& s) {
 }
 
 
+
+Result<bool> RenderJsonFile::add(nlohmann::json record, const FrameStats& stats) {
+    if (!enabled()) return true;
+    if (!spool_) {
+        Result<Spool> made = Spool::create(path_);
+        if (!made) return made.error();
+        spool_.emplace(std::move(*made));
+    }
+    if (pending_) {
+        if (const nlohmann::json refined = refinementJson(stats); !refined.is_null()) pending_->update(refined);
+        if (Result<bool> put = flush(); !put) return put;
+    }
+    pending_ = std::make_unique<nlohmann::json>(std::move(record));
+    return true;
+}
+
+Result<bool> RenderJsonFile::finish(nlohmann::json meta) {
+    if (!enabled()) return true;
+    if (Result<bool> put = flush(); !put) return put;
+    meta["frames"] = nlohmann::json::array();
+    const std::string text = meta.dump(2) + "\n";
+    const std::string marker = "\"frames\": []";
+    const std::size_t at = text.find(marker);
+    const std::string head = text.substr(0, at) + "\"frames\": [\n";
+    const std::string tail = "\n  ]" + text.substr(at + marker.size());
+    return writeFileAtomic(path_, Content(Bytes(head.begin(), head.end()), *spool_, Bytes(tail.begin(), tail.end())));
+}
+
+// The pending record, indented as an element of "frames" (two levels: four spaces).
+Result<bool> RenderJsonFile::flush() {
+    if (!pending_) return true;
+    std::string text = (first_ ? "" : ",\n") + std::string("    ");
+    for (const char c : pending_->dump(2)) {
+        text += c;
+        if (c == '\n') text += "    ";
+    }
+    first_ = false;
+    pending_.reset();
+    return spool_->append(text);
+}
 
 }  // namespace frugal

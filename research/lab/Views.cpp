@@ -1,4 +1,4 @@
-#include "cull/Views.h"
+#include "lab/Views.h"
 
 #include <algorithm>
 #include <cmath>
