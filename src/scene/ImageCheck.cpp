@@ -44,7 +44,20 @@ Result<ImageSize> checkJpeg(std::span<const std::uint8_t> bytes) {
                              bytes.size() - at - 1, " remain")};
         if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC) {
             if (length < 8) return Error{cat("corrupt JPEG: a frame header of ", length, " bytes")};
-            return withinLimit("JPEG", be16(bytes, at + 6), be16(bytes, at + 4));
+            Result<ImageSize> size = withinLimit("JPEG", be16(bytes, at + 6), be16(bytes, at + 4));
+            if (!size) return size;
+            // stb_image decodes a truncated scan as if zero bits followed, so a few bytes could make a
+            // full-size image. Every 8x8 block of the first component codes its DC coefficient with a
+            // Huffman code of one bit or more (baseline and progressive alike; stb_image decodes no
+            // arithmetic coding), so a real image has at least one byte after its frame header for
+            // every 512 pixels.
+            const std::uint64_t pixels = std::uint64_t(size->width) * std::uint64_t(size->height);
+            const std::uint64_t after = bytes.size() - at - 1 - length;
+            if (pixels > 512 * after)
+                return Error{cat("corrupt JPEG: ", size->width, "x", size->height, " pixels need at least ",
+                                 (pixels + 511) / 512, " bytes of coded data (a bit per 8x8 block), ", after,
+                                 " bytes follow its frame header")};
+            return size;
         }
         at += 1 + length;
     }

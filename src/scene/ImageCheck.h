@@ -25,7 +25,8 @@ struct ImageSize {
 Result<ImageSize> checkPng(std::span<const std::uint8_t> bytes);
 
 // A glTF image: a PNG as checkPng has it, or a JPEG whose frame header declares a size within
-// kMaxImagePixels (the two formats glTF 2.0 allows).
+// kMaxImagePixels and whose data after that header can hold it: a byte for every 512 pixels at least,
+// each 8x8 block's DC code being a bit or more (the two formats glTF 2.0 allows).
 Result<ImageSize> checkTextureImage(std::span<const std::uint8_t> bytes);
 
 }  // namespace frugal

@@ -50,6 +50,12 @@ const std::vector<Finding>& findings() {
         {.file = "glb/texture-jpeg-beyond-limit.glb",
          .warning = "image 0 cannot be decoded (JPEG of 20000x20000 pixels, more than frugal's limit of 268435456 "
                     "(16384x16384)): material 0 drawn without its base colour texture"},
+        // fuzz_glb (scripts/test, 2026-12-05): a JPEG of 8270x20000 pixels in 800 bytes; stb_image
+        // decoded it as if zero bits followed, 165 MB of pixels, 50 s under the fuzzer's sanitizers.
+        {.file = "glb/texture-jpeg-beyond-data.glb",
+         .warning = "image 0 cannot be decoded (corrupt JPEG: 8270x20000 pixels need at least 323047 bytes of coded "
+                    "data (a bit per 8x8 block), 2 bytes follow its frame header): material 0 drawn without its base "
+                    "colour texture"},
         {.file = "glb/texture-gif.glb",
          .warning = "image 0 cannot be decoded (neither PNG nor JPEG, the formats glTF 2.0 allows): material 0 drawn "
                     "without its base colour texture"},
