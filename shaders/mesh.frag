@@ -1,7 +1,10 @@
-// Mesh fragment stage: the shading model of render/Backend.h (`Lighting`), written the same way in
-// the software backend:
+// Mesh fragment stage: the shading model of pipeline/Backend.h (`Lighting`), written the same way in
+// the software backend, in linear values:
 //   base = factor * vertex colour * texture(uv);  rgb = base.rgb * (ambient + diffuse * max(0, n.l))
 // with n the normalised interpolated normal, negated on back faces (seen only when double-sided).
+// Factors and vertex colours are linear; an sRGB texture is decoded by its sampler (GL_SRGB8_ALPHA8).
+// The colour written is encoded for display as the Khronos glTF Sample Renderer encodes it,
+// rgb^(1/2.2) (its linearTosRGB), so that an 8-bit image looks as viewers show the file.
 //
 // Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
 // FRUGAL_TEXTURE the texel is, so their factors are left out; without FRUGAL_IDS there is no id
@@ -46,7 +49,8 @@ void main() {
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
     float lambert = max(0.0, dot(n, u_toLight));
-    o_color = vec4(base.rgb * (u_ambient + u_diffuse * lambert), base.a);
+    vec3 linear = base.rgb * (u_ambient + u_diffuse * lambert);
+    o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
 #ifdef FRUGAL_IDS
     o_id = v_id;
 #endif

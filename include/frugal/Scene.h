@@ -38,6 +38,9 @@ struct Texture {
     // Magnification/minification filter, no mipmaps: the GL path and the software reference sample
     // the base level only. A sampler asking for mipmaps is rendered without and reported.
     Filter filter = Filter::Linear;
+    // Whether the texels are sRGB-encoded colour (glTF's base colour and emissive textures), decoded
+    // to linear before they are filtered; false: linear data. Alpha is always linear.
+    bool srgb = true;
 };
 
 struct Material {

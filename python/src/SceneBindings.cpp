@@ -185,7 +185,8 @@ void bindScene(py::module_& m) {
         .def(py::init<>())
         .def("add_texture", &addTexture, py::arg("pixels"), py::kw_only(), py::arg("wrap") = "repeat",
              py::arg("filter") = "linear", py::arg("name") = "",
-             "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF).\n"
+             "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF), its\n"
+             "colours sRGB-encoded as a glTF base colour texture's (alpha linear).\n"
              "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
         .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
              py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("name") = "",

@@ -133,7 +133,9 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
     gl_.GenTextures(1, &name);
     state_.bindTexture(name);
     // Rows as stored: the first row is v = 0, which is where glTF puts (0,0) (frugal/Scene.h).
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+    // An sRGB texture is decoded to linear by the sampler, before filtering (GL 3.3, 3.8.15).
+    const GLint format = texture.srgb ? GLint(GL_SRGB8_ALPHA8) : GLint(GL_RGBA8);
+    gl_.TexImage2D(GL_TEXTURE_2D, 0, format, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                    texture.rgba.data());
     // Base level only (Scene.h: no mipmaps in either backend).
     const GLint filter = texture.filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;

@@ -61,11 +61,15 @@ struct IndexRange {
 };
 
 // The shading model, written once here and twice in code (shaders/mesh.frag and the software
-// backend):  rgb = base.rgb × (ambient + diffuse · max(0, n · toLight)),  a = base.a,
-// base = material factor × vertex colour × texture(uv), where a mesh without colours and a draw
-// without texture leave their factor out (exactly 1, never interpolated). n is the interpolated world-space normal,
-// normalised, and negated on back faces of double-sided materials. Values are written unclamped to
-// the 8-bit target (the GL conversion clamps to [0,1] and rounds to nearest).
+// backend), in linear values:  rgb = base.rgb × (ambient + diffuse · max(0, n · toLight)),
+// a = base.a, base = material factor × vertex colour × texture(uv), where a mesh without colours and
+// a draw without texture leave their factor out (exactly 1, never interpolated). Factors and vertex
+// colours are linear; an sRGB texture (Texture::srgb) is decoded to linear before it is filtered.
+// n is the interpolated world-space normal, normalised, and negated on back faces of double-sided
+// materials. The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample
+// Renderer, and a unencoded; the 8-bit target clamps to [0,1] and rounds to nearest. The clear
+// colour (the background) is written as given, not encoded. With the default light a white surface
+// facing the light is 1.0 (0.3 + 0.7), encoded 255; one at right angles to it 0.3, encoded 148.
 struct Lighting {
     glm::vec3 toLight = glm::normalize(glm::vec3(0.35f, 0.8f, 0.5f));  // world space, unit
     float ambient = 0.3f;

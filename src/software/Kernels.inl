@@ -135,8 +135,9 @@ void raster(const Triangle& t, TileState& tile) {
 // ---------------------------------------------------------------------------------------------
 // Texture sampling (Shading.h), one lane at a time.
 
-inline float decode(std::uint32_t texel, int channel) {
-    return float((texel >> (8 * channel)) & 0xFFu) * float(1.0 / 255.0);
+inline float decode(const SoftwareTexture& tex, std::uint32_t texel, int channel) {
+    const DecodeTable& table = channel < 3 ? *tex.rgb : unormDecode();
+    return table[(texel >> (8 * channel)) & 0xFFu];
 }
 
 inline float fractOf(float a) { return a - std::floor(a); }
@@ -274,7 +275,7 @@ inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
         const int x = tex.aos ? aosNearestAxis(s, w, tex.wrapS) : soaNearestAxis(s, w, tex.wrapS);
         const int y = tex.aos ? aosNearestAxis(t, h, tex.wrapT) : soaNearestAxis(t, h, tex.wrapT);
         const std::uint32_t texel = texels[std::size_t(y) * w + x];
-        for (int c = 0; c < 4; ++c) out[c] = decode(texel, c);
+        for (int c = 0; c < 4; ++c) out[c] = decode(tex, texel, c);
         return;
     }
     if (tex.aos) {
@@ -284,7 +285,7 @@ inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
         const std::uint32_t row0 = lerp8(ws, texels[std::size_t(y0) * w + x0], texels[std::size_t(y0) * w + x1]);
         const std::uint32_t row1 = lerp8(ws, texels[std::size_t(y1) * w + x0], texels[std::size_t(y1) * w + x1]);
         const std::uint32_t texel = lerp8(wt, row0, row1);
-        for (int c = 0; c < 4; ++c) out[c] = decode(texel, c);
+        for (int c = 0; c < 4; ++c) out[c] = decode(tex, texel, c);
         return;
     }
     int x0, x1, y0, y1;
@@ -294,7 +295,8 @@ inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
     const std::uint32_t t00 = texels[std::size_t(y0) * w + x0], t01 = texels[std::size_t(y0) * w + x1];
     const std::uint32_t t10 = texels[std::size_t(y1) * w + x0], t11 = texels[std::size_t(y1) * w + x1];
     for (int c = 0; c < 4; ++c) {
-        const float a00 = decode(t00, c), a01 = decode(t01, c), a10 = decode(t10, c), a11 = decode(t11, c);
+        const float a00 = decode(tex, t00, c), a01 = decode(tex, t01, c), a10 = decode(tex, t10, c),
+                    a11 = decode(tex, t11, c);
         const float r0 = simd::fmas(ws, a01 - a00, a00);
         const float r1 = simd::fmas(ws, a11 - a10, a10);
         out[c] = simd::fmas(wt, r1 - r0, r0);
@@ -411,13 +413,15 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             const F8 lambert = simd::max((nz * lz + ny * ly) + nx * lx, zero);
             const F8 k = ambient + diffuse * lambert;
 
-            I8 packed = simd::splati(0);
-            for (int c = 0; c < 4; ++c) {
-                const F8 value8 = c < 3 ? base[c] * k : base[c];
-                const F8 clamped = simd::min(simd::max(value8, zero), one);
-                const I8 byte = simd::toIntRound(clamped * c255);
-                packed = packed | simd::sll(byte, 8 * c);
+            // Colour: linear rgb encoded lane by lane (ColorEncoding); alpha converted as it is.
+            std::uint32_t rgb[8] = {};
+            for (int c = 0; c < 3; ++c) {
+                float linear[8];
+                simd::storef(linear, base[c] * k);
+                for (int l = 0; l < 8; ++l) rgb[l] |= std::uint32_t(ColorEncoding::encode(linear[l])) << (8 * c);
             }
+            const F8 alpha = simd::min(simd::max(base[3], zero), one);
+            const I8 packed = simd::loadi(rgb) | simd::sll(simd::toIntRound(alpha * c255), 24);
             simd::storeMasked(tile.target.color + std::size_t(y) * stride + bx, mask, packed);
         }
     }

@@ -43,9 +43,23 @@
 //   Nearest: ⌊s·size⌋, masked (power of two), fract·size truncated (other sizes), or clamped.
 // - Any mirrored-repeat axis sends both axes through the SoA float path (lp_bld_sample_soa.c):
 //   coordinates and weights in float, the blend as fma(w, v1 − v0, v0) on decoded texels.
+// - An sRGB texture (Texture::srgb, GL_SRGB8_ALPHA8) takes the SoA float path too, its colour
+//   channels decoded to linear before filtering, not by the exact curve but by gallivm's polynomial
+//   (lp_build_srgb_to_linear), which llvmpipe evaluates as:  x ≤ 15: x · (1 / (12.6 · 255));  else
+//   odd · x + even with even = c2 · x² + c0, odd = c3 · x² + c1, each a multiply-add (fused where
+//   the CPU has FMA, as the JIT fuses), c = (0.0023, 0.0030 / 255, 0.6935 / 255², 0.3012 / 255³).
+//   Alpha is decoded as above. Measured: all 256 values equal llvmpipe's (read back as float from
+//   an RGBA32F target), and a 2×1 texture magnified across 256 pixels equals it at every pixel.
+//
+// Output encoding (shaders/mesh.frag): rgb^(1/2.2) before the conversion to unorm8, as the Khronos
+// glTF Sample Renderer encodes for display. Here the power is computed in double and rounded to
+// float; llvmpipe's pow (exp2 of y · log2 x, from polynomials) is within 7 ULP of it, which changed
+// 1 of 65,536 8-bit values measured, by one step. encodeColor() gives the byte directly from a
+// table of the thresholds between bytes.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -58,12 +72,96 @@
 
 namespace frugal::sw {
 
+// A texel channel's byte as llvmpipe decodes it: unorm (x · 1/255), or sRGB's colour channels (the
+// polynomial above, fused or not as the host's JIT fuses).
+using DecodeTable = std::array<float, 256>;
+
+inline const DecodeTable& unormDecode() {
+    static const DecodeTable table = [] {
+        DecodeTable t{};
+        for (int i = 0; i < 256; ++i) t[std::size_t(i)] = float(i) * float(1.0 / 255.0);
+        return t;
+    }();
+    return table;
+}
+
+inline const DecodeTable& srgbDecode(bool fused) {
+    static const auto make = [](bool fma) {
+        // The coefficients as gallivm writes them: float literals, divided in double, stored as float.
+        const float c0 = 0.0023f;
+        const float c1 = float(double(0.0030f) / double(255.0f));
+        const float c2 = float(double(0.6935f) / (double(255.0f) * double(255.0f)));
+        const float c3 = float(double(0.3012f) / (double(255.0f) * double(255.0f) * double(255.0f)));
+        const float linear = float(1.0 / (12.6 * 255.0));
+        const auto mad = [fma](float a, float b, float c) { return fma ? std::fma(a, b, c) : a * b + c; };
+        DecodeTable t{};
+        for (int i = 0; i < 256; ++i) {
+            const float x = float(i);
+            if (x <= 15.0f) {
+                t[std::size_t(i)] = x * linear;
+                continue;
+            }
+            const float x2 = x * x;
+            const float even = mad(c2, x2, c0), odd = mad(c3, x2, c1);
+            t[std::size_t(i)] = mad(odd, x, even);
+        }
+        return t;
+    };
+    static const DecodeTable fusedTable = make(true), unfusedTable = make(false);
+    return fused ? fusedTable : unfusedTable;
+}
+
 struct SoftwareTexture {
     int width = 0, height = 0;
     std::vector<std::uint32_t> texels;  // RGBA8, little-endian (R in the low byte), row 0 = v 0
     Filter filter = Filter::Linear;
     Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
-    bool aos = true;  // both axes repeat or clamp-to-edge: llvmpipe's AoS 8-bit path
+    bool aos = true;  // both axes repeat or clamp-to-edge, not sRGB: llvmpipe's AoS 8-bit path
+    const DecodeTable* rgb = &unormDecode();  // how R, G and B are decoded (alpha: unormDecode)
+};
+
+// rgb^(1/2.2) as an 8-bit value, for a linear colour channel: the power in double rounded to float,
+// then clamped and converted as floatToUnorm8 below. Exact for every float (NaN and v ≤ 0 give 0):
+// thresholds[b] is the least float whose byte is b or more, found once by bisection over float
+// bits, and a table indexed by a value's upper 16 bits gives the byte at the start of its bucket,
+// which one comparison corrects (no bucket spans more than one threshold).
+class ColorEncoding {
+public:
+    static std::uint8_t encode(float v) {
+        static const ColorEncoding encoding;
+        return encoding.byte(v);
+    }
+    // The same, computed directly (slow): what encode() must equal, and what the tests compare.
+    static std::uint8_t exact(float v) {
+        if (!(v > 0.0f)) return 0;
+        const float p = float(std::pow(double(v), double(1.0f / 2.2f)));
+        if (p >= 1.0f) return 255;
+        return std::uint8_t(std::nearbyint(p * 255.0f));
+    }
+
+private:
+    ColorEncoding() {
+        thresholds_[0] = 0.0f;
+        for (int b = 1; b < 256; ++b) {
+            std::uint32_t lo = 0, hi = 0x3F800000u;  // exact(+0) = 0 < b <= exact(1.0f) = 255
+            while (hi - lo > 1) {
+                const std::uint32_t mid = lo + (hi - lo) / 2;
+                (exact(std::bit_cast<float>(mid)) >= b ? hi : lo) = mid;
+            }
+            thresholds_[std::size_t(b)] = std::bit_cast<float>(hi);
+        }
+        for (std::uint32_t bucket = 0; bucket < buckets_.size(); ++bucket)
+            buckets_[bucket] = exact(std::bit_cast<float>(bucket << 16));
+    }
+    std::uint8_t byte(float v) const {
+        if (!(v > 0.0f)) return 0;
+        if (v >= 1.0f) return 255;
+        std::uint8_t b = buckets_[std::bit_cast<std::uint32_t>(v) >> 16];
+        if (b < 255 && v >= thresholds_[std::size_t(b) + 1]) ++b;
+        return b;
+    }
+    std::array<float, 256> thresholds_{};
+    std::array<std::uint8_t, 0x3F80 + 1> buckets_{};  // the positive floats below 1.0, by upper bits
 };
 
 // What the shading of one draw needs besides the pixels.

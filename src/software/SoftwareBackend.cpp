@@ -173,7 +173,9 @@ TextureHandle SoftwareBackend::uploadTexture(const Texture& texture) {
     t.wrapS = texture.wrapS;
     t.wrapT = texture.wrapT;
     const auto simple = [](Wrap w) { return w == Wrap::Repeat || w == Wrap::ClampToEdge; };
-    t.aos = simple(t.wrapS) && simple(t.wrapT);
+    // llvmpipe filters sRGB textures in float, after decoding (Shading.h).
+    t.aos = simple(t.wrapS) && simple(t.wrapT) && !texture.srgb;
+    t.rgb = texture.srgb ? &sw::srgbDecode(raster::cpuHasFma()) : &sw::unormDecode();
     try {
         t.texels.resize(std::size_t(t.width) * std::size_t(t.height));
     } catch (const std::bad_alloc&) {

@@ -49,6 +49,13 @@ std::uint32_t depth24(float windowZ) { return std::uint32_t(std::lround(double(w
 
 std::size_t at(const Buffers& b, int x, int y) { return std::size_t(y) * std::size_t(b.width) + std::size_t(x); }
 
+// A shaded colour as it is written: rgb^(1/2.2), alpha as it is (pipeline/Backend.h). Not the
+// background, which is written as given.
+glm::vec4 displayed(glm::vec4 linear) {
+    const auto encode = [](float v) { return std::pow(std::max(v, 0.0f), 1.0f / 2.2f); };
+    return {encode(linear.r), encode(linear.g), encode(linear.b), linear.a};
+}
+
 // Colour at (x, y) equals `expected` within `tolerance` per channel (GL's float→8-bit rounding).
 ::testing::AssertionResult colorIs(const Buffers& b, int x, int y, glm::vec4 expected, int tolerance = 1) {
     const std::uint8_t* p = &b.rgba[at(b, x, y) * 4];
@@ -253,7 +260,7 @@ TEST_P(GlBackendGLTest, DrawsKnownColourDepthAndIds) {
     ASSERT_EQ(b.width, kWidth);
     ASSERT_EQ(b.height, kHeight);
     // Front face: factor × (0.25 + 0.5 · 1).
-    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f)));
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f))));
     EXPECT_NEAR(double(b.depth[at(b, kFrontX, kCentroidY)]), double(kTriangleDepth), 1.0);
     EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
     // Back face culled: background colour, far depth, id 0.
@@ -282,9 +289,9 @@ TEST_P(GlBackendGLTest, DrawsKnownColourDepthAndIds) {
 
 TEST_P(GlBackendGLTest, DoubleSidedDrawsBackFacesWithFlippedNormal) {
     const Buffers b = drawTwoTriangles(*backend_, /*doubleSided=*/true, /*writeIds=*/true);
-    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f)));
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f))));
     // The back face's normal is negated, so the light is behind it: ambient only.
-    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, glm::vec4(glm::vec3(kFactor) * 0.25f, 1.0f)));
+    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.25f, 1.0f))));
     EXPECT_NEAR(double(b.depth[at(b, kBackX, kCentroidY)]), double(kTriangleDepth), 1.0);
     EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], 103u);
     EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
@@ -328,7 +335,7 @@ TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
         backend_->draw(params, second);
         const Buffers b = backend_->readBack(target);
         EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, kBackground, 0)) << "writeIds " << writeIds;
-        EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, glm::vec4(0.75f, 0.75f, 0.75f, 1.0f))) << "writeIds " << writeIds;
+        EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, displayed(glm::vec4(0.75f, 0.75f, 0.75f, 1.0f)))) << "writeIds " << writeIds;
         EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], writeIds ? 103u : 0u);
     }
     backend_->destroyTarget(target);
@@ -674,7 +681,7 @@ TEST_P(GlBackendGLTest, OneByOneTarget) {
     const Buffers b = backend_->readBack(target);
     ASSERT_EQ(b.pixelCount(), 1u);
     EXPECT_EQ(b.ids[0], 14u);
-    EXPECT_TRUE(colorIs(b, 0, 0, {0.75f, 0.75f, 0.75f, 1.0f}));
+    EXPECT_TRUE(colorIs(b, 0, 0, displayed({0.75f, 0.75f, 0.75f, 1.0f})));
     EXPECT_NEAR(double(b.depth[0]), double(depth24(0.5f)), 1.0);
     backend_->destroyTarget(target);
 }

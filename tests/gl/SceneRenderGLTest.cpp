@@ -67,8 +67,9 @@ protected:
     std::unique_ptr<Backend> backend;
 };
 
-// A single square facing the camera, coloured by its material: the shading formula, checked
-// against the number computed here (Backend.h, Lighting).
+// A single square facing the camera, coloured by its material: the shading formula in linear
+// values, then the display encoding rgb^(1/2.2), checked against the number computed here
+// (Backend.h, Lighting).
 TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     Mesh quad;
     quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
@@ -91,7 +92,8 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     const float lambert = std::max(0.0f, glm::dot(glm::vec3(0, 0, 1), light.toLight));
     const std::size_t centre = std::size_t(24) * 64 + 32;
     for (int c = 0; c < 3; ++c) {
-        const float expected = material.baseColorFactor[c] * (light.ambient + light.diffuse * lambert);
+        const float linear = material.baseColorFactor[c] * (light.ambient + light.diffuse * lambert);
+        const float expected = std::pow(linear, 1.0f / 2.2f);
         EXPECT_NEAR(frame.buffers.rgba[centre * 4 + c], expected * 255.0f, 0.51f) << "channel " << c;
     }
     // The square spans about ±10 pixels around the centre; the diagonal (0,0)-(1,1) splits source
