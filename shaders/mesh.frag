@@ -1,28 +1,26 @@
-// Mesh fragment stage: the shading model of pipeline/Backend.h (`Lighting`), written the same way in
-// the software backend, in linear values:
-//   base = factor * vertex colour * texture(uv);  rgb = base.rgb * (ambient + diffuse * max(0, n.l))
-// with n the normalised interpolated normal, negated on back faces (seen only when double-sided).
-// Factors and vertex colours are linear; an sRGB texture is decoded by its sampler (GL_SRGB8_ALPHA8).
+// Mesh fragment stage: the shading model of pipeline/Backend.h (`Lighting`): glTF's
+// metallic-roughness BRDF as the Khronos glTF Sample Renderer computes it, under one directional
+// light and a uniform environment, written the same way in the software backend, in linear values.
+// Every mix() is written out as a·(1 − t) + b·t, the form the software backend repeats. The split-sum
+// table's fit dfg() comes before this text, generated from pipeline/Brdf.h (GlPrograms.cpp).
 // The colour written is encoded for display as the Khronos glTF Sample Renderer encodes it,
 // rgb^(1/2.2) (its linearTosRGB), so that an 8-bit image looks as viewers show the file.
 //
 // Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
 // FRUGAL_TEXTURE the texel is, so their factors are left out; without FRUGAL_IDS there is no id
-// output. Sampling a 1×1 white texture instead cost +0.64 ms per bunny frame on llvmpipe.
+// output; FRUGAL_UNLIT (KHR_materials_unlit) writes the base colour. Sampling a 1×1 white texture
+// instead cost +0.64 ms per bunny frame on llvmpipe.
 #version 330 core
 
 in vec3 v_normal;
+in vec3 v_position;
 
-#ifdef FRUGAL_INSTANCED
-flat in vec4 v_baseColorFactor;  // per instance (mesh.vert)
-#define BASE_COLOR_FACTOR v_baseColorFactor
-#else
 uniform vec4 u_baseColorFactor;
-#define BASE_COLOR_FACTOR u_baseColorFactor
-#endif
-uniform vec3 u_toLight;  // world space, unit
-uniform float u_ambient;
-uniform float u_diffuse;
+uniform vec2 u_metallicRoughness;  // each in [0, 1]
+uniform vec3 u_eye;                // world space
+uniform vec3 u_toLight;            // world space, unit
+uniform float u_light;             // the directional light's intensity
+uniform float u_environment;       // the uniform environment's radiance
 
 layout(location = 0) out vec4 o_color;
 
@@ -38,18 +36,68 @@ flat in uint v_id;
 layout(location = 1) out uint o_id;
 #endif
 
+const float kPi = 3.14159265;
+const float kDielectricF0 = 0.04;
+
+float clampedDot(vec3 a, vec3 b) { return clamp(dot(a, b), 0.0, 1.0); }
+float pow5(float x) { float x2 = x * x; return (x2 * x2) * x; }
+
+// The Khronos renderer's getIBLGGXFresnel (specular weight 1): single and multiple scattering.
+float iblFresnel(float f0, float r, float c5, vec2 ab) {
+    float fss = (f0 + (max(1.0 - r, f0) - f0) * c5) * ab.x + ab.y;
+    float ems = 1.0 - (ab.x + ab.y);
+    float favg = f0 + (1.0 - f0) / 21.0;
+    return fss + (ems * fss) * favg / (1.0 - favg * ems);
+}
+vec3 iblFresnel(vec3 f0, float r, float c5, vec2 ab) {
+    vec3 fss = (f0 + (max(vec3(1.0 - r), f0) - f0) * c5) * ab.x + ab.y;
+    float ems = 1.0 - (ab.x + ab.y);
+    vec3 favg = f0 + (1.0 - f0) / 21.0;
+    return fss + (ems * fss) * favg / (1.0 - favg * ems);
+}
+
 void main() {
-    vec4 base = BASE_COLOR_FACTOR;
+    vec4 base = u_baseColorFactor;
 #ifdef FRUGAL_COLORS
     base = base * v_color;
 #endif
 #ifdef FRUGAL_TEXTURE
     base = base * texture(u_baseColor, v_uv);
 #endif
+#ifdef FRUGAL_UNLIT
+    vec3 linear = base.rgb;
+#else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
-    float lambert = max(0.0, dot(n, u_toLight));
-    vec3 linear = base.rgb * (u_ambient + u_diffuse * lambert);
+    vec3 v = normalize(u_eye - v_position);
+    float metallic = u_metallicRoughness.x, r = u_metallicRoughness.y;
+    float alpha2 = (r * r) * (r * r);
+    float nv = clampedDot(n, v);
+    float cv = pow5(1.0 - nv);
+
+    // The environment: diffuse and specular image-based light of a uniform radiance.
+    vec2 ab = dfg(nv, r);
+    float fd = iblFresnel(kDielectricF0, r, cv, ab);
+    vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + vec3(u_environment * fd);
+    vec3 metal = iblFresnel(base.rgb, r, cv, ab) * u_environment;
+
+    // The directional light.
+    vec3 l = u_toLight;
+    vec3 h = normalize(l + v);
+    float nl = clampedDot(n, l), nh = clampedDot(n, h), vh = clampedDot(v, h);
+    float ggx = nl * sqrt((nv * nv) * (1.0 - alpha2) + alpha2) + nv * sqrt((nl * nl) * (1.0 - alpha2) + alpha2);
+    float visibility = ggx > 0.0 ? 0.5 / ggx : 0.0;
+    float f = (nh * nh) * (alpha2 - 1.0) + 1.0;
+    float distribution = alpha2 / max(kPi * (f * f), 1.0e-30);
+    float radiance = u_light * nl;
+    float specular = radiance * (visibility * distribution);
+    float ch = pow5(1.0 - vh);
+    float fl = kDielectricF0 + (1.0 - kDielectricF0) * ch;
+    dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + vec3(specular * fl);
+    metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
+
+    vec3 linear = dielectric * (1.0 - metallic) + metal * metallic;
+#endif
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
 #ifdef FRUGAL_IDS
     o_id = v_id;

@@ -43,11 +43,17 @@ struct Texture {
     bool srgb = true;
 };
 
+// glTF 2.0's metallic-roughness material; a default-constructed one is glTF's default material
+// (white, metallic 1, roughness 1). Factors are linear. The loaders of formats without these terms
+// (OBJ, the built-in scenes) give dielectrics: metallic 0 and a roughness of their own.
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
     int baseColorTexture = -1;  // index into Scene::textures, -1 = none
     bool doubleSided = false;   // false: back faces are culled (glTF); true: both sides lit
+    float metallicFactor = 1.0f;   // 0: dielectric (diffuse + 4 % specular), 1: metal; [0, 1]
+    float roughnessFactor = 1.0f;  // perceptual roughness, [0, 1]; GGX alpha = roughness²
+    bool unlit = false;            // KHR_materials_unlit: the colour is the base colour, no light
 };
 
 struct Mesh {
@@ -170,7 +176,7 @@ struct Scene {
     //   "mesh: position 17 is (nan, 0, 1), not finite"
     //   "texture: 12288 bytes for 64x64 RGBA (16384 expected)"
     // A texture: RGBA8, rows in file order (Texture). A material: its texture (-1 = none) must
-    // exist. A mesh: indices 3 a triangle, each below the vertex count; normals, colours and uvs
+    // exist, its factors be finite, metallic and roughness in [0, 1]. A mesh: indices 3 a triangle, each below the vertex count; normals, colours and uvs
     // empty or one a vertex; every value finite; material -1 (the default) or one that exists. It
     // is finished as the loaders finish theirs (triangleSource filled, missing normals computed,
     // and with `optimizeOrder` triangles reordered for the vertex cache, ids kept), so a mesh

@@ -45,13 +45,16 @@ int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, co
     return take(s.scene.addTexture(std::move(texture)));
 }
 
-int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided,
-                const std::string& name) {
+int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided, double metallic,
+                double roughness, bool unlit, const std::string& name) {
     Material material;
     material.name = name;
     material.baseColorFactor = colorFrom(color, "color");
     material.baseColorTexture = texture.value_or(-1);
     material.doubleSided = doubleSided;
+    material.metallicFactor = float(metallic);
+    material.roughnessFactor = float(roughness);
+    material.unlit = unlit;
     return take(s.scene.addMaterial(std::move(material)));
 }
 
@@ -100,6 +103,9 @@ py::list materialList(const Scene& scene) {
         d["color"] = py::make_tuple(m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a);
         d["texture"] = m.baseColorTexture < 0 ? py::object(py::none()) : py::object(py::int_(m.baseColorTexture));
         d["double_sided"] = m.doubleSided;
+        d["metallic"] = m.metallicFactor;
+        d["roughness"] = m.roughnessFactor;
+        d["unlit"] = m.unlit;
         out.append(d);
     }
     return out;
@@ -189,9 +195,12 @@ void bindScene(py::module_& m) {
              "colours sRGB-encoded as a glTF base colour texture's (alpha linear).\n"
              "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
         .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
-             py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("name") = "",
-             "A material: base colour (RGB or RGBA, linear factors), a texture index, and whether back faces\n"
-             "are drawn (single-sided by default, as glTF). Returns its index.")
+             py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("metallic") = 1.0,
+             py::arg("roughness") = 1.0, py::arg("unlit") = false, py::arg("name") = "",
+             "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
+             "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
+             "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
+             "base colour as it is, no light). Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,

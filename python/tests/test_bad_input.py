@@ -69,6 +69,8 @@ def test_bad_attributes_materials_textures_instances():
     refused(frugal.InputError, r"wrap: 'x' is not a mode", scene.add_texture, np.zeros((4, 4, 4), np.uint8), wrap="x")
     refused(frugal.InputError, r"material: texture 0 does not exist", scene.add_material, (1, 1, 1), texture=0)
     refused(frugal.InputError, r"color: value 1 is nan, not finite", scene.add_material, (1, np.nan, 1))
+    refused(frugal.InputError, r"material: metallic 1.5 is not in \[0, 1\]", scene.add_material, metallic=1.5)
+    refused(frugal.InputError, r"material: roughness nan is not in \[0, 1\]", scene.add_material, roughness=np.nan)
     refused(frugal.InputError, r"instance: mesh 0 does not exist \(the scene has 0\)", scene.add_instance, 0)
     mesh = scene.add_mesh(POSITIONS, INDICES)
     refused(frugal.InputError, r"transform: expected a 4x4 matrix, got shape \(3, 3\)", scene.add_instance, mesh,

@@ -1,15 +1,14 @@
 """The scene set-up shared by the references and frugal: camera rule, light, environment.
 
-Lighting is frugal's (src/pipeline/Backend.h, Lighting): one directional light
-and a uniform ambient term, here in the physical units both reference
-renderers use:
+Lighting is frugal's default (src/pipeline/Backend.h, Lighting), in the
+physical units all three renderers use:
 
   * a directional light towards (0.35, 0.8, 0.5) normalised, world space, of
     intensity 0.7 pi: a white Lambertian surface facing it reflects 0.7, since
-    the Lambert lobe is albedo / pi (frugal's diffuse = 0.7);
+    the Lambert lobe is albedo / pi;
   * a uniform white environment of radiance 0.3, for the diffuse and the
     specular (image-based) terms: a white Lambertian surface reflects 0.3
-    from it in any orientation (frugal's ambient = 0.3).
+    from it in any orientation.
 
 A file with KHR_lights_punctual lights of its own keeps them (plus the
 environment) instead of the directional light.

@@ -74,7 +74,8 @@ private:
     GLuint program_ = 0, fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
-    GLint mvp_ = -1, normalMatrix_ = -1, factor_ = -1, toLight_ = -1, ambient_ = -1, diffuse_ = -1;
+    GLint mvp_ = -1, normalMatrix_ = -1, model_ = -1, factor_ = -1, metallicRoughness_ = -1;
+    GLint eye_ = -1, toLight_ = -1, light_ = -1, environment_ = -1;
     std::vector<MeshObjects> meshes_;  // one per scene mesh
     int cullOn_ = -1;
 };
@@ -112,15 +113,18 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
 
     // mesh.vert + mesh.frag without defines: the variant with no texture, colours or ids, which is
     // the backend's own program for such a frame, so the arithmetic is the same by construction.
-    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", "", &program_); !reason.empty())
+    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", meshPreamble(), &program_); !reason.empty())
         return reason;
     gl_.UseProgram(program_);
     mvp_ = gl_.GetUniformLocation(program_, "u_mvp");
     normalMatrix_ = gl_.GetUniformLocation(program_, "u_normalMatrix");
+    model_ = gl_.GetUniformLocation(program_, "u_model");
     factor_ = gl_.GetUniformLocation(program_, "u_baseColorFactor");
+    metallicRoughness_ = gl_.GetUniformLocation(program_, "u_metallicRoughness");
+    eye_ = gl_.GetUniformLocation(program_, "u_eye");
     toLight_ = gl_.GetUniformLocation(program_, "u_toLight");
-    ambient_ = gl_.GetUniformLocation(program_, "u_ambient");
-    diffuse_ = gl_.GetUniformLocation(program_, "u_diffuse");
+    light_ = gl_.GetUniformLocation(program_, "u_light");
+    environment_ = gl_.GetUniformLocation(program_, "u_environment");
 
     // The backend's fixed state (GlBackend::initialise), where it differs from GL's defaults.
     gl_.Enable(GL_DEPTH_TEST);
@@ -174,9 +178,11 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     activate();
     gl_.ClearColor(background.r, background.g, background.b, background.a);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const glm::vec3 eye = eyePosition(frame.view);
+    gl_.Uniform3fv(eye_, 1, glm::value_ptr(eye));
     gl_.Uniform3fv(toLight_, 1, glm::value_ptr(frame.lighting.toLight));
-    gl_.Uniform1f(ambient_, frame.lighting.ambient);
-    gl_.Uniform1f(diffuse_, frame.lighting.diffuse);
+    gl_.Uniform1f(light_, frame.lighting.light);
+    gl_.Uniform1f(environment_, frame.lighting.environment);
     const glm::mat4 viewProjection = frame.projection * frame.view;
     for (const Instance& instance : scene_->instances) {
         const MeshObjects& m = meshes_[std::size_t(instance.mesh)];
@@ -188,7 +194,9 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(model));
         gl_.UniformMatrix4fv(mvp_, 1, GL_FALSE, glm::value_ptr(mvp));
         gl_.UniformMatrix3fv(normalMatrix_, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        gl_.UniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(model));
         gl_.Uniform4fv(factor_, 1, glm::value_ptr(material.baseColorFactor));
+        gl_.Uniform2f(metallicRoughness_, material.metallicFactor, material.roughnessFactor);
         if (cullOn_ != int(!material.doubleSided)) {
             if (material.doubleSided)
                 gl_.Disable(GL_CULL_FACE);

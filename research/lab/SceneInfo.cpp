@@ -105,6 +105,8 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         out << "  '" << m.name << "' base colour " << fmt(m.baseColorFactor.r) << "," << fmt(m.baseColorFactor.g) << ","
             << fmt(m.baseColorFactor.b) << "," << fmt(m.baseColorFactor.a)
             << (m.baseColorTexture >= 0 ? ", texture " + std::to_string(m.baseColorTexture) : std::string())
+            << (m.unlit ? ", unlit"
+                        : ", metallic " + fmt(m.metallicFactor) + ", roughness " + fmt(m.roughnessFactor))
             << (m.doubleSided ? ", double-sided" : ", single-sided") << "\n";
     }
     out << "textures: " << scene.textures.size() << "\n";

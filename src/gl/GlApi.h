@@ -98,6 +98,8 @@ class GlContext;
     X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
     X(PFNGLUNIFORM1UIPROC, Uniform1ui)                           \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                             \
+    X(PFNGLUNIFORM2FPROC, Uniform2f)                             \
+    X(PFNGLUNIFORM2FVPROC, Uniform2fv)                           \
     X(PFNGLUNIFORM3FVPROC, Uniform3fv)                           \
     X(PFNGLUNIFORM4FVPROC, Uniform4fv)                           \
     X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)               \
@@ -126,6 +128,10 @@ std::string glErrorName(GLenum error);
 // ("mesh.frag: compile failed: <log>") and sets *program to 0.
 std::string compileProgram(const GlApi& gl, const char* vertex, const char* fragment, const std::string& defines,
                            GLuint* program);
+
+// The text every variant of the mesh program (mesh.vert, mesh.frag) needs before its own: dfg(), the
+// split-sum table's fit, written from pipeline/Brdf.h. Pass it to compileProgram with the defines.
+std::string meshPreamble();
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

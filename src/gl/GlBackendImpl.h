@@ -42,30 +42,45 @@ struct GlTarget : CachedFramebuffer {
 };
 
 // What a draw uses, as bits of a program variant's index (≤ 16 variants; GlPrograms.cpp).
-enum Variant : unsigned { kTextureBit = 1u, kColorsBit = 2u, kIdsBit = 4u, kInstancedBit = 8u, kVariantCount = 16u };
+enum Variant : unsigned {
+    kTextureBit = 1u,
+    kColorsBit = 2u,
+    kIdsBit = 4u,
+    kInstancedBit = 8u,
+    kUnlitBit = 16u,
+    kVariantCount = 32u
+};
 
-// One instance of a batched draw as the instanced variant reads it (attributes 5–13, mesh.vert):
-// the same values the uniforms of a single draw would get.
+// One instance of a batched draw as the instanced variant reads it (attributes 5–15, mesh.vert):
+// the same values the uniforms of a single draw would get. The model matrix goes as its first three
+// rows (a glTF transform is affine), so that the 16 attributes GL guarantees are enough.
 struct InstanceRecord {
     float mvp[16];
     float normalMatrix[9];
-    float baseColorFactor[4];
+    float modelRows[12];
     std::uint32_t firstId;
 };
-static_assert(sizeof(InstanceRecord) == 30 * 4, "tightly packed: the attribute offsets (attachInstances) assume it");
-enum InstanceAttribute : GLuint { kInstanceMvp = 5, kInstanceNormalMatrix = 9, kInstanceColor = 12, kInstanceFirstId = 13 };
+static_assert(sizeof(InstanceRecord) == 38 * 4, "tightly packed: the attribute offsets (attachInstances) assume it");
+enum InstanceAttribute : GLuint {
+    kInstanceMvp = 5,
+    kInstanceNormalMatrix = 9,
+    kInstanceModelRows = 12,
+    kInstanceFirstId = 15
+};
 
 // One variant of the mesh program, with its uniform locations (-1 where the variant has none)
 // and the values last set in it (uniforms are per-program state).
 struct GlProgram {
     GLuint name = 0;
     bool failed = false;  // did not compile; not tried again
-    GLint mvp = -1, normalMatrix = -1, firstId = -1, baseColorFactor = -1, toLight = -1, ambient = -1, diffuse = -1;
-    CachedUniform<glm::mat4> mvpValue;
+    GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
+    GLint eye = -1, toLight = -1, light = -1, environment = -1;
+    CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue;
     CachedUniform<glm::vec4> baseColorFactorValue;
-    CachedUniform<glm::vec3> toLightValue;
-    CachedUniform<float> ambientValue, diffuseValue;
+    CachedUniform<glm::vec2> metallicRoughnessValue;
+    CachedUniform<glm::vec3> eyeValue, toLightValue;
+    CachedUniform<float> lightValue, environmentValue;
     CachedUniform<std::uint32_t> firstIdValue;
 };
 
@@ -194,6 +209,7 @@ private:
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
     glm::mat4 viewProjection_{1.0f};
+    glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
 
     // The streamed index buffer of gathered draws, and its CPU side.
     GLuint streamIbo_ = 0;

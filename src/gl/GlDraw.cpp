@@ -60,6 +60,7 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     frame_ = frame;
     // The lighting goes to each program on its first draw of the frame (uniforms are per program).
     viewProjection_ = frame.projection * frame.view;
+    eye_ = eyePosition(frame.view);
 }
 
 GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
@@ -76,6 +77,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         }
     }
     if (mesh.layout.color >= 0) variant |= kColorsBit;
+    if (params.unlit) variant |= kUnlitBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 
@@ -88,10 +90,18 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (texture) state_.bindTexture(texture);
 
     const Lighting& light = frame_.lighting;
+    if (state_.uniformChanged(p->eyeValue, eye_)) gl_.Uniform3fv(p->eye, 1, glm::value_ptr(eye_));
     if (state_.uniformChanged(p->toLightValue, light.toLight))
         gl_.Uniform3fv(p->toLight, 1, glm::value_ptr(light.toLight));
-    if (state_.uniformChanged(p->ambientValue, light.ambient)) gl_.Uniform1f(p->ambient, light.ambient);
-    if (state_.uniformChanged(p->diffuseValue, light.diffuse)) gl_.Uniform1f(p->diffuse, light.diffuse);
+    if (state_.uniformChanged(p->lightValue, light.light)) gl_.Uniform1f(p->light, light.light);
+    if (state_.uniformChanged(p->environmentValue, light.environment))
+        gl_.Uniform1f(p->environment, light.environment);
+    // The material: the same for every instance of a batched draw.
+    if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
+        gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
+    const glm::vec2 metallicRoughness(params.metallic, params.roughness);
+    if (state_.uniformChanged(p->metallicRoughnessValue, metallicRoughness))
+        gl_.Uniform2fv(p->metallicRoughness, 1, glm::value_ptr(metallicRoughness));
 
     // Attributes the mesh lacks read the current generic value. That value is context state, and
     // GL 3.3 leaves it undefined after a draw that sourced the attribute from an array, so it is
@@ -127,8 +137,8 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
     if (state_.uniformChanged(p->mvpValue, mvp)) gl_.UniformMatrix4fv(p->mvp, 1, GL_FALSE, glm::value_ptr(mvp));
     if (state_.uniformChanged(p->normalMatrixValue, normalMatrix))
         gl_.UniformMatrix3fv(p->normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
-        gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
+    if (state_.uniformChanged(p->modelValue, params.model))
+        gl_.UniformMatrix4fv(p->model, 1, GL_FALSE, glm::value_ptr(params.model));
     if (writeIds && state_.uniformChanged(p->firstIdValue, params.firstId)) gl_.Uniform1ui(p->firstId, params.firstId);
     state_.countDraw();
 
@@ -257,7 +267,8 @@ void GlBackend::drawInstances(const DrawParams& params, std::span<const Instance
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(in.model));
         std::memcpy(out.mvp, glm::value_ptr(mvp), sizeof out.mvp);
         std::memcpy(out.normalMatrix, glm::value_ptr(normalMatrix), sizeof out.normalMatrix);
-        std::memcpy(out.baseColorFactor, glm::value_ptr(in.baseColorFactor), sizeof out.baseColorFactor);
+        for (int row = 0; row < 3; ++row)
+            for (int column = 0; column < 4; ++column) out.modelRows[4 * row + column] = in.model[column][row];
         out.firstId = in.firstId;
     }
     if (instanceVbo_ == 0) gl_.GenBuffers(1, &instanceVbo_);
@@ -301,9 +312,12 @@ void GlBackend::attachInstances(GLuint vao, bool& attached) {
                                 at(offsetof(InstanceRecord, normalMatrix) + 12 * column));
         gl_.VertexAttribDivisor(kInstanceNormalMatrix + column, 1);
     }
-    gl_.EnableVertexAttribArray(kInstanceColor);
-    gl_.VertexAttribPointer(kInstanceColor, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, baseColorFactor)));
-    gl_.VertexAttribDivisor(kInstanceColor, 1);
+    for (GLuint row = 0; row < 3; ++row) {
+        gl_.EnableVertexAttribArray(kInstanceModelRows + row);
+        gl_.VertexAttribPointer(kInstanceModelRows + row, 4, GL_FLOAT, GL_FALSE, stride,
+                                at(offsetof(InstanceRecord, modelRows) + 16 * row));
+        gl_.VertexAttribDivisor(kInstanceModelRows + row, 1);
+    }
     gl_.EnableVertexAttribArray(kInstanceFirstId);
     gl_.VertexAttribIPointer(kInstanceFirstId, 1, GL_UNSIGNED_INT, stride, at(offsetof(InstanceRecord, firstId)));
     gl_.VertexAttribDivisor(kInstanceFirstId, 1);

@@ -1,8 +1,8 @@
 // The GL backend's program variants (the class: GlBackendImpl.h).
 //
 // Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — a
-// texture, vertex colours, ids — compiled on first use (at most 8, each also in an instanced form
-// for drawInstances: 16 in all). A variant leaves out what the draw does not use instead of feeding
+// texture, vertex colours, ids, an unlit material — compiled on first use (at most 16, each also in
+// an instanced form for drawInstances: 32 in all). A variant leaves out what the draw does not use instead of feeding
 // it white (a 1×1 white texture, a white colour varying, an unused flat id varying), because each of
 // those costs llvmpipe time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so
 // leaving it out changes no bit. The interpolated white colour was not always 1.0: llvmpipe
@@ -16,16 +16,62 @@
 
 #include "gl/GlApi.h"
 #include "gl/GlBackendImpl.h"
+#include "pipeline/Brdf.h"
+
+namespace frugal {
+
+namespace {
+
+// A float as a GLSL literal that reads back as the same float.
+std::string literal(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", double(value));
+    std::string s = text;
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return "(" + s + ")";
+}
+
+// brdf::dfgPolynomial as GLSL, for one channel's coefficients.
+std::string dfgPolynomial(const char* name, const std::array<float, 18>& c) {
+    const auto k = [&](int i) { return literal(c[std::size_t(i)]); };
+    return "float " + std::string(name) + "(float x, float r, float u, float f5) {\n" +
+           "    float inR = " + k(0) + " + r * (" + k(1) + " + r * (" + k(2) + " + r * (" + k(3) + " + r * (" + k(4) +
+           " + r * " + k(5) + "))));\n" +
+           "    float inX = x * ((" + k(6) + " + r * (" + k(7) + " + r * " + k(8) + ")) + x * " + k(9) + ");\n" +
+           "    float inU = u * (((" + k(10) + " + r * (" + k(11) + " + r * (" + k(12) + " + r * " + k(13) + "))) + x * " +
+           k(14) + ") + u * " + k(15) + ");\n" +
+           "    float inF = f5 * (" + k(16) + " + r * " + k(17) + ");\n" +
+           "    return ((inR + inX) + inU) + inF;\n}\n";
+}
+
+}  // namespace
+
+std::string meshPreamble() {
+    static const std::string text =
+        dfgPolynomial("dfgA", brdf::kDfgA) + dfgPolynomial("dfgB", brdf::kDfgB) +
+        "vec2 dfg(float x, float r) {  // pipeline/Brdf.h\n"
+        "    float alpha = r * r;\n"
+        "    float u = x * inversesqrt(max(x * x + 4.0 * (alpha * alpha), 1.0e-30));\n"
+        "    float y = 1.0 - x;\n"
+        "    float y2 = y * y;\n"
+        "    float f5 = (y2 * y2) * y;\n"
+        "    return vec2(min(max(dfgA(x, r, u, f5), 0.0), 1.0), min(max(dfgB(x, r, u, f5), 0.0), 1.0));\n"
+        "}\n";
+    return text;
+}
+
+}  // namespace frugal
 
 namespace frugal::gl {
 
 std::string GlBackend::compileVariant(unsigned variant) {
     GlProgram& p = programs_[variant];
-    std::string defines;
+    std::string defines = meshPreamble();
     if (variant & kTextureBit) defines += "#define FRUGAL_TEXTURE\n";
     if (variant & kColorsBit) defines += "#define FRUGAL_COLORS\n";
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
     if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
+    if (variant & kUnlitBit) defines += "#define FRUGAL_UNLIT\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -33,10 +79,13 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
     p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
     p.firstId = gl_.GetUniformLocation(p.name, "u_firstId");
+    p.model = gl_.GetUniformLocation(p.name, "u_model");
     p.baseColorFactor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
+    p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
+    p.eye = gl_.GetUniformLocation(p.name, "u_eye");
     p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
-    p.ambient = gl_.GetUniformLocation(p.name, "u_ambient");
-    p.diffuse = gl_.GetUniformLocation(p.name, "u_diffuse");
+    p.light = gl_.GetUniformLocation(p.name, "u_light");
+    p.environment = gl_.GetUniformLocation(p.name, "u_environment");
     if (variant & kTextureBit) {
         state_.useProgram(p.name);
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_baseColor"), 0);  // texture unit 0

@@ -19,7 +19,6 @@ void Backend::drawInstances(const DrawParams& params, std::span<const InstancePa
     DrawParams one = params;
     for (const InstanceParams& instance : instances) {
         one.model = instance.model;
-        one.baseColorFactor = instance.baseColorFactor;
         one.firstId = instance.firstId;
         draw(one, {&range, 1});
     }

@@ -61,20 +61,42 @@ struct IndexRange {
 };
 
 // The shading model, written once here and twice in code (shaders/mesh.frag and the software
-// backend), in linear values:  rgb = base.rgb × (ambient + diffuse · max(0, n · toLight)),
-// a = base.a, base = material factor × vertex colour × texture(uv), where a mesh without colours and
-// a draw without texture leave their factor out (exactly 1, never interpolated). Factors and vertex
-// colours are linear; an sRGB texture (Texture::srgb) is decoded to linear before it is filtered.
-// n is the interpolated world-space normal, normalised, and negated on back faces of double-sided
-// materials. The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample
-// Renderer, and a unencoded; the 8-bit target clamps to [0,1] and rounds to nearest. The clear
-// colour (the background) is written as given, not encoded. With the default light a white surface
-// facing the light is 1.0 (0.3 + 0.7), encoded 255; one at right angles to it 0.3, encoded 148.
+// backend): glTF 2.0's metallic-roughness BRDF as the Khronos glTF Sample Renderer computes it, lit
+// by one directional light and a uniform environment, in linear values.
+//   base = material factor × vertex colour × texture(uv) (a mesh without colours and a draw without
+//   texture leave their factor out: exactly 1, never interpolated); factors and vertex colours are
+//   linear, an sRGB texture (Texture::srgb) is decoded to linear before it is filtered.
+//   n = the interpolated world-space normal, normalised, negated on back faces (seen only when
+//   double-sided); v = normalize(eye − p), p the interpolated world position; r = roughness,
+//   alpha = r², m = metallic; c5(x) = (1 − x)⁵.
+//   Environment (image-based light of a uniform radiance L, `environment`): with (A, B) the
+//   split-sum GGX table at (n·v, r) (pipeline/Brdf.h: a fit to the Khronos renderer's table) and
+//   its Fresnel  F(f0) = Fss + Fss·Ems·Favg / (1 − Favg·Ems),  Fss = (f0 + (max(1 − r, f0) − f0)·c5(n·v))·A + B,
+//   Ems = 1 − (A + B), Favg = f0 + (1 − f0)/21:
+//     dielectric = L·base.rgb·(1 − F(0.04)) + L·F(0.04);   metal = L·F(base.rgb)
+//   Light (direction l = toLight, intensity E = `light`, in the specification's units, where the
+//   Lambert lobe is albedo/π), h = normalize(l + v), the dots clamped to [0, 1]:
+//     D = alpha² / (π·f²), f = (n·h)²(alpha² − 1) + 1;  V = 0.5 / (n·l·√((n·v)²(1 − alpha²) + alpha²)
+//       + n·v·√((n·l)²(1 − alpha²) + alpha²))  (0 where the sum is 0);  S = E·n·l·V·D
+//     dielectric = E·n·l·base.rgb/π·(1 − Fl(0.04)) + S·Fl(0.04);  metal = S·Fl(base.rgb),
+//     Fl(f0) = f0 + (1 − f0)·c5(v·h)
+//   rgb = mix(dielectric, metal, m) of both, summed; a = base.a. An unlit material (DrawParams::
+//   unlit, KHR_materials_unlit) has rgb = base.rgb.
+// The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample Renderer, and a
+// unencoded; the 8-bit target clamps to [0,1] and rounds to nearest. The clear colour (the
+// background) is written as given, not encoded. With the default light a white rough dielectric
+// facing the light and the viewer is about 1.0 of diffuse light (0.3 + 0.7) less the 4 % the
+// surface reflects, plus that reflection.
 struct Lighting {
     glm::vec3 toLight = glm::normalize(glm::vec3(0.35f, 0.8f, 0.5f));  // world space, unit
-    float ambient = 0.3f;
-    float diffuse = 0.7f;
+    float light = 0.7f * 3.14159265f;  // the directional light's intensity (white): E above
+    float environment = 0.3f;          // the uniform environment's radiance (white): L above
+    bool operator==(const Lighting&) const = default;
 };
+
+// Where the camera of `view` (a rigid world-to-eye transform) is, in world space: the same float
+// arithmetic in every backend, so that v above is the same.
+inline glm::vec3 eyePosition(const glm::mat4& view) { return glm::vec3(glm::inverse(view)[3]); }
 
 struct FrameParams {
     glm::mat4 view{1.0f};
@@ -97,16 +119,18 @@ struct DrawParams {
     MeshHandle mesh = kNoHandle;
     glm::mat4 model{1.0f};
     glm::vec4 baseColorFactor{1.0f};
+    float metallic = 1.0f, roughness = 1.0f;  // the material's factors, each in [0, 1]
+    bool unlit = false;                       // rgb = base.rgb (KHR_materials_unlit)
     TextureHandle texture = kNoHandle;  // kNoHandle = white
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
 };
 
-// What differs between the instances of one batched draw (Backend::drawInstances).
+// What differs between the instances of one batched draw (Backend::drawInstances); the material
+// is the draw's.
 struct InstanceParams {
     glm::mat4 model{1.0f};
-    glm::vec4 baseColorFactor{1.0f};
     std::uint32_t firstId = 1;
 };
 
@@ -166,9 +190,9 @@ public:
     // frame.depthFormat must be the target's format.
     virtual void beginFrame(TargetHandle target, const FrameParams& frame) = 0;
     virtual void draw(const DrawParams& params, std::span<const IndexRange> ranges) = 0;
-    // The same mesh, texture, faces and depth mode (`params`) drawn once per instance, in instance
-    // order, each with its own model matrix, colour factor and first id (params' are not read):
-    // the same pixels as one draw(params with the instance's values, {range}) per instance. The GL
+    // The same mesh, material, faces and depth mode (`params`) drawn once per instance, in instance
+    // order, each with its own model matrix and first id (params' are not read): the same pixels
+    // as one draw(params with the instance's values, {range}) per instance. The GL
     // backend issues one instanced draw; this default (the software backend's) calls draw().
     virtual void drawInstances(const DrawParams& params, std::span<const InstanceParams> instances, IndexRange range);
 

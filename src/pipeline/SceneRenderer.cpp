@@ -74,6 +74,9 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.mesh = meshes_[instance.mesh];
         params.model = world[instance.node];
         params.baseColorFactor = material.baseColorFactor;
+        params.metallic = material.metallicFactor;
+        params.roughness = material.roughnessFactor;
+        params.unlit = material.unlit;
         params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.firstId = instance.firstId;
@@ -103,7 +106,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         instances_.clear();
         for (std::size_t k = i; k < end; ++k) {
             const Instance& instance = scene_->instances[list[k].instance];
-            instances_.push_back(InstanceParams{world[instance.node], paramsOf(list[k]).baseColorFactor, instance.firstId});
+            instances_.push_back(InstanceParams{world[instance.node], instance.firstId});
         }
         backend_->drawInstances(paramsOf(command), instances_, command.ranges[0]);
         i = end;

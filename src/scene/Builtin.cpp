@@ -170,6 +170,15 @@ Texture makeChecker(int size, int cells) {
     return texture;
 }
 
+// The built-in scenes' materials are dielectrics of medium roughness (plastic): a diffuse colour
+// with a soft highlight.
+Material builtinMaterial() {
+    Material material;
+    material.metallicFactor = 0.0f;
+    material.roughnessFactor = 0.5f;
+    return material;
+}
+
 glm::vec4 hueColor(float hue) {
     const glm::vec3 k = glm::abs(glm::fract(glm::vec3(hue) + glm::vec3(0.0f, 2.0f / 3.0f, 1.0f / 3.0f)) * 6.0f - 3.0f);
     return glm::vec4(glm::mix(glm::vec3(1.0f), glm::clamp(k - 1.0f, 0.0f, 1.0f), 0.7f), 1.0f);
@@ -222,7 +231,7 @@ Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
 
     const int kColours = 6;
     for (int c = 0; c < kColours; ++c) {
-        Material material;
+        Material material = builtinMaterial();
         material.name = "domino" + std::to_string(c);
         material.baseColorFactor = hueColor(float(c) / kColours);
         scene.materials.push_back(material);
@@ -280,7 +289,7 @@ Result<Scene> makeDominoes(ParamReader& in, bool defaultFloor) {
 
     const float halfX = rowLength / 2 + 3.0f, halfZ = float(rows) * rowGap / 2 + 2.0f;
     if (floor) {
-        Material material;
+        Material material = builtinMaterial();
         material.name = "floor";
         material.baseColorTexture = 0;
         scene.materials.push_back(material);
@@ -315,7 +324,7 @@ Result<Scene> makeCubes(ParamReader& in) {
     const float spread = 2.2f * std::cbrt(float(n)) * side;  // cubes overlap in screen space, by design
     scene.meshes.reserve(n);
     for (int i = 0; i < n; ++i) {
-        Material material;
+        Material material = builtinMaterial();
         material.name = "cube" + std::to_string(i);
         material.baseColorFactor = hueColor(unit(rng));
         scene.materials.push_back(material);
@@ -420,7 +429,7 @@ Result<Scene> makeOrbit(ParamReader& in, const LoadOptions& options) {
 
     const float side = 0.08f * radius, ring = 0.6f * radius;
     const int n = int(count);
-    Material material;
+    Material material = builtinMaterial();
     material.name = "orbiter";
     material.baseColorFactor = {0.95f, 0.85f, 0.2f, 1.0f};
     scene.materials.push_back(material);
@@ -483,7 +492,7 @@ Result<Scene> makeMaterials(ParamReader& in) {
         scene.textures.back().name = "checker" + std::to_string(t);
     }
     for (int m = 0; m < materials; ++m) {
-        Material material;
+        Material material = builtinMaterial();
         material.name = "material" + std::to_string(m);
         material.baseColorFactor = hueColor(float(m) / float(materials));
         material.baseColorTexture = m < textures ? m : -1;

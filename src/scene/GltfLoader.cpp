@@ -750,9 +750,17 @@ void Converter::convertMaterials() {
         for (int k = 0; k < 4 && std::size_t(k) < factor.size(); ++k)
             material.baseColorFactor[k] =
                 toFloat(factor[std::size_t(k)], cat(where, ".pbrMetallicRoughness.baseColorFactor[", k, "]"));
+        material.metallicFactor = std::clamp(
+            toFloat(src.pbrMetallicRoughness.metallicFactor, cat(where, ".pbrMetallicRoughness.metallicFactor")), 0.0f,
+            1.0f);
+        material.roughnessFactor = std::clamp(
+            toFloat(src.pbrMetallicRoughness.roughnessFactor, cat(where, ".pbrMetallicRoughness.roughnessFactor")),
+            0.0f, 1.0f);
+        material.unlit = src.extensions.count("KHR_materials_unlit") > 0;
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
         if (src.alphaMode != "OPAQUE") report("alphaMode " + src.alphaMode);
+        if (src.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) report("metallicRoughnessTexture");
         if (src.normalTexture.index >= 0) report("normalTexture");
         if (src.occlusionTexture.index >= 0) report("occlusionTexture");
         if (src.emissiveTexture.index >= 0) report("emissiveTexture");
@@ -843,9 +851,10 @@ void Converter::convertAnimations() {
 
 Scene Converter::run() {
     scene_.source = path_;
-    // KHR_mesh_quantization only widens the accessor types, which the readers above all accept.
+    // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
+    // KHR_materials_unlit is Material::unlit.
     for (const std::string& name : extensions_)
-        if (name != "KHR_mesh_quantization") report(oneLine(name, 80));
+        if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit") report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();
     convertMaterials();

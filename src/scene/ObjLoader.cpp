@@ -7,7 +7,8 @@
 // they are convex and planar, as OBJ exporters write them.
 //
 // Conventions: texture v is flipped (v' = 1 − v) so that uv (0,0) is the first row of the image, as in
-// glTF (Scene.h). Of the materials only the diffuse colour Kd is used. One Mesh per (shape, material),
+// glTF (Scene.h). Materials become dielectrics (metallic 0): Kd the base colour, the Phong exponent Ns
+// a roughness (objRoughness); a face without a material gets Ns 0, the roughest. One Mesh per (shape, material),
 // one root node per shape. OBJ has no culling flag: LoadOptions::objDoubleSided decides.
 #include <tiny_obj_loader.h>
 
@@ -293,6 +294,13 @@ private:
     }
 };
 
+// GGX roughness of a Blinn-Phong exponent: the lobes match when alpha² = 2 / (Ns + 2) (Walter et
+// al. 2007), and perceptual roughness is √alpha. Ns 0 gives 1; Ns 1000, 0.21.
+float objRoughness(float ns) {
+    const float exponent = std::isfinite(ns) ? std::max(ns, 0.0f) : 0.0f;
+    return std::sqrt(std::sqrt(2.0f / (exponent + 2.0f)));
+}
+
 class ObjConverter {
 public:
     ObjConverter(const ObjData& obj, const std::string& path, const LoadOptions& options)
@@ -307,6 +315,8 @@ public:
             material.name = src.name;
             material.baseColorFactor = glm::vec4(src.diffuse[0], src.diffuse[1], src.diffuse[2], 1.0f);
             material.doubleSided = options_.objDoubleSided;
+            material.metallicFactor = 0.0f;
+            material.roughnessFactor = objRoughness(src.shininess);
             scene_.materials.push_back(material);
         }
         for (std::size_t s = 0; s < obj_.shapes.size(); ++s) convertShape(s);
@@ -340,6 +350,8 @@ private:
             Material fallback;
             fallback.name = "default";
             fallback.doubleSided = options_.objDoubleSided;
+            fallback.metallicFactor = 0.0f;
+            fallback.roughnessFactor = objRoughness(0.0f);
             scene_.materials.push_back(fallback);
         }
         return defaultMaterial_;

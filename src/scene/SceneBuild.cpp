@@ -85,6 +85,13 @@ Result<int> Scene::addMaterial(Material material) {
     if (material.baseColorTexture < -1 || material.baseColorTexture >= int(textures.size()))
         return bad("material: texture " + std::to_string(material.baseColorTexture) + " does not exist (the scene has " +
                    std::to_string(textures.size()) + ")");
+    const auto factorProblem = [](const char* name, float value) -> std::string {
+        if (value >= 0.0f && value <= 1.0f) return {};
+        return std::string("material: ") + name + " " + fmt(double(value)) + " is not in [0, 1]";
+    };
+    for (const std::string& problem :
+         {factorProblem("metallic", material.metallicFactor), factorProblem("roughness", material.roughnessFactor)})
+        if (!problem.empty()) return bad(problem);
     materials.push_back(std::move(material));
     return int(materials.size()) - 1;
 }

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "pipeline/Brdf.h"
 #include "raster/Rasterizer.h"
 #include "software/Shading.h"
 
@@ -26,6 +27,7 @@ struct VertexJob {
     const glm::vec2* uvs = nullptr;      // nullptr: (0, 0)
     glm::mat4 mvp{1.0f};
     glm::mat3 normalMatrix{1.0f};
+    glm::mat4 model{1.0f};  // its affine part gives the world position
     Viewport viewport;
     SetupVertex* out = nullptr;    // window position, 1/w, varyings
     glm::vec4* clip = nullptr;     // clip-space position

@@ -38,6 +38,8 @@ void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
         const glm::vec2 uv = job.uvs ? job.uvs[i] : glm::vec2(0.0f);
         v.a[7] = uv.x;
         v.a[8] = uv.y;
+        const glm::mat4& w = job.model;  // ((c0·x + c1·y) + c2·z) + c3, as mesh.vert
+        for (int r = 0; r < 3; ++r) v.a[9 + r] = ((w[0][r] * p.x + w[1][r] * p.y) + w[2][r] * p.z) + w[3][r];
     }
 }
 
@@ -310,6 +312,108 @@ struct Plane {
     float a0, dadx, dady;
 };
 
+// The BRDF of pipeline/Backend.h in the operations mesh.frag gives llvmpipe: dot products reduced
+// from the last component, normalize as v · (1 / sqrt(dot(v, v))), clamp as min(max(x, 0), 1),
+// mix written out as a·(1 − t) + b·t, no fused operations.
+constexpr float kPi = 3.14159265f;        // mesh.frag's constants, as GLSL reads them
+constexpr float kDielectricF0 = 0.04f;
+
+struct Vec3 {
+    F8 x, y, z;
+};
+
+// pipeline/Brdf.h's split-sum fit, eight lanes at a time, in the order brdf::dfg states. (Written
+// out here rather than instantiated from Brdf.h's template: that would be compiled without this
+// file's SIMD target, and F8 cannot cross between the two.)
+inline F8 dfgPolynomial(const std::array<float, 18>& c, F8 x, F8 r, F8 u, F8 f5) {
+    const auto k = [&c](int i) { return simd::splat(c[std::size_t(i)]); };
+    const F8 inR = k(0) + r * (k(1) + r * (k(2) + r * (k(3) + r * (k(4) + r * k(5)))));
+    const F8 inX = x * ((k(6) + r * (k(7) + r * k(8))) + x * k(9));
+    const F8 inU = u * (((k(10) + r * (k(11) + r * (k(12) + r * k(13)))) + x * k(14)) + u * k(15));
+    const F8 inF = f5 * (k(16) + r * k(17));
+    return ((inR + inX) + inU) + inF;
+}
+inline void dfg(F8 x, F8 r, F8& a, F8& b) {
+    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
+    const F8 alpha = r * r;
+    const F8 u = x * (one / simd::sqrt(simd::max(x * x + simd::splat(4.0f) * (alpha * alpha), simd::splat(1.0e-30f))));
+    const F8 y = one - x;
+    const F8 y2 = y * y;
+    const F8 f5 = (y2 * y2) * y;
+    a = simd::min(simd::max(dfgPolynomial(brdf::kDfgA, x, r, u, f5), zero), one);
+    b = simd::min(simd::max(dfgPolynomial(brdf::kDfgB, x, r, u, f5), zero), one);
+}
+inline F8 dot(const Vec3& a, const Vec3& b) { return (a.z * b.z + a.y * b.y) + a.x * b.x; }
+inline Vec3 normalize(const Vec3& a) {
+    const F8 rsq = simd::splat(1.0f) / simd::sqrt(dot(a, a));
+    return {a.x * rsq, a.y * rsq, a.z * rsq};
+}
+inline F8 saturate(F8 a) { return simd::min(simd::max(a, simd::splat(0.0f)), simd::splat(1.0f)); }
+inline F8 pow5(F8 x) {
+    const F8 x2 = x * x;
+    return (x2 * x2) * x;
+}
+
+// The Khronos renderer's getIBLGGXFresnel (mesh.frag's iblFresnel).
+inline F8 iblFresnel(F8 f0, F8 r, F8 c5, F8 a, F8 b) {
+    const F8 one = simd::splat(1.0f);
+    const F8 fss = (f0 + (simd::max(one - r, f0) - f0) * c5) * a + b;
+    const F8 ems = one - (a + b);
+    const F8 favg = f0 + (one - f0) / simd::splat(21.0f);
+    return fss + (ems * fss) * favg / (one - favg * ems);
+}
+
+struct Light {
+    explicit Light(const DrawShading& s)
+        : eye{simd::splat(s.eye.x), simd::splat(s.eye.y), simd::splat(s.eye.z)},
+          toLight{simd::splat(s.toLight.x), simd::splat(s.toLight.y), simd::splat(s.toLight.z)},
+          metallic(simd::splat(s.metallic)),
+          roughness(simd::splat(s.roughness)),
+          intensity(simd::splat(s.light)),
+          environment(simd::splat(s.environment)) {}
+
+    // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
+    void shade(const F8 base[4], const Vec3& n, const Vec3& v, F8 out[3]) const {
+        const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), pi = simd::splat(kPi);
+        const F8 f0 = simd::splat(kDielectricF0);
+        const F8 r = roughness;
+        const F8 alpha2 = (r * r) * (r * r);
+        const F8 nv = saturate(dot(n, v));
+        const F8 cv = pow5(one - nv);
+
+        // The environment.
+        F8 a, b;
+        dfg(nv, r, a, b);
+        const F8 fd = iblFresnel(f0, r, cv, a, b);
+        F8 dielectric[3], metal[3];
+        for (int c = 0; c < 3; ++c) {
+            dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
+            metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
+        }
+
+        // The directional light.
+        const Vec3 h = normalize({toLight.x + v.x, toLight.y + v.y, toLight.z + v.z});
+        const F8 nl = saturate(dot(n, toLight)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
+        const F8 ggx = nl * simd::sqrt((nv * nv) * (one - alpha2) + alpha2) +
+                       nv * simd::sqrt((nl * nl) * (one - alpha2) + alpha2);
+        const F8 visibility = simd::selectf(simd::lt(zero, ggx), simd::splat(0.5f) / ggx, zero);
+        const F8 f = (nh * nh) * (alpha2 - one) + one;
+        const F8 distribution = alpha2 / simd::max(pi * (f * f), simd::splat(1.0e-30f));
+        const F8 radiance = intensity * nl;
+        const F8 specular = radiance * (visibility * distribution);
+        const F8 ch = pow5(one - vh);
+        const F8 fl = f0 + (one - f0) * ch;
+        for (int c = 0; c < 3; ++c) {
+            dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
+            metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
+            out[c] = dielectric[c] * (one - metallic) + metal[c] * metallic;
+        }
+    }
+
+    Vec3 eye, toLight;
+    F8 metallic, roughness, intensity, environment;
+};
+
 void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const Triangle& t = *tile.won[index];
     const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
@@ -338,11 +442,10 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const Plane w = plane(v0.oow, v1.oow, v2.oow);
     const bool textured = shading.texture != nullptr;
     const bool colored = shading.colors;
-    const int attributes = textured ? kAttributes : kAttributes - 2;
     Plane a[kAttributes];
     {
-        // Varyings 0..7 eight at a time (the same operations per lane as plane()), the ninth alone.
-        static_assert(kAttributes == 9, "eight varyings in one vector plus one");
+        // Varyings 0..7 eight at a time (the same operations per lane as plane()), the rest alone.
+        static_assert(kAttributes == 12, "eight varyings in one vector plus four");
         const F8 a0 = simd::loadf(v0.a) * simd::splat(v0.oow);
         const F8 a1 = simd::loadf(v1.a) * simd::splat(v1.oow);
         const F8 a2 = simd::loadf(v2.a) * simd::splat(v2.oow);
@@ -355,13 +458,17 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
         simd::storef(sx, dadx);
         simd::storef(sy, dady);
         for (int i = 0; i < 8; ++i) a[i] = {s0[i], sx[i], sy[i]};
-        a[8] = plane(v0.a[8] * v0.oow, v1.a[8] * v1.oow, v2.a[8] * v2.oow);
+        for (int i = 8; i < kAttributes; ++i) a[i] = plane(v0.a[i] * v0.oow, v1.a[i] * v1.oow, v2.a[i] * v2.oow);
     }
+    // The varyings this draw reads: normal, world position, and colour and uv when it has them.
+    int used[kAttributes];
+    int usedCount = 0;
+    for (int i = 0; i < kAttributes; ++i)
+        if ((!shading.unlit && (i < 3 || i >= 9)) || (colored && i >= 3 && i < 7) || (textured && i >= 7 && i < 9))
+            used[usedCount++] = i;
 
     const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), c255 = simd::splat(255.0f);
-    const F8 lx = simd::splat(shading.toLight.x), ly = simd::splat(shading.toLight.y),
-             lz = simd::splat(shading.toLight.z);
-    const F8 ambient = simd::splat(shading.ambient), diffuse = simd::splat(shading.diffuse);
+    const Light light(shading);
     const F8 factor[4] = {simd::splat(shading.factor.r), simd::splat(shading.factor.g), simd::splat(shading.factor.b),
                           simd::splat(shading.factor.a)};
     const I8 me = simd::splati(std::int32_t(index));
@@ -380,7 +487,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             };
             const F8 oow = one / at(w);
             F8 value[kAttributes];
-            for (int i = 0; i < attributes; ++i) value[i] = at(a[i]) * oow;
+            for (int k = 0; k < usedCount; ++k) value[used[k]] = at(a[used[k]]) * oow;
 
             F8 texel[4] = {one, one, one, one};
             if (textured) {
@@ -398,27 +505,20 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             F8 base[4];
             for (int c = 0; c < 4; ++c) base[c] = (colored ? factor[c] * value[3 + c] : factor[c]) * texel[c];
 
-            // normalize: v · (1/sqrt(dot(v, v))), dot reduced from the last component (NIR).
-            F8 nx = value[0], ny = value[1], nz = value[2];
-            const F8 len2 = (nz * nz + ny * ny) + nx * nx;
-            const F8 rsq = one / simd::sqrt(len2);
-            nx = nx * rsq;
-            ny = ny * rsq;
-            nz = nz * rsq;
-            if (!t.front) {
-                nx = simd::neg(nx);
-                ny = simd::neg(ny);
-                nz = simd::neg(nz);
+            F8 linear[3] = {base[0], base[1], base[2]};
+            if (!shading.unlit) {
+                Vec3 n = normalize({value[0], value[1], value[2]});
+                if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
+                const Vec3 v = normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
+                light.shade(base, n, v, linear);
             }
-            const F8 lambert = simd::max((nz * lz + ny * ly) + nx * lx, zero);
-            const F8 k = ambient + diffuse * lambert;
 
             // Colour: linear rgb encoded lane by lane (ColorEncoding); alpha converted as it is.
             std::uint32_t rgb[8] = {};
             for (int c = 0; c < 3; ++c) {
-                float linear[8];
-                simd::storef(linear, base[c] * k);
-                for (int l = 0; l < 8; ++l) rgb[l] |= std::uint32_t(ColorEncoding::encode(linear[l])) << (8 * c);
+                float values[8];
+                simd::storef(values, linear[c]);
+                for (int l = 0; l < 8; ++l) rgb[l] |= std::uint32_t(ColorEncoding::encode(values[l])) << (8 * c);
             }
             const F8 alpha = simd::min(simd::max(base[3], zero), one);
             const I8 packed = simd::loadi(rgb) | simd::sll(simd::toIntRound(alpha * c255), 24);

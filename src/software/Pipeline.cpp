@@ -159,6 +159,7 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.uvs = mesh.uvs.empty() ? nullptr : mesh.uvs.data();
     vertexJob.mvp = input.mvp;
     vertexJob.normalMatrix = input.normalMatrix;
+    vertexJob.model = input.model;
     vertexJob.viewport = makeViewport(width, height, input.depthFormat);
     vertexJob.out = record.vertices.data();
     vertexJob.clip = record.clip.data();

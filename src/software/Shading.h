@@ -13,9 +13,12 @@
 // the vertex stage): base = (factor · colour) · texel, where a mesh without colours uses factor alone
 // and a draw without texture uses texel 1 (the GL backend's shader variants have no colour varying
 // and sample nothing then: an interpolated constant 1 is p · (1/p), which is 1 − 2⁻²⁴ for about 15 %
-// of floats, so interpolating white would darken rare pixels by a step); n = v · (1 / sqrt(dot(v, v))) with
-// dot = (x·x + y·y) + z·z; n = −n on back faces; lambert = max(0, (n.x·l.x + n.y·l.y) + n.z·l.z);
-// rgb = base.rgb · (ambient + diffuse · lambert); a = base.a.
+// of floats, so interpolating white would darken rare pixels by a step); normalize(v) =
+// v · (1 / sqrt(dot(v, v))) with dot(a, b) = (a.z·b.z + a.y·b.y) + a.x·b.x; n = −n on back faces; then
+// the BRDF of pipeline/Backend.h in mesh.frag's order of operations (Kernels.inl, `Light`); a = base.a.
+// NIR may still reassociate or fold a few of them (divisions by constants, mix): measured against
+// llvmpipe, colour is equal on all but a few pixels in 100,000 (by one step; the regression matrix,
+// tests/software/RegressionMatrixGLTest.cpp, holds it to one step on at most 0.1 %).
 //
 // Colour output (lp_bld_conv.c, the AVX 8×32 float → 8-bit path): clamp to [0, 1], multiply by
 // 255.0f (rounded to float), round to nearest even. Mesa's float_to_ubyte (u_math.h), used for
@@ -169,8 +172,11 @@ struct DrawShading {
     glm::vec4 factor{1.0f};
     const SoftwareTexture* texture = nullptr;  // nullptr: no texture, texel 1.0 exactly
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
+    float metallic = 1.0f, roughness = 1.0f;
+    bool unlit = false;   // rgb = base.rgb
+    glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
-    float ambient = 0.3f, diffuse = 0.7f;
+    float light = 0.0f, environment = 0.0f;  // Lighting
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
 };

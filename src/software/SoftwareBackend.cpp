@@ -97,6 +97,7 @@ private:
     FrameParams frame_;
     StateChanges changes_;  // draws only (no GL state here)
     glm::mat4 viewProjection_{1.0f};
+    glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
 };
 
 TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format) {
@@ -194,6 +195,7 @@ void SoftwareBackend::beginFrame(TargetHandle target, const FrameParams& frame) 
     frameTarget_ = target;
     frame_ = frame;
     viewProjection_ = frame.projection * frame.view;  // as GlBackend::beginFrame, in float with glm
+    eye_ = eyePosition(frame.view);
 }
 
 void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange> ranges) {
@@ -206,12 +208,17 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     sw::DrawInput input;
     input.mvp = viewProjection_ * params.model;  // as GlBackend::draw, in float with glm
     input.normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
+    input.model = params.model;
     input.shading.factor = params.baseColorFactor;
+    input.shading.metallic = params.metallic;
+    input.shading.roughness = params.roughness;
+    input.shading.unlit = params.unlit;
+    input.shading.eye = eye_;
     input.shading.texture = params.texture != kNoHandle ? textures_.find(params.texture) : nullptr;
     assert((params.texture == kNoHandle || input.shading.texture != nullptr) && "draw: no such texture");
     input.shading.toLight = frame_.lighting.toLight;
-    input.shading.ambient = frame_.lighting.ambient;
-    input.shading.diffuse = frame_.lighting.diffuse;
+    input.shading.light = frame_.lighting.light;
+    input.shading.environment = frame_.lighting.environment;
     input.shading.writeIds = frame_.writeIds;
     input.shading.depthTest = params.depth == DepthMode::Test;
     input.shading.colors = !mesh->colors.empty();

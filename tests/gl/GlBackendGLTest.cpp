@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "ShadingReference.h"
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "gl/GlContext.h"
@@ -49,13 +50,6 @@ std::uint32_t depth24(float windowZ) { return std::uint32_t(std::lround(double(w
 
 std::size_t at(const Buffers& b, int x, int y) { return std::size_t(y) * std::size_t(b.width) + std::size_t(x); }
 
-// A shaded colour as it is written: rgb^(1/2.2), alpha as it is (pipeline/Backend.h). Not the
-// background, which is written as given.
-glm::vec4 displayed(glm::vec4 linear) {
-    const auto encode = [](float v) { return std::pow(std::max(v, 0.0f), 1.0f / 2.2f); };
-    return {encode(linear.r), encode(linear.g), encode(linear.b), linear.a};
-}
-
 // Colour at (x, y) equals `expected` within `tolerance` per channel (GL's float→8-bit rounding).
 ::testing::AssertionResult colorIs(const Buffers& b, int x, int y, glm::vec4 expected, int tolerance = 1) {
     const std::uint8_t* p = &b.rgba[at(b, x, y) * 4];
@@ -85,34 +79,45 @@ Mesh frontAndBack() {
 constexpr int kFrontX = 16, kBackX = 48, kCentroidY = 17;
 const std::uint32_t kTriangleDepth = depth24(0.75f);
 
-// Light straight along +z so the front face gets ambient + diffuse and the flipped back face gets
-// the ambient alone: 0.25 + 0.5 = 0.75 and 0.25.
+// The eye at (0, 0, 2) looking down −z, with an identity view-projection (the view translates by
+// −2, the projection back by +2): clip coordinates are the positions themselves. The light shines
+// straight along −z, onto the front faces; flipped back faces get the environment alone.
 FrameParams simpleFrame(bool writeIds = true) {
     FrameParams frame;
+    frame.view = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -2.0f));
+    frame.projection = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 2.0f));
     frame.lighting.toLight = glm::vec3(0.0f, 0.0f, 1.0f);
-    frame.lighting.ambient = 0.25f;
-    frame.lighting.diffuse = 0.5f;
     frame.writeIds = writeIds;
     return frame;
+}
+
+// What simpleFrame shows at pixel (x, y) of a width × height target, of a surface at NDC depth z with
+// normal n and material (base, metallic, roughness): the shading model computed in double
+// (ShadingReference.h), encoded for display.
+glm::vec4 shadedAt(int x, int y, float z, glm::vec3 n, glm::vec4 base, double metallic = 1.0, double roughness = 1.0,
+                   int width = kWidth, int height = kHeight) {
+    const glm::dvec3 p((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0, double(z));
+    const glm::dvec3 v = glm::normalize(glm::dvec3(0.0, 0.0, 2.0) - p);
+    const glm::dvec3 rgb = test::displayedRgb(
+        test::referenceShade({glm::dvec3(base), metallic, roughness}, glm::dvec3(n), v, simpleFrame().lighting));
+    return {float(rgb.r), float(rgb.g), float(rgb.b), base.a};
 }
 const glm::vec4 kFactor{1.0f, 0.5f, 0.25f, 1.0f};
 
 std::vector<IndexRange> all(const Mesh& m) { return {IndexRange{0, std::uint32_t(m.triangleCount())}}; }
 
-// `quad` with `texture`, lit by the ambient term alone (so a pixel is its texel), on a fresh target.
+// `quad` with `texture`, unlit (so a pixel is its texel), on a fresh target.
 Buffers drawUnlitTextured(Backend& backend, const Mesh& quad, const Texture& texture, bool writeIds) {
     const MeshHandle mesh = backend.uploadMesh(quad);
     const TextureHandle handle = backend.uploadTexture(texture);
     EXPECT_NE(mesh, kNoHandle);
     EXPECT_NE(handle, kNoHandle);
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
-    FrameParams frame = simpleFrame(writeIds);
-    frame.lighting.ambient = 1.0f;
-    frame.lighting.diffuse = 0.0f;
-    backend.beginFrame(target, frame);
+    backend.beginFrame(target, simpleFrame(writeIds));
     DrawParams params;
     params.mesh = mesh;
     params.texture = handle;
+    params.unlit = true;
     backend.draw(params, all(quad));
     Buffers out = backend.readBack(target);
     backend.destroyTarget(target);
@@ -259,8 +264,7 @@ TEST_P(GlBackendGLTest, DrawsKnownColourDepthAndIds) {
     const Buffers b = drawTwoTriangles(*backend_, /*doubleSided=*/false, /*writeIds=*/true);
     ASSERT_EQ(b.width, kWidth);
     ASSERT_EQ(b.height, kHeight);
-    // Front face: factor × (0.25 + 0.5 · 1).
-    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f))));
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, shadedAt(kFrontX, kCentroidY, 0.5f, {0, 0, 1}, kFactor)));
     EXPECT_NEAR(double(b.depth[at(b, kFrontX, kCentroidY)]), double(kTriangleDepth), 1.0);
     EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
     // Back face culled: background colour, far depth, id 0.
@@ -289,9 +293,9 @@ TEST_P(GlBackendGLTest, DrawsKnownColourDepthAndIds) {
 
 TEST_P(GlBackendGLTest, DoubleSidedDrawsBackFacesWithFlippedNormal) {
     const Buffers b = drawTwoTriangles(*backend_, /*doubleSided=*/true, /*writeIds=*/true);
-    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.75f, 1.0f))));
-    // The back face's normal is negated, so the light is behind it: ambient only.
-    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, displayed(glm::vec4(glm::vec3(kFactor) * 0.25f, 1.0f))));
+    EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, shadedAt(kFrontX, kCentroidY, 0.5f, {0, 0, 1}, kFactor)));
+    // The back face's normal is negated, so the light is behind it: the environment only.
+    EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, shadedAt(kBackX, kCentroidY, 0.5f, {0, 0, -1}, kFactor)));
     EXPECT_NEAR(double(b.depth[at(b, kBackX, kCentroidY)]), double(kTriangleDepth), 1.0);
     EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], 103u);
     EXPECT_EQ(b.ids[at(b, kFrontX, kCentroidY)], 107u);
@@ -335,7 +339,8 @@ TEST_P(GlBackendGLTest, RangesSelectTrianglesInBothPaths) {
         backend_->draw(params, second);
         const Buffers b = backend_->readBack(target);
         EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, kBackground, 0)) << "writeIds " << writeIds;
-        EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, displayed(glm::vec4(0.75f, 0.75f, 0.75f, 1.0f)))) << "writeIds " << writeIds;
+        EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, shadedAt(kBackX, kCentroidY, 0.5f, {0, 0, 1}, glm::vec4(1.0f))))
+            << "writeIds " << writeIds;
         EXPECT_EQ(b.ids[at(b, kBackX, kCentroidY)], writeIds ? 103u : 0u);
     }
     backend_->destroyTarget(target);
@@ -397,14 +402,11 @@ Mesh threeLayers(const std::array<float, 3>& zs) {
     return m;
 }
 
-// A cleared target with a frame begun, lit by the ambient term alone (a pixel is its colour).
-TargetHandle startUnlitFrame(Backend& backend) {
+// A cleared target with a frame begun, for unlit draws (a pixel is its colour).
+TargetHandle startFrame(Backend& backend) {
     const TargetHandle target = backend.createTarget(kWidth, kHeight);
     backend.clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
-    FrameParams frame = simpleFrame();
-    frame.lighting.ambient = 1.0f;
-    frame.lighting.diffuse = 0.0f;
-    backend.beginFrame(target, frame);
+    backend.beginFrame(target, simpleFrame());
     return target;
 }
 
@@ -413,9 +415,10 @@ TEST_P(GlBackendGLTest, DepthTestKeepsTheNearerAndTheFirstOnTies) {
     // third at exactly the nearer one's depth, drawn last: GL_LESS keeps the earlier one.
     const Mesh m = threeLayers({0.5f, -0.5f, -0.5f});
     const MeshHandle handle = backend_->uploadMesh(m);
-    const TargetHandle target = startUnlitFrame(*backend_);
+    const TargetHandle target = startFrame(*backend_);
     DrawParams params;
     params.mesh = handle;
+    params.unlit = true;
     backend_->draw(params, all(m));
     const Buffers b = backend_->readBack(target);
     EXPECT_TRUE(colorIs(b, 32, 24, {0, 1, 0, 1}, 0));
@@ -430,9 +433,10 @@ TEST_P(GlBackendGLTest, DepthOffDrawsInOrderAndWritesNoDepth) {
     // after it tests again (the state is per draw): the nearer triangles pass the cleared depth.
     const Mesh m = threeLayers({-0.5f, 0.5f, 0.9f});  // the last one drawn is the farthest
     const MeshHandle handle = backend_->uploadMesh(m);
-    const TargetHandle target = startUnlitFrame(*backend_);
+    const TargetHandle target = startFrame(*backend_);
     DrawParams params;
     params.mesh = handle;
+    params.unlit = true;
     params.depth = DepthMode::Off;
     backend_->draw(params, all(m));
     Buffers b = backend_->readBack(target);
@@ -477,18 +481,21 @@ TEST_P(GlBackendGLTest, StateChangesCountWhatTheCacheLetsThrough) {
 }
 
 TEST_P(GlBackendGLTest, InstancedDrawsEqualOneDrawPerInstance) {
-    // Three instances of the two-triangle mesh, each with its own transform, colour factor and first
-    // id, overlapping so that the order shows: one drawInstances against three draws, with and
-    // without ids, bit for bit, and one draw call against three.
+    // Three instances of the two-triangle mesh, each with its own transform and first id,
+    // overlapping so that the order shows: one drawInstances against three draws, with and without
+    // ids, bit for bit, and one draw call against three. The material is the draw's.
     const MeshHandle handle = backend_->uploadMesh(frontAndBack());
     const TargetHandle target = backend_->createTarget(kWidth, kHeight);
     const InstanceParams instances[3] = {
-        {glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.1f)), glm::vec4(1, 0, 0, 1), 100},
-        {glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.1f, -0.2f)), glm::vec4(0, 1, 0, 1), 200},
-        {glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 0, 1)), glm::vec4(0, 0, 1, 0.5f), 300}};
+        {glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 0.1f)), 100},
+        {glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.1f, -0.2f)), 200},
+        {glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 0, 1)), 300}};
     DrawParams params;
     params.mesh = handle;
     params.doubleSided = true;
+    params.baseColorFactor = glm::vec4(0.2f, 0.6f, 0.9f, 0.5f);
+    params.metallic = 0.3f;
+    params.roughness = 0.4f;
     for (const bool ids : {true, false}) {
         SCOPED_TRACE(ids ? "with ids" : "without ids");
         backend_->clear(target, Rect{0, 0, kWidth, kHeight}, kBackground, 1.0f);
@@ -496,7 +503,6 @@ TEST_P(GlBackendGLTest, InstancedDrawsEqualOneDrawPerInstance) {
         for (const InstanceParams& instance : instances) {
             DrawParams one = params;
             one.model = instance.model;
-            one.baseColorFactor = instance.baseColorFactor;
             one.firstId = instance.firstId;
             backend_->draw(one, all(frontAndBack()));
         }
@@ -681,7 +687,7 @@ TEST_P(GlBackendGLTest, OneByOneTarget) {
     const Buffers b = backend_->readBack(target);
     ASSERT_EQ(b.pixelCount(), 1u);
     EXPECT_EQ(b.ids[0], 14u);
-    EXPECT_TRUE(colorIs(b, 0, 0, displayed({0.75f, 0.75f, 0.75f, 1.0f})));
+    EXPECT_TRUE(colorIs(b, 0, 0, shadedAt(0, 0, 0.0f, {0, 0, 1}, glm::vec4(1.0f), 1.0, 1.0, 1, 1)));
     EXPECT_NEAR(double(b.depth[0]), double(depth24(0.5f)), 1.0);
     backend_->destroyTarget(target);
 }
@@ -851,17 +857,18 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
     frameA.projection = glm::perspective(0.9f, float(kWidth) / kHeight, 0.5f, 10.0f);
     FrameParams frameB = frameA;
     frameB.lighting.toLight = glm::normalize(glm::vec3(-0.5f, 0.2f, 1.0f));
-    frameB.lighting.ambient = 0.2f;
+    frameB.lighting.environment = 0.2f;
+    frameB.lighting.light = 2.5f;
     frameB.view = glm::lookAt(glm::vec3(-0.5f, 0.1f, 2.4f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
     const glm::mat4 modelA = glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0));
     const glm::mat4 modelB = glm::rotate(glm::mat4(1.0f), -0.7f, glm::vec3(1, 0, 0));
 
-    // Every variant: textured or not, coloured or not, with and without ids.
+    // Every variant: textured or not, coloured or not, with and without ids, lit or unlit.
     struct Draw {
-        bool textured, coloured, ids;
+        bool textured, coloured, ids, unlit;
     };
     std::vector<Draw> variants;
-    for (int v = 0; v < 8; ++v) variants.push_back({(v & 1) != 0, (v & 2) != 0, (v & 4) != 0});
+    for (int v = 0; v < 16; ++v) variants.push_back({(v & 1) != 0, (v & 2) != 0, (v & 4) != 0, (v & 8) != 0});
 
     // One frame with the given variant, model, factor and frame parameters.
     struct Handles {
@@ -884,6 +891,9 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
         params.texture = d.textured ? h.texture : kNoHandle;
         params.model = model;
         params.baseColorFactor = factor;
+        params.metallic = factor.r;
+        params.roughness = factor.g;
+        params.unlit = d.unlit;
         params.firstId = firstId;
         backend.draw(params, all(plain));
         return backend.readBack(h.target);
@@ -899,7 +909,7 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
     for (std::size_t i = 0; i < variants.size(); ++i) {
         const Draw& d = variants[i];
         const std::string name =
-            std::string("variant-") + (d.textured ? "t" : "") + (d.coloured ? "c" : "") + (d.ids ? "i" : "");
+            std::string("variant-") + (d.textured ? "t" : "") + (d.coloured ? "c" : "") + (d.ids ? "i" : "") + (d.unlit ? "u" : "");
         std::unique_ptr<Backend> fresh = makeBackend(GetParam());
         ASSERT_NE(fresh, nullptr);
         const Buffers alone = render(*fresh, upload(*fresh), d, frameB, modelB, factorB, 500);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "RenderSupport.h"
+#include "ShadingReference.h"
 #include "TestSupport.h"
 #include "gl/GlBackend.h"
 #include "io/ImageIO.h"
@@ -88,14 +89,20 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     Camera given;
     given.depthRange = DepthRange::File;
     const Frame frame = render(*backend, scene, 64, 48, 0.0, true, given);
-    const Lighting light;
-    const float lambert = std::max(0.0f, glm::dot(glm::vec3(0, 0, 1), light.toLight));
+    // glTF's default material (metallic 1, roughness 1) seen head-on at the centre; and a rough
+    // dielectric.
     const std::size_t centre = std::size_t(24) * 64 + 32;
-    for (int c = 0; c < 3; ++c) {
-        const float linear = material.baseColorFactor[c] * (light.ambient + light.diffuse * lambert);
-        const float expected = std::pow(linear, 1.0f / 2.2f);
-        EXPECT_NEAR(frame.buffers.rgba[centre * 4 + c], expected * 255.0f, 0.51f) << "channel " << c;
-    }
+    const glm::dvec3 n(0, 0, 1), v(0, 0, 1);
+    const glm::dvec3 metal =
+        test::displayedRgb(test::referenceShade({glm::dvec3(material.baseColorFactor), 1.0, 1.0}, n, v, Lighting{}));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(frame.buffers.rgba[centre * 4 + c], metal[c] * 255.0, 1.0) << "channel " << c;
+    scene.materials[0].metallicFactor = 0.0f;
+    scene.materials[0].roughnessFactor = 0.6f;
+    const Frame plastic = render(*backend, scene, 64, 48, 0.0, true, given);
+    const glm::dvec3 dielectric =
+        test::displayedRgb(test::referenceShade({glm::dvec3(material.baseColorFactor), 0.0, 0.6}, n, v, Lighting{}));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(plastic.buffers.rgba[centre * 4 + c], dielectric[c] * 255.0, 1.0) << "channel " << c;
     // The square spans about ±10 pixels around the centre; the diagonal (0,0)-(1,1) splits source
     // triangle 0 (below it, id 1) from source triangle 1 (above it, id 2).
     EXPECT_EQ(frame.buffers.ids[std::size_t(20) * 64 + 38], 1u);
@@ -126,7 +133,7 @@ TEST_P(SceneRenderGLTest, BunnyIsLitWhiteInTheMiddleAndBackgroundAtTheCorners) {
         // White material, white light: grey levels only.
         EXPECT_EQ(b.rgba[4 * i], b.rgba[4 * i + 1]);
         EXPECT_EQ(b.rgba[4 * i], b.rgba[4 * i + 2]);
-        EXPECT_GE(b.rgba[4 * i], std::uint8_t(0.3f * 255.0f - 1.0f));  // at least the ambient term
+        EXPECT_GE(b.rgba[4 * i], std::uint8_t(0.3f * 255.0f - 1.0f));  // at least the environment's 0.3
     }
     // The bunny fills a good part of the fitted view, not all of it.
     EXPECT_GT(covered, b.pixelCount() / 8);

@@ -42,7 +42,6 @@ public:
         for (const InstanceParams& instance : instances) {
             DrawParams one = params;
             one.model = instance.model;
-            one.baseColorFactor = instance.baseColorFactor;
             one.firstId = instance.firstId;
             draws.push_back({one, {range}});
         }

@@ -551,8 +551,8 @@ TEST_F(ReusePlanner, LightBackgroundOrIdsChangedIsAFullRender) {
         FrameParams changed = params;
         glm::vec4 background = kReuseBackground;
         if (what == 0) changed.lighting.toLight = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
-        if (what == 1) changed.lighting.ambient = 0.31f;
-        if (what == 2) changed.lighting.diffuse = 0.69f;
+        if (what == 1) changed.lighting.environment = 0.31f;
+        if (what == 2) changed.lighting.light = 2.2f;
         if (what == 3) changed.writeIds = false;
         if (what == 4) background = {0.1f, 0.15f, 0.2f, 0.5f};
         step(reuse, world0, "frame 1", nullptr, &changed, background);

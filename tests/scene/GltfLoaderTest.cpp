@@ -179,7 +179,12 @@ const std::vector<AssimpCase>& assimpCases() {
          .instances = 115,
          .cameras = 1},
         {.file = "BoxBadNormals-glTF-Binary/BoxBadNormals.glb", .meshes = 1, .triangles = 12, .instances = 1},
-        {.file = "BoxTexcoords-glTF/boxTexcoords.gltf", .meshes = 1, .triangles = 12, .instances = 1, .textures = 1},
+        {.file = "BoxTexcoords-glTF/boxTexcoords.gltf",
+         .meshes = 1,
+         .triangles = 12,
+         .instances = 1,
+         .textures = 1,
+         .unsupported = {"metallicRoughnessTexture"}},
         {.file = "BoxTextured-glTF-Binary/BoxTextured.glb",
          .meshes = 1,
          .triangles = 12,
@@ -222,8 +227,8 @@ const std::vector<AssimpCase>& assimpCases() {
          .triangles = 37116,
          .instances = 27,
          .textures = 1,
-         .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND", "normalTexture", "emissiveTexture",
-                         "emissiveFactor"}},
+         .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND", "metallicRoughnessTexture", "normalTexture",
+                         "emissiveTexture", "emissiveFactor"}},
         {.file = "IncorrectVertexArrays/Cube.gltf",
          .error = "bufferViews[2]: byteOffset 504 + byteLength 432 is beyond the end of buffer 0 (514 bytes)"},
         {.file = "IndexOutOfRange/AllIndicesOutOfRange.gltf",
@@ -1270,11 +1275,33 @@ TEST(GltfLoaderTest, UndecodableImageLeavesTheMaterialUntexturedWithAWarning) {
     EXPECT_NE(scene->warnings[1].find("image 0 cannot be decoded"), std::string::npos) << scene->warnings[1];
 }
 
+TEST(GltfLoaderTest, MetallicAndRoughnessFactorsAreReadWithGltfDefaults) {
+    Asset asset = quad();
+    asset.json["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 0.25}, {"roughnessFactor", 0.75}}}},
+                               {{"name", "defaults"}},
+                               {{"pbrMetallicRoughness", {{"metallicFactor", 1.5}, {"roughnessFactor", -0.5}}}}};
+    asset.json["meshes"][0]["primitives"].push_back(asset.primitive());
+    asset.json["meshes"][0]["primitives"].push_back(asset.primitive());
+    for (int m = 0; m < 3; ++m) asset.primitive(0, m)["material"] = m;
+    const Result<Scene> scene = load(writeGltf(test::freshDir("GltfFactors"), "factors", asset));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->materials.size(), 3u);
+    EXPECT_EQ(scene->materials[0].metallicFactor, 0.25f);
+    EXPECT_EQ(scene->materials[0].roughnessFactor, 0.75f);
+    EXPECT_EQ(scene->materials[1].metallicFactor, 1.0f);  // glTF's defaults
+    EXPECT_EQ(scene->materials[1].roughnessFactor, 1.0f);
+    EXPECT_EQ(scene->materials[2].metallicFactor, 1.0f);  // outside [0, 1]: clamped, as viewers do
+    EXPECT_EQ(scene->materials[2].roughnessFactor, 0.0f);
+    EXPECT_FALSE(scene->materials[0].unlit);
+    EXPECT_TRUE(scene->unsupported.empty());
+}
+
 TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     Asset asset = quad();
-    asset.json["extensionsUsed"] = {"KHR_materials_unlit", "KHR_mesh_quantization"};
+    asset.json["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_unlit", "KHR_mesh_quantization"};
     asset.json["materials"] = {
         {{"alphaMode", "MASK"},
+         {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}},
          {"normalTexture", {{"index", 0}}},
          {"occlusionTexture", {{"index", 0}}},
          {"emissiveTexture", {{"index", 0}}},
@@ -1295,10 +1322,11 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     asset.json["nodes"][0]["extras"] = {{"extensions", {{"NOT_AN_EXTENSION", Json::object()}}}};
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    const std::vector<std::string> expected = {"KHR_materials_unlit", "EXT_lights_image_based", "skins",
-                                               "morph targets",       "primitive mode LINES",   "alphaMode MASK",
-                                               "normalTexture",       "occlusionTexture",       "emissiveTexture",
-                                               "emissiveFactor"};
+    const std::vector<std::string> expected = {
+        "KHR_materials_sheen", "EXT_lights_image_based", "skins",           "morph targets",
+        "primitive mode LINES", "alphaMode MASK",        "metallicRoughnessTexture", "normalTexture",
+        "occlusionTexture",    "emissiveTexture",        "emissiveFactor"};
+    EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));
     EXPECT_EQ(scene->meshes.size(), 2u);  // the LINES primitive is not drawn

@@ -213,7 +213,8 @@ TEST(ObjLoaderTest, FileProblemsAreReported) {
 
 TEST(ObjLoaderTest, DiffuseColoursBecomeMaterialsOneMeshPerShapeAndMaterial) {
     const fs::path dir = test::freshDir("ObjMaterials");
-    test::writeFile(dir / "colours.mtl", "newmtl red\nKd 1 0 0\nd 0.5\nnewmtl green\nKd 0 1 0\nmap_Kd green.png\n");
+    test::writeFile(dir / "colours.mtl",
+                    "newmtl red\nKd 1 0 0\nd 0.5\nNs 14\nnewmtl green\nKd 0 1 0\nmap_Kd green.png\nNs 1000\n");
     test::writeFile(dir / "model.obj",
                     "mtllib colours.mtl\n"
                     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
@@ -228,7 +229,14 @@ TEST(ObjLoaderTest, DiffuseColoursBecomeMaterialsOneMeshPerShapeAndMaterial) {
     EXPECT_EQ(scene->materials[0].baseColorFactor, glm::vec4(1, 0, 0, 1));  // dissolve ignored
     EXPECT_EQ(scene->materials[1].baseColorFactor, glm::vec4(0, 1, 0, 1));
     EXPECT_EQ(scene->materials[2].baseColorFactor, glm::vec4(1, 1, 1, 1));
-    for (const Material& material : scene->materials) EXPECT_FALSE(material.doubleSided);
+    // Dielectrics, the Phong exponent as a roughness: (2 / (Ns + 2))^(1/4); no material: Ns 0.
+    EXPECT_FLOAT_EQ(scene->materials[0].roughnessFactor, std::pow(2.0f / 16.0f, 0.25f));
+    EXPECT_NEAR(scene->materials[1].roughnessFactor, 0.211, 0.001);
+    EXPECT_EQ(scene->materials[2].roughnessFactor, 1.0f);
+    for (const Material& material : scene->materials) {
+        EXPECT_FALSE(material.doubleSided);
+        EXPECT_EQ(material.metallicFactor, 0.0f);
+    }
     ASSERT_EQ(scene->meshes.size(), 3u);
     EXPECT_EQ(scene->meshes[0].name, "first (red)");
     EXPECT_EQ(scene->meshes[0].material, 0);

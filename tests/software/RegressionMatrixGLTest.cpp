@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "GlReference.h"
@@ -29,6 +30,7 @@ struct Tolerance {
     std::uint32_t depthLsb = 0;    // 24-bit steps
     double idAgreement = 0.9999;   // share of pixels with the same id (the task's bar)
     int colour = 1;                // 8-bit steps (the task's bar)
+    double colourShare = 0.001;    // of the covered pixels, the share whose colour differs at all
 };
 
 struct MatrixCase {
@@ -148,6 +150,31 @@ Scene nonFinite() {
     return single(mesh, true, true);
 }
 
+// Spheres of every corner of the material space, metallic {0, 0.5, 1} × roughness {0, 0.02, 0.25, 0.6,
+// 1}, in three base colours, one of them unlit; their silhouettes show grazing angles, and the
+// smooth ones the light's highlight at its sharpest.
+Scene materials() {
+    Scene scene;
+    const float metallic[] = {0.0f, 0.5f, 1.0f}, roughness[] = {0.0f, 0.02f, 0.25f, 0.6f, 1.0f};
+    const glm::vec4 colours[] = {{0.9f, 0.7f, 0.4f, 1.0f}, {0.05f, 0.3f, 0.8f, 1.0f}, {1.0f, 1.0f, 1.0f, 1.0f}};
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 32, 64);
+    finalizeMesh(mesh, true);
+    for (int m = 0; m < 3; ++m)
+        for (int r = 0; r < 5; ++r) {
+            Material material;
+            material.baseColorFactor = colours[(m + r) % 3];
+            material.metallicFactor = metallic[m];
+            material.roughnessFactor = roughness[r];
+            material.unlit = m == 1 && r == 4;
+            Mesh copy = mesh;
+            copy.material = *scene.addMaterial(material);
+            const int index = *scene.addMesh(std::move(copy), false);
+            (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), glm::vec3(float(r) - 2.0f, float(m) - 1.0f, 0.0f)));
+        }
+    scene.buildInstances();
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -184,6 +211,7 @@ std::vector<MatrixCase> matrix() {
         {"huge-triangles-crossing-near", groundPlane, 320, 240, lookFrom({0, 1, 0}, {0, 0.2f, -10}, 0.05f, 1e5f), {}},
         {"pixel-centre-edges", pixelGrid, 64, 48, {}, {}},
         {"non-finite-vertices", nonFinite, 160, 120, lookFrom({0, 0, 4}, {0, 0, 0}, 0.1f, 10.0f), {}},
+        {"materials", materials, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
     };
 }
 
@@ -216,21 +244,23 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     std::size_t covered = 0;
     for (std::uint32_t id : images[1].ids) covered += id != 0;
     const double idAgreement = 1.0 - double(r.idMismatches.value_or(0)) / double(r.pixels);
-    std::printf("[ matrix %s ] %zu covered, coverage %zu, depth worst %u LSB, ids %.6f, colour worst %d\n",
+    std::printf("[ matrix %s ] %zu covered, coverage %zu, depth worst %u LSB, ids %.6f, colour worst %d on %zu\n",
                 c.name.c_str(), covered, r.coverageMismatches(), r.depth ? r.depth->maxDifference : 0, idAgreement,
-                r.maxChannelDifference);
+                r.maxChannelDifference, r.failingPixels);
     if (c.name != "bunny-1x1") {
         EXPECT_GT(covered, 0u) << "a case that draws nothing tests nothing";
     }
 
     const bool ok = r.coverageMismatches() <= c.tolerance.coverage && r.depth &&
                     r.depth->maxDifference <= c.tolerance.depthLsb && idAgreement >= c.tolerance.idAgreement &&
-                    r.maxChannelDifference <= c.tolerance.colour;
+                    r.maxChannelDifference <= c.tolerance.colour &&
+                    double(r.failingPixels) <= c.tolerance.colourShare * double(covered);
     EXPECT_LE(r.coverageMismatches(), c.tolerance.coverage);
     ASSERT_TRUE(r.depth.has_value());
     EXPECT_LE(r.depth->maxDifference, c.tolerance.depthLsb);
     EXPECT_GE(idAgreement, c.tolerance.idAgreement);
     EXPECT_LE(r.maxChannelDifference, c.tolerance.colour);
+    EXPECT_LE(double(r.failingPixels), c.tolerance.colourShare * double(covered)) << r.failingPixels << " pixels differ";
     if (!ok) {
         const fs::path dir = test::freshDir("matrix-" + c.name);
         (void)writeFileAtomic((dir / "actual.png").string(), encodeColorPng(images[0]));
