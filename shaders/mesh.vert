@@ -43,6 +43,7 @@ out vec4 v_color;
 #endif
 #ifdef FRUGAL_TEXTURE
 layout(location = 3) in vec2 a_uv;  // constant (0,0) when the mesh has no uvs
+uniform mat3 u_uvTransform;         // KHR_texture_transform, identity without
 out vec2 v_uv;
 #endif
 #ifdef FRUGAL_IDS
@@ -66,7 +67,7 @@ void main() {
     v_color = a_color;
 #endif
 #ifdef FRUGAL_TEXTURE
-    v_uv = a_uv;
+    v_uv = (u_uvTransform * vec3(a_uv, 1.0)).xy;
 #endif
 #ifdef FRUGAL_IDS
     v_id = FIRST_ID + a_id;

@@ -86,6 +86,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
     p.light = gl_.GetUniformLocation(p.name, "u_light");
     p.environment = gl_.GetUniformLocation(p.name, "u_environment");
+    p.uvTransform = gl_.GetUniformLocation(p.name, "u_uvTransform");
     if (variant & kTextureBit) {
         state_.useProgram(p.name);
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_baseColor"), 0);  // texture unit 0

@@ -122,6 +122,7 @@ struct DrawParams {
     float metallic = 1.0f, roughness = 1.0f;  // the material's factors, each in [0, 1]
     bool unlit = false;                       // rgb = base.rgb (KHR_materials_unlit)
     TextureHandle texture = kNoHandle;  // kNoHandle = white
+    glm::mat3 uvTransform{1.0f};        // the texture is sampled at uvTransform · (u, v, 1), per vertex
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;

@@ -19,6 +19,7 @@
 // so node indices match the file and animation targets stay valid, but they get no meshes and so
 // no instances.
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -396,6 +397,48 @@ float toFloat(double value, const std::string& where) {
     return f;
 }
 
+// A texture reference's KHR_texture_transform: uv' = T · R · S · (u, v, 1) (the extension's
+// matrices, computed in double and rounded to float), and the texture coordinate set it overrides
+// texCoord with. Identity and the reference's own set without the extension.
+struct TextureTransform {
+    glm::mat3 matrix{1.0f};
+    int texCoord = 0;
+};
+
+TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std::string& where) {
+    TextureTransform out;
+    out.texCoord = info.texCoord;
+    const auto it = info.extensions.find("KHR_texture_transform");
+    if (it == info.extensions.end()) return out;
+    const tinygltf::Value& ext = it->second;
+    const std::string at = where + ".extensions.KHR_texture_transform";
+    const auto number = [&](const tinygltf::Value& v, const std::string& name) {
+        if (!v.IsNumber()) fail(at, ".", name, ": not a number");
+        const double d = v.GetNumberAsDouble();
+        if (!std::isfinite(float(d))) fail(at, ".", name, ": ", d, " does not fit a float");
+        return d;
+    };
+    const auto pair = [&](const char* name, double fallback) -> std::array<double, 2> {
+        if (!ext.Has(name)) return {fallback, fallback};
+        const tinygltf::Value& v = ext.Get(name);
+        if (!v.IsArray() || v.ArrayLen() != 2) fail(at, ".", name, ": not an array of 2 numbers");
+        return {number(v.Get(0), cat(name, "[0]")), number(v.Get(1), cat(name, "[1]"))};
+    };
+    const std::array<double, 2> offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+    const double rotation = ext.Has("rotation") ? number(ext.Get("rotation"), "rotation") : 0.0;
+    if (ext.Has("texCoord")) {
+        const double set = number(ext.Get("texCoord"), "texCoord");
+        if (set < 0.0 || set > 255.0 || set != std::floor(set)) fail(at, ".texCoord: ", set, " is not a set index");
+        out.texCoord = int(set);
+    }
+    // Column-major: T · R · S with R = [c s; −s c] as the extension writes it (rows).
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    out.matrix[0] = glm::vec3(float(c * scale[0]), float(-s * scale[0]), 0.0f);
+    out.matrix[1] = glm::vec3(float(s * scale[1]), float(c * scale[1]), 0.0f);
+    out.matrix[2] = glm::vec3(float(offset[0]), float(offset[1]), 1.0f);
+    return out;
+}
+
 Node Converter::convertNode(int index) const {
     const tinygltf::Node& src = model_.nodes[std::size_t(index)];
     const std::string where = cat("nodes[", index, "]");
@@ -564,7 +607,11 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
             ? &model_.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture
             : nullptr;
     const bool textured = texture && texture->index >= 0;
-    const std::string uvName = cat("TEXCOORD_", textured ? texture->texCoord : 0);
+    const int texCoord =
+        textured ? textureTransformOf(*texture, cat("materials[", primitive.material, "].pbrMetallicRoughness.baseColorTexture"))
+                       .texCoord
+                 : 0;
+    const std::string uvName = cat("TEXCOORD_", texCoord);
     if (const int uv = accessor(uvName); uv >= 0) {
         mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
     } else if (textured) {
@@ -766,8 +813,12 @@ void Converter::convertMaterials() {
         if (src.emissiveTexture.index >= 0) report("emissiveTexture");
         if (std::any_of(src.emissiveFactor.begin(), src.emissiveFactor.end(), [](double v) { return v != 0.0; }))
             report("emissiveFactor");
-        if (src.pbrMetallicRoughness.baseColorTexture.index >= 0)
+        if (src.pbrMetallicRoughness.baseColorTexture.index >= 0) {
             material.baseColorTexture = useTexture(src.pbrMetallicRoughness.baseColorTexture.index, m);
+            material.baseColorTransform =
+                textureTransformOf(src.pbrMetallicRoughness.baseColorTexture, where + ".pbrMetallicRoughness.baseColorTexture")
+                    .matrix;
+        }
     }
 }
 
@@ -852,9 +903,11 @@ void Converter::convertAnimations() {
 Scene Converter::run() {
     scene_.source = path_;
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
-    // KHR_materials_unlit is Material::unlit.
+    // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (the
+    // base colour texture is the only one drawn).
     for (const std::string& name : extensions_)
-        if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit") report(oneLine(name, 80));
+        if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform")
+            report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();
     convertMaterials();

@@ -28,6 +28,7 @@ struct VertexJob {
     glm::mat4 mvp{1.0f};
     glm::mat3 normalMatrix{1.0f};
     glm::mat4 model{1.0f};  // its affine part gives the world position
+    glm::mat3 uvTransform{1.0f};
     Viewport viewport;
     SetupVertex* out = nullptr;    // window position, 1/w, varyings
     glm::vec4* clip = nullptr;     // clip-space position

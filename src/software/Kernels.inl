@@ -36,8 +36,9 @@ void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
         v.a[5] = color.b;
         v.a[6] = color.a;
         const glm::vec2 uv = job.uvs ? job.uvs[i] : glm::vec2(0.0f);
-        v.a[7] = uv.x;
-        v.a[8] = uv.y;
+        const glm::mat3& t = job.uvTransform;  // mat3 · vec3(uv, 1), as mesh.vert
+        v.a[7] = (t[0][0] * uv.x + t[1][0] * uv.y) + t[2][0];
+        v.a[8] = (t[0][1] * uv.x + t[1][1] * uv.y) + t[2][1];
         const glm::mat4& w = job.model;  // ((c0·x + c1·y) + c2·z) + c3, as mesh.vert
         for (int r = 0; r < 3; ++r) v.a[9 + r] = ((w[0][r] * p.x + w[1][r] * p.y) + w[2][r] * p.z) + w[3][r];
     }

@@ -160,6 +160,7 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.mvp = input.mvp;
     vertexJob.normalMatrix = input.normalMatrix;
     vertexJob.model = input.model;
+    vertexJob.uvTransform = input.uvTransform;
     vertexJob.viewport = makeViewport(width, height, input.depthFormat);
     vertexJob.out = record.vertices.data();
     vertexJob.clip = record.clip.data();

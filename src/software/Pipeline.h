@@ -36,6 +36,7 @@ struct DrawInput {
     glm::mat4 mvp{1.0f};           // (projection · view) · model, as GlBackend::draw computes it
     glm::mat3 normalMatrix{1.0f};  // inverseTranspose(mat3(model))
     glm::mat4 model{1.0f};
+    glm::mat3 uvTransform{1.0f};
     DrawShading shading;
     std::uint32_t firstId = 1;
     bool doubleSided = false;

@@ -209,6 +209,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.mvp = viewProjection_ * params.model;  // as GlBackend::draw, in float with glm
     input.normalMatrix = glm::inverseTranspose(glm::mat3(params.model));
     input.model = params.model;
+    input.uvTransform = params.uvTransform;
     input.shading.factor = params.baseColorFactor;
     input.shading.metallic = params.metallic;
     input.shading.roughness = params.roughness;

@@ -318,8 +318,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .meshes = 9,
          .triangles = 24,
          .instances = 12,
-         .textures = 5,
-         .unsupported = {"KHR_texture_transform"}},
+         .textures = 5},
         {.file = "wrongTypes/badArray.gltf", .error = "meshes[0].primitives: expected an array, got an object"},
         {.file = "wrongTypes/badExtension.gltf",
          .error = "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform: expected an "
@@ -1294,6 +1293,42 @@ TEST(GltfLoaderTest, MetallicAndRoughnessFactorsAreReadWithGltfDefaults) {
     EXPECT_EQ(scene->materials[2].roughnessFactor, 0.0f);
     EXPECT_FALSE(scene->materials[0].unlit);
     EXPECT_TRUE(scene->unsupported.empty());
+}
+
+TEST(GltfLoaderTest, TextureTransformIsTheExtensionsMatrixAndSet) {
+    const auto withTransform = [](const Json& transform) {
+        Asset asset = quad();
+        const std::string image = png(2, 1, 6, 8, std::string("\x01\x02\x03\x04\x05\x06\x07\x08", 8));
+        asset.accessor(image, kUByte, "SCALAR", image.size());
+        asset.json["images"] = {{{"bufferView", 2}, {"mimeType", "image/png"}}};
+        asset.json["textures"] = {{{"source", 0}}};
+        asset.json["extensionsUsed"] = {"KHR_texture_transform"};
+        asset.json["materials"] = {
+            {{"pbrMetallicRoughness",
+              {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}}};
+        asset.primitive()["material"] = 0;
+        asset.primitive()["attributes"]["TEXCOORD_1"] =
+            asset.accessor(bytesOf<float>({0, 0, 1, 0, 1, 1, 0, 1}), kFloat, "VEC2", 4);
+        return load(writeGlb(test::freshDir("GltfTransform"), "transform", asset));
+    };
+    const Result<Scene> scene =
+        withTransform({{"offset", {0.5, -0.25}}, {"rotation", 0.5}, {"scale", {2, 3}}, {"texCoord", 1}});
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->unsupported.empty()) << scene->unsupported.front();
+    // uv' = T · R · S · uv: the corner (1, 0) goes to offset + 2·(cos 0.5, −sin 0.5).
+    const glm::vec3 corner = scene->materials[0].baseColorTransform * glm::vec3(1, 0, 1);
+    EXPECT_NEAR(corner.x, 0.5 + 2 * std::cos(0.5), 1e-6);
+    EXPECT_NEAR(corner.y, -0.25 - 2 * std::sin(0.5), 1e-6);
+    const glm::vec3 up = scene->materials[0].baseColorTransform * glm::vec3(0, 1, 1);
+    EXPECT_NEAR(up.x, 0.5 + 3 * std::sin(0.5), 1e-6);
+    EXPECT_NEAR(up.y, -0.25 + 3 * std::cos(0.5), 1e-6);
+    ASSERT_EQ(scene->meshes.size(), 1u);
+    EXPECT_FALSE(scene->meshes[0].uvs.empty()) << "texCoord 1 of the extension is the set read";
+
+    const Result<Scene> bad = withTransform({{"scale", {2}}});
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("KHR_texture_transform.scale: not an array of 2 numbers"), std::string::npos)
+        << bad.error().message;
 }
 
 TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
