@@ -21,6 +21,7 @@ uniform vec3 u_eye;                // world space
 uniform vec3 u_toLight;            // world space, unit
 uniform float u_light;             // the directional light's intensity
 uniform float u_environment;       // the uniform environment's radiance
+uniform vec3 u_emissive;           // the material's emission
 
 layout(location = 0) out vec4 o_color;
 
@@ -96,7 +97,7 @@ void main() {
     dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + vec3(specular * fl);
     metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
 
-    vec3 linear = dielectric * (1.0 - metallic) + metal * metallic;
+    vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + u_emissive;
 #endif
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
 #ifdef FRUGAL_IDS

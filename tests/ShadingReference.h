@@ -16,6 +16,7 @@ namespace frugal::test {
 struct ShadedMaterial {
     glm::dvec3 base{1.0};
     double metallic = 1.0, roughness = 1.0;
+    glm::dvec3 emissive{0.0};
 };
 
 // Linear rgb of `material` at a point with unit normal n, seen along unit v (towards the eye).
@@ -51,7 +52,7 @@ inline glm::dvec3 referenceShade(const ShadedMaterial& material, glm::dvec3 n, g
     const double fl = 0.04 + 0.96 * c5(vh);
     dielectric += e * base / kPi * (1.0 - fl) + specular * fl;
     metal += (base + (1.0 - base) * c5(vh)) * specular;
-    return dielectric * (1.0 - m) + metal * m;
+    return dielectric * (1.0 - m) + metal * m + material.emissive;
 }
 
 // rgb^(1/2.2) in [0, 1], as the backends encode it for an 8-bit image.

@@ -54,6 +54,7 @@ struct Material {
     float metallicFactor = 1.0f;   // 0: dielectric (diffuse + 4 % specular), 1: metal; [0, 1]
     float roughnessFactor = 1.0f;  // perceptual roughness, [0, 1]; GGX alpha = roughness²
     bool unlit = false;            // KHR_materials_unlit: the colour is the base colour, no light
+    glm::vec3 emissiveFactor{0.0f};  // linear radiance added to the lit colour (× emissive strength)
     // Where the base colour texture is sampled: (u', v') = baseColorTransform · (u, v, 1) (KHR_texture_transform;
     // identity by default).
     glm::mat3 baseColorTransform{1.0f};

@@ -131,6 +131,7 @@ class _Material(TypedDict):
     metallic: float
     roughness: float
     unlit: bool
+    emissive: tuple[float, float, float]
 
 class _MeshArrays(TypedDict):
     name: str
@@ -147,7 +148,8 @@ class Scene(_pybind11_object):
     def add_texture(self, pixels: npt.ArrayLike, *, wrap: Literal["repeat", "clamp", "mirror"] = ...,
                     filter: Literal["linear", "nearest"] = ..., name: str = ...) -> int: ...
     def add_material(self, color: _Colour = ..., *, texture: int | None = ..., double_sided: bool = ...,
-                     metallic: float = ..., roughness: float = ..., unlit: bool = ..., name: str = ...) -> int: ...
+                     metallic: float = ..., roughness: float = ..., unlit: bool = ..., emissive: Sequence[float] = ...,
+                     name: str = ...) -> int: ...
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
                  colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ..., material: int | None = ...,
                  name: str = ..., file_order: bool = ...) -> int: ...

@@ -46,7 +46,7 @@ int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, co
 }
 
 int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided, double metallic,
-                double roughness, bool unlit, const std::string& name) {
+                double roughness, bool unlit, const py::handle& emissive, const std::string& name) {
     Material material;
     material.name = name;
     material.baseColorFactor = colorFrom(color, "color");
@@ -55,6 +55,7 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
     material.metallicFactor = float(metallic);
     material.roughnessFactor = float(roughness);
     material.unlit = unlit;
+    material.emissiveFactor = vectorFrom<3>(emissive, "emissive");
     return take(s.scene.addMaterial(std::move(material)));
 }
 
@@ -106,6 +107,7 @@ py::list materialList(const Scene& scene) {
         d["metallic"] = m.metallicFactor;
         d["roughness"] = m.roughnessFactor;
         d["unlit"] = m.unlit;
+        d["emissive"] = py::make_tuple(m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b);
         out.append(d);
     }
     return out;
@@ -196,11 +198,12 @@ void bindScene(py::module_& m) {
              "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
         .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
              py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("metallic") = 1.0,
-             py::arg("roughness") = 1.0, py::arg("unlit") = false, py::arg("name") = "",
+             py::arg("roughness") = 1.0, py::arg("unlit") = false,
+             py::arg("emissive") = py::make_tuple(0.0, 0.0, 0.0), py::arg("name") = "",
              "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
              "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
              "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
-             "base colour as it is, no light). Returns its index.")
+             "base colour as it is, no light), emissive: linear RGB added to the lit colour. Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,

@@ -74,12 +74,12 @@ struct GlProgram {
     GLuint name = 0;
     bool failed = false;  // did not compile; not tried again
     GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
-    GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1;
+    GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue;
     CachedUniform<glm::vec2> metallicRoughnessValue;
-    CachedUniform<glm::vec3> eyeValue, toLightValue;
+    CachedUniform<glm::vec3> eyeValue, toLightValue, emissiveValue;
     CachedUniform<float> lightValue, environmentValue;
     CachedUniform<std::uint32_t> firstIdValue;
 };

@@ -101,6 +101,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
     if ((variant & kTextureBit) && state_.uniformChanged(p->uvTransformValue, params.uvTransform))
         gl_.UniformMatrix3fv(p->uvTransform, 1, GL_FALSE, glm::value_ptr(params.uvTransform));
+    if (!params.unlit && state_.uniformChanged(p->emissiveValue, params.emissive))
+        gl_.Uniform3fv(p->emissive, 1, glm::value_ptr(params.emissive));
     const glm::vec2 metallicRoughness(params.metallic, params.roughness);
     if (state_.uniformChanged(p->metallicRoughnessValue, metallicRoughness))
         gl_.Uniform2fv(p->metallicRoughness, 1, glm::value_ptr(metallicRoughness));

@@ -87,6 +87,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.light = gl_.GetUniformLocation(p.name, "u_light");
     p.environment = gl_.GetUniformLocation(p.name, "u_environment");
     p.uvTransform = gl_.GetUniformLocation(p.name, "u_uvTransform");
+    p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
     if (variant & kTextureBit) {
         state_.useProgram(p.name);
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_baseColor"), 0);  // texture unit 0

@@ -80,8 +80,8 @@ struct IndexRange {
 //       + n·v·√((n·l)²(1 − alpha²) + alpha²))  (0 where the sum is 0);  S = E·n·l·V·D
 //     dielectric = E·n·l·base.rgb/π·(1 − Fl(0.04)) + S·Fl(0.04);  metal = S·Fl(base.rgb),
 //     Fl(f0) = f0 + (1 − f0)·c5(v·h)
-//   rgb = mix(dielectric, metal, m) of both, summed; a = base.a. An unlit material (DrawParams::
-//   unlit, KHR_materials_unlit) has rgb = base.rgb.
+//   rgb = mix(dielectric, metal, m) of both, summed, + the material's emissive; a = base.a. An unlit
+//   material (DrawParams::unlit, KHR_materials_unlit) has rgb = base.rgb.
 // The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample Renderer, and a
 // unencoded; the 8-bit target clamps to [0,1] and rounds to nearest. The clear colour (the
 // background) is written as given, not encoded. With the default light a white rough dielectric
@@ -121,6 +121,7 @@ struct DrawParams {
     glm::vec4 baseColorFactor{1.0f};
     float metallic = 1.0f, roughness = 1.0f;  // the material's factors, each in [0, 1]
     bool unlit = false;                       // rgb = base.rgb (KHR_materials_unlit)
+    glm::vec3 emissive{0.0f};                 // added to the lit rgb
     TextureHandle texture = kNoHandle;  // kNoHandle = white
     glm::mat3 uvTransform{1.0f};        // the texture is sampled at uvTransform · (u, v, 1), per vertex
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)

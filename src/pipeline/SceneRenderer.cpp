@@ -77,6 +77,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.metallic = material.metallicFactor;
         params.roughness = material.roughnessFactor;
         params.unlit = material.unlit;
+        params.emissive = material.emissiveFactor;
         params.uvTransform = material.baseColorTransform;
         params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;

@@ -804,6 +804,21 @@ void Converter::convertMaterials() {
             toFloat(src.pbrMetallicRoughness.roughnessFactor, cat(where, ".pbrMetallicRoughness.roughnessFactor")),
             0.0f, 1.0f);
         material.unlit = src.extensions.count("KHR_materials_unlit") > 0;
+        // The emissive factor, times KHR_materials_emissive_strength; without the emissive texture it
+        // multiplies (not modelled yet, reported below) the material is drawn without emission, not
+        // at the factor's full brightness.
+        if (src.emissiveTexture.index < 0) {
+            double strength = 1.0;
+            if (const auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end()) {
+                const tinygltf::Value& value = it->second.Get("emissiveStrength");
+                if (value.IsNumber()) strength = value.GetNumberAsDouble();
+                if (it->second.Has("emissiveStrength") && (!value.IsNumber() || !(strength >= 0.0)))
+                    fail(where, ".extensions.KHR_materials_emissive_strength.emissiveStrength: not a number >= 0");
+            }
+            for (int k = 0; k < 3 && std::size_t(k) < src.emissiveFactor.size(); ++k)
+                material.emissiveFactor[k] =
+                    toFloat(src.emissiveFactor[std::size_t(k)] * strength, cat(where, ".emissiveFactor[", k, "]"));
+        }
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
         if (src.alphaMode != "OPAQUE") report("alphaMode " + src.alphaMode);
@@ -811,8 +826,6 @@ void Converter::convertMaterials() {
         if (src.normalTexture.index >= 0) report("normalTexture");
         if (src.occlusionTexture.index >= 0) report("occlusionTexture");
         if (src.emissiveTexture.index >= 0) report("emissiveTexture");
-        if (std::any_of(src.emissiveFactor.begin(), src.emissiveFactor.end(), [](double v) { return v != 0.0; }))
-            report("emissiveFactor");
         if (src.pbrMetallicRoughness.baseColorTexture.index >= 0) {
             material.baseColorTexture = useTexture(src.pbrMetallicRoughness.baseColorTexture.index, m);
             material.baseColorTransform =
@@ -904,9 +917,11 @@ Scene Converter::run() {
     scene_.source = path_;
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
     // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (the
-    // base colour texture is the only one drawn).
+    // base colour texture is the only one drawn); KHR_materials_emissive_strength scales
+    // Material::emissiveFactor.
     for (const std::string& name : extensions_)
-        if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform")
+        if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
+            name != "KHR_materials_emissive_strength")
             report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();

@@ -82,6 +82,8 @@ Result<int> Scene::addTexture(Texture texture) {
 Result<int> Scene::addMaterial(Material material) {
     if (!isFinite(material.baseColorFactor))
         return bad("material: base colour " + text(material.baseColorFactor) + " is not finite");
+    if (!isFinite(material.emissiveFactor) || glm::any(glm::lessThan(material.emissiveFactor, glm::vec3(0.0f))))
+        return bad("material: emissive " + text(material.emissiveFactor) + " is not finite and at least 0");
     if (material.baseColorTexture < -1 || material.baseColorTexture >= int(textures.size()))
         return bad("material: texture " + std::to_string(material.baseColorTexture) + " does not exist (the scene has " +
                    std::to_string(textures.size()) + ")");

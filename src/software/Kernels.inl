@@ -371,7 +371,8 @@ struct Light {
           metallic(simd::splat(s.metallic)),
           roughness(simd::splat(s.roughness)),
           intensity(simd::splat(s.light)),
-          environment(simd::splat(s.environment)) {}
+          environment(simd::splat(s.environment)),
+          emissive{simd::splat(s.emissive.r), simd::splat(s.emissive.g), simd::splat(s.emissive.b)} {}
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
     void shade(const F8 base[4], const Vec3& n, const Vec3& v, F8 out[3]) const {
@@ -407,12 +408,13 @@ struct Light {
         for (int c = 0; c < 3; ++c) {
             dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
             metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
-            out[c] = dielectric[c] * (one - metallic) + metal[c] * metallic;
+            out[c] = (dielectric[c] * (one - metallic) + metal[c] * metallic) + emissive[c];
         }
     }
 
     Vec3 eye, toLight;
     F8 metallic, roughness, intensity, environment;
+    F8 emissive[3];
 };
 
 void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {

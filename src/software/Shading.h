@@ -174,6 +174,7 @@ struct DrawShading {
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
+    glm::vec3 emissive{0.0f};
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting

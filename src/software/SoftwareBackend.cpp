@@ -214,6 +214,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.metallic = params.metallic;
     input.shading.roughness = params.roughness;
     input.shading.unlit = params.unlit;
+    input.shading.emissive = params.emissive;
     input.shading.eye = eye_;
     input.shading.texture = params.texture != kNoHandle ? textures_.find(params.texture) : nullptr;
     assert((params.texture == kNoHandle || input.shading.texture != nullptr) && "draw: no such texture");

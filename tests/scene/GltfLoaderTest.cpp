@@ -228,7 +228,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .instances = 27,
          .textures = 1,
          .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND", "metallicRoughnessTexture", "normalTexture",
-                         "emissiveTexture", "emissiveFactor"}},
+                         "emissiveTexture"}},
         {.file = "IncorrectVertexArrays/Cube.gltf",
          .error = "bufferViews[2]: byteOffset 504 + byteLength 432 is beyond the end of buffer 0 (514 bytes)"},
         {.file = "IndexOutOfRange/AllIndicesOutOfRange.gltf",
@@ -1276,9 +1276,13 @@ TEST(GltfLoaderTest, UndecodableImageLeavesTheMaterialUntexturedWithAWarning) {
 
 TEST(GltfLoaderTest, MetallicAndRoughnessFactorsAreReadWithGltfDefaults) {
     Asset asset = quad();
-    asset.json["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 0.25}, {"roughnessFactor", 0.75}}}},
-                               {{"name", "defaults"}},
-                               {{"pbrMetallicRoughness", {{"metallicFactor", 1.5}, {"roughnessFactor", -0.5}}}}};
+    asset.json["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    const Json first = {{"pbrMetallicRoughness", {{"metallicFactor", 0.25}, {"roughnessFactor", 0.75}}},
+                        {"emissiveFactor", {0.5, 0.25, 0}},
+                        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}};
+    const Json second = {{"name", "defaults"}};
+    const Json third = {{"pbrMetallicRoughness", {{"metallicFactor", 1.5}, {"roughnessFactor", -0.5}}}};
+    asset.json["materials"] = Json::array({first, second, third});
     asset.json["meshes"][0]["primitives"].push_back(asset.primitive());
     asset.json["meshes"][0]["primitives"].push_back(asset.primitive());
     for (int m = 0; m < 3; ++m) asset.primitive(0, m)["material"] = m;
@@ -1292,6 +1296,8 @@ TEST(GltfLoaderTest, MetallicAndRoughnessFactorsAreReadWithGltfDefaults) {
     EXPECT_EQ(scene->materials[2].metallicFactor, 1.0f);  // outside [0, 1]: clamped, as viewers do
     EXPECT_EQ(scene->materials[2].roughnessFactor, 0.0f);
     EXPECT_FALSE(scene->materials[0].unlit);
+    EXPECT_EQ(scene->materials[0].emissiveFactor, glm::vec3(2.0f, 1.0f, 0.0f));  // × emissive strength
+    EXPECT_EQ(scene->materials[1].emissiveFactor, glm::vec3(0.0f));
     EXPECT_TRUE(scene->unsupported.empty());
 }
 
@@ -1360,7 +1366,7 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     const std::vector<std::string> expected = {
         "KHR_materials_sheen", "EXT_lights_image_based", "skins",           "morph targets",
         "primitive mode LINES", "alphaMode MASK",        "metallicRoughnessTexture", "normalTexture",
-        "occlusionTexture",    "emissiveTexture",        "emissiveFactor"};
+        "occlusionTexture",    "emissiveTexture"};
     EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));

@@ -151,7 +151,7 @@ Scene nonFinite() {
 }
 
 // Spheres of every corner of the material space, metallic {0, 0.5, 1} × roughness {0, 0.02, 0.25, 0.6,
-// 1}, in three base colours, one of them unlit; their silhouettes show grazing angles, and the
+// 1}, in three base colours, one of them unlit and one emissive; their silhouettes show grazing angles, and the
 // smooth ones the light's highlight at its sharpest.
 Scene materials() {
     Scene scene;
@@ -166,6 +166,7 @@ Scene materials() {
             material.metallicFactor = metallic[m];
             material.roughnessFactor = roughness[r];
             material.unlit = m == 1 && r == 4;
+            if (m == 2 && r == 1) material.emissiveFactor = {0.6f, 0.2f, 0.05f};
             Mesh copy = mesh;
             copy.material = *scene.addMaterial(material);
             const int index = *scene.addMesh(std::move(copy), false);
