@@ -43,7 +43,8 @@ inline glm::dvec3 referenceShade(const ShadedMaterial& material, glm::dvec3 n, g
     const glm::dvec3 l = glm::dvec3(lighting.toLight);
     const glm::dvec3 h = glm::normalize(l + v);
     const double nl = saturate(glm::dot(n, l)), nh = saturate(glm::dot(n, h)), vh = saturate(glm::dot(v, h));
-    const double ggx = nl * std::sqrt(nv * nv * (1.0 - alpha2) + alpha2) + nv * std::sqrt(nl * nl * (1.0 - alpha2) + alpha2);
+    const double ggx =
+        nl * std::sqrt(nv * nv * (1.0 - alpha2) + alpha2) + nv * std::sqrt(nl * nl * (1.0 - alpha2) + alpha2);
     const double visibility = ggx > 0.0 ? 0.5 / ggx : 0.0;
     const double f = nh * nh * (alpha2 - 1.0) + 1.0;
     const double distribution = f > 0.0 ? alpha2 / (kPi * f * f) : 0.0;

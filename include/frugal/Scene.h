@@ -55,8 +55,8 @@ struct Material {
     float roughnessFactor = 1.0f;  // perceptual roughness, [0, 1]; GGX alpha = roughness²
     bool unlit = false;            // KHR_materials_unlit: the colour is the base colour, no light
     glm::vec3 emissiveFactor{0.0f};  // linear radiance added to the lit colour (× emissive strength)
-    // Where the base colour texture is sampled: (u', v') = baseColorTransform · (u, v, 1) (KHR_texture_transform;
-    // identity by default).
+    // Where the base colour texture is sampled: (u', v') = baseColorTransform · (u, v, 1)
+    // (KHR_texture_transform; identity by default).
     glm::mat3 baseColorTransform{1.0f};
 };
 
@@ -180,8 +180,9 @@ struct Scene {
     //   "mesh: position 17 is (nan, 0, 1), not finite"
     //   "texture: 12288 bytes for 64x64 RGBA (16384 expected)"
     // A texture: RGBA8, rows in file order (Texture). A material: its texture (-1 = none) must
-    // exist, its factors be finite, metallic and roughness in [0, 1]. A mesh: indices 3 a triangle, each below the vertex count; normals, colours and uvs
-    // empty or one a vertex; every value finite; material -1 (the default) or one that exists. It
+    // exist, its factors be finite, emissive at least 0, metallic and roughness in [0, 1]. A mesh:
+    // indices 3 a triangle, each below the vertex count; normals, colours and uvs empty or one a
+    // vertex; every value finite; material -1 (the default) or one that exists. It
     // is finished as the loaders finish theirs (triangleSource filled, missing normals computed,
     // and with `optimizeOrder` triangles reordered for the vertex cache, ids kept), so a mesh
     // added here draws exactly as the same mesh read from a glTF file.

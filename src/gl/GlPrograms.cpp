@@ -31,15 +31,15 @@ std::string literal(float value) {
     return "(" + s + ")";
 }
 
-// brdf::dfgPolynomial as GLSL, for one channel's coefficients.
+// One channel of brdf::dfg's polynomial as GLSL, in its order.
 std::string dfgPolynomial(const char* name, const std::array<float, 18>& c) {
     const auto k = [&](int i) { return literal(c[std::size_t(i)]); };
     return "float " + std::string(name) + "(float x, float r, float u, float f5) {\n" +
            "    float inR = " + k(0) + " + r * (" + k(1) + " + r * (" + k(2) + " + r * (" + k(3) + " + r * (" + k(4) +
            " + r * " + k(5) + "))));\n" +
            "    float inX = x * ((" + k(6) + " + r * (" + k(7) + " + r * " + k(8) + ")) + x * " + k(9) + ");\n" +
-           "    float inU = u * (((" + k(10) + " + r * (" + k(11) + " + r * (" + k(12) + " + r * " + k(13) + "))) + x * " +
-           k(14) + ") + u * " + k(15) + ");\n" +
+           "    float inU = u * (((" + k(10) + " + r * (" + k(11) + " + r * (" + k(12) + " + r * " + k(13) +
+           "))) + x * " + k(14) + ") + u * " + k(15) + ");\n" +
            "    float inF = f5 * (" + k(16) + " + r * " + k(17) + ");\n" +
            "    return ((inR + inX) + inU) + inF;\n}\n";
 }

@@ -71,13 +71,14 @@ struct IndexRange {
 //   alpha = r², m = metallic; c5(x) = (1 − x)⁵.
 //   Environment (image-based light of a uniform radiance L, `environment`): with (A, B) the
 //   split-sum GGX table at (n·v, r) (pipeline/Brdf.h: a fit to the Khronos renderer's table) and
-//   its Fresnel  F(f0) = Fss + Fss·Ems·Favg / (1 − Favg·Ems),  Fss = (f0 + (max(1 − r, f0) − f0)·c5(n·v))·A + B,
-//   Ems = 1 − (A + B), Favg = f0 + (1 − f0)/21:
+//   its Fresnel  F(f0) = Fss + Fss·Ems·Favg / (1 − Favg·Ems),  with
+//   Fss = (f0 + (max(1 − r, f0) − f0)·c5(n·v))·A + B,  Ems = 1 − (A + B),  Favg = f0 + (1 − f0)/21:
 //     dielectric = L·base.rgb·(1 − F(0.04)) + L·F(0.04);   metal = L·F(base.rgb)
 //   Light (direction l = toLight, intensity E = `light`, in the specification's units, where the
 //   Lambert lobe is albedo/π), h = normalize(l + v), the dots clamped to [0, 1]:
-//     D = alpha² / (π·f²), f = (n·h)²(alpha² − 1) + 1;  V = 0.5 / (n·l·√((n·v)²(1 − alpha²) + alpha²)
-//       + n·v·√((n·l)²(1 − alpha²) + alpha²))  (0 where the sum is 0);  S = E·n·l·V·D
+//     D = alpha² / (π·f²), f = (n·h)²(alpha² − 1) + 1;
+//     V = 0.5 / (n·l·√((n·v)²(1 − alpha²) + alpha²) + n·v·√((n·l)²(1 − alpha²) + alpha²))
+//       (0 where the sum is 0);  S = E·n·l·V·D
 //     dielectric = E·n·l·base.rgb/π·(1 − Fl(0.04)) + S·Fl(0.04);  metal = S·Fl(base.rgb),
 //     Fl(f0) = f0 + (1 − f0)·c5(v·h)
 //   rgb = mix(dielectric, metal, m) of both, summed, + the material's emissive; a = base.a. An unlit

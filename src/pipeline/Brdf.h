@@ -34,36 +34,24 @@ struct Dfg {
     T a, b;
 };
 
-// The polynomial above for one channel, with T's own arithmetic (float, double, or a SIMD type
-// whose constants `k` makes from floats).
-template <class T, class Constant>
-T dfgPolynomial(const std::array<float, 18>& c, T x, T r, T u, T f5, Constant k) {
-    const T inR = k(c[0]) + r * (k(c[1]) + r * (k(c[2]) + r * (k(c[3]) + r * (k(c[4]) + r * k(c[5])))));
-    const T inX = x * ((k(c[6]) + r * (k(c[7]) + r * k(c[8]))) + x * k(c[9]));
-    const T inU = u * (((k(c[10]) + r * (k(c[11]) + r * (k(c[12]) + r * k(c[13])))) + x * k(c[14])) + u * k(c[15]));
-    const T inF = f5 * (k(c[16]) + r * k(c[17]));
-    return ((inR + inX) + inU) + inF;
-}
-
-// A and B at (x, r), given T's sqrt, min and max (found by argument-dependent lookup for a SIMD
-// type; the std ones for float and double).
-template <class T, class Constant, class Sqrt, class Min, class Max>
-Dfg<T> dfg(T x, T r, Constant k, Sqrt sqrtOf, Min minOf, Max maxOf) {
-    const T alpha = r * r;
-    const T u = x * (k(1.0f) / sqrtOf(maxOf(x * x + k(4.0f) * (alpha * alpha), k(1.0e-30f))));
-    const T y = k(1.0f) - x;
-    const T y2 = y * y;
-    const T f5 = (y2 * y2) * y;
-    const auto clamp01 = [&](T v) { return minOf(maxOf(v, k(0.0f)), k(1.0f)); };
-    return {clamp01(dfgPolynomial(kDfgA, x, r, u, f5, k)), clamp01(dfgPolynomial(kDfgB, x, r, u, f5, k))};
-}
-
-// For float and double.
+// A and B at (x, r) in float or double, in the order above. (The software backend's SIMD kernels
+// evaluate the same order on their own vector type: src/software/Kernels.inl.)
 template <class T>
 Dfg<T> dfg(T x, T r) {
-    return dfg(
-        x, r, [](float c) { return T(c); }, [](T v) { return std::sqrt(v); },
-        [](T a, T b) { return std::min(a, b); }, [](T a, T b) { return std::max(a, b); });
+    const auto polynomial = [&](const std::array<float, 18>& c, T u, T f5) {
+        const auto k = [&c](int i) { return T(c[std::size_t(i)]); };
+        const T inR = k(0) + r * (k(1) + r * (k(2) + r * (k(3) + r * (k(4) + r * k(5)))));
+        const T inX = x * ((k(6) + r * (k(7) + r * k(8))) + x * k(9));
+        const T inU = u * (((k(10) + r * (k(11) + r * (k(12) + r * k(13)))) + x * k(14)) + u * k(15));
+        const T inF = f5 * (k(16) + r * k(17));
+        return std::clamp(((inR + inX) + inU) + inF, T(0), T(1));
+    };
+    const T alpha = r * r;
+    const T u = x * (T(1) / std::sqrt(std::max(x * x + T(4) * (alpha * alpha), T(1.0e-30f))));
+    const T y = T(1) - x;
+    const T y2 = y * y;
+    const T f5 = (y2 * y2) * y;
+    return {polynomial(kDfgA, u, f5), polynomial(kDfgB, u, f5)};
 }
 
 }  // namespace frugal::brdf

@@ -118,7 +118,8 @@ namespace frugal::raster {
 
 inline constexpr int kTileLog2 = 6;
 inline constexpr int kTileSize = 1 << kTileLog2;  // 64 × 64 pixels, llvmpipe's tile size
-inline constexpr int kAttributes = 12;  // normal xyz, colour rgba, uv, world position xyz: mesh.vert's outputs
+// The varyings, mesh.vert's outputs: normal xyz, colour rgba, uv, world position xyz.
+inline constexpr int kAttributes = 12;
 
 // A vertex as triangle setup and shading read it: window position, 1/w_clip, and the varyings.
 struct SetupVertex {

@@ -220,6 +220,8 @@ struct AccessorRequest {
 constexpr std::size_t kMaxSceneElements = std::size_t(1) << 28;  // vertices + indices over all meshes
 constexpr std::size_t kMaxInstances = std::size_t(1) << 24;
 
+struct TextureTransform;
+
 class Converter {
 public:
     Converter(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
@@ -266,6 +268,8 @@ private:
     void convertMaterials();
     void untextureMeshesWithoutUvs();
     int useTexture(int gltfTexture, int material);
+    // KHR_texture_transform of material `material`'s base colour texture (which it has).
+    TextureTransform baseColorTransform(int material) const;
     void convertAnimations();
     void addCamera(int node);
 
@@ -405,6 +409,14 @@ struct TextureTransform {
     int texCoord = 0;
 };
 
+// A number member of an extension object, as a double that fits a float; `where` names it.
+double extensionNumber(const tinygltf::Value& value, const std::string& where) {
+    if (!value.IsNumber()) fail(where, ": not a number");
+    const double d = value.GetNumberAsDouble();
+    if (!std::isfinite(float(d))) fail(where, ": ", d, " does not fit a float");
+    return d;
+}
+
 TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std::string& where) {
     TextureTransform out;
     out.texCoord = info.texCoord;
@@ -413,10 +425,7 @@ TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std
     const tinygltf::Value& ext = it->second;
     const std::string at = where + ".extensions.KHR_texture_transform";
     const auto number = [&](const tinygltf::Value& v, const std::string& name) {
-        if (!v.IsNumber()) fail(at, ".", name, ": not a number");
-        const double d = v.GetNumberAsDouble();
-        if (!std::isfinite(float(d))) fail(at, ".", name, ": ", d, " does not fit a float");
-        return d;
+        return extensionNumber(v, cat(at, ".", name));
     };
     const auto pair = [&](const char* name, double fallback) -> std::array<double, 2> {
         if (!ext.Has(name)) return {fallback, fallback};
@@ -437,6 +446,11 @@ TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std
     out.matrix[1] = glm::vec3(float(s * scale[1]), float(c * scale[1]), 0.0f);
     out.matrix[2] = glm::vec3(float(offset[0]), float(offset[1]), 1.0f);
     return out;
+}
+
+TextureTransform Converter::baseColorTransform(int material) const {
+    return textureTransformOf(model_.materials[std::size_t(material)].pbrMetallicRoughness.baseColorTexture,
+                              cat("materials[", material, "].pbrMetallicRoughness.baseColorTexture"));
 }
 
 Node Converter::convertNode(int index) const {
@@ -607,10 +621,7 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
             ? &model_.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture
             : nullptr;
     const bool textured = texture && texture->index >= 0;
-    const int texCoord =
-        textured ? textureTransformOf(*texture, cat("materials[", primitive.material, "].pbrMetallicRoughness.baseColorTexture"))
-                       .texCoord
-                 : 0;
+    const int texCoord = textured ? baseColorTransform(primitive.material).texCoord : 0;
     const std::string uvName = cat("TEXCOORD_", texCoord);
     if (const int uv = accessor(uvName); uv >= 0) {
         mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
@@ -809,11 +820,11 @@ void Converter::convertMaterials() {
         // at the factor's full brightness.
         if (src.emissiveTexture.index < 0) {
             double strength = 1.0;
-            if (const auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end()) {
-                const tinygltf::Value& value = it->second.Get("emissiveStrength");
-                if (value.IsNumber()) strength = value.GetNumberAsDouble();
-                if (it->second.Has("emissiveStrength") && (!value.IsNumber() || !(strength >= 0.0)))
-                    fail(where, ".extensions.KHR_materials_emissive_strength.emissiveStrength: not a number >= 0");
+            if (const auto it = src.extensions.find("KHR_materials_emissive_strength");
+                it != src.extensions.end() && it->second.Has("emissiveStrength")) {
+                const std::string at = where + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+                strength = extensionNumber(it->second.Get("emissiveStrength"), at);
+                if (strength < 0.0) fail(at, ": ", strength, " is negative");
             }
             for (int k = 0; k < 3 && std::size_t(k) < src.emissiveFactor.size(); ++k)
                 material.emissiveFactor[k] =
@@ -828,9 +839,7 @@ void Converter::convertMaterials() {
         if (src.emissiveTexture.index >= 0) report("emissiveTexture");
         if (src.pbrMetallicRoughness.baseColorTexture.index >= 0) {
             material.baseColorTexture = useTexture(src.pbrMetallicRoughness.baseColorTexture.index, m);
-            material.baseColorTransform =
-                textureTransformOf(src.pbrMetallicRoughness.baseColorTexture, where + ".pbrMetallicRoughness.baseColorTexture")
-                    .matrix;
+            material.baseColorTransform = baseColorTransform(m).matrix;
         }
     }
 }

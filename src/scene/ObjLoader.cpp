@@ -8,8 +8,8 @@
 //
 // Conventions: texture v is flipped (v' = 1 − v) so that uv (0,0) is the first row of the image, as in
 // glTF (Scene.h). Materials become dielectrics (metallic 0): Kd the base colour, the Phong exponent Ns
-// a roughness (objRoughness); a face without a material gets Ns 0, the roughest. One Mesh per (shape, material),
-// one root node per shape. OBJ has no culling flag: LoadOptions::objDoubleSided decides.
+// a roughness (objRoughness); a face without a material gets Ns 0, the roughest. One Mesh per
+// (shape, material), one root node per shape. OBJ has no culling flag: LoadOptions::objDoubleSided decides.
 #include <tiny_obj_loader.h>
 
 #include <algorithm>

@@ -323,9 +323,15 @@ struct Vec3 {
     F8 x, y, z;
 };
 
+inline F8 saturate(F8 a) { return simd::min(simd::max(a, simd::splat(0.0f)), simd::splat(1.0f)); }
+inline F8 pow5(F8 x) {
+    const F8 x2 = x * x;
+    return (x2 * x2) * x;
+}
+
 // pipeline/Brdf.h's split-sum fit, eight lanes at a time, in the order brdf::dfg states. (Written
 // out here rather than instantiated from Brdf.h's template: that would be compiled without this
-// file's SIMD target, and F8 cannot cross between the two.)
+// file's SIMD target, and F8 cannot cross between the two: passing one by value crashed.)
 inline F8 dfgPolynomial(const std::array<float, 18>& c, F8 x, F8 r, F8 u, F8 f5) {
     const auto k = [&c](int i) { return simd::splat(c[std::size_t(i)]); };
     const F8 inR = k(0) + r * (k(1) + r * (k(2) + r * (k(3) + r * (k(4) + r * k(5)))));
@@ -335,24 +341,17 @@ inline F8 dfgPolynomial(const std::array<float, 18>& c, F8 x, F8 r, F8 u, F8 f5)
     return ((inR + inX) + inU) + inF;
 }
 inline void dfg(F8 x, F8 r, F8& a, F8& b) {
-    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
+    const F8 one = simd::splat(1.0f);
     const F8 alpha = r * r;
     const F8 u = x * (one / simd::sqrt(simd::max(x * x + simd::splat(4.0f) * (alpha * alpha), simd::splat(1.0e-30f))));
-    const F8 y = one - x;
-    const F8 y2 = y * y;
-    const F8 f5 = (y2 * y2) * y;
-    a = simd::min(simd::max(dfgPolynomial(brdf::kDfgA, x, r, u, f5), zero), one);
-    b = simd::min(simd::max(dfgPolynomial(brdf::kDfgB, x, r, u, f5), zero), one);
+    const F8 f5 = pow5(one - x);
+    a = saturate(dfgPolynomial(brdf::kDfgA, x, r, u, f5));
+    b = saturate(dfgPolynomial(brdf::kDfgB, x, r, u, f5));
 }
 inline F8 dot(const Vec3& a, const Vec3& b) { return (a.z * b.z + a.y * b.y) + a.x * b.x; }
 inline Vec3 normalize(const Vec3& a) {
     const F8 rsq = simd::splat(1.0f) / simd::sqrt(dot(a, a));
     return {a.x * rsq, a.y * rsq, a.z * rsq};
-}
-inline F8 saturate(F8 a) { return simd::min(simd::max(a, simd::splat(0.0f)), simd::splat(1.0f)); }
-inline F8 pow5(F8 x) {
-    const F8 x2 = x * x;
-    return (x2 * x2) * x;
 }
 
 // The Khronos renderer's getIBLGGXFresnel (mesh.frag's iblFresnel).

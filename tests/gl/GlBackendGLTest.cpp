@@ -909,7 +909,8 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
     for (std::size_t i = 0; i < variants.size(); ++i) {
         const Draw& d = variants[i];
         const std::string name =
-            std::string("variant-") + (d.textured ? "t" : "") + (d.coloured ? "c" : "") + (d.ids ? "i" : "") + (d.unlit ? "u" : "");
+            std::string("variant-") + (d.textured ? "t" : "") + (d.coloured ? "c" : "") + (d.ids ? "i" : "") +
+            (d.unlit ? "u" : "");
         std::unique_ptr<Backend> fresh = makeBackend(GetParam());
         ASSERT_NE(fresh, nullptr);
         const Buffers alone = render(*fresh, upload(*fresh), d, frameB, modelB, factorB, 500);

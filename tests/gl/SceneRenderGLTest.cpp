@@ -95,7 +95,8 @@ TEST_P(SceneRenderGLTest, ShadingModelGivesTheExpectedColour) {
     const glm::dvec3 n(0, 0, 1), v(0, 0, 1);
     const glm::dvec3 metal =
         test::displayedRgb(test::referenceShade({glm::dvec3(material.baseColorFactor), 1.0, 1.0}, n, v, Lighting{}));
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(frame.buffers.rgba[centre * 4 + c], metal[c] * 255.0, 1.0) << "channel " << c;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(frame.buffers.rgba[centre * 4 + c], metal[c] * 255.0, 1.0) << "channel " << c;
     scene.materials[0].metallicFactor = 0.0f;
     scene.materials[0].roughnessFactor = 0.6f;
     const Frame plastic = render(*backend, scene, 64, 48, 0.0, true, given);

@@ -170,7 +170,8 @@ Scene materials() {
             Mesh copy = mesh;
             copy.material = *scene.addMaterial(material);
             const int index = *scene.addMesh(std::move(copy), false);
-            (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), glm::vec3(float(r) - 2.0f, float(m) - 1.0f, 0.0f)));
+            const glm::vec3 at(float(r) - 2.0f, float(m) - 1.0f, 0.0f);
+            (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
         }
     scene.buildInstances();
     return scene;
@@ -261,7 +262,8 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     EXPECT_LE(r.depth->maxDifference, c.tolerance.depthLsb);
     EXPECT_GE(idAgreement, c.tolerance.idAgreement);
     EXPECT_LE(r.maxChannelDifference, c.tolerance.colour);
-    EXPECT_LE(double(r.failingPixels), c.tolerance.colourShare * double(covered)) << r.failingPixels << " pixels differ";
+    EXPECT_LE(double(r.failingPixels), c.tolerance.colourShare * double(covered))
+        << r.failingPixels << " pixels differ";
     if (!ok) {
         const fs::path dir = test::freshDir("matrix-" + c.name);
         (void)writeFileAtomic((dir / "actual.png").string(), encodeColorPng(images[0]));
