@@ -7,9 +7,14 @@
 // rgb^(1/2.2) (its linearTosRGB), so that an 8-bit image looks as viewers show the file.
 //
 // Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
-// FRUGAL_TEXTURE the texel is, so their factors are left out; without FRUGAL_IDS there is no id
-// output; FRUGAL_UNLIT (KHR_materials_unlit) writes the base colour. Sampling a 1×1 white texture
-// instead cost +0.64 ms per bunny frame on llvmpipe.
+// FRUGAL_TEXTURE the texel is, so their factors are left out; each other map (FRUGAL_*_MAP) is read
+// only by the materials that have it; without FRUGAL_IDS there is no id output; FRUGAL_UNLIT
+// (KHR_materials_unlit) writes the base colour. Sampling a 1×1 white texture instead cost +0.64 ms
+// per bunny frame on llvmpipe. The maps are read as the Khronos renderer reads them: metallic ×
+// blue and roughness × green of the metallic-roughness map; the occlusion map's red darkens the
+// environment's light only, by 1 + strength · (red − 1); emission × the emissive map's rgb; the
+// normal map's rgb · 2 − 1, x and y × scale, normalised, in the basis (tangent, bitangent, normal),
+// each normalised and flipped with the normal on back faces.
 #version 330 core
 
 in vec3 v_normal;
@@ -28,9 +33,27 @@ layout(location = 0) out vec4 o_color;
 #ifdef FRUGAL_COLORS
 in vec4 v_color;
 #endif
-#ifdef FRUGAL_TEXTURE
+#ifdef FRUGAL_UV
 in vec2 v_uv;
+#endif
+#ifdef FRUGAL_TEXTURE
 uniform sampler2D u_baseColor;  // texture unit 0
+#endif
+#ifdef FRUGAL_METALLIC_ROUGHNESS_MAP
+uniform sampler2D u_metallicRoughnessMap;  // unit 1
+#endif
+#ifdef FRUGAL_OCCLUSION_MAP
+uniform sampler2D u_occlusionMap;  // unit 2
+uniform float u_occlusionStrength;
+#endif
+#ifdef FRUGAL_EMISSIVE_MAP
+uniform sampler2D u_emissiveMap;  // unit 3
+#endif
+#ifdef FRUGAL_NORMAL_MAP
+in vec3 v_tangent;
+in vec3 v_bitangent;
+uniform sampler2D u_normalMap;  // unit 4
+uniform float u_normalScale;
 #endif
 #ifdef FRUGAL_IDS
 flat in uint v_id;
@@ -70,8 +93,23 @@ void main() {
 #else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
+#ifdef FRUGAL_NORMAL_MAP
+    vec3 t = normalize(v_tangent), b = normalize(v_bitangent);
+    if (!gl_FrontFacing) {
+        t = -t;
+        b = -b;
+    }
+    vec3 m = texture(u_normalMap, v_uv).rgb * 2.0 - vec3(1.0);
+    m = normalize(m * vec3(u_normalScale, u_normalScale, 1.0));
+    n = normalize((t * m.x + b * m.y) + n * m.z);
+#endif
     vec3 v = normalize(u_eye - v_position);
     float metallic = u_metallicRoughness.x, r = u_metallicRoughness.y;
+#ifdef FRUGAL_METALLIC_ROUGHNESS_MAP
+    vec4 mr = texture(u_metallicRoughnessMap, v_uv);
+    metallic = metallic * mr.b;
+    r = r * mr.g;
+#endif
     float alpha2 = (r * r) * (r * r);
     float nv = clampedDot(n, v);
     float cv = pow5(1.0 - nv);
@@ -81,6 +119,11 @@ void main() {
     float fd = iblFresnel(kDielectricF0, r, cv, ab);
     vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + vec3(u_environment * fd);
     vec3 metal = iblFresnel(base.rgb, r, cv, ab) * u_environment;
+#ifdef FRUGAL_OCCLUSION_MAP
+    float occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, v_uv).r - 1.0);
+    dielectric = dielectric * occlusion;
+    metal = metal * occlusion;
+#endif
 
     // The directional light.
     vec3 l = u_toLight;
@@ -97,7 +140,11 @@ void main() {
     dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + vec3(specular * fl);
     metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
 
-    vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + u_emissive;
+    vec3 emissive = u_emissive;
+#ifdef FRUGAL_EMISSIVE_MAP
+    emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
+#endif
+    vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + emissive;
 #endif
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
 #ifdef FRUGAL_IDS

@@ -17,6 +17,7 @@ struct ShadedMaterial {
     glm::dvec3 base{1.0};
     double metallic = 1.0, roughness = 1.0;
     glm::dvec3 emissive{0.0};
+    double occlusion = 1.0;  // what the occlusion map leaves of the environment's light
 };
 
 // Linear rgb of `material` at a point with unit normal n, seen along unit v (towards the eye).
@@ -39,6 +40,8 @@ inline glm::dvec3 referenceShade(const ShadedMaterial& material, glm::dvec3 n, g
     glm::dvec3 dielectric = env * base * (1.0 - fd) + env * fd;
     glm::dvec3 metal;
     for (int c = 0; c < 3; ++c) metal[c] = env * iblFresnel(base[c]);
+    dielectric *= material.occlusion;
+    metal *= material.occlusion;
 
     const glm::dvec3 l = glm::dvec3(lighting.toLight);
     const glm::dvec3 h = glm::normalize(l + v);

@@ -56,8 +56,21 @@ struct Material {
     bool unlit = false;            // KHR_materials_unlit: the colour is the base colour, no light
     glm::vec3 emissiveFactor{0.0f};  // linear radiance added to the lit colour (× emissive strength)
     // Where the base colour texture is sampled: (u', v') = baseColorTransform · (u, v, 1)
-    // (KHR_texture_transform; identity by default).
+    // (KHR_texture_transform; identity by default). The other maps are sampled there too.
     glm::mat3 baseColorTransform{1.0f};
+    // The maps besides the base colour (-1 = none), each read as glTF reads it and each decoded as
+    // its Texture says (Texture::srgb: the glTF loader sets it by use):
+    int metallicRoughnessTexture = -1;  // blue × metallicFactor, green × roughnessFactor
+    int occlusionTexture = -1;          // red: the environment's light × (1 + strength · (red − 1))
+    float occlusionStrength = 1.0f;     // [0, 1]
+    int emissiveTexture = -1;           // rgb × emissiveFactor
+    // Tangent-space normals (rgb · 2 − 1, x and y × normalScale), in the basis of the mesh's
+    // tangents (Mesh::tangents; generated when the mesh has none).
+    int normalTexture = -1;
+    float normalScale = 1.0f;
+
+    // Every member equal (floats by value: a NaN is never equal, so it always counts as a change).
+    bool operator==(const Material&) const = default;
 };
 
 struct Mesh {
@@ -66,6 +79,10 @@ struct Mesh {
     std::vector<glm::vec3> normals;             // always filled (computed when the file has none)
     std::vector<glm::vec4> colors;              // empty = white
     std::vector<glm::vec2> uvs;                 // empty = no texture coordinates
+    // glTF's TANGENT: xyz the direction of increasing u, w = ±1 the handedness (the bitangent is
+    // cross(normal, xyz) · w, toward decreasing v: "up" in the image). Empty = none: a mesh whose
+    // material has a normal map gets generated ones when it is uploaded (generateTangents).
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
     std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file
     int material = -1;                          // -1 = default material (white, single-sided)

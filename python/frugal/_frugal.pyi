@@ -132,6 +132,12 @@ class _Material(TypedDict):
     roughness: float
     unlit: bool
     emissive: tuple[float, float, float]
+    metallic_roughness_texture: int | None
+    occlusion_texture: int | None
+    occlusion_strength: float
+    emissive_texture: int | None
+    normal_texture: int | None
+    normal_scale: float
 
 class _MeshArrays(TypedDict):
     name: str
@@ -146,10 +152,12 @@ class _MeshArrays(TypedDict):
 class Scene(_pybind11_object):
     def __init__(self) -> None: ...
     def add_texture(self, pixels: npt.ArrayLike, *, wrap: Literal["repeat", "clamp", "mirror"] = ...,
-                    filter: Literal["linear", "nearest"] = ..., name: str = ...) -> int: ...
+                    filter: Literal["linear", "nearest"] = ..., srgb: bool = ..., name: str = ...) -> int: ...
     def add_material(self, color: _Colour = ..., *, texture: int | None = ..., double_sided: bool = ...,
                      metallic: float = ..., roughness: float = ..., unlit: bool = ..., emissive: Sequence[float] = ...,
-                     name: str = ...) -> int: ...
+                     metallic_roughness_texture: int | None = ..., occlusion_texture: int | None = ...,
+                     occlusion_strength: float = ..., emissive_texture: int | None = ...,
+                     normal_texture: int | None = ..., normal_scale: float = ..., name: str = ...) -> int: ...
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
                  colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ..., material: int | None = ...,
                  name: str = ..., file_order: bool = ...) -> int: ...

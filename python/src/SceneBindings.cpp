@@ -30,7 +30,7 @@ Wrap wrapFrom(const std::string& name) {
     throw InputError{"wrap: '" + name + "' is not a mode (repeat, clamp, mirror)"};
 }
 
-int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, const std::string& filter,
+int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, const std::string& filter, bool srgb,
                const std::string& name) {
     Pixels p = pixelsFrom(pixels);
     Texture texture;
@@ -42,11 +42,14 @@ int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, co
     if (filter != "linear" && filter != "nearest")
         throw InputError{"filter: '" + filter + "' is not a filter (linear, nearest)"};
     texture.filter = filter == "nearest" ? Filter::Nearest : Filter::Linear;
+    texture.srgb = srgb;
     return take(s.scene.addTexture(std::move(texture)));
 }
 
 int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided, double metallic,
-                double roughness, bool unlit, const py::handle& emissive, const std::string& name) {
+                double roughness, bool unlit, const py::handle& emissive, std::optional<int> metallicRoughnessTexture,
+                std::optional<int> occlusionTexture, double occlusionStrength, std::optional<int> emissiveTexture,
+                std::optional<int> normalTexture, double normalScale, const std::string& name) {
     Material material;
     material.name = name;
     material.baseColorFactor = colorFrom(color, "color");
@@ -56,6 +59,12 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
     material.roughnessFactor = float(roughness);
     material.unlit = unlit;
     material.emissiveFactor = vectorFrom<3>(emissive, "emissive");
+    material.metallicRoughnessTexture = metallicRoughnessTexture.value_or(-1);
+    material.occlusionTexture = occlusionTexture.value_or(-1);
+    material.occlusionStrength = float(occlusionStrength);
+    material.emissiveTexture = emissiveTexture.value_or(-1);
+    material.normalTexture = normalTexture.value_or(-1);
+    material.normalScale = float(normalScale);
     return take(s.scene.addMaterial(std::move(material)));
 }
 
@@ -108,6 +117,13 @@ py::list materialList(const Scene& scene) {
         d["roughness"] = m.roughnessFactor;
         d["unlit"] = m.unlit;
         d["emissive"] = py::make_tuple(m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b);
+        const auto index = [](int t) { return t < 0 ? py::object(py::none()) : py::object(py::int_(t)); };
+        d["metallic_roughness_texture"] = index(m.metallicRoughnessTexture);
+        d["occlusion_texture"] = index(m.occlusionTexture);
+        d["occlusion_strength"] = m.occlusionStrength;
+        d["emissive_texture"] = index(m.emissiveTexture);
+        d["normal_texture"] = index(m.normalTexture);
+        d["normal_scale"] = m.normalScale;
         out.append(d);
     }
     return out;
@@ -192,18 +208,26 @@ void bindScene(py::module_& m) {
     py::class_<PyScene>(m, "Scene", "A scene: loaded with frugal.load, or built here from numpy arrays.")
         .def(py::init<>())
         .def("add_texture", &addTexture, py::arg("pixels"), py::kw_only(), py::arg("wrap") = "repeat",
-             py::arg("filter") = "linear", py::arg("name") = "",
-             "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF), its\n"
-             "colours sRGB-encoded as a glTF base colour texture's (alpha linear).\n"
+             py::arg("filter") = "linear", py::arg("srgb") = true, py::arg("name") = "",
+             "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF).\n"
+             "srgb: its colours are sRGB-encoded, as a glTF base colour or emissive texture's (alpha is\n"
+             "linear); False for data (a metallic-roughness or occlusion map).\n"
              "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
         .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
              py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("metallic") = 1.0,
              py::arg("roughness") = 1.0, py::arg("unlit") = false,
-             py::arg("emissive") = py::make_tuple(0.0, 0.0, 0.0), py::arg("name") = "",
+             py::arg("emissive") = py::make_tuple(0.0, 0.0, 0.0), py::arg("metallic_roughness_texture") = py::none(),
+             py::arg("occlusion_texture") = py::none(), py::arg("occlusion_strength") = 1.0,
+             py::arg("emissive_texture") = py::none(), py::arg("normal_texture") = py::none(),
+             py::arg("normal_scale") = 1.0, py::arg("name") = "",
              "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
              "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
              "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
-             "base colour as it is, no light), emissive: linear RGB added to the lit colour. Returns its index.")
+             "base colour as it is, no light), emissive: linear RGB added to the lit colour.\n"
+             "The maps, as glTF reads them (texture indices, sampled at the mesh's uvs): metallic_roughness_texture\n"
+             "(blue x metallic, green x roughness), occlusion_texture (red darkens the environment's light, by\n"
+             "occlusion_strength in [0, 1]), emissive_texture (rgb x emissive), normal_texture (tangent-space\n"
+             "normals, x and y x normal_scale; a mesh's tangents are generated when it is drawn). Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,

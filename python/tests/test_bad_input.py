@@ -71,6 +71,9 @@ def test_bad_attributes_materials_textures_instances():
     refused(frugal.InputError, r"color: value 1 is nan, not finite", scene.add_material, (1, np.nan, 1))
     refused(frugal.InputError, r"material: metallic 1.5 is not in \[0, 1\]", scene.add_material, metallic=1.5)
     refused(frugal.InputError, r"material: roughness nan is not in \[0, 1\]", scene.add_material, roughness=np.nan)
+    refused(frugal.InputError, r"material: normal texture 0 does not exist", scene.add_material, normal_texture=0)
+    refused(frugal.InputError, r"material: occlusion strength -1 is not in \[0, 1\]", scene.add_material,
+            occlusion_strength=-1)
     refused(frugal.InputError, r"instance: mesh 0 does not exist \(the scene has 0\)", scene.add_instance, 0)
     mesh = scene.add_mesh(POSITIONS, INDICES)
     refused(frugal.InputError, r"transform: expected a 4x4 matrix, got shape \(3, 3\)", scene.add_instance, mesh,

@@ -141,6 +141,37 @@ def test_memory_scene_equals_the_gltf_file(tmp_path):
         assert len(np.unique(a.ids)) > 20, "every instance is in view"
 
 
+def test_maps_are_drawn_and_listed():
+    """A material with every map: listed as given, drawn alike by GL and the software reference (the
+    mesh's tangents generated when drawn), and unlike the same material without the maps."""
+    rng = np.random.default_rng(38)
+    maps = [rng.integers(0, 256, (8, 8, 4), dtype=np.uint8) for _ in range(3)]
+    grid, grid_indices, _, uvs = grid_arrays()
+    camera = frugal.Camera.look_at((0.5, 1.5, 4.0), (0, 0, 0), fov=50)
+
+    def render(with_maps, backend):
+        scene = frugal.Scene()
+        options = {}
+        if with_maps:
+            data = [scene.add_texture(m, srgb=False) for m in maps]
+            options = dict(metallic_roughness_texture=data[0], occlusion_texture=data[1], occlusion_strength=0.5,
+                           emissive_texture=scene.add_texture(checker()), normal_texture=data[2], normal_scale=2.0)
+        material = scene.add_material((0.9, 0.6, 0.3), metallic=0.5, roughness=0.8, emissive=(0.2, 0.2, 0.2),
+                                      **options)
+        if with_maps:
+            listed = scene.materials[material]
+            assert (listed["metallic_roughness_texture"], listed["occlusion_texture"],
+                    listed["normal_texture"]) == (0, 1, 2)
+            assert listed["emissive_texture"] == 3
+            assert listed["occlusion_strength"] == 0.5 and listed["normal_scale"] == 2.0
+        scene.add_instance(scene.add_mesh(grid, grid_indices, uvs=uvs, material=material))
+        return frugal.Renderer(scene, size=(160, 120), backend=backend).render(camera).color
+
+    mapped = render(True, "auto")
+    assert np.abs(mapped.astype(int) - render(True, "software")).max() <= 1  # the stated tolerance
+    assert (mapped != render(False, "auto")).any()
+
+
 def test_mesh_arrays_round_trip():
     """mesh(i) gives back what add_mesh keeps: the triangles (reordered for the cache, ids kept)."""
     scene = frugal.Scene()

@@ -279,9 +279,11 @@ std::string minimalFrameUnsupported(const Scene& scene) {
         if (!mesh.colors.empty())
             return "mesh " + std::to_string(instance.mesh) + quotedName(mesh.name) +
                    " has vertex colours, which the minimal frame does not draw";
-        if (mesh.material >= 0 && scene.materials[std::size_t(mesh.material)].baseColorTexture >= 0)
-            return "material " + std::to_string(mesh.material) +
-                   quotedName(scene.materials[std::size_t(mesh.material)].name) +
+        if (mesh.material < 0) continue;
+        const Material& material = scene.materials[std::size_t(mesh.material)];
+        if (material.baseColorTexture >= 0 || material.metallicRoughnessTexture >= 0 ||
+            material.occlusionTexture >= 0 || material.emissiveTexture >= 0 || material.normalTexture >= 0)
+            return "material " + std::to_string(mesh.material) + quotedName(material.name) +
                    " has a texture, which the minimal frame does not draw";
     }
     return {};

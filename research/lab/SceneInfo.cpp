@@ -107,11 +107,23 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
             << (m.baseColorTexture >= 0 ? ", texture " + std::to_string(m.baseColorTexture) : std::string())
             << (m.unlit ? ", unlit"
                         : ", metallic " + fmt(m.metallicFactor) + ", roughness " + fmt(m.roughnessFactor))
-            << (m.doubleSided ? ", double-sided" : ", single-sided") << "\n";
+            << (m.doubleSided ? ", double-sided" : ", single-sided");
+        if (!m.unlit) {
+            if (m.metallicRoughnessTexture >= 0) out << ", metallic-roughness map " << m.metallicRoughnessTexture;
+            if (m.occlusionTexture >= 0)
+                out << ", occlusion map " << m.occlusionTexture << " at " << fmt(m.occlusionStrength);
+            if (m.emissiveTexture >= 0) out << ", emissive map " << m.emissiveTexture;
+            if (m.normalTexture >= 0) out << ", normal map " << m.normalTexture << " at " << fmt(m.normalScale);
+            if (m.emissiveFactor != glm::vec3(0.0f))
+                out << ", emissive " << fmt(m.emissiveFactor.r) << "," << fmt(m.emissiveFactor.g) << ","
+                    << fmt(m.emissiveFactor.b);
+        }
+        out << "\n";
     }
     out << "textures: " << scene.textures.size() << "\n";
     for (const Texture& t : scene.textures)
-        out << "  '" << t.name << "' " << t.width << "x" << t.height << (t.filter == Filter::Nearest ? " nearest" : " linear") << "\n";
+        out << "  '" << t.name << "' " << t.width << "x" << t.height
+            << (t.filter == Filter::Nearest ? " nearest" : " linear") << (t.srgb ? " sRGB" : " linear data") << "\n";
     const double detail = sceneDetail(scene);
     out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
     out << "cameras: " << scene.cameras.size() << "\n";

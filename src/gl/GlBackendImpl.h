@@ -29,7 +29,9 @@
 namespace frugal::gl {
 
 // Vertex attribute locations, as in shaders/mesh.vert.
-enum Attribute : GLuint { kPosition = 0, kNormal = 1, kColor = 2, kUv = 3, kId = 4 };
+// The tangent shares location 5 with the instanced forms' first attribute: a mesh with tangents is
+// never drawn instanced (drawInstances draws it once an instance).
+enum Attribute : GLuint { kPosition = 0, kNormal = 1, kColor = 2, kUv = 3, kId = 4, kTangent = 5 };
 
 // One FBO with its renderbuffers (the top of GlBackend.cpp).
 struct GlTarget : CachedFramebuffer {
@@ -41,15 +43,20 @@ struct GlTarget : CachedFramebuffer {
     bool idsDirty = true;
 };
 
-// What a draw uses, as bits of a program variant's index (≤ 16 variants; GlPrograms.cpp).
+// What a draw uses, as bits of a program variant's index (GlPrograms.cpp).
 enum Variant : unsigned {
-    kTextureBit = 1u,
+    kTextureBit = 1u,  // the base colour texture
     kColorsBit = 2u,
     kIdsBit = 4u,
     kInstancedBit = 8u,
     kUnlitBit = 16u,
-    kVariantCount = 32u
+    kMetallicRoughnessBit = 32u,  // the other maps (Material)
+    kOcclusionBit = 64u,
+    kEmissiveBit = 128u,
+    kNormalMapBit = 256u,
+    kVariantCount = 512u
 };
+constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit;
 
 // One instance of a batched draw as the instanced variant reads it (attributes 5–15, mesh.vert):
 // the same values the uniforms of a single draw would get. The model matrix goes as its first three
@@ -75,19 +82,20 @@ struct GlProgram {
     bool failed = false;  // did not compile; not tried again
     GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
     GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
+    GLint occlusionStrength = -1, normalScale = -1;
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue;
     CachedUniform<glm::vec2> metallicRoughnessValue;
     CachedUniform<glm::vec3> eyeValue, toLightValue, emissiveValue;
-    CachedUniform<float> lightValue, environmentValue;
+    CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue;
     CachedUniform<std::uint32_t> firstIdValue;
 };
 
 // Byte offsets of the attribute sections in a mesh's vertex buffer (positions first, at 0);
 // -1 = the mesh has no such attribute and the shader gets the constant current value.
 struct VertexLayout {
-    GLintptr normal = -1, color = -1, uv = -1, id = -1;
+    GLintptr normal = -1, color = -1, uv = -1, id = -1, tangent = -1;
     GLsizeiptr size = 0;
 };
 

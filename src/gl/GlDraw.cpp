@@ -28,6 +28,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -65,17 +66,26 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
 
 GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
     const bool writeIds = frame_.writeIds;
-    // The variant: a texture, vertex colours and ids only when the draw uses them.
+    // The variant: each map, vertex colours and ids only when the draw uses them.
     unsigned variant = (writeIds ? kIdsBit : 0u) | extraBits;
-    GLuint texture = 0;
-    if (params.texture != kNoHandle) {
-        const GLuint* t = textures_.find(params.texture);
+    const std::pair<TextureHandle, unsigned> maps[kTextureUnits] = {
+        {params.texture, kTextureBit},
+        {params.metallicRoughnessTexture, kMetallicRoughnessBit},
+        {params.occlusionTexture, kOcclusionBit},
+        {params.emissiveTexture, kEmissiveBit},
+        {params.normalTexture, kNormalMapBit}};
+    GLuint textures[kTextureUnits] = {};
+    for (int unit = 0; unit < kTextureUnits; ++unit) {
+        if (maps[unit].first == kNoHandle) continue;
+        const GLuint* t = textures_.find(maps[unit].first);
         assert(t != nullptr && "draw: no such texture");
         if (t) {
-            texture = *t;
-            variant |= kTextureBit;
+            textures[unit] = *t;
+            variant |= maps[unit].second;
         }
     }
+    if (params.unlit) variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit);  // light only
+    if (mesh.layout.tangent < 0) variant &= ~kNormalMapBit;  // no basis to read it in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
     if (params.unlit) variant |= kUnlitBit;
     GlProgram* p = program(variant);
@@ -87,7 +97,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     state_.setCull(!params.doubleSided);
     state_.setDepthTest(params.depth == DepthMode::Test);
     state_.setDepthConvention(target.depthFormat);
-    if (texture) state_.bindTexture(texture);
+    for (int unit = 0; unit < kTextureUnits; ++unit)
+        if (variant & maps[unit].second) state_.bindTexture(textures[unit], unit);
 
     const Lighting& light = frame_.lighting;
     if (state_.uniformChanged(p->eyeValue, eye_)) gl_.Uniform3fv(p->eye, 1, glm::value_ptr(eye_));
@@ -99,8 +110,12 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     // The material: the same for every instance of a batched draw.
     if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));
-    if ((variant & kTextureBit) && state_.uniformChanged(p->uvTransformValue, params.uvTransform))
+    if ((variant & kMapBits) && state_.uniformChanged(p->uvTransformValue, params.uvTransform))
         gl_.UniformMatrix3fv(p->uvTransform, 1, GL_FALSE, glm::value_ptr(params.uvTransform));
+    if ((variant & kOcclusionBit) && state_.uniformChanged(p->occlusionStrengthValue, params.occlusionStrength))
+        gl_.Uniform1f(p->occlusionStrength, params.occlusionStrength);
+    if ((variant & kNormalMapBit) && state_.uniformChanged(p->normalScaleValue, params.normalScale))
+        gl_.Uniform1f(p->normalScale, params.normalScale);
     if (!params.unlit && state_.uniformChanged(p->emissiveValue, params.emissive))
         gl_.Uniform3fv(p->emissive, 1, glm::value_ptr(params.emissive));
     const glm::vec2 metallicRoughness(params.metallic, params.roughness);
@@ -112,7 +127,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     // set before every draw that needs it: normal +z, uv (0,0). (Colours and ids are only in the
     // variants of meshes that have them.)
     if (mesh.layout.normal < 0) gl_.VertexAttrib3f(kNormal, 0.0f, 0.0f, 1.0f);
-    if ((variant & kTextureBit) && mesh.layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
+    if ((variant & kMapBits) && mesh.layout.uv < 0) gl_.VertexAttrib2f(kUv, 0.0f, 0.0f);
     return p;
 }
 
@@ -214,6 +229,7 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     expanded.normal = section(m.layout.normal, sizeof(glm::vec3));
     expanded.color = section(m.layout.color, sizeof(glm::vec4));
     expanded.uv = section(m.layout.uv, sizeof(glm::vec2));
+    expanded.tangent = section(m.layout.tangent, sizeof(glm::vec4));
     expanded.id = section(0, sizeof(std::uint32_t));
     expanded.size = size;
     std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
@@ -227,6 +243,7 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     gather(m.layout.normal, expanded.normal, sizeof(glm::vec3));
     gather(m.layout.color, expanded.color, sizeof(glm::vec4));
     gather(m.layout.uv, expanded.uv, sizeof(glm::vec2));
+    gather(m.layout.tangent, expanded.tangent, sizeof(glm::vec4));
     for (std::size_t k = 0; k < n; ++k)
         std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t), &m.triangleSource[k / 3],
                     sizeof(std::uint32_t));
@@ -254,6 +271,10 @@ void GlBackend::drawInstances(const DrawParams& params, std::span<const Instance
     assert(target != nullptr && "drawInstances: no beginFrame, or its target was destroyed");
     assert(mesh != nullptr && "drawInstances: no such mesh");
     if (target == nullptr || mesh == nullptr || instances.empty()) return;
+    if (mesh->layout.tangent >= 0) {  // its tangents take an instance attribute's location (kTangent)
+        Backend::drawInstances(params, instances, range);
+        return;
+    }
     const std::uint64_t triangles = normalizeRanges({&range, 1}, mesh->triangles, runs_);
     if (triangles == 0) return;
     const IndexRange run = runs_[0];

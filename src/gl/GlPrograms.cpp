@@ -1,11 +1,12 @@
 // The GL backend's program variants (the class: GlBackendImpl.h).
 //
-// Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — a
-// texture, vertex colours, ids, an unlit material — compiled on first use (at most 16, each also in
-// an instanced form for drawInstances: 32 in all). A variant leaves out what the draw does not use instead of feeding
-// it white (a 1×1 white texture, a white colour varying, an unused flat id varying), because each of
-// those costs llvmpipe time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so
-// leaving it out changes no bit. The interpolated white colour was not always 1.0: llvmpipe
+// Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — each
+// of the material's maps, vertex colours, ids, an unlit material — compiled on first use (each also
+// in an instanced form for drawInstances, but for the normal map's: 512 possible, a scene uses a
+// few). A variant leaves out what the draw does not use instead of feeding it white (a 1×1 white
+// texture, a white colour varying, an unused flat id varying), because each of those costs llvmpipe
+// time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so leaving it out changes no
+// bit. The interpolated white colour was not always 1.0: llvmpipe
 // interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about 15 % of
 // floats p; so "no vertex colours" is now exactly white, and a few pixels changed by one step
 // against the program that fed white (docs/gl/README.md).
@@ -67,7 +68,12 @@ namespace frugal::gl {
 std::string GlBackend::compileVariant(unsigned variant) {
     GlProgram& p = programs_[variant];
     std::string defines = meshPreamble();
+    if (variant & kMapBits) defines += "#define FRUGAL_UV\n";
     if (variant & kTextureBit) defines += "#define FRUGAL_TEXTURE\n";
+    if (variant & kMetallicRoughnessBit) defines += "#define FRUGAL_METALLIC_ROUGHNESS_MAP\n";
+    if (variant & kOcclusionBit) defines += "#define FRUGAL_OCCLUSION_MAP\n";
+    if (variant & kEmissiveBit) defines += "#define FRUGAL_EMISSIVE_MAP\n";
+    if (variant & kNormalMapBit) defines += "#define FRUGAL_NORMAL_MAP\n";
     if (variant & kColorsBit) defines += "#define FRUGAL_COLORS\n";
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
     if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
@@ -88,10 +94,14 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.environment = gl_.GetUniformLocation(p.name, "u_environment");
     p.uvTransform = gl_.GetUniformLocation(p.name, "u_uvTransform");
     p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
-    if (variant & kTextureBit) {
-        state_.useProgram(p.name);
-        gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_baseColor"), 0);  // texture unit 0
-    }
+    p.occlusionStrength = gl_.GetUniformLocation(p.name, "u_occlusionStrength");
+    p.normalScale = gl_.GetUniformLocation(p.name, "u_normalScale");
+    // Each map on its own texture unit, in DrawParams' order (absent samplers: location -1, ignored).
+    state_.useProgram(p.name);
+    const char* samplers[kTextureUnits] = {"u_baseColor", "u_metallicRoughnessMap", "u_occlusionMap", "u_emissiveMap",
+                                           "u_normalMap"};
+    for (int unit = 0; unit < kTextureUnits; ++unit)
+        gl_.Uniform1i(gl_.GetUniformLocation(p.name, samplers[unit]), unit);
     return {};
 }
 

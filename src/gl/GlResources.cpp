@@ -44,7 +44,7 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     m.vertices = std::uint32_t(vertices);
     m.triangleSource = triangleSources(mesh);
 
-    // One buffer, one section per attribute (positions, normals, colours, uvs).
+    // One buffer, one section per attribute (positions, normals, colours, uvs, tangents).
     GLsizeiptr size = GLsizeiptr(vertices * sizeof(glm::vec3));
     const auto section = [&size](std::size_t count, std::size_t elementSize) -> GLintptr {
         if (count == 0) return -1;
@@ -55,6 +55,7 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     m.layout.normal = section(mesh.normals.size(), sizeof(glm::vec3));
     m.layout.color = section(mesh.colors.size(), sizeof(glm::vec4));
     m.layout.uv = section(mesh.uvs.size(), sizeof(glm::vec2));
+    m.layout.tangent = section(mesh.tangents.size(), sizeof(glm::vec4));
     m.layout.size = size;
     std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
     const auto put = [&data](GLintptr at, const void* source, std::size_t bytes) {
@@ -64,6 +65,7 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     put(m.layout.normal, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3));
     put(m.layout.color, mesh.colors.data(), mesh.colors.size() * sizeof(glm::vec4));
     put(m.layout.uv, mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2));
+    put(m.layout.tangent, mesh.tangents.data(), mesh.tangents.size() * sizeof(glm::vec4));
 
     gl_.GenVertexArrays(1, &m.vao);
     gl_.GenBuffers(1, &m.vbo);
@@ -97,6 +99,10 @@ void GlBackend::setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const Vertex
     if (layout.uv >= 0) {
         gl_.EnableVertexAttribArray(kUv);
         gl_.VertexAttribPointer(kUv, 2, GL_FLOAT, GL_FALSE, 0, offset(layout.uv));
+    }
+    if (layout.tangent >= 0) {
+        gl_.EnableVertexAttribArray(kTangent);
+        gl_.VertexAttribPointer(kTangent, 4, GL_FLOAT, GL_FALSE, 0, offset(layout.tangent));
     }
     if (layout.id >= 0) {
         gl_.EnableVertexAttribArray(kId);

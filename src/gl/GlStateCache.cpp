@@ -90,8 +90,13 @@ void GlStateCache::bindVao(GLuint vao) {
     if (rebinds(vao_, vao, changes_.meshes)) gl_.BindVertexArray(vao);
 }
 
-void GlStateCache::bindTexture(GLuint texture) {
-    if (rebinds(texture_, texture, changes_.textures)) gl_.BindTexture(GL_TEXTURE_2D, texture);
+void GlStateCache::bindTexture(GLuint texture, int unit) {
+    if (textures_[unit] == texture) return;
+    if (activeUnit_ != unit) {
+        gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        activeUnit_ = unit;
+    }
+    if (rebinds(textures_[unit], texture, changes_.textures)) gl_.BindTexture(GL_TEXTURE_2D, texture);
 }
 
 void GlStateCache::useProgram(GLuint program) {
@@ -108,7 +113,8 @@ void GlStateCache::forgetVao(GLuint vao) {
 }
 
 void GlStateCache::forgetTexture(GLuint texture) {
-    if (texture_ == texture) texture_ = 0;
+    for (GLuint& bound : textures_)
+        if (bound == texture) bound = 0;
 }
 
 }  // namespace frugal::gl

@@ -49,6 +49,10 @@ struct CachedUniform {
 
 // The context state as last set through it. It starts unknown (nothing assumed of a new context)
 // except for the bindings, which start at GL's 0.
+// The texture units a mesh program samples (GlPrograms.cpp): base colour, metallic-roughness,
+// occlusion, emissive, normal.
+constexpr int kTextureUnits = 5;
+
 class GlStateCache {
 public:
     explicit GlStateCache(const GlApi& gl) : gl_(gl) {}
@@ -70,7 +74,8 @@ public:
     // The clip space and depth test of a target's format (the top of GlBackend.cpp).
     void setDepthConvention(DepthFormat format);
     void bindVao(GLuint vao);
-    void bindTexture(GLuint texture);
+    // Binds `texture` to texture unit `unit` (< kTextureUnits), making that unit the active one.
+    void bindTexture(GLuint texture, int unit = 0);
     void useProgram(GLuint program);
     // True when `value` must be sent to its uniform in the bound program (CachedUniform::update);
     // counted as an upload.
@@ -99,7 +104,9 @@ private:
     static bool rebinds(GLuint& bound, GLuint name, std::uint64_t& counter);
 
     const GlApi& gl_;
-    GLuint drawFbo_ = 0, readFbo_ = 0, vao_ = 0, texture_ = 0, program_ = 0;
+    GLuint drawFbo_ = 0, readFbo_ = 0, vao_ = 0, program_ = 0;
+    GLuint textures_[kTextureUnits] = {};
+    int activeUnit_ = 0;  // GL's initial GL_TEXTURE0
     int scissorOn_ = -1, cullOn_ = -1, depthTestOn_ = -1, depthFormat_ = -1;
     Rect scissor_{-1, -1, -1, -1};
     int viewportWidth_ = -1, viewportHeight_ = -1;

@@ -7,7 +7,8 @@ bool isUploadable(const Mesh& mesh) {
     const std::size_t triangles = mesh.indices.size() / 3;
     const auto fits = [vertices](std::size_t n) { return n == 0 || n == vertices; };
     if (mesh.indices.size() % 3 != 0 || !fits(mesh.normals.size()) || !fits(mesh.colors.size()) ||
-        !fits(mesh.uvs.size()) || vertices > 0xFFFFFFFFu || triangles > 0x7FFFFFFFu / 3 ||
+        !fits(mesh.uvs.size()) || !fits(mesh.tangents.size()) ||
+        vertices > 0xFFFFFFFFu || triangles > 0x7FFFFFFFu / 3 ||
         (!mesh.triangleSource.empty() && mesh.triangleSource.size() != triangles))
         return false;
     for (std::uint32_t index : mesh.indices)

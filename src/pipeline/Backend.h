@@ -123,8 +123,15 @@ struct DrawParams {
     float metallic = 1.0f, roughness = 1.0f;  // the material's factors, each in [0, 1]
     bool unlit = false;                       // rgb = base.rgb (KHR_materials_unlit)
     glm::vec3 emissive{0.0f};                 // added to the lit rgb
-    TextureHandle texture = kNoHandle;  // kNoHandle = white
-    glm::mat3 uvTransform{1.0f};        // the texture is sampled at uvTransform · (u, v, 1), per vertex
+    TextureHandle texture = kNoHandle;  // the base colour texture; kNoHandle = white
+    // The other maps (Material), kNoHandle = none: metallic-roughness (blue × metallic, green ×
+    // roughness), occlusion (red, at occlusionStrength) and emissive (rgb × emissive).
+    TextureHandle metallicRoughnessTexture = kNoHandle, occlusionTexture = kNoHandle, emissiveTexture = kNoHandle;
+    float occlusionStrength = 1.0f;
+    // Tangent-space normals in the basis of the mesh's tangents (drawn without when it has none).
+    TextureHandle normalTexture = kNoHandle;
+    float normalScale = 1.0f;
+    glm::mat3 uvTransform{1.0f};  // every texture is sampled at uvTransform · (u, v, 1), per vertex
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
@@ -138,7 +145,7 @@ struct InstanceParams {
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute
-// arrays match the positions or are empty, indices come in threes and stay below the vertex count,
+// arrays (tangents too) match the positions or are empty, indices come in threes and stay below the vertex count,
 // triangleSource has one entry per triangle or is empty (then triangle t has source t).
 bool isUploadable(const Mesh& mesh);
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "base/Format.h"
+#include "scene/MeshBuild.h"
 
 namespace frugal {
 
@@ -42,7 +43,16 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     renderer.meshes_.reserve(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
-        const MeshHandle handle = backend.uploadMesh(mesh);
+        // A normal map needs tangents: a mesh without them is uploaded with generated ones.
+        Mesh withTangents;
+        const bool needsTangents = mesh.tangents.empty() && mesh.material >= 0 &&
+                                   std::size_t(mesh.material) < scene.materials.size() &&
+                                   scene.materials[std::size_t(mesh.material)].normalTexture >= 0;
+        if (needsTangents) {
+            withTangents = mesh;
+            generateTangents(withTangents);
+        }
+        const MeshHandle handle = backend.uploadMesh(needsTangents ? withTangents : mesh);
         if (handle == kNoHandle)
             return Error{"mesh " + std::to_string(i) + quotedName(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles): " + backend.name() +
@@ -79,7 +89,14 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.unlit = material.unlit;
         params.emissive = material.emissiveFactor;
         params.uvTransform = material.baseColorTransform;
-        params.texture = material.baseColorTexture >= 0 ? textures_[material.baseColorTexture] : kNoHandle;
+        const auto handle = [this](int texture) { return texture >= 0 ? textures_[texture] : kNoHandle; };
+        params.texture = handle(material.baseColorTexture);
+        params.metallicRoughnessTexture = handle(material.metallicRoughnessTexture);
+        params.occlusionTexture = handle(material.occlusionTexture);
+        params.occlusionStrength = material.occlusionStrength;
+        params.emissiveTexture = handle(material.emissiveTexture);
+        params.normalTexture = handle(material.normalTexture);
+        params.normalScale = material.normalScale;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.firstId = instance.firstId;
         params.depth = command.depth;

@@ -118,8 +118,9 @@ namespace frugal::raster {
 
 inline constexpr int kTileLog2 = 6;
 inline constexpr int kTileSize = 1 << kTileLog2;  // 64 × 64 pixels, llvmpipe's tile size
-// The varyings, mesh.vert's outputs: normal xyz, colour rgba, uv, world position xyz.
-inline constexpr int kAttributes = 12;
+// The varyings, mesh.vert's outputs: normal xyz, colour rgba, uv, world position xyz, tangent xyz,
+// bitangent xyz.
+inline constexpr int kAttributes = 18;
 
 // A vertex as triangle setup and shading read it: window position, 1/w_clip, and the varyings.
 struct SetupVertex {

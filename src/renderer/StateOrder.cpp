@@ -15,7 +15,13 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
         const Material* material = mesh.material >= 0 ? &scene.materials[std::size_t(mesh.material)] : nullptr;
         const bool textured = material && material->baseColorTexture >= 0;
         const bool doubleSided = material && material->doubleSided && !cullAllBackFaces;
-        sets.push_back({std::uint32_t(1 + (textured ? 1 : 0) + (mesh.colors.empty() ? 0 : 2)),
+        // The program: which inputs and maps the draw's shader variant reads.
+        const std::uint32_t maps = material ? (material->metallicRoughnessTexture >= 0 ? 4u : 0u) |
+                                                  (material->occlusionTexture >= 0 ? 8u : 0u) |
+                                                  (material->emissiveTexture >= 0 ? 16u : 0u) |
+                                                  (material->normalTexture >= 0 ? 32u : 0u)
+                                            : 0u;
+        sets.push_back({1 + ((textured ? 1u : 0u) | (mesh.colors.empty() ? 0u : 2u) | maps),
                         std::uint32_t(1 + meshIndex), textured ? std::uint32_t(1 + material->baseColorTexture) : 0u,
                         std::uint32_t(2 + mesh.material), doubleSided ? 2u : 1u,
                         command.depth == DepthMode::Test ? 1u : 2u});

@@ -36,11 +36,6 @@ bool sameRanges(const std::vector<IndexRange>& a, const std::vector<IndexRange>&
 
 }  // namespace
 
-bool TemporalReuse::MaterialKey::operator==(const MaterialKey& other) const {
-    return std::memcmp(&factor, &other.factor, sizeof factor) == 0 && texture == other.texture &&
-           doubleSided == other.doubleSided;
-}
-
 TemporalReuse::TemporalReuse(const Scene& scene, int width, int height, ReuseOptions options)
     : scene_(&scene), width_(width), height_(height), options_(options), records_(scene.instances.size()),
       fullList_(fullDrawList(scene)), builder_(width, height), grid_(width, height, options.cell),
@@ -193,9 +188,9 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
     materialChanged_.assign(materials.size() + 1, resized ? 1 : 0);
     materialChanged_[0] = 0;
     for (std::size_t m = 0; m < materials.size(); ++m) {
-        const MaterialKey now{materials[m].baseColorFactor, materials[m].baseColorTexture, materials[m].doubleSided};
-        if (!(now == materialKeys_[m + 1])) materialChanged_[m + 1] = 1;
-        materialKeys_[m + 1] = now;
+        // Any member: every one of them is drawn (the name too, which costs nothing to compare).
+        if (!(materials[m] == materialKeys_[m + 1])) materialChanged_[m + 1] = 1;
+        materialKeys_[m + 1] = materials[m];
     }
     std::vector<IndexRange> ranges;
     for (std::size_t i = 0; i < n; ++i) {

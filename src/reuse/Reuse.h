@@ -139,12 +139,6 @@ private:
         int material = -1;  // -1: the default material
         std::uint32_t triangles = 0;
     };
-    struct MaterialKey {
-        glm::vec4 factor{1.0f};
-        int texture = -1;
-        bool doubleSided = false;
-        bool operator==(const MaterialKey& other) const;  // bit for bit
-    };
     struct Record {
         bool drawn = false;
         std::vector<IndexRange> ranges;  // normalised, as drawn in the previous frame
@@ -178,7 +172,7 @@ private:
     std::vector<InstanceInfo> info_;
     std::vector<Record> records_;
     std::vector<glm::mat4> models_;                // per instance, as drawn in the previous frame
-    std::vector<MaterialKey> materialKeys_;        // per material + 1 (0: the default material)
+    std::vector<Material> materialKeys_;           // per material + 1 (0: the default material)
     std::vector<std::uint8_t> materialChanged_;
     DrawList fullList_;
     std::vector<reuse::Box> extents_;  // per group, as last drawn

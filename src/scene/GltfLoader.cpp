@@ -220,7 +220,26 @@ struct AccessorRequest {
 constexpr std::size_t kMaxSceneElements = std::size_t(1) << 28;  // vertices + indices over all meshes
 constexpr std::size_t kMaxInstances = std::size_t(1) << 24;
 
-struct TextureTransform;
+// A texture reference's KHR_texture_transform: uv' = T · R · S · (u, v, 1) (the extension's
+// matrices, computed in double and rounded to float), and the texture coordinate set it overrides
+// texCoord with. Identity and the reference's own set without the extension.
+struct TextureTransform {
+    glm::mat3 matrix{1.0f};
+    int texCoord = 0;
+};
+
+// A material's textures as drawn: each map it has (base colour, metallic-roughness, occlusion,
+// emissive, normal), sampled at one set of coordinates through one transform, the first map's. (frugal keeps
+// one set of texture coordinates per mesh.) A map that asks for other coordinates is not drawn.
+struct MaterialMaps {
+    enum Map { kBaseColor, kMetallicRoughness, kOcclusion, kEmissive, kNormal, kMapCount };
+    static constexpr const char* kNames[kMapCount] = {"base colour", "metallic-roughness", "occlusion", "emissive",
+                                                      "normal"};
+    std::array<int, kMapCount> texture{-1, -1, -1, -1, -1};  // glTF texture, -1 = none or not drawn
+    TextureTransform transform;  // the coordinates they share
+    bool differing = false;      // a map was left out for its coordinates
+    bool any() const { return std::any_of(texture.begin(), texture.end(), [](int t) { return t >= 0; }); }
+};
 
 class Converter {
 public:
@@ -238,12 +257,12 @@ private:
     Scene scene_;
     std::vector<std::vector<int>> meshPrimitives_;  // glTF mesh → indices into scene_.meshes
     std::vector<bool> materialUsed_;
-    std::map<int, int> textures_;         // glTF texture → index into scene_.textures, -1 = unusable
+    std::map<std::pair<int, bool>, int> textures_;  // (glTF texture, sRGB) → scene_.textures, -1 = unusable
     std::vector<std::uint64_t> idCount_;  // per scene_ mesh: the triangle ids one instance of it takes
     std::size_t elements_ = 0;            // vertices + indices read so far
     std::size_t instances_ = 0;
     std::uint64_t ids_ = 0;
-    std::vector<int> untextured_;  // scene_ meshes whose material's texture has no coordinates in them
+    std::vector<int> untextured_;  // scene_ meshes whose material's textures have no coordinates in them
 
     void report(const std::string& feature) {
         if (std::find(scene_.unsupported.begin(), scene_.unsupported.end(), feature) == scene_.unsupported.end())
@@ -267,9 +286,9 @@ private:
                                               std::size_t vertexCount);
     void convertMaterials();
     void untextureMeshesWithoutUvs();
-    int useTexture(int gltfTexture, int material);
-    // KHR_texture_transform of material `material`'s base colour texture (which it has).
-    TextureTransform baseColorTransform(int material) const;
+    int useTexture(int gltfTexture, int material, bool srgb, const char* use);
+    // The textures of material `material` that are drawn, and the coordinates they share.
+    MaterialMaps mapsOf(int material) const;
     void convertAnimations();
     void addCamera(int node);
 
@@ -401,14 +420,6 @@ float toFloat(double value, const std::string& where) {
     return f;
 }
 
-// A texture reference's KHR_texture_transform: uv' = T · R · S · (u, v, 1) (the extension's
-// matrices, computed in double and rounded to float), and the texture coordinate set it overrides
-// texCoord with. Identity and the reference's own set without the extension.
-struct TextureTransform {
-    glm::mat3 matrix{1.0f};
-    int texCoord = 0;
-};
-
 // A number member of an extension object, as a double that fits a float; `where` names it.
 double extensionNumber(const tinygltf::Value& value, const std::string& where) {
     if (!value.IsNumber()) fail(where, ": not a number");
@@ -417,11 +428,11 @@ double extensionNumber(const tinygltf::Value& value, const std::string& where) {
     return d;
 }
 
-TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std::string& where) {
+TextureTransform textureTransformOf(int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& where) {
     TextureTransform out;
-    out.texCoord = info.texCoord;
-    const auto it = info.extensions.find("KHR_texture_transform");
-    if (it == info.extensions.end()) return out;
+    out.texCoord = texCoord;
+    const auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end()) return out;
     const tinygltf::Value& ext = it->second;
     const std::string at = where + ".extensions.KHR_texture_transform";
     const auto number = [&](const tinygltf::Value& v, const std::string& name) {
@@ -448,9 +459,40 @@ TextureTransform textureTransformOf(const tinygltf::TextureInfo& info, const std
     return out;
 }
 
-TextureTransform Converter::baseColorTransform(int material) const {
-    return textureTransformOf(model_.materials[std::size_t(material)].pbrMetallicRoughness.baseColorTexture,
-                              cat("materials[", material, "].pbrMetallicRoughness.baseColorTexture"));
+MaterialMaps Converter::mapsOf(int material) const {
+    const tinygltf::Material& src = model_.materials[std::size_t(material)];
+    const std::string where = cat("materials[", material, "]");
+    struct Reference {
+        int index, texCoord;
+        const tinygltf::ExtensionMap& extensions;
+        const char* member;
+    };
+    const tinygltf::TextureInfo& base = src.pbrMetallicRoughness.baseColorTexture;
+    const tinygltf::TextureInfo& mr = src.pbrMetallicRoughness.metallicRoughnessTexture;
+    const Reference references[MaterialMaps::kMapCount] = {
+        {base.index, base.texCoord, base.extensions, ".pbrMetallicRoughness.baseColorTexture"},
+        {mr.index, mr.texCoord, mr.extensions, ".pbrMetallicRoughness.metallicRoughnessTexture"},
+        {src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
+         ".occlusionTexture"},
+        {src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions, ".emissiveTexture"},
+        {src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, ".normalTexture"},
+    };
+    MaterialMaps maps;
+    bool first = true;
+    for (int k = 0; k < MaterialMaps::kMapCount; ++k) {
+        const Reference& r = references[k];
+        if (r.index < 0) continue;
+        const TextureTransform t = textureTransformOf(r.texCoord, r.extensions, where + r.member);
+        if (first) {
+            maps.transform = t;
+            first = false;
+        } else if (t.texCoord != maps.transform.texCoord || t.matrix != maps.transform.matrix) {
+            maps.differing = true;
+            continue;
+        }
+        maps.texture[std::size_t(k)] = r.index;
+    }
+    return maps;
 }
 
 Node Converter::convertNode(int index) const {
@@ -615,18 +657,21 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
             for (int c = 0; c < components; ++c)
                 mesh.colors[v][c] = colors[v * std::size_t(components) + std::size_t(c)];
     }
-    // The one set of texture coordinates frugal keeps is the one the base colour texture samples.
-    const tinygltf::TextureInfo* texture =
-        primitive.material >= 0
-            ? &model_.materials[std::size_t(primitive.material)].pbrMetallicRoughness.baseColorTexture
-            : nullptr;
-    const bool textured = texture && texture->index >= 0;
-    const int texCoord = textured ? baseColorTransform(primitive.material).texCoord : 0;
+    // The one set of texture coordinates frugal keeps is the one the material's textures sample.
+    const MaterialMaps maps = primitive.material >= 0 ? mapsOf(primitive.material) : MaterialMaps{};
+    const bool textured = maps.any();
+    const int texCoord = textured ? maps.transform.texCoord : 0;
     const std::string uvName = cat("TEXCOORD_", texCoord);
+    // Tangents are kept for a normal map only (and only with the normals they belong to).
+    static constexpr int kVec4[] = {TINYGLTF_TYPE_VEC4};
+    static constexpr int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+    if (const int tangent = accessor("TANGENT");
+        tangent >= 0 && maps.texture[MaterialMaps::kNormal] >= 0 && !mesh.normals.empty())
+        mesh.tangents = toVectors<glm::vec4>(readFloats(tangent, "TANGENT of " + where, kVec4, nullptr, kFloat));
     if (const int uv = accessor(uvName); uv >= 0) {
         mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
     } else if (textured) {
-        warn(cat(where, ": material ", primitive.material, " samples its base colour texture with ", uvName,
+        warn(cat(where, ": material ", primitive.material, " samples its textures with ", uvName,
                  ", which the primitive lacks: drawn untextured"));
         untextured_.push_back(int(scene_.meshes.size()));  // the index this mesh will get
     }
@@ -725,12 +770,14 @@ Wrap toWrap(int wrap) {
     }
 }
 
-int Converter::useTexture(int gltfTexture, int material) {
-    if (const auto it = textures_.find(gltfTexture); it != textures_.end()) return it->second;
-    int& result = textures_[gltfTexture];
+// glTF texture `gltfTexture` as a scene texture whose colour channels are sRGB or linear (an image
+// used both ways becomes two textures).
+int Converter::useTexture(int gltfTexture, int material, bool srgb, const char* use) {
+    if (const auto it = textures_.find({gltfTexture, srgb}); it != textures_.end()) return it->second;
+    int& result = textures_[{gltfTexture, srgb}];
     result = -1;
     const tinygltf::Texture& texture = model_.textures[std::size_t(gltfTexture)];
-    const std::string drawn = cat(": material ", material, " drawn without its base colour texture");
+    const std::string drawn = cat(": material ", material, " drawn without its ", use, " texture");
     if (texture.source < 0) {
         warn(cat("texture ", gltfTexture, " has no image frugal can read", drawn));
         return result;
@@ -771,6 +818,7 @@ int Converter::useTexture(int gltfTexture, int material) {
                                                   : image.uri;
     out.width = decoded.width;
     out.height = decoded.height;
+    out.srgb = srgb;
     if (!toRgba8(decoded, out.rgba)) {
         warn(cat(imageName, " decoded to an unexpected format (", decoded.component, " channels of ", decoded.bits,
                  " bits)", drawn));
@@ -815,32 +863,41 @@ void Converter::convertMaterials() {
             toFloat(src.pbrMetallicRoughness.roughnessFactor, cat(where, ".pbrMetallicRoughness.roughnessFactor")),
             0.0f, 1.0f);
         material.unlit = src.extensions.count("KHR_materials_unlit") > 0;
-        // The emissive factor, times KHR_materials_emissive_strength; without the emissive texture it
-        // multiplies (not modelled yet, reported below) the material is drawn without emission, not
-        // at the factor's full brightness.
-        if (src.emissiveTexture.index < 0) {
-            double strength = 1.0;
-            if (const auto it = src.extensions.find("KHR_materials_emissive_strength");
-                it != src.extensions.end() && it->second.Has("emissiveStrength")) {
-                const std::string at = where + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
-                strength = extensionNumber(it->second.Get("emissiveStrength"), at);
-                if (strength < 0.0) fail(at, ": ", strength, " is negative");
-            }
-            for (int k = 0; k < 3 && std::size_t(k) < src.emissiveFactor.size(); ++k)
-                material.emissiveFactor[k] =
-                    toFloat(src.emissiveFactor[std::size_t(k)] * strength, cat(where, ".emissiveFactor[", k, "]"));
+        // The emissive factor, times KHR_materials_emissive_strength (and the emissive texture).
+        double strength = 1.0;
+        if (const auto it = src.extensions.find("KHR_materials_emissive_strength");
+            it != src.extensions.end() && it->second.Has("emissiveStrength")) {
+            const std::string at = where + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+            strength = extensionNumber(it->second.Get("emissiveStrength"), at);
+            if (strength < 0.0) fail(at, ": ", strength, " is negative");
         }
+        for (int k = 0; k < 3 && std::size_t(k) < src.emissiveFactor.size(); ++k)
+            material.emissiveFactor[k] =
+                toFloat(src.emissiveFactor[std::size_t(k)] * strength, cat(where, ".emissiveFactor[", k, "]"));
+        const double occlusion = src.occlusionTexture.strength;
+        if (!(occlusion >= 0.0 && occlusion <= 1.0))
+            fail(where, ".occlusionTexture.strength: ", occlusion, " is not in [0, 1]");
+        material.occlusionStrength = float(occlusion);
+        material.normalScale = toFloat(src.normalTexture.scale, where + ".normalTexture.scale");
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
         if (src.alphaMode != "OPAQUE") report("alphaMode " + src.alphaMode);
-        if (src.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0) report("metallicRoughnessTexture");
-        if (src.normalTexture.index >= 0) report("normalTexture");
-        if (src.occlusionTexture.index >= 0) report("occlusionTexture");
-        if (src.emissiveTexture.index >= 0) report("emissiveTexture");
-        if (src.pbrMetallicRoughness.baseColorTexture.index >= 0) {
-            material.baseColorTexture = useTexture(src.pbrMetallicRoughness.baseColorTexture.index, m);
-            material.baseColorTransform = baseColorTransform(m).matrix;
+        const MaterialMaps maps = mapsOf(m);  // (KHR_texture_transform: one transform for them all)
+        if (maps.differing) report("textures of one material on different coordinates (the first one's are used)");
+        material.baseColorTransform = maps.transform.matrix;
+        int* const targets[MaterialMaps::kMapCount] = {&material.baseColorTexture, &material.metallicRoughnessTexture,
+                                                       &material.occlusionTexture, &material.emissiveTexture,
+                                                       &material.normalTexture};
+        for (int k = 0; k < MaterialMaps::kMapCount; ++k) {
+            if (maps.texture[std::size_t(k)] < 0) continue;
+            // Colour is sRGB-encoded (base colour, emission); data is linear.
+            const bool srgb = k == MaterialMaps::kBaseColor || k == MaterialMaps::kEmissive;
+            *targets[k] = useTexture(maps.texture[std::size_t(k)], m, srgb, MaterialMaps::kNames[k]);
         }
+        // Emission from a texture that is not drawn: none (rather than the factor's full brightness
+        // everywhere).
+        if (src.emissiveTexture.index >= 0 && material.emissiveTexture < 0)
+            material.emissiveFactor = glm::vec3(0.0f);
     }
 }
 
@@ -854,7 +911,9 @@ void Converter::untextureMeshesWithoutUvs() {
         if (added) {
             Material copy = scene_.materials[std::size_t(mesh.material)];
             copy.name += " (untextured)";
-            copy.baseColorTexture = -1;
+            if (copy.emissiveTexture >= 0) copy.emissiveFactor = glm::vec3(0.0f);  // its emission needs it
+            copy.baseColorTexture = copy.metallicRoughnessTexture = copy.occlusionTexture = -1;
+            copy.emissiveTexture = copy.normalTexture = -1;
             scene_.materials.push_back(copy);
         }
         mesh.material = it->second;
@@ -925,9 +984,8 @@ void Converter::convertAnimations() {
 Scene Converter::run() {
     scene_.source = path_;
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
-    // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (the
-    // base colour texture is the only one drawn); KHR_materials_emissive_strength scales
-    // Material::emissiveFactor.
+    // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (one
+    // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor.
     for (const std::string& name : extensions_)
         if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
             name != "KHR_materials_emissive_strength")

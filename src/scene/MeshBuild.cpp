@@ -1,5 +1,6 @@
 #include "scene/MeshBuild.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <unordered_map>
@@ -34,6 +35,25 @@ void computeMissingNormals(Mesh& mesh) {
             len = glm::length(n);
         }
         mesh.normals[v] = (std::isfinite(len) && len > 0.0f) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+}
+
+// A unit vector perpendicular to unit n (Duff et al. 2017, "Building an orthonormal basis, revisited").
+glm::vec3 perpendicular(const glm::vec3& n) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    return {1.0f + sign * n.x * n.x * a, sign * n.x * n.y * a, -sign * n.x};
+}
+
+// A file's tangents made drawable: a zero or non-finite direction becomes a perpendicular of the
+// normal, and w its sign (+1 when it has none).
+void repairTangents(Mesh& mesh) {
+    for (std::size_t v = 0; v < mesh.tangents.size(); ++v) {
+        glm::vec4& t = mesh.tangents[v];
+        const float w = t.w < 0.0f ? -1.0f : 1.0f;
+        const float length = glm::length(glm::vec3(t));
+        t = std::isfinite(length) && length > 0.0f ? glm::vec4(glm::vec3(t) / length, w)
+                                                   : glm::vec4(perpendicular(mesh.normals[v]), w);
     }
 }
 
@@ -104,10 +124,61 @@ MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
         if (!isFinite(c)) c = glm::vec4(1.0f);
     for (glm::vec2& uv : mesh.uvs)
         if (!isFinite(uv)) uv = glm::vec2(0.0f);
+    for (glm::vec4& t : mesh.tangents)
+        if (!isFinite(t)) t = glm::vec4(0.0f);  // repaired with the normals below
 
     computeMissingNormals(mesh);
+    repairTangents(mesh);
     if (optimizeOrderFlag && kept > 0) optimizeOrder(mesh);
     return stats;
+}
+
+void generateTangents(Mesh& mesh) {
+    const std::size_t n = mesh.positions.size();
+    mesh.tangents.assign(n, glm::vec4(0.0f));
+    if (mesh.uvs.size() != n || mesh.normals.size() != n) {
+        for (std::size_t v = 0; v < n; ++v) {
+            const glm::vec3 normal = mesh.normals.size() == n ? mesh.normals[v] : glm::vec3(0.0f, 0.0f, 1.0f);
+            mesh.tangents[v] = glm::vec4(perpendicular(normal), 1.0f);
+        }
+        return;
+    }
+    // Per corner: the triangle's directions of increasing u and of decreasing v, each projected on
+    // the vertex's tangent plane and normalised, weighted by the corner's angle (as MikkTSpace).
+    std::vector<glm::vec3> up(n, glm::vec3(0.0f));
+    std::vector<glm::vec3> along(n, glm::vec3(0.0f));
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const std::uint32_t* corner = &mesh.indices[3 * t];
+        const glm::vec3 p[3] = {mesh.positions[corner[0]], mesh.positions[corner[1]], mesh.positions[corner[2]]};
+        const glm::vec2 uv[3] = {mesh.uvs[corner[0]], mesh.uvs[corner[1]], mesh.uvs[corner[2]]};
+        const glm::vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+        const glm::vec2 d1 = uv[1] - uv[0], d2 = uv[2] - uv[0];
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (!std::isfinite(det) || det == 0.0f) continue;  // no u or v direction on this triangle
+        const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) / det;
+        const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) / det;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            const float la = glm::length(a), lb = glm::length(b);
+            if (!(la > 0.0f && lb > 0.0f)) continue;
+            const float angle = std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f));
+            const glm::vec3 normal = mesh.normals[corner[k]];
+            const auto onPlane = [&normal](const glm::vec3& d) {
+                const glm::vec3 q = d - normal * glm::dot(normal, d);
+                const float length = glm::length(q);
+                return std::isfinite(length) && length > 0.0f ? q / length : glm::vec3(0.0f);
+            };
+            along[corner[k]] += onPlane(dPdu) * angle;
+            up[corner[k]] -= onPlane(dPdv) * angle;
+        }
+    }
+    for (std::size_t v = 0; v < n; ++v) {
+        const glm::vec3 normal = mesh.normals[v];
+        glm::vec3 t = along[v] - normal * glm::dot(normal, along[v]);
+        const float length = glm::length(t);
+        t = std::isfinite(length) && length > 1e-20f ? t / length : perpendicular(normal);
+        mesh.tangents[v] = glm::vec4(t, glm::dot(glm::cross(normal, t), up[v]) < 0.0f ? -1.0f : 1.0f);
+    }
 }
 
 void reorderTriangles(Mesh& mesh, const std::vector<std::uint32_t>& order) {

@@ -26,10 +26,20 @@ struct MeshBuildStats {
 // - drops triangles that touch a non-finite position, and counts them;
 // - fills `triangleSource` with 0..n-1 if the loader left it empty;
 // - computes area-weighted vertex normals when `normals` is empty, and replaces non-finite or zero
-//   normals by the face normal;
+//   normals by the face normal; normalises tangents, and replaces broken ones by a perpendicular of
+//   the normal;
 // - reorders triangles for the post-transform vertex cache (meshoptimizer) when `optimizeOrder`,
 //   carrying `triangleSource` along.
 MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrder);
+
+// Fills `tangents` (Scene.h) from the positions, normals (unit) and uvs: per vertex, the directions
+// of increasing u of the triangles around it, each projected on the vertex's tangent plane, weighted
+// by the corner's angle, summed and normalised; w = +1 where the directions of decreasing v turn the
+// same way as cross(normal, tangent), else −1. That is MikkTSpace's result (which the Khronos glTF
+// Sample Renderer computes for a mesh without tangents) wherever the triangles around a vertex agree
+// on handedness; MikkTSpace splits a vertex where they do not, this keeps the majority. A vertex
+// with no usable triangle, or a mesh without uvs, gets a perpendicular of its normal and w = +1.
+void generateTangents(Mesh& mesh);
 
 // The seam before upload: puts the mesh's triangles in a new order, `order[newT] = oldT` (a
 // permutation of 0..triangleCount-1), carrying `triangleSource` along so that ids stay stable.

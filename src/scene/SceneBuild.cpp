@@ -1,6 +1,7 @@
 // Scene::add* and setTransform: a scene built in memory, checked as a loader checks a file.
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <frugal/Scene.h>
 
@@ -51,9 +52,10 @@ std::string meshProblem(const Mesh& mesh, std::size_t materials) {
         return std::to_string(n) + " " + what + " for " + std::to_string(vertices) + " vertices (one a vertex, or none)";
     };
     for (const std::string& problem : {count("normals", mesh.normals.size()), count("colours", mesh.colors.size()),
-                                       count("uvs", mesh.uvs.size()), firstNotFinite("position", mesh.positions),
+                                       count("uvs", mesh.uvs.size()), count("tangents", mesh.tangents.size()),
+                                       firstNotFinite("position", mesh.positions),
                                        firstNotFinite("normal", mesh.normals), firstNotFinite("colour", mesh.colors),
-                                       firstNotFinite("uv", mesh.uvs)})
+                                       firstNotFinite("uv", mesh.uvs), firstNotFinite("tangent", mesh.tangents)})
         if (!problem.empty()) return problem;
     if (mesh.material < -1 || mesh.material >= int(materials))
         return "material " + std::to_string(mesh.material) + " does not exist (the scene has " +
@@ -84,16 +86,25 @@ Result<int> Scene::addMaterial(Material material) {
         return bad("material: base colour " + text(material.baseColorFactor) + " is not finite");
     if (!isFinite(material.emissiveFactor) || glm::any(glm::lessThan(material.emissiveFactor, glm::vec3(0.0f))))
         return bad("material: emissive " + text(material.emissiveFactor) + " is not finite and at least 0");
-    if (material.baseColorTexture < -1 || material.baseColorTexture >= int(textures.size()))
-        return bad("material: texture " + std::to_string(material.baseColorTexture) + " does not exist (the scene has " +
-                   std::to_string(textures.size()) + ")");
+    const std::pair<const char*, int> maps[] = {{"texture", material.baseColorTexture},
+                                                {"metallic-roughness texture", material.metallicRoughnessTexture},
+                                                {"occlusion texture", material.occlusionTexture},
+                                                {"emissive texture", material.emissiveTexture},
+                                                {"normal texture", material.normalTexture}};
+    for (const auto& [what, index] : maps)
+        if (index < -1 || index >= int(textures.size()))
+            return bad(std::string("material: ") + what + " " + std::to_string(index) +
+                       " does not exist (the scene has " + std::to_string(textures.size()) + ")");
     const auto factorProblem = [](const char* name, float value) -> std::string {
         if (value >= 0.0f && value <= 1.0f) return {};
         return std::string("material: ") + name + " " + fmt(double(value)) + " is not in [0, 1]";
     };
     for (const std::string& problem :
-         {factorProblem("metallic", material.metallicFactor), factorProblem("roughness", material.roughnessFactor)})
+         {factorProblem("metallic", material.metallicFactor), factorProblem("roughness", material.roughnessFactor),
+          factorProblem("occlusion strength", material.occlusionStrength)})
         if (!problem.empty()) return bad(problem);
+    if (!std::isfinite(material.normalScale))
+        return bad("material: normal scale " + fmt(double(material.normalScale)) + " is not finite");
     materials.push_back(std::move(material));
     return int(materials.size()) - 1;
 }

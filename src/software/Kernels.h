@@ -25,6 +25,7 @@ struct VertexJob {
     const glm::vec3* normals = nullptr;  // nullptr: (0, 0, 1)
     const glm::vec4* colors = nullptr;   // nullptr: white
     const glm::vec2* uvs = nullptr;      // nullptr: (0, 0)
+    const glm::vec4* tangents = nullptr;  // nullptr: no tangent basis (varyings 12–17 are 0)
     glm::mat4 mvp{1.0f};
     glm::mat3 normalMatrix{1.0f};
     glm::mat4 model{1.0f};  // its affine part gives the world position

@@ -41,6 +41,17 @@ void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
         v.a[8] = (t[0][1] * uv.x + t[1][1] * uv.y) + t[2][1];
         const glm::mat4& w = job.model;  // ((c0·x + c1·y) + c2·z) + c3, as mesh.vert
         for (int r = 0; r < 3; ++r) v.a[9 + r] = ((w[0][r] * p.x + w[1][r] * p.y) + w[2][r] * p.z) + w[3][r];
+        if (job.tangents) {  // the tangent by the model matrix, bitangent cross(normal, tangent) · w
+            const glm::vec4 tg = job.tangents[i];
+            float* tw = v.a + 12;
+            for (int r = 0; r < 3; ++r) tw[r] = (w[0][r] * tg.x + w[1][r] * tg.y) + w[2][r] * tg.z;
+            const float* nw = v.a;
+            v.a[15] = (nw[1] * tw[2] - nw[2] * tw[1]) * tg.w;
+            v.a[16] = (nw[2] * tw[0] - nw[0] * tw[2]) * tg.w;
+            v.a[17] = (nw[0] * tw[1] - nw[1] * tw[0]) * tg.w;
+        } else {
+            for (int k = 12; k < 18; ++k) v.a[k] = 0.0f;
+        }
     }
 }
 
@@ -306,6 +317,17 @@ inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
     }
 }
 
+// A texture at eight pixels' coordinates (s, t); lanes not in `lanes` read 0.
+inline void sampleLanes(const SoftwareTexture& tex, const float s[8], const float t[8], unsigned lanes, F8 out[4]) {
+    float rgba[4][8];
+    for (int l = 0; l < 8; ++l) {
+        float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        if (lanes & (1u << l)) sample(tex, s[l], t[l], texel);
+        for (int c = 0; c < 4; ++c) rgba[c][l] = texel[c];
+    }
+    for (int c = 0; c < 4; ++c) out[c] = simd::loadf(rgba[c]);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Shading (Shading.h)
 
@@ -367,17 +389,26 @@ struct Light {
     explicit Light(const DrawShading& s)
         : eye{simd::splat(s.eye.x), simd::splat(s.eye.y), simd::splat(s.eye.z)},
           toLight{simd::splat(s.toLight.x), simd::splat(s.toLight.y), simd::splat(s.toLight.z)},
-          metallic(simd::splat(s.metallic)),
-          roughness(simd::splat(s.roughness)),
+          metallicFactor(simd::splat(s.metallic)),
+          roughnessFactor(simd::splat(s.roughness)),
           intensity(simd::splat(s.light)),
           environment(simd::splat(s.environment)),
-          emissive{simd::splat(s.emissive.r), simd::splat(s.emissive.g), simd::splat(s.emissive.b)} {}
+          occlusionStrength(simd::splat(s.occlusionStrength)),
+          emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)} {}
+
+    // What the maps give one pixel (mesh.frag): the material's factors where there is no map.
+    struct Surface {
+        F8 metallic, roughness;
+        const F8* occlusion;  // the occlusion map's red, or nullptr: none
+        F8 emission[3];
+    };
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
-    void shade(const F8 base[4], const Vec3& n, const Vec3& v, F8 out[3]) const {
+    void shade(const F8 base[4], const Vec3& n, const Vec3& v, const Surface& surface, F8 out[3]) const {
         const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), pi = simd::splat(kPi);
         const F8 f0 = simd::splat(kDielectricF0);
-        const F8 r = roughness;
+        const F8 metallic = surface.metallic;
+        const F8 r = surface.roughness;
         const F8 alpha2 = (r * r) * (r * r);
         const F8 nv = saturate(dot(n, v));
         const F8 cv = pow5(one - nv);
@@ -390,6 +421,13 @@ struct Light {
         for (int c = 0; c < 3; ++c) {
             dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
             metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
+        }
+        if (surface.occlusion) {
+            const F8 occlusion = one + occlusionStrength * (*surface.occlusion - one);
+            for (int c = 0; c < 3; ++c) {
+                dielectric[c] = dielectric[c] * occlusion;
+                metal[c] = metal[c] * occlusion;
+            }
         }
 
         // The directional light.
@@ -407,13 +445,13 @@ struct Light {
         for (int c = 0; c < 3; ++c) {
             dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
             metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
-            out[c] = (dielectric[c] * (one - metallic) + metal[c] * metallic) + emissive[c];
+            out[c] = (dielectric[c] * (one - metallic) + metal[c] * metallic) + surface.emission[c];
         }
     }
 
     Vec3 eye, toLight;
-    F8 metallic, roughness, intensity, environment;
-    F8 emissive[3];
+    F8 metallicFactor, roughnessFactor, intensity, environment, occlusionStrength;
+    F8 emission[3];
 };
 
 void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
@@ -443,14 +481,18 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     };
     const Plane w = plane(v0.oow, v1.oow, v2.oow);
     const bool textured = shading.texture != nullptr;
+    const bool mapped = shading.mapped();
     const bool colored = shading.colors;
+    const bool normalMapped = shading.normalMap != nullptr;
     Plane a[kAttributes];
-    {
-        // Varyings 0..7 eight at a time (the same operations per lane as plane()), the rest alone.
-        static_assert(kAttributes == 12, "eight varyings in one vector plus four");
-        const F8 a0 = simd::loadf(v0.a) * simd::splat(v0.oow);
-        const F8 a1 = simd::loadf(v1.a) * simd::splat(v1.oow);
-        const F8 a2 = simd::loadf(v2.a) * simd::splat(v2.oow);
+    // Varyings eight at a time (the same operations per lane as plane()), the rest alone; the
+    // tangent basis (12–17) only for a normal map.
+    const int planes = normalMapped ? kAttributes : 12;
+    int first = 0;
+    for (; first + 8 <= planes; first += 8) {
+        const F8 a0 = simd::loadf(v0.a + first) * simd::splat(v0.oow);
+        const F8 a1 = simd::loadf(v1.a + first) * simd::splat(v1.oow);
+        const F8 a2 = simd::loadf(v2.a + first) * simd::splat(v2.oow);
         const F8 da01 = a0 - a1, da20 = a2 - a0;
         const F8 dadx = da01 * simd::splat(dy20o) - da20 * simd::splat(dy01o);
         const F8 dady = da20 * simd::splat(dx01o) - da01 * simd::splat(dx20o);
@@ -459,14 +501,15 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
         simd::storef(s0, at0);
         simd::storef(sx, dadx);
         simd::storef(sy, dady);
-        for (int i = 0; i < 8; ++i) a[i] = {s0[i], sx[i], sy[i]};
-        for (int i = 8; i < kAttributes; ++i) a[i] = plane(v0.a[i] * v0.oow, v1.a[i] * v1.oow, v2.a[i] * v2.oow);
+        for (int i = 0; i < 8; ++i) a[first + i] = {s0[i], sx[i], sy[i]};
     }
+    for (int i = first; i < planes; ++i) a[i] = plane(v0.a[i] * v0.oow, v1.a[i] * v1.oow, v2.a[i] * v2.oow);
     // The varyings this draw reads: normal, world position, and colour and uv when it has them.
     int used[kAttributes];
     int usedCount = 0;
     for (int i = 0; i < kAttributes; ++i)
-        if ((!shading.unlit && (i < 3 || i >= 9)) || (colored && i >= 3 && i < 7) || (textured && i >= 7 && i < 9))
+        if ((!shading.unlit && (i < 3 || (i >= 9 && i < 12))) || (colored && i >= 3 && i < 7) ||
+            (mapped && i >= 7 && i < 9) || (normalMapped && i >= 12))
             used[usedCount++] = i;
 
     const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), c255 = simd::splat(255.0f);
@@ -491,19 +534,14 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             F8 value[kAttributes];
             for (int k = 0; k < usedCount; ++k) value[used[k]] = at(a[used[k]]) * oow;
 
-            F8 texel[4] = {one, one, one, one};
-            if (textured) {
-                float s[8], tt[8], rgba[4][8];
+            float s[8] = {}, tt[8] = {};
+            const unsigned lanes = simd::laneBits(mask);
+            if (mapped) {
                 simd::storef(s, value[7]);
                 simd::storef(tt, value[8]);
-                const unsigned bitsSet = simd::laneBits(mask);
-                for (int l = 0; l < 8; ++l) {
-                    float out[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-                    if (bitsSet & (1u << l)) sample(*shading.texture, s[l], tt[l], out);
-                    for (int c = 0; c < 4; ++c) rgba[c][l] = out[c];
-                }
-                for (int c = 0; c < 4; ++c) texel[c] = simd::loadf(rgba[c]);
             }
+            F8 texel[4] = {one, one, one, one};
+            if (textured) sampleLanes(*shading.texture, s, tt, lanes, texel);
             F8 base[4];
             for (int c = 0; c < 4; ++c) base[c] = (colored ? factor[c] * value[3 + c] : factor[c]) * texel[c];
 
@@ -511,8 +549,41 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             if (!shading.unlit) {
                 Vec3 n = normalize({value[0], value[1], value[2]});
                 if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
+                if (normalMapped) {
+                    Vec3 tangent = normalize({value[12], value[13], value[14]});
+                    Vec3 bitangent = normalize({value[15], value[16], value[17]});
+                    if (!t.front) {
+                        tangent = {simd::neg(tangent.x), simd::neg(tangent.y), simd::neg(tangent.z)};
+                        bitangent = {simd::neg(bitangent.x), simd::neg(bitangent.y), simd::neg(bitangent.z)};
+                    }
+                    F8 stored[4];
+                    sampleLanes(*shading.normalMap, s, tt, lanes, stored);
+                    const F8 two = simd::splat(2.0f), scale = simd::splat(shading.normalScale);
+                    const Vec3 m = normalize({(stored[0] * two - one) * scale, (stored[1] * two - one) * scale,
+                                              stored[2] * two - one});
+                    n = normalize({(tangent.x * m.x + bitangent.x * m.y) + n.x * m.z,
+                                   (tangent.y * m.x + bitangent.y * m.y) + n.y * m.z,
+                                   (tangent.z * m.x + bitangent.z * m.y) + n.z * m.z});
+                }
                 const Vec3 v = normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
-                light.shade(base, n, v, linear);
+                Light::Surface surface{light.metallicFactor, light.roughnessFactor, nullptr,
+                                       {light.emission[0], light.emission[1], light.emission[2]}};
+                F8 map[4];
+                if (shading.metallicRoughness) {
+                    sampleLanes(*shading.metallicRoughness, s, tt, lanes, map);
+                    surface.metallic = surface.metallic * map[2];
+                    surface.roughness = surface.roughness * map[1];
+                }
+                F8 occlusion[4];
+                if (shading.occlusion) {
+                    sampleLanes(*shading.occlusion, s, tt, lanes, occlusion);
+                    surface.occlusion = &occlusion[0];
+                }
+                if (shading.emissive) {
+                    sampleLanes(*shading.emissive, s, tt, lanes, map);
+                    for (int c = 0; c < 3; ++c) surface.emission[c] = surface.emission[c] * map[c];
+                }
+                light.shade(base, n, v, surface, linear);
             }
 
             // Colour: linear rgb encoded lane by lane (ColorEncoding); alpha converted as it is.

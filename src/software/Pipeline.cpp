@@ -157,6 +157,8 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.normals = mesh.normals.empty() ? nullptr : mesh.normals.data();
     vertexJob.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
     vertexJob.uvs = mesh.uvs.empty() ? nullptr : mesh.uvs.data();
+    vertexJob.tangents = record.shading.normalMap && !mesh.tangents.empty() ? mesh.tangents.data() : nullptr;
+    if (vertexJob.tangents == nullptr) record.shading.normalMap = nullptr;  // no basis to read it in
     vertexJob.mvp = input.mvp;
     vertexJob.normalMatrix = input.normalMatrix;
     vertexJob.model = input.model;

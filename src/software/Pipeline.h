@@ -27,6 +27,7 @@ struct SoftwareMesh {
     std::vector<glm::vec3> positions, normals;
     std::vector<glm::vec4> colors;
     std::vector<glm::vec2> uvs;
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices, triangleSource;  // triangleSource filled in (t when the mesh had none)
     std::uint32_t triangles = 0;
     std::vector<std::uint64_t> stamp;  // per vertex: the draw that last transformed it (partial draws)

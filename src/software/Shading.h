@@ -16,6 +16,12 @@
 // of floats, so interpolating white would darken rare pixels by a step); normalize(v) =
 // v · (1 / sqrt(dot(v, v))) with dot(a, b) = (a.z·b.z + a.y·b.y) + a.x·b.x; n = −n on back faces; then
 // the BRDF of pipeline/Backend.h in mesh.frag's order of operations (Kernels.inl, `Light`); a = base.a.
+// The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
+// dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
+// m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
+// with t and b the normalised tangent and bitangent varyings, negated with n on back faces (the
+// vertex stage: tangent = ((c0 · x + c1 · y) + c2 · z) of the model matrix, bitangent =
+// cross(normal, tangent) · w, each component a·b − c·d).
 // NIR may still reassociate or fold a few of them (divisions by constants, mix): measured against
 // llvmpipe, colour is equal on all but a few pixels in 100,000 (by one step; the regression matrix,
 // tests/software/RegressionMatrixGLTest.cpp, holds it to one step on at most 0.1 %).
@@ -170,11 +176,17 @@ private:
 // What the shading of one draw needs besides the pixels.
 struct DrawShading {
     glm::vec4 factor{1.0f};
-    const SoftwareTexture* texture = nullptr;  // nullptr: no texture, texel 1.0 exactly
+    const SoftwareTexture* texture = nullptr;  // the base colour's; nullptr: texel 1.0 exactly
+    // The other maps (DrawParams), nullptr = none: the values they scale are used as they are.
+    const SoftwareTexture *metallicRoughness = nullptr, *occlusion = nullptr, *emissive = nullptr;
+    float occlusionStrength = 1.0f;
+    const SoftwareTexture* normalMap = nullptr;  // read in the tangent basis (varyings 12–17)
+    float normalScale = 1.0f;
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
-    glm::vec3 emissive{0.0f};
+    glm::vec3 emission{0.0f};
+    bool mapped() const { return texture || metallicRoughness || occlusion || emissive || normalMap; }  // reads uvs
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting

@@ -140,6 +140,7 @@ MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
         m.normals = mesh.normals;
         m.colors = mesh.colors;
         m.uvs = mesh.uvs;
+        m.tangents = mesh.tangents;
         m.indices = mesh.indices;
         m.triangles = std::uint32_t(triangles);
         m.triangleSource = triangleSources(mesh);
@@ -214,10 +215,23 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.metallic = params.metallic;
     input.shading.roughness = params.roughness;
     input.shading.unlit = params.unlit;
-    input.shading.emissive = params.emissive;
+    input.shading.emission = params.emissive;
     input.shading.eye = eye_;
-    input.shading.texture = params.texture != kNoHandle ? textures_.find(params.texture) : nullptr;
-    assert((params.texture == kNoHandle || input.shading.texture != nullptr) && "draw: no such texture");
+    const auto texture = [this](TextureHandle handle) -> const sw::SoftwareTexture* {
+        if (handle == kNoHandle) return nullptr;
+        const sw::SoftwareTexture* t = textures_.find(handle);
+        assert(t != nullptr && "draw: no such texture");
+        return t;
+    };
+    input.shading.texture = texture(params.texture);
+    if (!params.unlit) {  // the other maps are light (as the GL backend's variants)
+        input.shading.metallicRoughness = texture(params.metallicRoughnessTexture);
+        input.shading.occlusion = texture(params.occlusionTexture);
+        input.shading.emissive = texture(params.emissiveTexture);
+        input.shading.normalMap = texture(params.normalTexture);
+    }
+    input.shading.normalScale = params.normalScale;
+    input.shading.occlusionStrength = params.occlusionStrength;
     input.shading.toLight = frame_.lighting.toLight;
     input.shading.light = frame_.lighting.light;
     input.shading.environment = frame_.lighting.environment;

@@ -94,13 +94,17 @@ FrameParams simpleFrame(bool writeIds = true) {
 // What simpleFrame shows at pixel (x, y) of a width × height target, of a surface at NDC depth z with
 // normal n and material (base, metallic, roughness): the shading model computed in double
 // (ShadingReference.h), encoded for display.
-glm::vec4 shadedAt(int x, int y, float z, glm::vec3 n, glm::vec4 base, double metallic = 1.0, double roughness = 1.0,
+glm::vec4 shadedAt(int x, int y, float z, glm::vec3 n, const test::ShadedMaterial& material, double alpha = 1.0,
                    int width = kWidth, int height = kHeight) {
     const glm::dvec3 p((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0, double(z));
     const glm::dvec3 v = glm::normalize(glm::dvec3(0.0, 0.0, 2.0) - p);
-    const glm::dvec3 rgb = test::displayedRgb(
-        test::referenceShade({glm::dvec3(base), metallic, roughness}, glm::dvec3(n), v, simpleFrame().lighting));
-    return {float(rgb.r), float(rgb.g), float(rgb.b), base.a};
+    const glm::dvec3 rgb =
+        test::displayedRgb(test::referenceShade(material, glm::dvec3(n), v, simpleFrame().lighting));
+    return {float(rgb.r), float(rgb.g), float(rgb.b), float(alpha)};
+}
+glm::vec4 shadedAt(int x, int y, float z, glm::vec3 n, glm::vec4 base, double metallic = 1.0, double roughness = 1.0,
+                   int width = kWidth, int height = kHeight) {
+    return shadedAt(x, y, z, n, {glm::dvec3(base), metallic, roughness}, base.a, width, height);
 }
 const glm::vec4 kFactor{1.0f, 0.5f, 0.25f, 1.0f};
 
@@ -919,6 +923,106 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
             << name;
         EXPECT_TRUE(identical(afterOthers[i], alone, name));
     }
+}
+
+// Each map scales what glTF says it scales, read from a 1×1 texture (so every pixel samples the one
+// texel): metallic × blue and roughness × green, the environment's light × the occlusion's red at
+// its strength, emission × the emissive map's decoded rgb.
+TEST_P(GlBackendGLTest, MapsScaleTheFactorsAsGltfReadsThem) {
+    Backend* backend = backend_.get();
+    const auto texel = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b, bool srgb) {
+        Texture t;
+        t.width = t.height = 1;
+        t.rgba = {r, g, b, 255};
+        t.srgb = srgb;
+        const TextureHandle handle = backend->uploadTexture(t);
+        EXPECT_NE(handle, kNoHandle);
+        return handle;
+    };
+    const TextureHandle mr = texel(0, 64, 191, false), occlusion = texel(0, 0, 0, false),
+                        emissive = texel(255, 0, 0, true);
+    const Mesh quad = frontAndBack();
+    const MeshHandle mesh = backend->uploadMesh(quad);
+    const TargetHandle target = backend->createTarget(kWidth, kHeight);
+    const auto drawn = [&](const DrawParams& material) {
+        backend->clear(target, Rect{0, 0, kWidth, kHeight}, glm::vec4(0.0f), 1.0f);
+        backend->beginFrame(target, simpleFrame(false));
+        DrawParams params = material;
+        params.mesh = mesh;
+        params.baseColorFactor = kFactor;
+        backend->draw(params, all(quad));
+        return backend->readBack(target);
+    };
+    const double unorm = 1.0 / 255.0;
+    test::ShadedMaterial expected{glm::dvec3(kFactor), 191 * unorm, 64 * unorm};
+    DrawParams params;
+    params.metallicRoughnessTexture = mr;
+    EXPECT_TRUE(colorIs(drawn(params), kFrontX, kCentroidY, shadedAt(kFrontX, kCentroidY, 0.5f, {0, 0, 1}, expected)));
+
+    params = {};
+    params.metallic = 0.25f;
+    params.roughness = 0.5f;
+    params.occlusionTexture = occlusion;
+    for (const float strength : {0.0f, 0.5f, 1.0f}) {
+        params.occlusionStrength = strength;
+        expected = {glm::dvec3(kFactor), 0.25, 0.5, glm::dvec3(0.0), 1.0 - double(strength)};
+        const glm::vec4 want = shadedAt(kFrontX, kCentroidY, 0.5f, {0, 0, 1}, expected);
+        EXPECT_TRUE(colorIs(drawn(params), kFrontX, kCentroidY, want)) << "occlusion strength " << strength;
+    }
+
+    params = {};
+    params.emissive = {0.5f, 0.5f, 0.5f};
+    params.emissiveTexture = emissive;
+    expected = {glm::dvec3(kFactor), 1.0, 1.0, glm::dvec3(0.5, 0.0, 0.0)};
+    EXPECT_TRUE(colorIs(drawn(params), kFrontX, kCentroidY, shadedAt(kFrontX, kCentroidY, 0.5f, {0, 0, 1}, expected)));
+    params.unlit = true;  // unlit ignores the maps: the base colour as it is
+    EXPECT_TRUE(colorIs(drawn(params), kFrontX, kCentroidY,
+                        glm::vec4(glm::vec3(test::displayedRgb(glm::dvec3(kFactor))), 1.0f)));
+    backend->destroyTarget(target);
+}
+
+// A normal map's texel is a normal in the basis (tangent, bitangent = cross(normal, tangent) · w,
+// normal): here tangent +x, so bitangent +y for w = 1 and −y for w = −1; its x and y scaled.
+TEST_P(GlBackendGLTest, NormalMapsTurnTheNormalInTheTangentBasis) {
+    Backend* backend = backend_.get();
+    Texture t;
+    t.width = t.height = 1;
+    t.rgba = {255, 64, 160, 255};  // (1, −0.498, 0.255) after · 2 − 1
+    t.srgb = false;
+    const TextureHandle normalMap = backend->uploadTexture(t);
+    ASSERT_NE(normalMap, kNoHandle);
+    Mesh quad = frontAndBack();
+    const TargetHandle target = backend->createTarget(kWidth, kHeight);
+    for (const float w : {1.0f, -1.0f}) {
+        quad.tangents.assign(quad.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, w));
+        const MeshHandle mesh = backend->uploadMesh(quad);
+        ASSERT_NE(mesh, kNoHandle);
+        for (const float scale : {0.0f, 1.0f, 10.0f}) {
+            backend->clear(target, Rect{0, 0, kWidth, kHeight}, glm::vec4(0.0f), 1.0f);
+            backend->beginFrame(target, simpleFrame(false));
+            DrawParams params;
+            params.mesh = mesh;
+            params.baseColorFactor = kFactor;
+            params.metallic = 0.0f;
+            params.roughness = 0.4f;
+            params.normalTexture = normalMap;
+            params.normalScale = scale;
+            params.doubleSided = true;
+            backend->draw(params, all(quad));
+            const Buffers b = backend->readBack(target);
+            const auto stored = [](double byte) { return byte / 255.0 * 2.0 - 1.0; };
+            const glm::dvec3 m = glm::normalize(glm::dvec3(stored(255) * scale, stored(64) * scale, stored(160)));
+            // Front: basis (+x, +y·w, +z); the back face flips all three.
+            const glm::dvec3 front(m.x, m.y * w, m.z);
+            const test::ShadedMaterial material{glm::dvec3(kFactor), 0.0, 0.4};
+            const glm::vec4 frontColour = shadedAt(kFrontX, kCentroidY, 0.5f, glm::vec3(front), material);
+            const glm::vec4 backColour = shadedAt(kBackX, kCentroidY, 0.5f, -glm::vec3(front), material);
+            EXPECT_TRUE(colorIs(b, kFrontX, kCentroidY, frontColour)) << "front, w " << w << ", scale " << scale;
+            EXPECT_TRUE(colorIs(b, kBackX, kCentroidY, backColour)) << "back, w " << w << ", scale " << scale;
+        }
+        backend->releaseMesh(mesh);
+    }
+    backend->destroyTarget(target);
 }
 
 TEST_P(GlBackendGLTest, TexturedMeshWithoutUvsSamplesTheFirstTexel) {

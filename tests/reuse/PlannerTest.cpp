@@ -144,14 +144,12 @@ public:
 private:
     struct Key {
         glm::mat4 model{1.0f};
-        glm::vec4 factor{1.0f};
-        int texture = -1;
-        bool doubleSided = false;
+        Material material;
         std::vector<IndexRange> ranges;  // normalised; empty: not drawn
-        // Bit for bit (Reuse.h): -0 differs from +0, a NaN equals the same NaN.
+        // The model bit for bit (Reuse.h): -0 differs from +0, a NaN equals the same NaN; the
+        // material by value, every member (Scene.h).
         bool operator==(const Key& o) const {
-            return std::memcmp(&model, &o.model, sizeof model) == 0 && std::memcmp(&factor, &o.factor, sizeof factor) == 0 &&
-                   texture == o.texture && doubleSided == o.doubleSided &&
+            return std::memcmp(&model, &o.model, sizeof model) == 0 && material == o.material &&
                    std::equal(ranges.begin(), ranges.end(), o.ranges.begin(), o.ranges.end(),
                               [](const IndexRange& a, const IndexRange& b) {
                                   return a.firstTriangle == b.firstTriangle && a.triangleCount == b.triangleCount;
@@ -166,9 +164,7 @@ private:
             const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
             const Material material = mesh.material >= 0 ? scene_->materials[std::size_t(mesh.material)] : Material{};
             now[i].model = world[std::size_t(instance.node)];
-            now[i].factor = material.baseColorFactor;
-            now[i].texture = material.baseColorTexture;
-            now[i].doubleSided = material.doubleSided;
+            now[i].material = material;
         }
         for (const DrawCommand& c : list) {
             std::vector<IndexRange>& ranges = now[std::size_t(c.instance)].ranges;
@@ -646,6 +642,16 @@ TEST_F(ReusePlanner, MaterialChangesMakeTheirInstancesDynamic) {
     EXPECT_EQ(reuse.stats().instances.ds, 0u);
     step(reuse, world0, "after sidedness");
     EXPECT_EQ(reuse.stats().instances.ds, users(4));
+
+    // Every member counts: here the roughness and an occlusion map's strength.
+    scene.materials[3].roughnessFactor *= 0.5f;
+    step(reuse, world0, "roughness");
+    EXPECT_EQ(reuse.stats().instances.sd, users(3));
+    step(reuse, world0, "after roughness");
+    scene.materials[3].occlusionStrength = 0.5f;
+    step(reuse, world0, "occlusion strength");
+    EXPECT_EQ(reuse.stats().instances.sd, users(3));
+    step(reuse, world0, "after occlusion strength");
 
     scene.materials[1].baseColorTexture = 0;  // a texture index (the scene has none: never drawn here)
     step(reuse, world0, "texture");

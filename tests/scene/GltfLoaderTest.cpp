@@ -184,7 +184,8 @@ const std::vector<AssimpCase>& assimpCases() {
          .triangles = 12,
          .instances = 1,
          .textures = 1,
-         .unsupported = {"metallicRoughnessTexture"}},
+         // Its metallic-roughness texture samples TEXCOORD_1, the base colour TEXCOORD_0.
+         .unsupported = {"textures of one material on different coordinates (the first one's are used)"}},
         {.file = "BoxTextured-glTF-Binary/BoxTextured.glb",
          .meshes = 1,
          .triangles = 12,
@@ -226,9 +227,8 @@ const std::vector<AssimpCase>& assimpCases() {
          .meshes = 27,
          .triangles = 37116,
          .instances = 27,
-         .textures = 1,
-         .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND", "metallicRoughnessTexture", "normalTexture",
-                         "emissiveTexture"}},
+         .textures = 9,
+         .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND"}},
         {.file = "IncorrectVertexArrays/Cube.gltf",
          .error = "bufferViews[2]: byteOffset 504 + byteLength 432 is beyond the end of buffer 0 (514 bytes)"},
         {.file = "IndexOutOfRange/AllIndicesOutOfRange.gltf",
@@ -428,8 +428,8 @@ TEST(GltfAssimpModelsTest, APrimitiveWithoutTheUvsOfItsTextureGetsAnUntexturedMa
     EXPECT_TRUE(scene->meshes[0].uvs.empty());
     EXPECT_EQ(scene->meshes[1].material, 3);
     EXPECT_EQ(scene->warnings,
-              (std::vector<std::string>{path + ": mesh 0 primitive 0: material 4 samples its base colour "
-                                               "texture with TEXCOORD_0, which the primitive lacks: "
+              (std::vector<std::string>{path + ": mesh 0 primitive 0: material 4 samples its textures "
+                                               "with TEXCOORD_0, which the primitive lacks: "
                                                "drawn untextured"}));
 }
 
@@ -1337,15 +1337,76 @@ TEST(GltfLoaderTest, TextureTransformIsTheExtensionsMatrixAndSet) {
         << bad.error().message;
 }
 
+// The maps: each texture decoded as its use says (colour sRGB, data linear), one scene texture per
+// image and decoding; all sampled at one set of coordinates.
+TEST(GltfLoaderTest, MapsAreReadAndDecodedAsTheirUseSays) {
+    const auto withMaps = [](const Json& material, const std::string& name) {
+        Asset asset = quad();
+        const std::string image = png(2, 1, 6, 8, std::string("\x01\x02\x03\x04\x05\x06\x07\x08", 8));
+        asset.accessor(image, kUByte, "SCALAR", image.size());
+        asset.json["images"] = {{{"bufferView", 2}, {"mimeType", "image/png"}}};
+        asset.json["textures"] = {{{"source", 0}}};
+        asset.json["materials"] = {material};
+        asset.primitive()["material"] = 0;
+        asset.primitive()["attributes"]["TEXCOORD_0"] =
+            asset.accessor(bytesOf<float>({0, 0, 1, 0, 1, 1, 0, 1}), kFloat, "VEC2", 4);
+        asset.primitive()["attributes"]["NORMAL"] =
+            asset.accessor(bytesOf<float>({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}), kFloat, "VEC3", 4);
+        asset.primitive()["attributes"]["TANGENT"] =
+            asset.accessor(bytesOf<float>({0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1}), kFloat, "VEC4", 4);
+        return load(writeGlb(test::freshDir("GltfMaps" + name), name, asset));
+    };
+    const Json texture = {{"index", 0}};
+    const Result<Scene> scene = withMaps({{"pbrMetallicRoughness", {{"baseColorTexture", texture},
+                                                                    {"metallicRoughnessTexture", texture}}},
+                                          {"occlusionTexture", {{"index", 0}, {"strength", 0.25}}},
+                                          {"emissiveTexture", texture},
+                                          {"normalTexture", {{"index", 0}, {"scale", -2}}},
+                                          {"emissiveFactor", {1, 0.5, 0}}},
+                                         "all");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->unsupported.empty()) << scene->unsupported.front();
+    ASSERT_EQ(scene->textures.size(), 2u) << "the image once as colour, once as data";
+    const Material& m = scene->materials[0];
+    ASSERT_GE(m.baseColorTexture, 0);
+    ASSERT_GE(m.metallicRoughnessTexture, 0);
+    EXPECT_TRUE(scene->textures[std::size_t(m.baseColorTexture)].srgb);
+    EXPECT_FALSE(scene->textures[std::size_t(m.metallicRoughnessTexture)].srgb);
+    EXPECT_EQ(scene->textures[0].rgba, scene->textures[1].rgba);
+    EXPECT_EQ(m.occlusionTexture, m.metallicRoughnessTexture);
+    EXPECT_EQ(m.emissiveTexture, m.baseColorTexture);
+    EXPECT_EQ(m.occlusionStrength, 0.25f);
+    EXPECT_EQ(m.emissiveFactor, glm::vec3(1.0f, 0.5f, 0.0f));
+    EXPECT_EQ(m.normalTexture, m.metallicRoughnessTexture) << "normals are data";
+    EXPECT_EQ(m.normalScale, -2.0f);
+    ASSERT_EQ(scene->meshes[0].tangents.size(), 4u) << "the file's tangents, for the normal map";
+    EXPECT_EQ(scene->meshes[0].tangents[0], glm::vec4(0, 1, 0, -1));
+
+    // An emissive map on another set of coordinates than the base colour's is left out, and so is
+    // its emission (a factor alone would light the whole surface).
+    const Result<Scene> other = withMaps({{"pbrMetallicRoughness", {{"baseColorTexture", texture}}},
+                                          {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
+                                          {"emissiveFactor", {1, 1, 1}}},
+                                         "other");
+    ASSERT_TRUE(other.ok()) << other.error().message;
+    EXPECT_TRUE(other->meshes[0].tangents.empty()) << "no normal map: no tangents kept";
+    EXPECT_EQ(other->materials[0].emissiveTexture, -1);
+    EXPECT_EQ(other->materials[0].emissiveFactor, glm::vec3(0.0f));
+    const std::string differing = "textures of one material on different coordinates (the first one's are used)";
+    EXPECT_EQ(other->unsupported, std::vector<std::string>{differing});
+
+    const Result<Scene> strong = withMaps({{"occlusionTexture", {{"index", 0}, {"strength", 1.5}}}}, "strong");
+    ASSERT_FALSE(strong.ok());
+    EXPECT_NE(strong.error().message.find("occlusionTexture.strength: 1.5 is not in [0, 1]"), std::string::npos)
+        << strong.error().message;
+}
+
 TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     Asset asset = quad();
     asset.json["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_unlit", "KHR_mesh_quantization"};
     asset.json["materials"] = {
         {{"alphaMode", "MASK"},
-         {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}},
-         {"normalTexture", {{"index", 0}}},
-         {"occlusionTexture", {{"index", 0}}},
-         {"emissiveTexture", {{"index", 0}}},
+         {"normalTexture", {{"index", 0}}},  // modelled: not reported
          {"emissiveFactor", {1, 0, 0}},
          {"extensions", {{"KHR_materials_unlit", Json::object()}}}},
         {{"alphaMode", "BLEND"}},  // unused: not reported
@@ -1363,10 +1424,8 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     asset.json["nodes"][0]["extras"] = {{"extensions", {{"NOT_AN_EXTENSION", Json::object()}}}};
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    const std::vector<std::string> expected = {
-        "KHR_materials_sheen", "EXT_lights_image_based", "skins",           "morph targets",
-        "primitive mode LINES", "alphaMode MASK",        "metallicRoughnessTexture", "normalTexture",
-        "occlusionTexture",    "emissiveTexture"};
+    const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based", "skins",
+                                               "morph targets",       "primitive mode LINES",   "alphaMode MASK"};
     EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));

@@ -50,6 +50,20 @@ TEST(SceneBuildTest, BadValuesAreRefusedWithTheirNumbers) {
     Material material;
     material.baseColorTexture = 0;
     EXPECT_EQ(scene.addMaterial(material).error().message, "material: texture 0 does not exist (the scene has 0)");
+    material = {};
+    material.normalTexture = 3;
+    EXPECT_EQ(scene.addMaterial(material).error().message,
+              "material: normal texture 3 does not exist (the scene has 0)");
+    material = {};
+    material.occlusionStrength = 1.5f;
+    EXPECT_EQ(scene.addMaterial(material).error().message, "material: occlusion strength 1.5 is not in [0, 1]");
+    material = {};
+    material.normalScale = std::nanf("");
+    EXPECT_EQ(scene.addMaterial(material).error().message, "material: normal scale nan is not finite");
+    mesh = quad();
+    mesh.tangents.assign(4, glm::vec4(1, 0, 0, 1));
+    mesh.tangents[1].w = INFINITY;
+    EXPECT_EQ(scene.addMesh(mesh).error().message, "mesh: tangent 1 is (1, 0, 0, inf), not finite");
     EXPECT_EQ(scene.addInstance(0, glm::mat4(1.0f)).error().message, "instance: mesh 0 does not exist (the scene has 0)");
     EXPECT_TRUE(scene.meshes.empty() && scene.textures.empty() && scene.materials.empty() && scene.nodes.empty());
 

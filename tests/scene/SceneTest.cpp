@@ -122,6 +122,57 @@ TEST(SceneTest, FinalizeComputesUnitNormalsFacingTheWinding) {
     for (const glm::vec3& n : mesh.normals) expectNear(n, {0, 0, 1});
 }
 
+// Tangents point along increasing u; w makes cross(normal, tangent) · w point along decreasing v,
+// "up" in the image (glTF's normal texture: +y is up).
+TEST(SceneTest, GeneratedTangentsFollowUAndTheirSignMakesTheBitangentPointUp) {
+    // A quad in the z = 0 plane facing +z, u along +x and v along −y (glTF: v = 0 is the image's top).
+    Mesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    mesh.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    finalizeMesh(mesh, false);
+    generateTangents(mesh);
+    ASSERT_EQ(mesh.tangents.size(), 4u);
+    for (const glm::vec4& t : mesh.tangents) {
+        expectNear(glm::vec3(t), {1, 0, 0});
+        EXPECT_EQ(t.w, 1.0f);
+        expectNear(glm::cross(glm::vec3(0, 0, 1), glm::vec3(t)) * t.w, {0, 1, 0});
+    }
+    // Mirrored in u: the tangent turns round, and w keeps the bitangent up.
+    for (glm::vec2& uv : mesh.uvs) uv.x = 1.0f - uv.x;
+    generateTangents(mesh);
+    for (const glm::vec4& t : mesh.tangents) {
+        expectNear(glm::vec3(t), {-1, 0, 0});
+        EXPECT_EQ(t.w, -1.0f);
+        expectNear(glm::cross(glm::vec3(0, 0, 1), glm::vec3(t)) * t.w, {0, 1, 0});
+    }
+    // Degenerate texture coordinates, or none: a unit tangent perpendicular to the normal.
+    for (glm::vec2& uv : mesh.uvs) uv = {0.5f, 0.5f};
+    for (int pass = 0; pass < 2; ++pass) {
+        generateTangents(mesh);
+        for (std::size_t v = 0; v < 4; ++v) {
+            EXPECT_NEAR(glm::length(glm::vec3(mesh.tangents[v])), 1.0f, 1e-6f);
+            EXPECT_NEAR(glm::dot(glm::vec3(mesh.tangents[v]), mesh.normals[v]), 0.0f, 1e-6f);
+            EXPECT_EQ(mesh.tangents[v].w, 1.0f);
+        }
+        mesh.uvs.clear();
+    }
+}
+
+TEST(SceneTest, FinalizeRepairsTangentsItCannotUse) {
+    Mesh mesh = triangleMesh();
+    mesh.tangents.assign(mesh.positions.size(), glm::vec4(0.0f, 2.0f, 0.0f, -3.0f));
+    mesh.tangents[1] = glm::vec4(0.0f);
+    mesh.tangents[2] = glm::vec4(NAN, 0.0f, 0.0f, 1.0f);
+    finalizeMesh(mesh, false);
+    expectNear(glm::vec3(mesh.tangents[0]), {0, 1, 0});  // normalised; w its sign
+    EXPECT_EQ(mesh.tangents[0].w, -1.0f);
+    for (std::size_t v : {1u, 2u}) {
+        EXPECT_NEAR(glm::length(glm::vec3(mesh.tangents[v])), 1.0f, 1e-6f);
+        EXPECT_NEAR(glm::dot(glm::vec3(mesh.tangents[v]), mesh.normals[v]), 0.0f, 1e-6f);
+    }
+}
+
 TEST(SceneTest, CacheOrderIsAPermutationThatCarriesSourceIds) {
     // A grid: enough triangles that meshoptimizer reorders them.
     Mesh mesh;

@@ -66,6 +66,7 @@ Mesh sphere(float r, const glm::vec3& c = glm::vec3(0.0f), int rings = 24, int s
             const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
             mesh.positions.push_back(c + r * n);
             mesh.normals.push_back(n);
+            mesh.uvs.push_back({float(j) / float(segments), float(i) / float(rings)});
         }
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < segments; ++j) {
@@ -177,6 +178,124 @@ Scene materials() {
     return scene;
 }
 
+// The maps (Material): metallic-roughness, occlusion at strengths 0, 0.5 and 1, emissive, all of
+// them with a base colour texture and a texture transform, on an unlit material (which ignores
+// them), with nearest and mirrored samplers; textures of generated values, linear data and sRGB.
+Scene maps() {
+    Scene scene;
+    std::mt19937 rng(38);
+    const auto texture = [&](int w, int h, bool srgb, Filter filter, Wrap wrap) {
+        Texture t;
+        t.width = w;
+        t.height = h;
+        t.srgb = srgb;
+        t.filter = filter;
+        t.wrapS = t.wrapT = wrap;
+        for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
+        return *scene.addTexture(std::move(t));
+    };
+    const int mr = texture(8, 8, false, Filter::Linear, Wrap::Repeat);
+    const int mrNearest = texture(5, 3, false, Filter::Nearest, Wrap::MirroredRepeat);
+    const int occlusion = texture(16, 4, false, Filter::Linear, Wrap::ClampToEdge);
+    const int emissive = texture(4, 4, true, Filter::Linear, Wrap::Repeat);
+    const int base = texture(6, 6, true, Filter::Linear, Wrap::MirroredRepeat);
+    std::vector<Material> materials(12);
+    materials[0].metallicRoughnessTexture = mr;
+    materials[1].metallicRoughnessTexture = mrNearest;
+    materials[1].baseColorFactor = {0.9f, 0.5f, 0.2f, 1.0f};
+    for (int k = 0; k < 3; ++k) {
+        materials[std::size_t(2 + k)].occlusionTexture = occlusion;
+        materials[std::size_t(2 + k)].occlusionStrength = float(k) * 0.5f;
+        materials[std::size_t(2 + k)].metallicFactor = float(k) * 0.5f;
+        materials[std::size_t(2 + k)].roughnessFactor = 0.3f;
+    }
+    materials[5].emissiveTexture = emissive;
+    materials[5].emissiveFactor = {1.0f, 0.8f, 0.5f};
+    materials[5].metallicFactor = 0.0f;
+    for (int k : {6, 7, 8}) {
+        Material& m = materials[std::size_t(k)];
+        m.baseColorTexture = base;
+        m.metallicRoughnessTexture = mr;
+        m.occlusionTexture = occlusion;
+        m.occlusionStrength = 0.7f;
+        m.emissiveTexture = emissive;
+        m.emissiveFactor = {0.3f, 0.3f, 0.3f};
+    }
+    materials[7].baseColorTransform = glm::mat3(glm::vec3(2.0f, 1.0f, 0.0f), glm::vec3(-1.5f, 3.0f, 0.0f),
+                                                glm::vec3(0.25f, -0.5f, 1.0f));
+    materials[8].unlit = true;
+    materials[9].metallicRoughnessTexture = mr;
+    materials[9].metallicFactor = 0.0f;  // the map scales factors: 0 stays 0
+    materials[10].metallicRoughnessTexture = mrNearest;
+    materials[10].roughnessFactor = 0.0f;
+    materials[11].emissiveTexture = emissive;  // a factor of 0: no emission
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(mesh, true);
+    for (int k = 0; k < 12; ++k) {
+        Mesh copy = mesh;
+        copy.material = *scene.addMaterial(materials[std::size_t(k)]);
+        const int index = *scene.addMesh(std::move(copy), false);
+        const glm::vec3 at(float(k % 4) - 1.5f, float(k / 4) - 1.0f, 0.0f);
+        (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
+    }
+    scene.buildInstances();
+    return scene;
+}
+
+// Normal maps of generated texels at scales 0, 1, 10 and −1, in the basis of generated tangents
+// (from the sphere's uvs, when the renderer uploads it) and of the file's (random unit vectors, w
+// ±1), with mipmap-less linear and nearest samplers; one double-sided (its inside seen through a cut).
+Scene normalMaps() {
+    Scene scene;
+    std::mt19937 rng(39);
+    const auto texture = [&](int w, int h, Filter filter) {
+        Texture t;
+        t.width = w;
+        t.height = h;
+        t.srgb = false;
+        t.filter = filter;
+        for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
+        return *scene.addTexture(std::move(t));
+    };
+    const int linear = texture(8, 8, Filter::Linear), nearest = texture(7, 5, Filter::Nearest);
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(mesh, true);
+    Mesh cut = mesh;  // a sphere without its front cap: its inside shows
+    std::vector<std::uint32_t> kept;
+    for (std::size_t t = 0; t < cut.triangleCount(); ++t) {
+        const glm::vec3 c = cut.positions[cut.indices[3 * t]];
+        if (c.z < 0.3f) kept.insert(kept.end(), cut.indices.begin() + std::ptrdiff_t(3 * t),
+                                    cut.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    }
+    cut.indices = kept;
+    cut.triangleSource.clear();
+    finalizeMesh(cut, false);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float scales[] = {0.0f, 1.0f, 10.0f, -1.0f};
+    for (int k = 0; k < 8; ++k) {
+        Material material;
+        material.baseColorFactor = {0.8f, 0.6f, 0.3f, 1.0f};
+        material.metallicFactor = k % 3 == 0 ? 1.0f : 0.0f;
+        material.roughnessFactor = 0.2f + 0.1f * float(k);
+        material.normalTexture = k % 2 ? nearest : linear;
+        material.normalScale = scales[k % 4];
+        material.doubleSided = k == 7;
+        Mesh copy = k == 7 ? cut : mesh;
+        if (k >= 4 && k < 7) {  // the file's tangents
+            for (std::size_t v = 0; v < copy.positions.size(); ++v) {
+                const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f));
+                copy.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
+            }
+        }
+        copy.material = *scene.addMaterial(material);
+        const int index = *scene.addMesh(std::move(copy), false);
+        const glm::vec3 at(float(k % 4) - 1.5f, float(k / 4) - 0.5f, 0.0f);
+        (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
+    }
+    scene.buildInstances();
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -214,6 +333,8 @@ std::vector<MatrixCase> matrix() {
         {"pixel-centre-edges", pixelGrid, 64, 48, {}, {}},
         {"non-finite-vertices", nonFinite, 160, 120, lookFrom({0, 0, 4}, {0, 0, 0}, 0.1f, 10.0f), {}},
         {"materials", materials, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"maps", maps, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"normal-maps", normalMaps, 640, 360, lookFrom({0.2f, 0.3f, 4.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
     };
 }
 
