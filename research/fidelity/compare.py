@@ -16,6 +16,12 @@ The goal the project holds frugal to (docs/fidelity.md), per model:
 Exit status: 0 every model measured (whether or not it meets the goal: this
 measures, it does not judge), 1 a model could not be measured (one
 `error: <what>: <why>` line each), 2 bad command line.
+
+With --check FILE (tests/data/fidelity/expected.json; CTest runs one model a
+test) it judges too: a model FILE says meets the goal must still meet it, any
+other must stay within the figures FILE records for it (or still be refused
+with the reason FILE gives), else one `error:` line says which bound broke and
+the exit status is 1.
 """
 
 import argparse
@@ -58,6 +64,26 @@ def goal(three, frugal):
 
 def three_of(entry):
     return {k: entry["three_vs_khronos"][k] for k in MEASURES}
+
+
+def check(row, expected):
+    """What breaks `expected` (an entry of --check's file) in a measured row: a list of reasons."""
+    name = row["name"]
+    if expected is None:
+        return ["%s: not in the expectations file (add what it measures now)" % name]
+    if "refused" in expected:
+        if row["frugal"] is not None:
+            return ["%s: was refused (%s) and now renders: record its figures" % (name, expected["refused"])]
+        return [] if expected["refused"] in row["error"] else ["%s: %s" % (name, row["error"])]
+    if row["frugal"] is None:
+        return ["%s: %s" % (name, row["error"])]
+    if expected.get("goal"):
+        return ["%s: no longer meets the goal: %s %s" % (name, k, row["frugal"][k])
+                for k in MEASURES if not row["meets_goal"][k]]
+    ceilings = expected["at_most"]
+    return ["%s: %s %s is above the %s recorded" % (name, k, row["frugal"][k], ceilings[k])
+            for k in MEASURES if ceilings.get(k) is not None and
+            (row["frugal"][k] is None or row["frugal"][k] > ceilings[k])]
 
 
 def command_of(root, entry):
@@ -136,7 +162,17 @@ def main():
     ap.add_argument("--only", action="append", metavar="NAME", help="this model only (repeatable)")
     ap.add_argument("--out", type=Path, metavar="DIR",
                     help="write fidelity.json, fidelity.csv and frugal/<name>.png here")
+    ap.add_argument("--check", type=Path, metavar="FILE",
+                    help="hold each model to what FILE expects of it (tests/data/fidelity/expected.json); "
+                         "exit 1 when one falls short")
     args = ap.parse_args()
+    expectations = None
+    if args.check:
+        try:
+            expectations = json.loads(args.check.read_text())["models"]
+        except (OSError, ValueError, KeyError) as e:
+            print("error: %s: %s" % (args.check, e), file=sys.stderr)
+            return 1
 
     try:
         manifest = json.loads(args.manifest.read_text())
@@ -161,7 +197,8 @@ def main():
             try:
                 row, png = measure(args.frugal, root, args.manifest.parent, entry, Path(tmp))
             except MeasureError as e:
-                print("error: %s: %s" % (entry["name"], e), file=sys.stderr)
+                if expectations is None:  # with --check, judged below against what is expected
+                    print("error: %s: %s" % (entry["name"], e), file=sys.stderr)
                 failed += 1
                 # Kept in the table: a file frugal refuses is as far from the goal as can be.
                 row, png = {"name": entry["name"], "three": three_of(entry), "frugal": None,
@@ -184,6 +221,11 @@ def main():
         }
         files.write_atomic(args.out / "fidelity.json", (files.json_text(report) + "\n").encode())
         files.write_atomic(args.out / "fidelity.csv", csv_text(rows).encode())
+    if expectations is not None:
+        broken = [why for r in rows for why in check(r, expectations.get(r["name"]))]
+        for why in broken:
+            print("error: %s" % why, file=sys.stderr)
+        return 1 if broken else 0
     return 1 if failed else 0
 
 
