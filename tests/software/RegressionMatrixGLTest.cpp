@@ -151,6 +151,25 @@ Scene nonFinite() {
     return single(mesh, true, true);
 }
 
+// `mesh` with a material of its own, placed at `at`.
+void place(Scene& scene, Mesh mesh, const Material& material, glm::vec3 at) {
+    mesh.material = *scene.addMaterial(material);
+    const int index = *scene.addMesh(std::move(mesh), false);
+    (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
+}
+
+// A texture of random texels.
+int randomTexture(Scene& scene, std::mt19937& rng, int w, int h, bool srgb, Filter filter, Wrap wrap) {
+    Texture t;
+    t.width = w;
+    t.height = h;
+    t.srgb = srgb;
+    t.filter = filter;
+    t.wrapS = t.wrapT = wrap;
+    for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
+    return *scene.addTexture(std::move(t));
+}
+
 // Spheres of every corner of the material space, metallic {0, 0.5, 1} × roughness {0, 0.02, 0.25, 0.6,
 // 1}, in three base colours, one of them unlit and one emissive; their silhouettes show grazing angles, and the
 // smooth ones the light's highlight at its sharpest.
@@ -168,11 +187,7 @@ Scene materials() {
             material.roughnessFactor = roughness[r];
             material.unlit = m == 1 && r == 4;
             if (m == 2 && r == 1) material.emissiveFactor = {0.6f, 0.2f, 0.05f};
-            Mesh copy = mesh;
-            copy.material = *scene.addMaterial(material);
-            const int index = *scene.addMesh(std::move(copy), false);
-            const glm::vec3 at(float(r) - 2.0f, float(m) - 1.0f, 0.0f);
-            (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
+            place(scene, mesh, material, {float(r) - 2.0f, float(m) - 1.0f, 0.0f});
         }
     scene.buildInstances();
     return scene;
@@ -185,14 +200,7 @@ Scene maps() {
     Scene scene;
     std::mt19937 rng(38);
     const auto texture = [&](int w, int h, bool srgb, Filter filter, Wrap wrap) {
-        Texture t;
-        t.width = w;
-        t.height = h;
-        t.srgb = srgb;
-        t.filter = filter;
-        t.wrapS = t.wrapT = wrap;
-        for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
-        return *scene.addTexture(std::move(t));
+        return randomTexture(scene, rng, w, h, srgb, filter, wrap);
     };
     const int mr = texture(8, 8, false, Filter::Linear, Wrap::Repeat);
     const int mrNearest = texture(5, 3, false, Filter::Nearest, Wrap::MirroredRepeat);
@@ -231,13 +239,8 @@ Scene maps() {
     materials[11].emissiveTexture = emissive;  // a factor of 0: no emission
     Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
     finalizeMesh(mesh, true);
-    for (int k = 0; k < 12; ++k) {
-        Mesh copy = mesh;
-        copy.material = *scene.addMaterial(materials[std::size_t(k)]);
-        const int index = *scene.addMesh(std::move(copy), false);
-        const glm::vec3 at(float(k % 4) - 1.5f, float(k / 4) - 1.0f, 0.0f);
-        (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
-    }
+    for (int k = 0; k < 12; ++k)
+        place(scene, mesh, materials[std::size_t(k)], {float(k % 4) - 1.5f, float(k / 4) - 1.0f, 0.0f});
     scene.buildInstances();
     return scene;
 }
@@ -248,16 +251,8 @@ Scene maps() {
 Scene normalMaps() {
     Scene scene;
     std::mt19937 rng(39);
-    const auto texture = [&](int w, int h, Filter filter) {
-        Texture t;
-        t.width = w;
-        t.height = h;
-        t.srgb = false;
-        t.filter = filter;
-        for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
-        return *scene.addTexture(std::move(t));
-    };
-    const int linear = texture(8, 8, Filter::Linear), nearest = texture(7, 5, Filter::Nearest);
+    const int linear = randomTexture(scene, rng, 8, 8, false, Filter::Linear, Wrap::Repeat);
+    const int nearest = randomTexture(scene, rng, 7, 5, false, Filter::Nearest, Wrap::Repeat);
     Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
     finalizeMesh(mesh, true);
     Mesh cut = mesh;  // a sphere without its front cap: its inside shows
@@ -287,10 +282,7 @@ Scene normalMaps() {
                 copy.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
             }
         }
-        copy.material = *scene.addMaterial(material);
-        const int index = *scene.addMesh(std::move(copy), false);
-        const glm::vec3 at(float(k % 4) - 1.5f, float(k / 4) - 0.5f, 0.0f);
-        (void)scene.addInstance(index, glm::translate(glm::mat4(1.0f), at));
+        place(scene, std::move(copy), material, {float(k % 4) - 1.5f, float(k / 4) - 0.5f, 0.0f});
     }
     scene.buildInstances();
     return scene;
