@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -88,6 +90,35 @@ void printDepthPrecision(const Scene& scene, std::optional<int> index, double de
             << "; surfaces closer together than that may z-fight\n";
 }
 
+// The shading each drawn mesh asks for: what its program variant reads (the GL backend compiles one
+// per combination, GlPrograms.cpp; ids and batching add their own forms per frame), with how many
+// meshes use it.
+void printShading(const Scene& scene, std::ostream& out) {
+    static const Material kDefault{};
+    std::map<std::string, int> variants;
+    std::vector<bool> drawn(scene.meshes.size(), false);
+    for (const Instance& instance : scene.instances) drawn[std::size_t(instance.mesh)] = true;
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        if (!drawn[i]) continue;
+        const Mesh& mesh = scene.meshes[i];
+        const Material& m = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)] : kDefault;
+        std::string terms = m.unlit ? "unlit" : "metallic-roughness BRDF";
+        if (m.baseColorTexture >= 0) terms += ", base colour map";
+        if (!mesh.colors.empty()) terms += ", vertex colours";
+        if (!m.unlit) {
+            if (m.metallicRoughnessTexture >= 0) terms += ", metallic-roughness map";
+            if (m.occlusionTexture >= 0) terms += ", occlusion map";
+            if (m.emissiveTexture >= 0) terms += ", emissive map";
+            if (m.normalTexture >= 0)
+                terms += mesh.tangents.empty() ? ", normal map (tangents generated)" : ", normal map";
+        }
+        ++variants[terms];
+    }
+    out << "shading: " << variants.size() << " variant" << (variants.size() == 1 ? "" : "s") << "\n";
+    for (const auto& [terms, meshes] : variants)
+        out << "  " << terms << ": " << meshes << " mesh" << (meshes == 1 ? "" : "es") << "\n";
+}
+
 }  // namespace
 
 std::string sceneInfoText(const Scene& scene, int longSide) {
@@ -120,10 +151,12 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         }
         out << "\n";
     }
+    printShading(scene, out);
     out << "textures: " << scene.textures.size() << "\n";
     for (const Texture& t : scene.textures)
         out << "  '" << t.name << "' " << t.width << "x" << t.height
-            << (t.filter == Filter::Nearest ? " nearest" : " linear") << (t.srgb ? " sRGB" : " linear data") << "\n";
+            << (t.filter == Filter::Nearest ? ", nearest" : ", linear") << " filter"
+            << (t.srgb ? ", sRGB colour" : ", linear data") << "\n";
     const double detail = sceneDetail(scene);
     out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
     out << "cameras: " << scene.cameras.size() << "\n";

@@ -14,8 +14,10 @@ const char* infoHelp() {
     return R"(usage: frugal info SCENE [--cull-backfaces]
        frugal info --state-costs [--backend NAME] [--threads N] [--json FILE]
 
-Prints what SCENE holds: nodes, meshes, instances, triangles, materials, textures, cameras,
-animations, bounds at time 0, and every feature of the file that frugal does not model, by name.
+Prints what SCENE holds: nodes, meshes, instances, triangles, materials (with their maps), the
+shading variants its meshes need (what each variant reads: maps, vertex colours; frugal compiles
+one program a variant), textures, cameras, animations, bounds at time 0, and every feature of the
+file that frugal does not model, by name.
 
 For each camera (the automatic view when the scene has none): where the scene lies along its view,
 and the smallest difference in distance the depth buffer separates at the scene's far side, with

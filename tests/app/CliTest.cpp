@@ -133,6 +133,20 @@ TEST(CliTest, InfoNamesWhatIsNotModelled) {
     EXPECT_NE(run.out.find("triangles: 336"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("animations: 28"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("not modelled: none"), std::string::npos) << run.out;
+    // The shading its meshes ask for: each distinct variant, with how many meshes use it.
+    EXPECT_NE(run.out.find("shading: 1 variant\n  metallic-roughness BRDF: "), std::string::npos) << run.out;
+}
+
+TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
+    const fs::path dir = test::freshDir("CliInfoShading");
+    const fs::path file = fs::path(FRUGAL_ASSIMP_GLTF2_DIR) / "ClearCoat-glTF" / "ClearCoatTest.gltf";
+    if (!fs::exists(file)) FRUGAL_SKIP_IF_MISSING(file << " (assimp-testmodels)");
+    const CliRun run = runFrugal(dir, {"info", file.string()});
+    ASSERT_EQ(run.status, 0) << run.err;
+    for (const char* line : {"shading: 5 variants\n", "  metallic-roughness BRDF, emissive map: 9 meshes\n",
+                             "  metallic-roughness BRDF, normal map (tangents generated): 6 meshes\n"})
+        EXPECT_NE(run.out.find(line), std::string::npos) << line << " in\n" << run.out;
+    EXPECT_NE(run.out.find("512x512, linear filter, linear data\n"), std::string::npos) << run.out;
 }
 
 struct BadCase {
