@@ -9,7 +9,9 @@
 // Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
 // FRUGAL_TEXTURE the texel is, so their factors are left out; each other map (FRUGAL_*_MAP) is read
 // only by the materials that have it; without FRUGAL_IDS there is no id output; FRUGAL_UNLIT
-// (KHR_materials_unlit) writes the base colour. Sampling a 1×1 white texture instead cost +0.64 ms
+// (KHR_materials_unlit) writes the base colour; FRUGAL_ALPHA_MASK discards a fragment whose alpha is
+// below the cutoff (GLSL's discard writes no colour, depth or id); alpha is written as it is only by
+// FRUGAL_ALPHA_BLEND (the draw blends), else 1, as glTF's OPAQUE and MASK ask. Sampling a 1×1 white texture instead cost +0.64 ms
 // per bunny frame on llvmpipe. The maps are read as the Khronos renderer reads them: metallic ×
 // blue and roughness × green of the metallic-roughness map; the occlusion map's red darkens the
 // environment's light only, by 1 + strength · (red − 1); emission × the emissive map's rgb; the
@@ -27,6 +29,9 @@ uniform vec3 u_toLight;            // world space, unit
 uniform float u_light;             // the directional light's intensity
 uniform float u_environment;       // the uniform environment's radiance
 uniform vec3 u_emissive;           // the material's emission
+#ifdef FRUGAL_ALPHA_MASK
+uniform float u_alphaCutoff;
+#endif
 
 layout(location = 0) out vec4 o_color;
 
@@ -88,6 +93,9 @@ void main() {
 #ifdef FRUGAL_TEXTURE
     base = base * texture(u_baseColor, v_uv);
 #endif
+#ifdef FRUGAL_ALPHA_MASK
+    if (base.a < u_alphaCutoff) discard;
+#endif
 #ifdef FRUGAL_UNLIT
     vec3 linear = base.rgb;
 #else
@@ -146,7 +154,11 @@ void main() {
 #endif
     vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + emissive;
 #endif
+#ifdef FRUGAL_ALPHA_BLEND
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
+#else
+    o_color = vec4(pow(linear, vec3(1.0 / 2.2)), 1.0);
+#endif
 #ifdef FRUGAL_IDS
     o_id = v_id;
 #endif

@@ -1,6 +1,7 @@
 #include "TestSupport.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -136,6 +137,24 @@ Mesh looseTriangles(const std::vector<glm::vec3>& positions) {
     mesh.normals.assign(positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
     for (std::uint32_t i = 0; i < std::uint32_t(positions.size()); ++i) mesh.indices.push_back(i);
     return mesh;
+}
+
+void addAlpha(Scene& scene) {
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        if (i % 3 == 2) continue;
+        Mesh& mesh = scene.meshes[i];
+        Material material = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)] : Material{};
+        material.name += i % 3 == 0 ? " (blended)" : " (masked)";
+        material.alphaMode = i % 3 == 0 ? AlphaMode::Blend : AlphaMode::Mask;
+        material.alphaCutoff = 0.5f;
+        if (mesh.colors.empty()) mesh.colors.assign(mesh.positions.size(), glm::vec4(1.0f));
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            const glm::vec3 p = mesh.positions[v];
+            mesh.colors[v].a *= 0.5f + 0.45f * std::sin(7.0f * p.x + 5.0f * p.y + 3.0f * p.z + float(v));
+        }
+        mesh.material = int(scene.materials.size());
+        scene.materials.push_back(std::move(material));
+    }
 }
 
 Scene oneMeshScene(Mesh mesh, const Material& material) {

@@ -74,6 +74,12 @@ CliRun runLab(const std::filesystem::path& dir, const std::vector<std::string>& 
 Mesh looseTriangles(const std::vector<glm::vec3>& positions);
 // A scene with one root node drawing `mesh` with `material` (the mesh gets material 0).
 Scene oneMeshScene(Mesh mesh, const Material& material = {});
+
+// Gives a third of the scene's meshes a blended material and a third a masked one (each a copy of
+// its material), with vertex alphas that vary across every mesh (from its positions): masked
+// triangles get holes at the cutoff of 0.5, blended ones a range of coverage. For checking that a
+// method stays exact with alpha; call it before anything reorders or uploads the meshes.
+void addAlpha(Scene& scene);
 // Adds a root node at `position`, looking down -z, that carries `camera`; returns the camera's index.
 int addCameraNode(Scene& scene, SceneCamera camera, const glm::vec3& position);
 

@@ -26,6 +26,8 @@ namespace frugal {
 
 enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class Filter : std::uint8_t { Nearest, Linear };
+// glTF's alphaMode: how the base colour's alpha is used (Material).
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 
 // Decoded RGBA8 image, rows in file order (first row = v 0).
 struct Texture {
@@ -68,6 +70,16 @@ struct Material {
     // tangents (Mesh::tangents; generated when the mesh has none).
     int normalTexture = -1;
     float normalScale = 1.0f;
+    // Alpha (the base colour's: factor × vertex colour × texture). Opaque: ignored, the colour
+    // written has alpha 1. Mask: a fragment whose alpha is below alphaCutoff is discarded (no
+    // colour, depth or id), the others written with alpha 1. Blend: drawn after every opaque and
+    // masked surface of the frame, instances far to near by the view depth of their mesh's centroid
+    // (the Khronos renderer's order), over what is drawn: rgb·a + dst·(1 − a), alpha a + dst·(1 − a).
+    // Blended surfaces test and write depth and ids as the others do (the Khronos renderer and
+    // three.js write depth for them too): the depth and id images hold the nearest surface drawn,
+    // blended or not; only the colour shows what lies behind.
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;  // Mask only; finite, at least 0 (above 1 discards everything)
 
     // Every member equal (floats by value: a NaN is never equal, so it always counts as a change).
     bool operator==(const Material&) const = default;
@@ -197,7 +209,8 @@ struct Scene {
     //   "mesh: position 17 is (nan, 0, 1), not finite"
     //   "texture: 12288 bytes for 64x64 RGBA (16384 expected)"
     // A texture: RGBA8, rows in file order (Texture). A material: its texture (-1 = none) must
-    // exist, its factors be finite, emissive at least 0, metallic and roughness in [0, 1]. A mesh:
+    // exist, its factors be finite, emissive at least 0, metallic and roughness in [0, 1], the alpha
+    // cutoff finite and at least 0. A mesh:
     // indices 3 a triangle, each below the vertex count; normals, colours and uvs empty or one a
     // vertex; every value finite; material -1 (the default) or one that exists. It
     // is finished as the loaders finish theirs (triangleSource filled, missing normals computed,

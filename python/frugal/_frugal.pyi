@@ -138,6 +138,8 @@ class _Material(TypedDict):
     emissive_texture: int | None
     normal_texture: int | None
     normal_scale: float
+    alpha: Literal["opaque", "mask", "blend"]
+    alpha_cutoff: float
 
 class _MeshArrays(TypedDict):
     name: str
@@ -157,7 +159,9 @@ class Scene(_pybind11_object):
                      metallic: float = ..., roughness: float = ..., unlit: bool = ..., emissive: Sequence[float] = ...,
                      metallic_roughness_texture: int | None = ..., occlusion_texture: int | None = ...,
                      occlusion_strength: float = ..., emissive_texture: int | None = ...,
-                     normal_texture: int | None = ..., normal_scale: float = ..., name: str = ...) -> int: ...
+                     normal_texture: int | None = ..., normal_scale: float = ...,
+                     alpha: Literal["opaque", "mask", "blend"] = ..., alpha_cutoff: float = ...,
+                     name: str = ...) -> int: ...
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
                  colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ..., material: int | None = ...,
                  name: str = ..., file_order: bool = ...) -> int: ...

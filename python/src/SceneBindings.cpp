@@ -49,7 +49,10 @@ int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, co
 int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture, bool doubleSided, double metallic,
                 double roughness, bool unlit, const py::handle& emissive, std::optional<int> metallicRoughnessTexture,
                 std::optional<int> occlusionTexture, double occlusionStrength, std::optional<int> emissiveTexture,
-                std::optional<int> normalTexture, double normalScale, const std::string& name) {
+                std::optional<int> normalTexture, double normalScale, const std::string& alpha, double alphaCutoff,
+                const std::string& name) {
+    if (alpha != "opaque" && alpha != "mask" && alpha != "blend")
+        throw InputError{"alpha: '" + alpha + "' is not an alpha mode (opaque, mask, blend)"};
     Material material;
     material.name = name;
     material.baseColorFactor = colorFrom(color, "color");
@@ -65,6 +68,8 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
     material.emissiveTexture = emissiveTexture.value_or(-1);
     material.normalTexture = normalTexture.value_or(-1);
     material.normalScale = float(normalScale);
+    material.alphaMode = alpha == "mask" ? AlphaMode::Mask : alpha == "blend" ? AlphaMode::Blend : AlphaMode::Opaque;
+    material.alphaCutoff = float(alphaCutoff);
     return take(s.scene.addMaterial(std::move(material)));
 }
 
@@ -124,6 +129,8 @@ py::list materialList(const Scene& scene) {
         d["emissive_texture"] = index(m.emissiveTexture);
         d["normal_texture"] = index(m.normalTexture);
         d["normal_scale"] = m.normalScale;
+        d["alpha"] = m.alphaMode == AlphaMode::Mask ? "mask" : m.alphaMode == AlphaMode::Blend ? "blend" : "opaque";
+        d["alpha_cutoff"] = m.alphaCutoff;
         out.append(d);
     }
     return out;
@@ -219,7 +226,8 @@ void bindScene(py::module_& m) {
              py::arg("emissive") = py::make_tuple(0.0, 0.0, 0.0), py::arg("metallic_roughness_texture") = py::none(),
              py::arg("occlusion_texture") = py::none(), py::arg("occlusion_strength") = 1.0,
              py::arg("emissive_texture") = py::none(), py::arg("normal_texture") = py::none(),
-             py::arg("normal_scale") = 1.0, py::arg("name") = "",
+             py::arg("normal_scale") = 1.0, py::arg("alpha") = "opaque", py::arg("alpha_cutoff") = 0.5,
+             py::arg("name") = "",
              "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
              "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
              "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
@@ -227,7 +235,10 @@ void bindScene(py::module_& m) {
              "The maps, as glTF reads them (texture indices, sampled at the mesh's uvs): metallic_roughness_texture\n"
              "(blue x metallic, green x roughness), occlusion_texture (red darkens the environment's light, by\n"
              "occlusion_strength in [0, 1]), emissive_texture (rgb x emissive), normal_texture (tangent-space\n"
-             "normals, x and y x normal_scale; a mesh's tangents are generated when it is drawn). Returns its index.")
+             "normals, x and y x normal_scale; a mesh's tangents are generated when it is drawn).\n"
+             "alpha (the base colour's, texture and vertex colours included): 'opaque' (ignored), 'mask' (fragments\n"
+             "below alpha_cutoff are discarded) or 'blend' (drawn after the rest, far to near, over what is\n"
+             "behind; depth and ids are written as for the others). Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,

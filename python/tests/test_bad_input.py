@@ -74,6 +74,10 @@ def test_bad_attributes_materials_textures_instances():
     refused(frugal.InputError, r"material: normal texture 0 does not exist", scene.add_material, normal_texture=0)
     refused(frugal.InputError, r"material: occlusion strength -1 is not in \[0, 1\]", scene.add_material,
             occlusion_strength=-1)
+    refused(frugal.InputError, r"alpha: 'glass' is not an alpha mode \(opaque, mask, blend\)", scene.add_material,
+            alpha="glass")
+    refused(frugal.InputError, r"material: alpha cutoff -0.5 is not finite and at least 0", scene.add_material,
+            alpha="mask", alpha_cutoff=-0.5)
     refused(frugal.InputError, r"instance: mesh 0 does not exist \(the scene has 0\)", scene.add_instance, 0)
     mesh = scene.add_mesh(POSITIONS, INDICES)
     refused(frugal.InputError, r"transform: expected a 4x4 matrix, got shape \(3, 3\)", scene.add_instance, mesh,

@@ -172,6 +172,33 @@ def test_maps_are_drawn_and_listed():
     assert (mapped != render(False, "auto")).any()
 
 
+def test_alpha_modes_are_drawn_and_listed():
+    """A masked grid with holes (vertex alphas against the cutoff) over a blended one over an opaque
+    one: listed as given, drawn alike by GL and the software reference (colour within a step; ids
+    exactly, a blended surface writing its own), and differently from the same scene all opaque."""
+    grid, grid_indices, colors, _ = grid_arrays()
+    rng = np.random.default_rng(40)
+    alphas = np.concatenate([colors[:, :3], rng.uniform(0, 1, (len(grid), 1))], axis=1).astype(np.float32)
+    camera = frugal.Camera.look_at((0.3, 0.5, 4.0), (0, 0, 0), fov=50)
+
+    def render(alpha, backend):
+        scene = frugal.Scene()
+        modes = ("opaque", "blend", "mask") if alpha else ("opaque",) * 3
+        for k, mode in enumerate(modes):
+            material = scene.add_material((0.9, 0.5 + 0.2 * k, 0.3, 0.6), alpha=mode, alpha_cutoff=0.4,
+                                          double_sided=True)
+            listed = scene.materials[material]
+            assert listed["alpha"] == mode and listed["alpha_cutoff"] == np.float32(0.4)
+            mesh = scene.add_mesh(grid, grid_indices, colors=alphas, material=material)
+            scene.add_instance(mesh, translation(0.1 * k, 0.05 * k, 0.5 * k))
+        return frugal.Renderer(scene, size=(160, 120), backend=backend, ids=True).render(camera)
+
+    gl, software = render(True, "auto"), render(True, "software")
+    assert np.abs(gl.color.astype(int) - software.color).max() <= 1
+    np.testing.assert_array_equal(gl.ids, software.ids)
+    assert (gl.color != render(False, "auto").color).any()
+
+
 def test_mesh_arrays_round_trip():
     """mesh(i) gives back what add_mesh keeps: the triangles (reordered for the cache, ids kept)."""
     scene = frugal.Scene()

@@ -112,6 +112,8 @@ void printShading(const Scene& scene, std::ostream& out) {
             if (m.normalTexture >= 0)
                 terms += mesh.tangents.empty() ? ", normal map (tangents generated)" : ", normal map";
         }
+        if (m.alphaMode == AlphaMode::Mask) terms += ", alpha mask (cutoff " + fmt(double(m.alphaCutoff)) + ")";
+        if (m.alphaMode == AlphaMode::Blend) terms += ", blended (drawn last, far to near)";
         ++variants[terms];
     }
     out << "shading: " << variants.size() << " variant" << (variants.size() == 1 ? "" : "s") << "\n";

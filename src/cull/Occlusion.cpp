@@ -295,11 +295,14 @@ struct OcclusionCuller::State {
             const Instance& instance = w.scene.instances[w.kept[it.kept].instance];
             const Mesh& mesh = w.scene.meshes[std::size_t(instance.mesh)];
             const bool singleSided = mesh.material < 0 || !w.scene.materials[std::size_t(mesh.material)].doubleSided;
+            // A masked or blended surface hides nothing (a discarded or blended fragment shows what
+            // is behind it): tested, never written.
+            const bool occluder = mesh.material < 0 || w.scene.materials[std::size_t(mesh.material)].alphaMode == AlphaMode::Opaque;
             const ClusterVertices& cv = w.maps[std::size_t(instance.mesh)].vertices;
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
             std::uint32_t slot = slots[i];
             for (std::uint32_t k = it.kept; k < it.kept + it.count; ++k)
-                slot = walkCluster(w, band, cv, m, w.kept[k], singleSided, slot);
+                slot = walkCluster(w, band, cv, m, w.kept[k], singleSided, occluder, slot);
         }
     }
 
@@ -307,7 +310,7 @@ struct OcclusionCuller::State {
     // hidden: each triangle tested (and occluding) on the band's rows, its flags from `slot` on.
     // Returns the slot after its triangles.
     std::uint32_t walkCluster(const Walk& w, Band& band, const ClusterVertices& cv, const glm::mat4& m,
-                              const KeptCluster& kc, bool singleSided, std::uint32_t slot) {
+                              const KeptCluster& kc, bool singleSided, bool occluder, std::uint32_t slot) {
         const std::uint32_t firstVertex = cv.firstVertex[kc.cluster];
         const std::uint32_t vertexCount = cv.firstVertex[kc.cluster + 1] - firstVertex;
         const occlusion::WindowArrays window = band.window();
@@ -336,6 +339,7 @@ struct OcclusionCuller::State {
             // Dropped triangles (about half) are skipped 64 at a time, by the bits of the others:
             // a branch a triangle on whether it was dropped is one the CPU cannot predict.
             const occlusion::SmallTriangles small = band.small();
+            if (!occluder) std::memset(small.occludes, 0, count);
             std::uint8_t* seenOut = &band.seen[slot];
             std::memset(seenOut, exactRules ? 0 : 1, count);
             for (std::uint32_t base = 0; base < count; base += 64) {
@@ -346,7 +350,7 @@ struct OcclusionCuller::State {
                     bool seen = verdict[t] == occlusion::kKeep;
                     if (verdict[t] == occlusion::kTest)
                         seen = triangleMaySeen(window, cv.c0[first + t], cv.c1[first + t], cv.c2[first + t],
-                                               singleSided, band.y0, band.y1);
+                                               singleSided, occluder, band.y0, band.y1);
                     else if (verdict[t] == occlusion::kSmall)
                         seen = smallMaySeen(small, t);
                     else if (verdict[t] == occlusion::kMedium)
@@ -655,7 +659,7 @@ struct OcclusionCuller::State {
 
     // The triangle with corners a, b, c of `w` (none kUnfixed).
     bool triangleMaySeen(const occlusion::WindowArrays& w, std::uint32_t a, std::uint32_t b, std::uint32_t c,
-                         bool singleSided, int rowLo, int rowHi) {
+                         bool singleSided, bool occluder, int rowLo, int rowHi) {
         // Setup's fixed-point part (Rasterizer.h 3.) on the positions kept with the vertices, then
         // the coverage test: most triangles of a dense mesh far away own no pixel centre. The depth
         // plane only for those that cover one.
@@ -686,7 +690,7 @@ struct OcclusionCuller::State {
         }
         // The draw module's own cull stage may drop a front-facing sliver that setup keeps: such a
         // triangle is kept but hides nothing.
-        const bool occludes = !singleSided || raster::drawModuleKeepsFront(&s[0], &s[1], &s[2]);
+        const bool occludes = occluder && (!singleSided || raster::drawModuleKeepsFront(&s[0], &s[1], &s[2]));
         const raster::SetupVertex* v[3] = {&s[0], &s[1], &s[2]};
         if (order == raster::SetupOrder::Swapped) std::swap(v[0], v[1]);
         raster::setupDepthPlane(v[0], v[1], v[2], &t);

@@ -16,6 +16,8 @@
 // against a fragment that is drawn, in whatever order they are drawn: the image, depth and ids are
 // the same as the conservative plan's.
 //
+// Masked and blended surfaces (AlphaMode::Mask, Blend) are tested like any other but never
+// occlude: a fragment they discard, or blend, leaves what is behind it visible.
 // Occluders are only triangles the GL draw does not clip (clip mask 0): a clipped triangle's new
 // vertices are rounded, and the buffer must not depend on them. A box that reaches the near plane,
 // or whose numbers are not finite, is never tested (kept). The vertex transform and setup are

@@ -177,6 +177,7 @@ Scene oracleScene(const Scene& scene, const TriangleSet& set) {
             mesh.normals = from.normals;
             mesh.colors = from.colors;
             mesh.uvs = from.uvs;
+            mesh.tangents = from.tangents;
             mesh.material = from.material;
             const std::size_t triangles = from.triangleCount();
             static const std::vector<std::uint8_t> none;

@@ -1,6 +1,8 @@
 // Visible sets measured from renders, for culling-accuracy reports (paper 002's terms):
 //   TOS — every triangle of every instance; PVS — what a culling method submitted (a DrawList);
-//   RVS — the triangles that own at least one pixel of the full render (from its id image).
+//   RVS — the triangles that own at least one pixel of the full render (from its id image), and,
+//         where surfaces are blended, of the render without them (what is seen through them:
+//         renderer/Oracle.h).
 //   misses = |RVS \ PVS| (dropped yet visible), waste = |PVS \ RVS| (submitted yet hidden).
 // A triangle is named by (instance, t), t its position in the mesh's index buffer as uploaded (after
 // any reordering), so sets built from draw lists and from id images compare directly.

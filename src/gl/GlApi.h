@@ -29,6 +29,7 @@ class GlContext;
     X(PFNGLDISABLEPROC, Disable)                                 \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                             \
     X(PFNGLDEPTHMASKPROC, DepthMask)                             \
+    X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)             \
     X(PFNGLCULLFACEPROC, CullFace)                               \
     X(PFNGLFRONTFACEPROC, FrontFace)                             \
     X(PFNGLVIEWPORTPROC, Viewport)                               \

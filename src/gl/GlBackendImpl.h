@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -54,7 +55,9 @@ enum Variant : unsigned {
     kOcclusionBit = 64u,
     kEmissiveBit = 128u,
     kNormalMapBit = 256u,
-    kVariantCount = 512u
+    kAlphaMaskBit = 512u,   // AlphaMode::Mask: discard below the cutoff
+    kAlphaBlendBit = 1024u,  // AlphaMode::Blend: alpha written as it is (else 1)
+    kVariantCount = 2048u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit;
 
@@ -82,13 +85,13 @@ struct GlProgram {
     bool failed = false;  // did not compile; not tried again
     GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
     GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
-    GLint occlusionStrength = -1, normalScale = -1;
+    GLint occlusionStrength = -1, normalScale = -1, alphaCutoff = -1;
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue;
     CachedUniform<glm::vec2> metallicRoughnessValue;
     CachedUniform<glm::vec3> eyeValue, toLightValue, emissiveValue;
-    CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue;
+    CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue, alphaCutoffValue;
     CachedUniform<std::uint32_t> firstIdValue;
 };
 
@@ -208,7 +211,7 @@ private:
     std::string renderer_;
     int maxTargetSize_ = 0, maxTextureSize_ = 0;
 
-    GlProgram programs_[kVariantCount];
+    std::unordered_map<unsigned, GlProgram> programs_;  // by variant (at most kVariantCount), made on first use
 
     HandleTable<GlTarget, TargetHandle> targets_;
     HandleTable<GlMesh, MeshHandle> meshes_;

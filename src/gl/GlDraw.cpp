@@ -88,6 +88,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (mesh.layout.tangent < 0) variant &= ~kNormalMapBit;  // no basis to read it in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
     if (params.unlit) variant |= kUnlitBit;
+    if (params.alphaMode == AlphaMode::Mask) variant |= kAlphaMaskBit;
+    if (params.alphaMode == AlphaMode::Blend) variant |= kAlphaBlendBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 
@@ -96,6 +98,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     state_.setScissor(false);
     state_.setCull(!params.doubleSided);
     state_.setDepthTest(params.depth == DepthMode::Test);
+    state_.setBlend(params.alphaMode == AlphaMode::Blend);
     state_.setDepthConvention(target.depthFormat);
     for (int unit = 0; unit < kTextureUnits; ++unit)
         if (variant & maps[unit].second) state_.bindTexture(textures[unit], unit);
@@ -118,6 +121,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform1f(p->normalScale, params.normalScale);
     if (!params.unlit && state_.uniformChanged(p->emissiveValue, params.emissive))
         gl_.Uniform3fv(p->emissive, 1, glm::value_ptr(params.emissive));
+    if ((variant & kAlphaMaskBit) && state_.uniformChanged(p->alphaCutoffValue, params.alphaCutoff))
+        gl_.Uniform1f(p->alphaCutoff, params.alphaCutoff);
     const glm::vec2 metallicRoughness(params.metallic, params.roughness);
     if (state_.uniformChanged(p->metallicRoughnessValue, metallicRoughness))
         gl_.Uniform2fv(p->metallicRoughness, 1, glm::value_ptr(metallicRoughness));

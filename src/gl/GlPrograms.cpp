@@ -2,8 +2,8 @@
 //
 // Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — each
 // of the material's maps, vertex colours, ids, an unlit material — compiled on first use (each also
-// in an instanced form for drawInstances, but for the normal map's: 512 possible, a scene uses a
-// few). A variant leaves out what the draw does not use instead of feeding it white (a 1×1 white
+// in an instanced form for drawInstances, but for the normal map's; and by alpha mode: 2048 possible, a
+// scene uses a few). A variant leaves out what the draw does not use instead of feeding it white (a 1×1 white
 // texture, a white colour varying, an unused flat id varying), because each of those costs llvmpipe
 // time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so leaving it out changes no
 // bit. The interpolated white colour was not always 1.0: llvmpipe
@@ -78,6 +78,8 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
     if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
     if (variant & kUnlitBit) defines += "#define FRUGAL_UNLIT\n";
+    if (variant & kAlphaMaskBit) defines += "#define FRUGAL_ALPHA_MASK\n";
+    if (variant & kAlphaBlendBit) defines += "#define FRUGAL_ALPHA_BLEND\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -96,6 +98,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
     p.occlusionStrength = gl_.GetUniformLocation(p.name, "u_occlusionStrength");
     p.normalScale = gl_.GetUniformLocation(p.name, "u_normalScale");
+    p.alphaCutoff = gl_.GetUniformLocation(p.name, "u_alphaCutoff");
     // Each map on its own texture unit, in DrawParams' order (absent samplers: location -1, ignored).
     state_.useProgram(p.name);
     const char* samplers[kTextureUnits] = {"u_baseColor", "u_metallicRoughnessMap", "u_occlusionMap", "u_emissiveMap",

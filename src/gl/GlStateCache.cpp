@@ -71,6 +71,14 @@ void GlStateCache::setCull(bool on) { setEnabled(GL_CULL_FACE, cullOn_, on); }
 
 void GlStateCache::setDepthTest(bool on) { setEnabled(GL_DEPTH_TEST, depthTestOn_, on); }
 
+void GlStateCache::setBlend(bool on) {
+    if (on && !blendFuncSet_) {
+        gl_.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        blendFuncSet_ = true;
+    }
+    setEnabled(GL_BLEND, blendOn_, on);
+}
+
 void GlStateCache::setDepthConvention(DepthFormat format) {
     if (depthFormat_ == int(format)) return;
     const bool reversed = format == DepthFormat::D32F;
@@ -91,12 +99,12 @@ void GlStateCache::bindVao(GLuint vao) {
 }
 
 void GlStateCache::bindTexture(GLuint texture, int unit) {
-    if (textures_[unit] == texture) return;
+    if (!rebinds(textures_[unit], texture, changes_.textures)) return;
     if (activeUnit_ != unit) {
         gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
         activeUnit_ = unit;
     }
-    if (rebinds(textures_[unit], texture, changes_.textures)) gl_.BindTexture(GL_TEXTURE_2D, texture);
+    gl_.BindTexture(GL_TEXTURE_2D, texture);
 }
 
 void GlStateCache::useProgram(GLuint program) {

@@ -71,10 +71,14 @@ public:
     // DepthMode::Off is GL_DEPTH_TEST disabled, which also stops depth writes (GL 4.5 §14.9.4); the
     // depth mask stays GL_TRUE, so clears (glClearBuffer honours the mask) keep clearing depth.
     void setDepthTest(bool on);
+    // Blending for AlphaMode::Blend draws (pipeline/Backend.h): the Khronos renderer's function,
+    // set with the first enable. The id attachment is integer, which GL never blends.
+    void setBlend(bool on);
     // The clip space and depth test of a target's format (the top of GlBackend.cpp).
     void setDepthConvention(DepthFormat format);
     void bindVao(GLuint vao);
-    // Binds `texture` to texture unit `unit` (< kTextureUnits), making that unit the active one.
+    // Binds `texture` to texture unit `unit` (< kTextureUnits); when it binds, that unit becomes the
+    // active one (what a glTexParameter after binding a new name needs).
     void bindTexture(GLuint texture, int unit = 0);
     void useProgram(GLuint program);
     // True when `value` must be sent to its uniform in the bound program (CachedUniform::update);
@@ -107,7 +111,8 @@ private:
     GLuint drawFbo_ = 0, readFbo_ = 0, vao_ = 0, program_ = 0;
     GLuint textures_[kTextureUnits] = {};
     int activeUnit_ = 0;  // GL's initial GL_TEXTURE0
-    int scissorOn_ = -1, cullOn_ = -1, depthTestOn_ = -1, depthFormat_ = -1;
+    int scissorOn_ = -1, cullOn_ = -1, depthTestOn_ = -1, depthFormat_ = -1, blendOn_ = -1;
+    bool blendFuncSet_ = false;
     Rect scissor_{-1, -1, -1, -1};
     int viewportWidth_ = -1, viewportHeight_ = -1;
     StateChanges changes_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "hsr/Flags.h"
 #include "hsr/Order.h"
@@ -48,6 +49,13 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
         return singleSided && polygons_[std::size_t(scene_->instances[std::size_t(instance)].mesh)].convexSolid ? instance : -1;
     };
 
+    // Blended instances (AlphaMode::Blend) are drawn after the rest, as listed, depth-tested
+    // (SceneRenderer::draw orders them): their polygons take part in the flags only, with the whole
+    // depth range, so that every polygon sharing a pixel with one of them writes its depth.
+    bool anyBlended = false;
+    if (frugal::anyBlended(*scene_))
+        for (const DrawCommand& command : list) anyBlended = anyBlended || blendedInstance(*scene_, command.instance);
+
     // The listed triangles, then their polygons in the order of their first listed triangle.
     const ScreenTriangles screen = screenTriangles(*scene_, frame, world, list, width, height);
     std::vector<std::uint32_t> slot(polygonCount(), ~0u);  // global polygon → listed polygon
@@ -56,6 +64,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     std::vector<float> depthSum;
     std::vector<std::uint32_t> triangleCount;
     std::vector<std::int32_t> group;  // adaptive-convex: the instance, for front faces of a convex solid; else −1
+    std::vector<std::uint8_t> blended;  // the polygon's instance is blended
     for (std::size_t i = 0; i < screen.size(); ++i) {
         const TriangleRef& ref = screen.refs[i];
         const Instance& instance = scene_->instances[std::size_t(ref.instance)];
@@ -68,6 +77,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
             depthSum.push_back(0.0f);
             triangleCount.push_back(0);
             group.push_back(exemptInstance(ref.instance));
+            blended.push_back(anyBlended && blendedInstance(*scene_, ref.instance) ? 1 : 0);
         }
         const std::uint32_t p = slot[global];
         polygonOfListed[i] = p;
@@ -83,7 +93,19 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     for (std::size_t p = 0; p < polygons; ++p) depth[p] = depthSum[p] / float(triangleCount[p]);
     std::vector<std::uint32_t> order = backToFront(depth);
     std::vector<std::uint8_t> flags;
-    if (mode == Mode::Adaptive || mode == Mode::AdaptiveConvex) {
+    if (anyBlended) {
+        // depthsort flags only what meets a blended polygon: its other polygons share one group.
+        for (std::size_t p = 0; p < polygons; ++p) {
+            if (blended[p]) {
+                extents[p].z0 = -std::numeric_limits<float>::max();
+                extents[p].z1 = std::numeric_limits<float>::max();
+                group[p] = -1;
+            } else if (mode == Mode::DepthSort) {
+                group[p] = 0;
+            }
+        }
+    }
+    if (mode == Mode::Adaptive || mode == Mode::AdaptiveConvex || anyBlended) {
         flags = mode == Mode::Adaptive ? flagOverlaps(extents) : flagOverlaps(extents, group);
         // Each run of consecutive flagged polygons in submission order (Plan.h: ties).
         for (auto run = order.begin(); run != order.end();) {
@@ -111,6 +133,10 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     // command, consecutive triangle numbers a range.
     DrawList out;
     for (std::uint32_t p : order) {
+        if (anyBlended && blended[p]) {  // drawn whole below, depth-tested
+            ++local.flagged;
+            continue;
+        }
         const DepthMode depthMode = !flags.empty() && flags[p] ? DepthMode::Test : DepthMode::Off;
         local.flagged += depthMode == DepthMode::Test ? 1 : 0;
         for (std::uint32_t k = firstOf[p]; k < firstOf[p + 1]; ++k) {
@@ -124,6 +150,10 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
                 ranges.push_back(IndexRange{ref.triangle, 1});
         }
     }
+    if (anyBlended)
+        for (const DrawCommand& command : list)
+            if (blendedInstance(*scene_, command.instance))
+                out.push_back(DrawCommand{command.instance, command.ranges, DepthMode::Test});
     local.polygons = polygons;
     local.draws = out.size();
     local.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

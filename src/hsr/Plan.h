@@ -54,6 +54,14 @@
 // The depth image of depthsort and adaptive is not the z-buffer's: it holds the flagged polygons'
 // depths only (far elsewhere); colour and ids are the result.
 //
+// Blended surfaces (AlphaMode::Blend) are drawn after every other one, with the z-buffer, in the
+// order the z-buffer render gives them (SceneRenderer::draw); the modes order the rest. So that each
+// blended fragment is tested against the nearest opaque depth, every polygon whose pixel box meets
+// a blended polygon's is flagged (the blended polygon's z range counts as everything), in every
+// mode, depthsort too; then at a pixel a blended polygon covers, every opaque polygon is z-buffered
+// and the argument above gives the z-buffer's colour and depth there before the blend. Masked
+// surfaces (AlphaMode::Mask) need nothing: a discarded fragment writes nothing in either method.
+//
 // depthsort is exact only where no two overlapping polygons need each other's depth; its errors
 // (cyclic overlaps, interpenetration, a large polygon behind a small one with a nearer average)
 // are what `frugal-lab hsr-bench` counts.

@@ -4,7 +4,9 @@
 //
 // Render target: colour RGBA8 + depth (24-bit, or 32-bit float with reversed Z: DepthFormat,
 // frugal/Image.h) + triangle id R32UI, same formats in every backend. Depth test "nearer passes"
-// (GL_LESS for D24, GL_GREATER for D32F; or none: DepthMode), depth range [0,1], no blending. Draws
+// (GL_LESS for D24, GL_GREATER for D32F; or none: DepthMode), depth range [0,1], colour blended only
+// by draws of AlphaMode::Blend (DrawParams; the blend the Khronos renderer sets: GL_SRC_ALPHA,
+// GL_ONE_MINUS_SRC_ALPHA for rgb, GL_ONE, GL_ONE_MINUS_SRC_ALPHA for alpha; ids are never blended). Draws
 // are executed in call order, and within a draw call the ranges in the order given, the triangles of
 // a range in index-buffer order: that is the documented order in which depth ties resolve (the first
 // triangle drawn keeps the pixel).
@@ -81,10 +83,13 @@ struct IndexRange {
 //       (0 where the sum is 0);  S = E·n·l·V·D
 //     dielectric = E·n·l·base.rgb/π·(1 − Fl(0.04)) + S·Fl(0.04);  metal = S·Fl(base.rgb),
 //     Fl(f0) = f0 + (1 − f0)·c5(v·h)
-//   rgb = mix(dielectric, metal, m) of both, summed, + the material's emissive; a = base.a. An unlit
-//   material (DrawParams::unlit, KHR_materials_unlit) has rgb = base.rgb.
+//   rgb = mix(dielectric, metal, m) of both, summed, + the material's emissive. An unlit material
+//   (DrawParams::unlit, KHR_materials_unlit) has rgb = base.rgb. Alpha (DrawParams::alphaMode): a = 1
+//   for Opaque; Mask discards the fragment (no colour, depth or id) where base.a < alphaCutoff and
+//   writes a = 1 elsewhere; Blend writes a = base.a, blended as above.
 // The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample Renderer, and a
-// unencoded; the 8-bit target clamps to [0,1] and rounds to nearest. The clear colour (the
+// unencoded; the 8-bit target clamps to [0,1] and rounds to nearest (a blended draw mixes these
+// encoded bytes, as the Khronos renderer's canvas does). The clear colour (the
 // background) is written as given, not encoded. With the default light a white rough dielectric
 // facing the light and the viewer is about 1.0 of diffuse light (0.3 + 0.7) less the 4 % the
 // surface reflects, plus that reflection.
@@ -133,6 +138,8 @@ struct DrawParams {
     float normalScale = 1.0f;
     glm::mat3 uvTransform{1.0f};  // every texture is sampled at uvTransform · (u, v, 1), per vertex
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
+    AlphaMode alphaMode = AlphaMode::Opaque;  // see the shading model above
+    float alphaCutoff = 0.5f;                 // Mask's
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
 };
@@ -145,8 +152,8 @@ struct InstanceParams {
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute
-// arrays (tangents too) match the positions or are empty, indices come in threes and stay below the vertex count,
-// triangleSource has one entry per triangle or is empty (then triangle t has source t).
+// arrays (tangents too) match the positions or are empty, indices come in threes and stay below the
+// vertex count, triangleSource has one entry per triangle or is empty (then triangle t has source t).
 bool isUploadable(const Mesh& mesh);
 
 // How a backend draws one draw() of several index ranges: each range as a draw of its own, or, from

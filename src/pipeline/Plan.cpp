@@ -16,6 +16,16 @@ DrawList orderDraws(const Scene& scene, DrawList list, Order order) {
     return list;
 }
 
+bool blendedInstance(const Scene& scene, int instance) {
+    const int material = scene.meshes[std::size_t(scene.instances[std::size_t(instance)].mesh)].material;
+    return material >= 0 && scene.materials[std::size_t(material)].alphaMode == AlphaMode::Blend;
+}
+
+bool anyBlended(const Scene& scene) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [](const Material& m) { return m.alphaMode == AlphaMode::Blend; });
+}
+
 DrawList fullDrawList(const Scene& scene) {
     DrawList list;
     list.reserve(scene.instances.size());

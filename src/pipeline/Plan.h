@@ -24,6 +24,12 @@ using DrawList = std::vector<DrawCommand>;
 // Every instance of the scene, whole, in instance order.
 DrawList fullDrawList(const Scene& scene);
 
+// Whether instance `instance` draws a blended material (AlphaMode::Blend): such commands are drawn
+// after all the others of a list (SceneRenderer::draw), and never hide anything from a method.
+bool blendedInstance(const Scene& scene, int instance);
+// Whether any material of the scene is blended (when none is, blendedInstance is always false).
+bool anyBlended(const Scene& scene);
+
 // Draw orders (issue 10). submit: the list as it is. key: a stable sort by a state key as bgfx
 // sorts, costliest-first by convention rather than by measurement: the texture, then the program
 // variant (vertex colours or not), then the mesh. Consecutive draws of one mesh then become one

@@ -1,5 +1,7 @@
 #include "pipeline/SceneRenderer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -16,7 +18,8 @@ SceneRenderer::~SceneRenderer() { release(); }
 SceneRenderer::SceneRenderer(SceneRenderer&& other) noexcept
     : backend_(other.backend_), scene_(other.scene_), full_(std::move(other.full_)),
       meshes_(std::exchange(other.meshes_, {})), textures_(std::exchange(other.textures_, {})),
-      cullAllBackFaces_(other.cullAllBackFaces_) {}
+      cullAllBackFaces_(other.cullAllBackFaces_), batching_(other.batching_),
+      centroids_(std::move(other.centroids_)) {}
 
 SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
     if (this != &other) {
@@ -27,6 +30,8 @@ SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
         meshes_ = std::exchange(other.meshes_, {});
         textures_ = std::exchange(other.textures_, {});
         cullAllBackFaces_ = other.cullAllBackFaces_;
+        batching_ = other.batching_;
+        centroids_ = std::move(other.centroids_);
     }
     return *this;
 }
@@ -59,6 +64,11 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
                          (isUploadable(mesh) ? " could not store it (out of memory)"
                                              : " refused it: its arrays break the upload contract (pipeline/Backend.h)")};
         renderer.meshes_.push_back(handle);
+        // The blend order's centroid: the mean of the positions the indices name (the Khronos
+        // renderer's, which counts a vertex once per use).
+        glm::dvec3 sum(0.0);
+        for (const std::uint32_t index : mesh.indices) sum += glm::dvec3(mesh.positions[index]);
+        renderer.centroids_.push_back(mesh.indices.empty() ? glm::vec3(0.0f) : glm::vec3(sum / double(mesh.indices.size())));
     }
     renderer.textures_.reserve(scene.textures.size());
     for (std::size_t i = 0; i < scene.textures.size(); ++i) {
@@ -74,7 +84,30 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     return renderer;
 }
 
-void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& world) {
+void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& world, const glm::mat4& view) {
+    sequence_.clear();
+    blendKeys_.clear();
+    const bool blending = anyBlended(*scene_);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        if (blending && blendedInstance(*scene_, list[i].instance)) {
+            // The view depth of the centroid: eye-space z, more negative farther (the Khronos
+            // renderer's sortPrimitivesByDepth, a stable sort on it, far first).
+            const Instance& instance = scene_->instances[list[i].instance];
+            const glm::vec4 at = (view * world[instance.node]) * glm::vec4(centroids_[instance.mesh], 1.0f);
+            blendKeys_.emplace_back(at.z, std::uint32_t(i));
+        } else {
+            sequence_.push_back(&list[i]);
+        }
+    }
+    // NaN depths (a degenerate pose) sort first, and keep their order.
+    std::stable_sort(blendKeys_.begin(), blendKeys_.end(), [](const auto& a, const auto& b) {
+        return std::isnan(a.first) ? !std::isnan(b.first) : a.first < b.first;
+    });
+    for (const auto& key : blendKeys_) sequence_.push_back(&list[key.second]);
+    drawSequence(sequence_, world);
+}
+
+void SceneRenderer::drawSequence(std::span<const DrawCommand* const> list, const std::vector<glm::mat4>& world) {
     static const Material kDefault{};
     const auto paramsOf = [&](const DrawCommand& command) {
         const Instance& instance = scene_->instances[command.instance];
@@ -98,6 +131,8 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         params.normalTexture = handle(material.normalTexture);
         params.normalScale = material.normalScale;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
+        params.alphaMode = material.alphaMode;
+        params.alphaCutoff = material.alphaCutoff;
         params.firstId = instance.firstId;
         params.depth = command.depth;
         return params;
@@ -109,14 +144,14 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
                scene_->instances[a.instance].mesh == scene_->instances[b.instance].mesh;
     };
     for (std::size_t i = 0; i < list.size();) {
-        const DrawCommand& command = list[i];
+        const DrawCommand& command = *list[i];
         if (command.ranges.empty()) {
             ++i;
             continue;
         }
         std::size_t end = i + 1;
         if (batching_)
-            while (end < list.size() && batchable(command, list[end])) ++end;
+            while (end < list.size() && batchable(command, *list[end])) ++end;
         if (end - i < 2) {
             backend_->draw(paramsOf(command), command.ranges);
             i = end;
@@ -124,7 +159,7 @@ void SceneRenderer::draw(const DrawList& list, const std::vector<glm::mat4>& wor
         }
         instances_.clear();
         for (std::size_t k = i; k < end; ++k) {
-            const Instance& instance = scene_->instances[list[k].instance];
+            const Instance& instance = scene_->instances[list[k]->instance];
             instances_.push_back(InstanceParams{world[instance.node], instance.firstId});
         }
         backend_->drawInstances(paramsOf(command), instances_, command.ranges[0]);
@@ -141,7 +176,7 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
                                 const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list) {
     backend_->clear(target, Rect{0, 0, width, height}, background, farDepth(frame.depthFormat));
     backend_->beginFrame(target, frame);
-    draw(list, world);
+    draw(list, world, frame.view);
 }
 
 void SceneRenderer::execute(const FramePlan& plan, TargetHandle target, TargetHandle staticTarget,
@@ -163,7 +198,7 @@ void SceneRenderer::execute(const FramePlan& plan, TargetHandle target, TargetHa
         case PlanStep::Op::Draw:
             if (drawing != handle(step.to)) backend_->beginFrame(handle(step.to), frame);
             drawing = handle(step.to);
-            draw(step.list ? *step.list : step.draws, world);
+            draw(step.list ? *step.list : step.draws, world, frame.view);
             break;
         }
     }

@@ -1,6 +1,9 @@
 // Draws a Scene through a Backend: uploads its meshes and textures once, then executes draw lists.
 #pragma once
 
+#include <span>
+#include <utility>
+
 #include <vector>
 
 #include <frugal/Result.h>
@@ -25,8 +28,10 @@ public:
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
     // Draws `list` with the node transforms `world` into the current frame (Backend::beginFrame
-    // must have been called). Materials follow the instance's mesh.
-    void draw(const DrawList& list, const std::vector<glm::mat4>& world);
+    // must have been called), seen through `view`. Materials follow the instance's mesh. Commands
+    // of blended materials (AlphaMode::Blend) are drawn after all the others, far to near by the
+    // view depth of their mesh's centroid (blendOrder); the rest in list order.
+    void draw(const DrawList& list, const std::vector<glm::mat4>& world, const glm::mat4& view);
 
     // The usual full frame: clear the whole target to `background`, begin, draw everything.
     void renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
@@ -56,6 +61,7 @@ public:
 
 private:
     SceneRenderer(Backend& backend, const Scene& scene);
+    void drawSequence(std::span<const DrawCommand* const> sequence, const std::vector<glm::mat4>& world);
     void release();
 
     Backend* backend_;
@@ -65,7 +71,10 @@ private:
     std::vector<TextureHandle> textures_;
     bool cullAllBackFaces_ = false;
     bool batching_ = true;
+    std::vector<glm::vec3> centroids_;  // per mesh: the mean of its indexed positions (blendOrder)
     std::vector<InstanceParams> instances_;  // draw()'s scratch
+    std::vector<const DrawCommand*> sequence_;
+    std::vector<std::pair<float, std::uint32_t>> blendKeys_;
 };
 
 }  // namespace frugal

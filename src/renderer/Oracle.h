@@ -22,6 +22,9 @@ struct Oracle {
 };
 
 // Draws `frame` whole with ids into `target` (its contents are overwritten), then builds the oracle.
+// With blended surfaces (AlphaMode::Blend) it draws a second frame without them: the visible set is
+// what either frame's ids show (the full one's, and what lies behind the blended surfaces), and the
+// oracle keeps every blended instance whole.
 // Error: the visible set's ("id N at pixel ... belongs to no triangle") or a refused upload.
 Result<Oracle> makeOracle(SceneRenderer& full, TargetHandle target, int width, int height, FrameParams frame,
                           const std::vector<glm::mat4>& world, const glm::vec4& background);

@@ -189,7 +189,8 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
     materialChanged_[0] = 0;
     for (std::size_t m = 0; m < materials.size(); ++m) {
         // Any member: every one of them is drawn (the name too, which costs nothing to compare).
-        if (!(materials[m] == materialKeys_[m + 1])) materialChanged_[m + 1] = 1;
+        if (materials[m] == materialKeys_[m + 1]) continue;
+        materialChanged_[m + 1] = 1;
         materialKeys_[m + 1] = materials[m];
     }
     std::vector<IndexRange> ranges;
@@ -219,6 +220,9 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
                 record.drawnTris = drawn;
             }
         }
+        // A blended instance is dynamic in every frame, the first too: it must be drawn after every
+        // opaque one, so it never enters the static pair (Reuse.h).
+        if (info.material >= 0 && materials[std::size_t(info.material)].alphaMode == AlphaMode::Blend) changed = true;
         nowDynamic_[i] = changed ? 1 : 0;
         const int state = (wasDynamic_[i] ? 0 : 2) + (changed ? 0 : 1);
         countOf(stats_.instances, state) += 1;

@@ -4,10 +4,12 @@
 // holds what the static instances alone render to). Plans only: this module never touches a
 // backend; SceneRenderer::execute runs the FramePlan it makes on either one.
 //
-// Dynamic: an instance whose world matrix, material (base colour factor, texture, sidedness) or
+// Dynamic: an instance whose world matrix, material (any member of it) or
 // drawn ranges differ from the previous frame, compared exactly: bit for bit (so -0 and +0 differ,
 // and a NaN pose that stays the same bits is static: it draws the same nothing); appearing (drawn
-// now, not before) and disappearing count as changes. The four states
+// now, not before) and disappearing count as changes. An instance of a blended material
+// (AlphaMode::Blend) is dynamic in every frame: a blend must come after every opaque surface behind
+// it, dynamic ones too, so it is drawn last each frame (SceneRenderer::draw) and never reused. The four states
 // pair the previous frame's state with this one: P_dd, P_ds, P_sd, P_ss.
 //
 // A reuse frame (camera, light, background and size as in the previous frame; static pair valid)

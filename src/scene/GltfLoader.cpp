@@ -879,9 +879,14 @@ void Converter::convertMaterials() {
             fail(where, ".occlusionTexture.strength: ", occlusion, " is not in [0, 1]");
         material.occlusionStrength = float(occlusion);
         material.normalScale = toFloat(src.normalTexture.scale, where + ".normalTexture.scale");
+        material.alphaMode = src.alphaMode == "MASK"    ? AlphaMode::Mask
+                             : src.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                        : AlphaMode::Opaque;  // the schema allows no other
+        const double cutoff = src.alphaCutoff;
+        if (!(cutoff >= 0.0)) fail(where, ".alphaCutoff: ", cutoff, " is negative");
+        material.alphaCutoff = toFloat(cutoff, where + ".alphaCutoff");
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
-        if (src.alphaMode != "OPAQUE") report("alphaMode " + src.alphaMode);
         const MaterialMaps maps = mapsOf(m);  // (KHR_texture_transform: one transform for them all)
         if (maps.differing) report("textures of one material on different coordinates (the first one's are used)");
         material.baseColorTransform = maps.transform.matrix;

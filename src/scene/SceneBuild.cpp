@@ -105,6 +105,10 @@ Result<int> Scene::addMaterial(Material material) {
         if (!problem.empty()) return bad(problem);
     if (!std::isfinite(material.normalScale))
         return bad("material: normal scale " + fmt(double(material.normalScale)) + " is not finite");
+    if (!(material.alphaCutoff >= 0.0f && std::isfinite(material.alphaCutoff)))
+        return bad("material: alpha cutoff " + fmt(double(material.alphaCutoff)) + " is not finite and at least 0");
+    if (int(material.alphaMode) > int(AlphaMode::Blend))
+        return bad("material: alpha mode " + std::to_string(int(material.alphaMode)) + " is not opaque, mask or blend");
     materials.push_back(std::move(material));
     return int(materials.size()) - 1;
 }

@@ -47,17 +47,23 @@ struct TargetView {
 };
 
 inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;
+// A pixel whose fragment a masked draw discarded (shade() marks it; the pipeline restores its depth
+// and id).
+inline constexpr std::uint32_t kKilled = 0xFFFFFFFEu;
 
 // One tile being rendered by one thread. Shading is deferred: raster() runs the depth test for every
 // triangle of the tile in order, writing depth (and ids, for draws that write them) and recording in
 // `winner` which triangle passed last; then shade() runs once per triangle in `won` for the pixels it
-// still owns. The result equals shading every fragment that passes, because nothing blends, and a
-// fragment's colour depends only on its own triangle and pixel.
+// still owns. The result equals shading every fragment that passes, because a fragment's colour
+// depends only on its own triangle and pixel. A masked or blended draw's triangle breaks that (its
+// depth write depends on its colour; its colour on what is below): the pipeline shades what is
+// pending first, then rasterizes and shades that triangle alone (Pipeline.cpp).
 struct TileState {
     TargetView target;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;           // the tile's pixels: [x0, x1) × [y0, y1)
     std::uint32_t winner[kTileSize * kTileSize];  // index into `won`, or kNoWinner
     std::vector<const Triangle*> won;             // triangles that passed the depth test somewhere
+    std::vector<std::uint32_t> saved;             // a masked triangle's pixels' depth and ids before it
 };
 
 struct Kernels {
@@ -65,7 +71,9 @@ struct Kernels {
     void (*transform)(const VertexJob& job, std::size_t begin, std::size_t end);
     // Coverage and depth test of one triangle within the tile; records winners.
     void (*raster)(const Triangle& triangle, TileState& tile);
-    // Shades the pixels of the tile that `tile.won[index]` still owns.
+    // Shades the pixels of the tile that `tile.won[index]` still owns. For a masked draw it marks
+    // the pixels it discards kKilled in `tile.winner` (and writes no colour there); for a blended
+    // one it blends over the target's colour (blendOver).
     void (*shade)(std::uint32_t index, const DrawShading& shading, TileState& tile);
 };
 

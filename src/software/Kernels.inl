@@ -522,9 +522,9 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
 
     for (int y = y0; y <= y1; ++y) {
         const F8 py = simd::splat(float(y));
-        const std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize;
+        std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize;
         for (int bx = x0 & ~7; bx <= x1; bx += 8) {
-            const I8 mask = simd::eq(simd::loadi(winnerRow + (bx - tile.x0)), me);
+            I8 mask = simd::eq(simd::loadi(winnerRow + (bx - tile.x0)), me);
             if (simd::laneBits(mask) == 0) continue;
             const F8 px = simd::tofloat(lane + simd::splati(bx));
             const auto at = [&](const Plane& p) {
@@ -544,6 +544,14 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             if (textured) sampleLanes(*shading.texture, s, tt, lanes, texel);
             F8 base[4];
             for (int c = 0; c < 4; ++c) base[c] = (colored ? factor[c] * value[3 + c] : factor[c]) * texel[c];
+            if (shading.alphaMode == AlphaMode::Mask) {
+                const I8 killed = simd::lt(base[3], simd::splat(shading.alphaCutoff)) & mask;
+                if (simd::laneBits(killed) != 0) {
+                    simd::storeMasked(winnerRow + (bx - tile.x0), killed, simd::splati(std::int32_t(kKilled)));
+                    mask = simd::andnot(killed, mask);
+                    if (simd::laneBits(mask) == 0) continue;
+                }
+            }
 
             F8 linear[3] = {base[0], base[1], base[2]};
             if (!shading.unlit) {
@@ -593,9 +601,18 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 simd::storef(values, linear[c]);
                 for (int l = 0; l < 8; ++l) rgb[l] |= std::uint32_t(ColorEncoding::encode(values[l])) << (8 * c);
             }
+            std::uint32_t* const colorRow = tile.target.color + std::size_t(y) * stride + bx;
+            if (shading.alphaMode != AlphaMode::Blend) {
+                simd::storeMasked(colorRow, mask, simd::loadi(rgb) | simd::splati(std::int32_t(0xFF000000u)));
+                continue;
+            }
             const F8 alpha = simd::min(simd::max(base[3], zero), one);
-            const I8 packed = simd::loadi(rgb) | simd::sll(simd::toIntRound(alpha * c255), 24);
-            simd::storeMasked(tile.target.color + std::size_t(y) * stride + bx, mask, packed);
+            std::uint32_t src[8];
+            simd::storei(src, simd::loadi(rgb) | simd::sll(simd::toIntRound(alpha * c255), 24));
+            for (unsigned bitsLeft = simd::laneBits(mask); bitsLeft != 0; bitsLeft &= bitsLeft - 1) {
+                const int l = __builtin_ctz(bitsLeft);
+                colorRow[l] = blendOver(src[l], colorRow[l]);
+            }
         }
     }
 }

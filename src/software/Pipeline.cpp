@@ -241,25 +241,26 @@ void Pipeline::flush(const TargetView& target) {
         tile.y1 = std::min(tile.y0 + kTileSize, target.height);
         tile.won.clear();
         std::fill(std::begin(tile.winner), std::end(tile.winner), kNoWinner);
-        if (interp_ == span::Interp::Exact) {
-            for (std::size_t s = 0; s < segmentCount_; ++s) {
-                const Segment& segment = *segments_[s];
-                for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i)
-                    kernels_.raster(segment.triangles[segment.sorted[i]], tile);
-            }
-        } else {
+        InterpScratch* scratch = interpScratch_.empty() ? nullptr : &interpScratch_[std::size_t(worker)];
+        const auto rasterize = [&](const Triangle& t) {
             // The slow path (InterpRaster.h): span-interpolated depth, one pixel at a time.
-            InterpScratch& scratch = interpScratch_[std::size_t(worker)];
-            for (std::size_t s = 0; s < segmentCount_; ++s) {
-                const Segment& segment = *segments_[s];
-                for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i) {
-                    const Triangle& t = segment.triangles[segment.sorted[i]];
-                    if (t.depthTest) rasterInterp(t, tile, interp_, fused_, scratch);
-                    else kernels_.raster(t, tile);
-                }
+            if (scratch != nullptr && t.depthTest)
+                rasterInterp(t, tile, interp_, fused_, *scratch);
+            else
+                kernels_.raster(t, tile);
+        };
+        for (std::size_t s = 0; s < segmentCount_; ++s) {
+            const Segment& segment = *segments_[s];
+            for (std::uint32_t i = segment.tileStart[tileIndex]; i < segment.tileStart[tileIndex + 1]; ++i) {
+                const Triangle& t = segment.triangles[segment.sorted[i]];
+                const DrawShading& shading = draws_[t.draw]->shading;
+                if (shading.alphaMode == AlphaMode::Opaque)
+                    rasterize(t);
+                else
+                    rasterizeAlone(t, shading, tile, rasterize);
             }
         }
-        for (std::uint32_t w = 0; w < tile.won.size(); ++w) kernels_.shade(w, draws_[tile.won[w]->draw]->shading, tile);
+        shadePending(tile);
     });
     for (InterpScratch& scratch : interpScratch_) {
         interpStats_.spans += scratch.stats.spans;
@@ -269,6 +270,65 @@ void Pipeline::flush(const TargetView& target) {
         scratch.stats = {};
     }
     discard();
+}
+
+void Pipeline::shadePending(TileState& tile) const {
+    if (tile.won.empty()) return;
+    int x0 = tile.x1, y0 = tile.y1, x1 = tile.x0 - 1, y1 = tile.y0 - 1;
+    for (std::uint32_t w = 0; w < tile.won.size(); ++w) {
+        const Triangle& t = *tile.won[w];
+        kernels_.shade(w, draws_[t.draw]->shading, tile);
+        x0 = std::min(x0, t.x0), y0 = std::min(y0, t.y0), x1 = std::max(x1, t.x1), y1 = std::max(y1, t.y1);
+    }
+    tile.won.clear();
+    forgetWinners(tile, x0, y0, x1, y1);
+}
+
+void Pipeline::forgetWinners(TileState& tile, int x0, int y0, int x1, int y1) {
+    x0 = std::max(x0, tile.x0), y0 = std::max(y0, tile.y0);
+    x1 = std::min(x1, tile.x1 - 1), y1 = std::min(y1, tile.y1 - 1);
+    for (int y = y0; y <= y1; ++y) {
+        std::uint32_t* row = tile.winner + (y - tile.y0) * kTileSize;
+        std::fill(row + (x0 - tile.x0), row + (x1 - tile.x0 + 1), kNoWinner);
+    }
+}
+
+template <class Rasterize>
+void Pipeline::rasterizeAlone(const Triangle& t, const DrawShading& shading, TileState& tile,
+                              const Rasterize& rasterize) const {
+    shadePending(tile);  // a blend reads the colour below; a later depth test sees what came before
+    const int x0 = std::max(t.x0, tile.x0), y0 = std::max(t.y0, tile.y0);
+    const int x1 = std::min(t.x1, tile.x1 - 1), y1 = std::min(t.y1, tile.y1 - 1);
+    if (x0 > x1 || y0 > y1) return;
+    const TargetView& target = tile.target;
+    const bool masked = shading.alphaMode == AlphaMode::Mask;
+    const bool ids = t.writesId && target.ids != nullptr;
+    const std::size_t width = std::size_t(x1 - x0 + 1);
+    if (masked) {  // depth and ids as they are, for the pixels the mask discards
+        tile.saved.resize(2 * width * std::size_t(y1 - y0 + 1));
+        std::uint32_t* out = tile.saved.data();
+        for (int y = y0; y <= y1; ++y, out += 2 * width) {
+            const std::size_t at = std::size_t(y) * std::size_t(target.stride) + std::size_t(x0);
+            std::copy_n(target.depth + at, width, out);
+            if (ids) std::copy_n(target.ids + at, width, out + width);
+        }
+    }
+    rasterize(t);
+    if (tile.won.empty()) return;
+    kernels_.shade(0, shading, tile);
+    tile.won.clear();
+    for (int y = y0; y <= y1; ++y) {
+        std::uint32_t* row = tile.winner + (y - tile.y0) * kTileSize + (x0 - tile.x0);
+        const std::size_t at = std::size_t(y) * std::size_t(target.stride) + std::size_t(x0);
+        const std::size_t from = 2 * width * std::size_t(y - y0);
+        for (std::size_t x = 0; x < width; ++x) {
+            if (masked && row[x] == kKilled) {
+                target.depth[at + x] = tile.saved[from + x];
+                if (ids) target.ids[at + x] = tile.saved[from + width + x];
+            }
+            row[x] = kNoWinner;
+        }
+    }
 }
 
 void Pipeline::discard() {

@@ -86,6 +86,13 @@ private:
         const std::vector<std::uint8_t>* clippedBatch;
     };
 
+    // Shades the triangles that won pixels of the tile and forgets them (its winners: kNoWinner).
+    void shadePending(TileState& tile) const;
+    static void forgetWinners(TileState& tile, int x0, int y0, int x1, int y1);
+    // A triangle of a masked or blended draw: what is pending shaded first, then it alone rasterized
+    // (by `rasterize`) and shaded; where the mask discarded its fragment, depth and id put back.
+    template <class Rasterize>
+    void rasterizeAlone(const Triangle& t, const DrawShading& shading, TileState& tile, const Rasterize& rasterize) const;
     void transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
                            std::uint64_t triangles);
     void setup(const SetupJob& job, std::uint64_t skip, std::uint64_t count, Segment& segment);

@@ -15,7 +15,9 @@
 // and sample nothing then: an interpolated constant 1 is p · (1/p), which is 1 − 2⁻²⁴ for about 15 %
 // of floats, so interpolating white would darken rare pixels by a step); normalize(v) =
 // v · (1 / sqrt(dot(v, v))) with dot(a, b) = (a.z·b.z + a.y·b.y) + a.x·b.x; n = −n on back faces; then
-// the BRDF of pipeline/Backend.h in mesh.frag's order of operations (Kernels.inl, `Light`); a = base.a.
+// the BRDF of pipeline/Backend.h in mesh.frag's order of operations (Kernels.inl, `Light`); a = 1, or
+// base.a for a blended draw; a masked draw discards where base.a < cutoff (an ordered compare: NaN
+// passes).
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
@@ -192,7 +194,28 @@ struct DrawShading {
     float light = 0.0f, environment = 0.0f;  // Lighting
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
+    AlphaMode alphaMode = AlphaMode::Opaque;  // Mask, Blend: drawn at once, not deferred (Pipeline.cpp)
+    float alphaCutoff = 0.5f;
 };
+
+// The blend of AlphaMode::Blend on RGBA8 (pipeline/Backend.h: src·a + dst·(1 − a) for rgb, src.a +
+// dst.a·(1 − a) for alpha), as llvmpipe blends 8-bit targets: the fragment converted to bytes first
+// (as it is stored), then each product of bytes x·y/255 rounded as x·y + (x·y >> 8) + 128, >> 8, with
+// 1 − a as 255 − a, and the two terms added, saturating.
+inline std::uint32_t blendOver(std::uint32_t src, std::uint32_t dst) {
+    const std::uint32_t a = src >> 24, inverse = 255u - a;
+    const auto product = [](std::uint32_t x, std::uint32_t y) {
+        const std::uint32_t p = x * y;
+        return (p + (p >> 8) + 128u) >> 8;
+    };
+    std::uint32_t out = 0;
+    for (int c = 0; c < 4; ++c) {
+        const std::uint32_t s = (src >> (8 * c)) & 255u, d = (dst >> (8 * c)) & 255u;
+        const std::uint32_t sum = (c < 3 ? product(s, a) : s) + product(d, inverse);
+        out |= std::min(sum, 255u) << (8 * c);
+    }
+    return out;
+}
 
 // float → unorm8 as llvmpipe converts colour (see above).
 inline std::uint8_t floatToUnorm8(float f) {

@@ -237,6 +237,8 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.environment = frame_.lighting.environment;
     input.shading.writeIds = frame_.writeIds;
     input.shading.depthTest = params.depth == DepthMode::Test;
+    input.shading.alphaMode = params.alphaMode;
+    input.shading.alphaCutoff = params.alphaCutoff;
     input.shading.colors = !mesh->colors.empty();
     input.firstId = params.firstId;
     input.doubleSided = params.doubleSided;

@@ -144,7 +144,8 @@ TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
     const CliRun run = runFrugal(dir, {"info", file.string()});
     ASSERT_EQ(run.status, 0) << run.err;
     for (const char* line : {"shading: 5 variants\n", "  metallic-roughness BRDF, emissive map: 9 meshes\n",
-                             "  metallic-roughness BRDF, normal map (tangents generated): 6 meshes\n"})
+                             "  metallic-roughness BRDF, normal map (tangents generated): 6 meshes\n",
+                             "  metallic-roughness BRDF, base colour map, blended (drawn last, far to near): 1 mesh\n"})
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " in\n" << run.out;
     EXPECT_NE(run.out.find("512x512, linear filter, linear data\n"), std::string::npos) << run.out;
 }

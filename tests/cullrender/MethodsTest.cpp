@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "CullRenderSupport.h"
+#include "TestSupport.h"
 #include "lab/Views.h"
 
 namespace frugal {
@@ -132,6 +133,25 @@ TEST(CullMethodsTest, PlansAreInInstanceOrderWithRangesInsideTheMesh) {
     ASSERT_GE(bad.size(), 2u);
     std::swap(bad[0], bad[1]);
     EXPECT_NONFATAL_FAILURE(test::expectWellFormed(bench.scene, bad, "swapped"), "out of scene order");
+}
+
+// Every exact method stays exact with masked and blended surfaces (test::addAlpha): neither hides
+// anything, so occlusion culling keeps what lies behind them, and blended ones are drawn last.
+TEST(CullMethodsTest, MaskedAndBlendedSurfacesKeepEveryMethodExact) {
+    Result<Scene> cubes = loadScene("builtin:cubes?count=40&seed=3");
+    ASSERT_TRUE(cubes) << cubes.error().message;
+    test::addAlpha(*cubes);
+    CullBench bench(std::move(*cubes), 96, 72);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    test::Tallies views = test::checkReportViews(bench, 8, "cubes with alpha");
+    EXPECT_GT(views.of(Cull::Conservative).rvs, 0u);
+
+    Scene blobs = threeBlobs(2.5f);
+    test::addAlpha(blobs);
+    CullBench lined(std::move(blobs), 96, 72);
+    ASSERT_TRUE(lined.canRender()) << lined.uploadError;
+    for (const glm::vec3& eye : {glm::vec3(-6, 0.5f, 0), glm::vec3(11, -0.5f, 0.3f), glm::vec3(2.5f, 1, 7)})
+        test::checkFrame(lined, test::lookAt(eye, {2.5f, 0, 0}), "blobs with alpha");
 }
 
 // The judge itself: a plan missing one visible triangle is seen as a miss, and its render differs.

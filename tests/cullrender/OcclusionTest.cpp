@@ -89,6 +89,40 @@ TEST(OcclusionTest, ABoxBehindABoxIsCulledAndTheImageIsTheSame) {
     EXPECT_GE(bench.culler.occlusion().stats().clustersHidden, 1u);
 }
 
+// A masked or blended box in front hides nothing: the box behind shows through its holes, or
+// through the blend, so it is kept, and the image is the full render's (check()). An opaque box
+// in front of both still hides it.
+TEST(OcclusionTest, MaskedAndBlendedSurfacesHideNothing) {
+    for (const AlphaMode mode : {AlphaMode::Mask, AlphaMode::Blend}) {
+        const std::string label = mode == AlphaMode::Mask ? "masked" : "blended";
+        Scene scene = emptyScene(label);
+        Material seeThrough = scene.materials[0];
+        seeThrough.alphaMode = mode;
+        seeThrough.baseColorFactor.a = mode == AlphaMode::Mask ? 1.0f : 0.5f;
+        scene.materials.push_back(seeThrough);
+        addBox(scene, glm::vec3(1.0f), {0, 0, 0}, 2, 4);
+        Mesh& front = scene.meshes.back();
+        front.colors.assign(front.positions.size(), glm::vec4(1.0f));
+        for (std::size_t v = 0; v < front.colors.size(); v += 3) front.colors[v].a = 0.0f;  // holes (mask)
+        addBox(scene, glm::vec3(0.5f), {0, 0, -4});
+        scene.buildInstances();
+        CullBench bench(std::move(scene), 96, 72);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        const Culled seen = check(bench, test::lookAt({0, 0, 6}, {0, 0, 0}), label);
+        EXPECT_EQ(seen.occlusion, seen.conservative) << label << ": the box behind is kept";
+
+        Scene covered = emptyScene(label + " covered");
+        covered.materials.push_back(seeThrough);
+        addBox(covered, glm::vec3(1.5f), {0, 0, 2});  // opaque, in front of both
+        addBox(covered, glm::vec3(1.0f), {0, 0, 0}, 2, 4);
+        addBox(covered, glm::vec3(0.5f), {0, 0, -4});
+        covered.buildInstances();
+        CullBench behind(std::move(covered), 96, 72);
+        const Culled hidden = check(behind, test::lookAt({0, 0, 8}, {0, 0, 0}), label + " covered");
+        EXPECT_LT(hidden.occlusion, hidden.conservative) << label << ": the opaque box hides both";
+    }
+}
+
 TEST(OcclusionTest, ObjectsExactlyTouching) {
     // Face to face (the back box's front face lies in the front box's back face), edge to edge,
     // and a box standing on another; seen from angles where the touching faces are and are not seen.

@@ -182,6 +182,51 @@ TEST(HsrPlan, AdaptiveEqualsTheZBufferOnThePapersCubesAndTheDominoes) {
     }
 }
 
+// Blended surfaces are drawn last with the z-buffer, and every polygon that meets one is flagged
+// (Plan.h): adaptive still equals the z-buffer; masked ones change nothing in the argument.
+TEST(HsrPlan, AdaptiveEqualsTheZBufferWithBlendedAndMaskedSurfaces) {
+    for (const char* name : {"builtin:cubes", "builtin:dominoes?polygons=804"}) {
+        Result<Scene> scene = loadScene(name);
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        test::addAlpha(*scene);
+        for (const double time : {0.0, 1.9}) {
+            Result<FrameSetup> setup = setUpFrame(*scene, {}, time, 240, 320, true);
+            ASSERT_TRUE(setup.ok()) << setup.error().message;
+            const Rendered r = renderModes(*scene, setup->params, setup->world, 240, 320);
+            EXPECT_EQ(differingPixels(r.adaptive, r.zbuffer), 0u) << name << " t=" << time;
+            EXPECT_EQ(r.adaptive.ids, r.zbuffer.ids) << name << " t=" << time;
+            // depthsort z-buffers what meets a blended polygon, and nothing else.
+            EXPECT_GT(r.stats[1].flagged, 0u) << name;
+            EXPECT_LT(r.stats[1].flagged, r.stats[1].polygons) << name;
+        }
+    }
+    // A small opaque quad well in front of a blended one: their z ranges are apart, yet the opaque
+    // one must write its depth, or the blend, drawn last, would cover it.
+    Scene scene;
+    Mesh quad;
+    quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    Material glass;
+    glass.alphaMode = AlphaMode::Blend;
+    glass.baseColorFactor = {0.2f, 0.4f, 0.9f, 0.5f};
+    for (const Material& material : {Material{}, glass}) {
+        quad.material = *scene.addMaterial(material);
+        (void)scene.addMesh(quad);
+    }
+    (void)scene.addInstance(0, glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)));
+    (void)scene.addInstance(1, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -2)));
+    scene.buildInstances();
+    Camera camera;
+    camera.eye = glm::vec3(0.2f, 0.1f, 4.0f);
+    camera.target = glm::vec3(0.0f);
+    Result<FrameSetup> setup = setUpFrame(scene, camera, 0.0, 64, 48, true);
+    ASSERT_TRUE(setup.ok()) << setup.error().message;
+    const Rendered r = renderModes(scene, setup->params, setup->world, 64, 48);
+    EXPECT_EQ(differingPixels(r.adaptive, r.zbuffer), 0u);
+    EXPECT_EQ(differingPixels(r.depthsort, r.zbuffer), 0u);
+    EXPECT_EQ(r.stats[2].flagged, r.stats[2].polygons) << "every polygon meets the blended one";
+}
+
 // The list drawn backwards, triangle by triangle: where it and the list disagree, two fragments tie
 // for the nearest depth (with ids on, a unique nearest fragment wins in every order).
 DrawList reversed(const DrawList& list) {

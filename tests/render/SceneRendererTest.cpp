@@ -114,6 +114,53 @@ TEST(SceneRendererTest, AFrameIsClearBeginThenEveryInstanceInOrderWithItsMateria
     EXPECT_NE(first.firstId, second.firstId);
 }
 
+// Blended instances are drawn after the rest, far to near by the view depth of their mesh's
+// centroid (ties in list order); the others keep the list's order. Each draw carries its alpha mode.
+TEST(SceneRendererTest, BlendedInstancesComeLastFarToNear) {
+    Scene scene;
+    scene.meshes = {oneTriangle("opaque", 0), oneTriangle("blended", 1), oneTriangle("masked", 2)};
+    Material blended, masked;
+    blended.alphaMode = AlphaMode::Blend;
+    masked.alphaMode = AlphaMode::Mask;
+    masked.alphaCutoff = 0.25f;
+    scene.materials = {Material{}, blended, masked};
+    // Nodes (z): blended at −1, opaque at −2, blended at −5, blended at −1 again, masked at −3.
+    const int meshes[] = {1, 0, 1, 1, 2};
+    const float depths[] = {-1.0f, -2.0f, -5.0f, -1.0f, -3.0f};
+    for (int n = 0; n < 5; ++n) {
+        Node node;
+        node.meshes = {meshes[n]};
+        node.translation = glm::vec3(0.0f, 0.0f, depths[n]);
+        scene.nodes.push_back(node);
+        scene.roots.push_back(n);
+    }
+    scene.buildInstances();
+    RecordingBackend backend;
+    Result<SceneRenderer> renderer = SceneRenderer::create(backend, scene);
+    ASSERT_TRUE(renderer) << renderer.error().message;
+    renderer->setBatching(false);
+    const std::vector<glm::mat4> world = scene.worldTransforms(0.0);
+    renderer->renderFrame(TargetHandle{1}, 8, 8, FrameParams{}, world, glm::vec4(0.0f));
+    ASSERT_EQ(backend.draws.size(), 5u);
+    const float order[] = {-2.0f, -3.0f, -5.0f, -1.0f, -1.0f};  // opaque, masked, then blended far first
+    for (int k = 0; k < 5; ++k) EXPECT_EQ(backend.draws[std::size_t(k)].params.model[3].z, order[k]) << k;
+    EXPECT_EQ(backend.draws[0].params.alphaMode, AlphaMode::Opaque);
+    EXPECT_EQ(backend.draws[1].params.alphaMode, AlphaMode::Mask);
+    EXPECT_EQ(backend.draws[1].params.alphaCutoff, 0.25f);
+    for (int k = 2; k < 5; ++k) EXPECT_EQ(backend.draws[std::size_t(k)].params.alphaMode, AlphaMode::Blend) << k;
+    EXPECT_EQ(backend.draws[3].params.firstId, scene.instances[0].firstId) << "ties keep the list's order";
+    EXPECT_EQ(backend.draws[4].params.firstId, scene.instances[3].firstId);
+
+    // From the other side (looking down +z), the nearest blended instance is the one at −5.
+    FrameParams behind;
+    behind.view = glm::mat4(glm::vec4(-1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, -1, 0), glm::vec4(0, 0, -10, 1));
+    backend.draws.clear();
+    renderer->renderFrame(TargetHandle{1}, 8, 8, behind, world, glm::vec4(0.0f));
+    ASSERT_EQ(backend.draws.size(), 5u);
+    EXPECT_EQ(backend.draws[2].params.model[3].z, -1.0f);
+    EXPECT_EQ(backend.draws[4].params.model[3].z, -5.0f);
+}
+
 TEST(SceneRendererTest, ARefusedUploadIsAnErrorThatNamesIt) {
     Scene scene = twoMeshScene();
     scene.meshes[1].name = "refuse";

@@ -62,6 +62,20 @@ TEST(ReuseSequence, DominoesAtThePapersSizesMatchTheFullRender) {
     }
 }
 
+// Blended instances are dynamic in every frame and drawn after the rest (Reuse.h); masked ones are
+// reused like any other: the sequence still matches the full render, pixel for pixel.
+TEST(ReuseSequence, BlendedAndMaskedSurfacesMatchTheFullRender) {
+    Scene scene = loadOrFail("builtin:dominoes?polygons=804&static=0.5544");
+    test::addAlpha(scene);
+    std::uint64_t blended = 0;
+    for (int i = 0; i < int(scene.instances.size()); ++i) blended += blendedInstance(scene, i) ? 1 : 0;
+    ASSERT_GT(blended, 0u);
+    const std::vector<SequenceResult> results = expectExactEveryWay(scene, 200, 150, 20, animated(scene, {}, 200, 150));
+    for (const SequenceResult& r : results)
+        for (std::size_t i = 0; i < r.stats.size(); ++i)
+            EXPECT_GE(r.stats[i].instances.sd + r.stats[i].instances.dd, blended) << "frame " << i << ": " << r.describe();
+}
+
 TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {
     const Scene scene = loadOrFail("builtin:cubes");
     // Every cube spins: from the second frame on, everything is dynamic.

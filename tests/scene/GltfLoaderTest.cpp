@@ -228,7 +228,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .triangles = 37116,
          .instances = 27,
          .textures = 9,
-         .unsupported = {"KHR_materials_clearcoat", "alphaMode BLEND"}},
+         .unsupported = {"KHR_materials_clearcoat"}},
         {.file = "IncorrectVertexArrays/Cube.gltf",
          .error = "bufferViews[2]: byteOffset 504 + byteLength 432 is beyond the end of buffer 0 (514 bytes)"},
         {.file = "IndexOutOfRange/AllIndicesOutOfRange.gltf",
@@ -1405,11 +1405,12 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     Asset asset = quad();
     asset.json["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_unlit", "KHR_mesh_quantization"};
     asset.json["materials"] = {
-        {{"alphaMode", "MASK"},
+        {{"alphaMode", "MASK"},  // modelled: not reported
          {"normalTexture", {{"index", 0}}},  // modelled: not reported
          {"emissiveFactor", {1, 0, 0}},
          {"extensions", {{"KHR_materials_unlit", Json::object()}}}},
-        {{"alphaMode", "BLEND"}},  // unused: not reported
+        {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},  // unused: not reported
+         {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}},
     };
     asset.json["textures"] = {{{"source", 0}}};
     asset.json["images"] = {{{"uri", "unused.png"}}};
@@ -1425,13 +1426,44 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based", "skins",
-                                               "morph targets",       "primitive mode LINES",   "alphaMode MASK"};
+                                               "morph targets",       "primitive mode LINES"};
     EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));
     EXPECT_EQ(scene->meshes.size(), 2u);  // the LINES primitive is not drawn
     EXPECT_EQ(scene->meshes[0].name, "quad #0");
     EXPECT_EQ(scene->meshes[1].name, "quad #1");
+}
+
+TEST(GltfLoaderTest, AlphaModesAndCutoffsAreReadAsGltfDefinesThem) {
+    Asset asset = quad();
+    asset.json["materials"] = {Json::object(),
+                               {{"alphaMode", "MASK"}},
+                               {{"alphaMode", "MASK"}, {"alphaCutoff", 0.0}},
+                               {{"alphaMode", "BLEND"}, {"alphaCutoff", 0.9}},
+                               {{"alphaMode", "OPAQUE"}}};
+    const Json first = asset.primitive();
+    for (int m = 1; m < 5; ++m) {
+        asset.json["meshes"][0]["primitives"].push_back(first);
+        asset.primitive(0, m)["material"] = m;
+    }
+    asset.primitive(0, 0)["material"] = 0;
+    const Result<Scene> scene = load(writeGltf(test::freshDir("GltfAlpha"), "alpha", asset));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->materials.size(), 5u);
+    const AlphaMode modes[] = {AlphaMode::Opaque, AlphaMode::Mask, AlphaMode::Mask, AlphaMode::Blend, AlphaMode::Opaque};
+    const float cutoffs[] = {0.5f, 0.5f, 0.0f, 0.9f, 0.5f};  // glTF's default cutoff is 0.5
+    for (std::size_t m = 0; m < 5; ++m) {
+        EXPECT_EQ(scene->materials[m].alphaMode, modes[m]) << m;
+        EXPECT_EQ(scene->materials[m].alphaCutoff, cutoffs[m]) << m;
+    }
+    EXPECT_TRUE(scene->unsupported.empty()) << scene->unsupported.front();
+
+    asset.json["materials"][1]["alphaCutoff"] = -0.25;
+    const Result<Scene> negative = load(writeGltf(test::freshDir("GltfAlphaNegative"), "alpha", asset));
+    ASSERT_FALSE(negative.ok());
+    EXPECT_NE(negative.error().message.find("materials[1].alphaCutoff: -0.25 is negative"), std::string::npos)
+        << negative.error().message;
 }
 
 TEST(GltfLoaderTest, APrimitiveWithoutPositionsIsSkippedWithAWarning) {

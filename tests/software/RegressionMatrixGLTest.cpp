@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "GlReference.h"
+#include "software/Shading.h"
 #include "pipeline/Frame.h"
 #include "pipeline/SceneRenderer.h"
 #include "lab/ImageCompare.h"
@@ -245,6 +246,68 @@ Scene maps() {
     return scene;
 }
 
+// Alpha. Top row: masked spheres, a random texture's alpha against cutoffs 0, 0.3, 0.5 and 1,
+// nearest and linear, three of them double-sided so that their inside shows through the holes.
+// Below, over an opaque backdrop that covers half of them (the rest blend over the background):
+// blended spheres with alpha from the factor, from vertex colours and from a texture, a
+// double-sided one whose back faces blend under its front, two that overlap (drawn far to near),
+// and alphas of 0 (colour unchanged; depth and ids written) and 1.
+Scene alpha() {
+    Scene scene;
+    std::mt19937 rng(40);
+    const int holes = randomTexture(scene, rng, 8, 8, true, Filter::Nearest, Wrap::Repeat);
+    const int smooth = randomTexture(scene, rng, 6, 6, true, Filter::Linear, Wrap::Repeat);
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(mesh, true);
+    const float cutoffs[] = {0.0f, 0.3f, 0.5f, 1.0f};
+    for (int k = 0; k < 4; ++k) {
+        Material m;
+        m.baseColorTexture = k % 2 ? holes : smooth;
+        m.alphaMode = AlphaMode::Mask;
+        m.alphaCutoff = cutoffs[k];
+        m.doubleSided = k != 2;
+        m.metallicFactor = 0.0f;
+        m.roughnessFactor = 0.4f;
+        place(scene, mesh, m, {float(k) - 1.5f, 1.0f, 0.0f});
+    }
+    Mesh backdrop;
+    backdrop.positions = {{-2.6f, -2.0f, -1.0f}, {0.2f, -2.0f, -1.0f}, {0.2f, 0.5f, -1.0f}, {-2.6f, 0.5f, -1.0f}};
+    backdrop.indices = {0, 1, 2, 0, 2, 3};
+    finalizeMesh(backdrop, false);
+    Material opaque;
+    opaque.baseColorFactor = {0.2f, 0.5f, 0.3f, 0.3f};  // its alpha is ignored: written as 1
+    opaque.metallicFactor = 0.0f;
+    place(scene, backdrop, opaque, {0.0f, 0.0f, 0.0f});
+    Material blend;
+    blend.alphaMode = AlphaMode::Blend;
+    blend.metallicFactor = 0.0f;
+    blend.roughnessFactor = 0.5f;
+    blend.baseColorFactor = {0.9f, 0.3f, 0.2f, 0.5f};
+    place(scene, mesh, blend, {-1.5f, -0.1f, 0.0f});
+    Mesh coloured = mesh;
+    coloured.colors.resize(coloured.positions.size());
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (glm::vec4& c : coloured.colors) c = {u(rng), u(rng), u(rng), u(rng)};
+    blend.baseColorFactor = {1.0f, 1.0f, 1.0f, 1.0f};
+    place(scene, coloured, blend, {-0.5f, -0.1f, 0.0f});
+    blend.baseColorTexture = smooth;
+    blend.doubleSided = true;
+    place(scene, mesh, blend, {0.5f, -0.1f, 0.0f});
+    blend.baseColorTexture = -1;
+    blend.baseColorFactor = {0.2f, 0.4f, 0.9f, 0.35f};
+    place(scene, mesh, blend, {1.5f, -0.1f, 0.0f});
+    blend.doubleSided = false;
+    place(scene, mesh, blend, {-0.25f, -1.2f, 0.0f});
+    blend.baseColorFactor = {0.9f, 0.9f, 0.2f, 0.6f};
+    place(scene, mesh, blend, {0.25f, -1.2f, 0.4f});
+    blend.baseColorFactor.a = 0.0f;
+    place(scene, mesh, blend, {-1.6f, -1.2f, 0.0f});
+    blend.baseColorFactor.a = 1.0f;
+    place(scene, mesh, blend, {1.6f, -1.2f, 0.0f});
+    scene.buildInstances();
+    return scene;
+}
+
 // Normal maps of generated texels at scales 0, 1, 10 and −1, in the basis of generated tangents
 // (from the sphere's uvs, when the renderer uploads it) and of the file's (random unit vectors, w
 // ±1), with mipmap-less linear and nearest samplers; one double-sided (its inside seen through a cut).
@@ -327,6 +390,7 @@ std::vector<MatrixCase> matrix() {
         {"materials", materials, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"maps", maps, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"normal-maps", normalMaps, 640, 360, lookFrom({0.2f, 0.3f, 4.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
     };
 }
 
@@ -383,6 +447,71 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
         (void)writeFileAtomic((dir / "reference.png").string(), encodeColorPng(images[1]));
         (void)writeFileAtomic((dir / "mask.png").string(), encodeColorPng(r.mask));
         ADD_FAILURE() << "images in " << dir;
+    }
+}
+
+// What alpha writes, on both backends: a masked quad that discards everything leaves the colour,
+// depth and ids of what is behind it; a blended one writes its depth and ids and blends its colour
+// over the pixel below (blendOver, within a step); an opaque one writes alpha 1 whatever its alpha.
+TEST(AlphaGLTest, MaskDiscardsBlendWritesDepthAndIdsAndBlendsTheColour) {
+    const auto quad = [](float z) {
+        Mesh mesh;
+        mesh.positions = {{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}};
+        mesh.indices = {0, 1, 2, 0, 2, 3};
+        finalizeMesh(mesh, false);
+        return mesh;
+    };
+    const auto scene = [&](AlphaMode front, float alpha) {
+        Scene s;
+        Material back;
+        back.baseColorFactor = {0.8f, 0.2f, 0.1f, 0.4f};
+        back.unlit = true;
+        place(s, quad(-1.0f), back, {0, 0, 0});
+        Material over;
+        over.baseColorFactor = {0.1f, 0.3f, 0.9f, alpha};
+        over.unlit = true;
+        over.alphaMode = front;
+        place(s, quad(0.0f), over, {0, 0, 0});
+        s.buildInstances();
+        return s;
+    };
+    std::unique_ptr<Backend> gl = test::makeReference();
+    ASSERT_NE(gl, nullptr);
+    std::unique_ptr<Backend> software = makeSoftwareBackend();
+    for (Backend* backend : {gl.get(), software.get()}) {
+        SCOPED_TRACE(backend->name());
+        const auto render = [&](const Scene& s) {
+            Result<FrameSetup> setup = setUpFrame(s, lookFrom({0, 0, 3}, {0, 0, 0}, 0.5f, 10.0f), 0.0, 16, 16, true);
+            EXPECT_TRUE(setup) << setup.error().message;
+            const TargetHandle target = backend->createTarget(16, 16);
+            Result<SceneRenderer> renderer = SceneRenderer::create(*backend, s);
+            EXPECT_TRUE(renderer) << renderer.error().message;
+            renderer->renderFrame(target, 16, 16, setup->params, setup->world, glm::vec4(0.0f));
+            Buffers out = backend->readBack(target);
+            backend->destroyTarget(target);
+            return out;
+        };
+        const std::size_t centre = 8 * 16 + 4;  // off the quads' diagonal
+        const Buffers masked = render(scene(AlphaMode::Mask, 0.2f));
+        const Buffers opaque = render(scene(AlphaMode::Opaque, 0.2f));
+        const Buffers blended = render(scene(AlphaMode::Blend, 0.5f));
+        // The back quad alone is what the masked frame shows, depth and ids included.
+        // Ids: the back quad's triangles are 1 and 2, the front one's 3 and 4.
+        EXPECT_TRUE(masked.ids[centre] == 1u || masked.ids[centre] == 2u) << "the masked quad writes no id";
+        EXPECT_TRUE(opaque.ids[centre] == 3u || opaque.ids[centre] == 4u);
+        EXPECT_EQ(blended.ids[centre], opaque.ids[centre]) << "a blended surface writes its id";
+        EXPECT_EQ(blended.depth[centre], opaque.depth[centre]) << "and its depth";
+        EXPECT_LT(opaque.depth[centre], masked.depth[centre]);
+        EXPECT_EQ(masked.rgba[4 * centre + 3], 255) << "an opaque surface's alpha is 1";
+        EXPECT_EQ(opaque.rgba[4 * centre + 3], 255);
+        std::uint32_t below = 0, src = 0;
+        for (int c = 0; c < 4; ++c) below |= std::uint32_t(masked.rgba[4 * centre + std::size_t(c)]) << (8 * c);
+        const glm::vec3 colour(0.1f, 0.3f, 0.9f);
+        for (int c = 0; c < 3; ++c) src |= std::uint32_t(sw::ColorEncoding::encode(colour[c])) << (8 * c);
+        src |= 128u << 24;  // 0.5 · 255 = 127.5, rounded to even
+        const std::uint32_t expected = sw::blendOver(src, below);
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(int(blended.rgba[4 * centre + std::size_t(c)]), int((expected >> (8 * c)) & 255u), 1) << c;
     }
 }
 
