@@ -16,7 +16,10 @@
 // blue and roughness × green of the metallic-roughness map; the occlusion map's red darkens the
 // environment's light only, by 1 + strength · (red − 1); emission × the emissive map's rgb; the
 // normal map's rgb · 2 − 1, x and y × scale, normalised, in the basis (tangent, bitangent, normal),
-// each normalised and flipped with the normal on back faces.
+// each normalised and flipped with the normal on back faces. FRUGAL_SPECULAR_GLOSSINESS
+// (KHR_materials_pbrSpecularGlossiness, as the Khronos renderer's getSpecularGlossinessInfo reads
+// it): no metal terms; the dielectric's f0 is the specular colour (× the map's rgb with
+// FRUGAL_SPECULAR_GLOSSINESS_MAP), per channel, and r = 1 − glossiness (× the map's alpha).
 #version 330 core
 
 in vec3 v_normal;
@@ -31,6 +34,12 @@ uniform float u_environment;       // the uniform environment's radiance
 uniform vec3 u_emissive;           // the material's emission
 #ifdef FRUGAL_ALPHA_MASK
 uniform float u_alphaCutoff;
+#endif
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+uniform vec4 u_specularGlossiness;  // rgb the specular colour, a the glossiness
+#endif
+#ifdef FRUGAL_SPECULAR_GLOSSINESS_MAP
+uniform sampler2D u_specularGlossinessMap;  // unit 5
 #endif
 
 layout(location = 0) out vec4 o_color;
@@ -112,11 +121,22 @@ void main() {
     n = normalize((t * m.x + b * m.y) + n * m.z);
 #endif
     vec3 v = normalize(u_eye - v_position);
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 f0 = u_specularGlossiness.rgb;
+    float glossiness = u_specularGlossiness.a;
+#ifdef FRUGAL_SPECULAR_GLOSSINESS_MAP
+    vec4 sg = texture(u_specularGlossinessMap, v_uv);
+    f0 = f0 * sg.rgb;
+    glossiness = glossiness * sg.a;
+#endif
+    float r = 1.0 - glossiness;
+#else
     float metallic = u_metallicRoughness.x, r = u_metallicRoughness.y;
 #ifdef FRUGAL_METALLIC_ROUGHNESS_MAP
     vec4 mr = texture(u_metallicRoughnessMap, v_uv);
     metallic = metallic * mr.b;
     r = r * mr.g;
+#endif
 #endif
     float alpha2 = (r * r) * (r * r);
     float nv = clampedDot(n, v);
@@ -124,13 +144,20 @@ void main() {
 
     // The environment: diffuse and specular image-based light of a uniform radiance.
     vec2 ab = dfg(nv, r);
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 fd = iblFresnel(f0, r, cv, ab);
+    vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + u_environment * fd;
+#else
     float fd = iblFresnel(kDielectricF0, r, cv, ab);
     vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + vec3(u_environment * fd);
     vec3 metal = iblFresnel(base.rgb, r, cv, ab) * u_environment;
+#endif
 #ifdef FRUGAL_OCCLUSION_MAP
     float occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, v_uv).r - 1.0);
     dielectric = dielectric * occlusion;
+#ifndef FRUGAL_SPECULAR_GLOSSINESS
     metal = metal * occlusion;
+#endif
 #endif
 
     // The directional light.
@@ -144,15 +171,24 @@ void main() {
     float radiance = u_light * nl;
     float specular = radiance * (visibility * distribution);
     float ch = pow5(1.0 - vh);
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 fl = f0 + (1.0 - f0) * ch;
+    dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + specular * fl;
+#else
     float fl = kDielectricF0 + (1.0 - kDielectricF0) * ch;
     dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + vec3(specular * fl);
     metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
+#endif
 
     vec3 emissive = u_emissive;
 #ifdef FRUGAL_EMISSIVE_MAP
     emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
 #endif
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 linear = dielectric + emissive;
+#else
     vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + emissive;
+#endif
 #endif
 #ifdef FRUGAL_ALPHA_BLEND
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);

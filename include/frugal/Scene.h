@@ -80,6 +80,16 @@ struct Material {
     // blended or not; only the colour shows what lies behind.
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;  // Mask only; finite, at least 0 (above 1 discards everything)
+    // KHR_materials_pbrSpecularGlossiness, when `specularGlossiness` is set: the base colour (factor,
+    // texture) is the diffuse colour, metallic and the metallic-roughness map are not read, the
+    // dielectric's reflectance at normal incidence is specularFactor × the map's rgb (instead of
+    // 0.04) and roughness is 1 − glossinessFactor × the map's alpha, as the Khronos renderer reads
+    // the extension. The glTF loader reads the extension's diffuse and specular-glossiness textures as
+    // linear, as the Khronos renderer does (the extension calls their rgb sRGB; Texture::srgb says).
+    bool specularGlossiness = false;
+    glm::vec3 specularFactor{1.0f};  // each in [0, 1]
+    float glossinessFactor = 1.0f;   // [0, 1]
+    int specularGlossinessTexture = -1;
 
     // Every member equal (floats by value: a NaN is never equal, so it always counts as a change).
     bool operator==(const Material&) const = default;

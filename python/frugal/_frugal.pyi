@@ -140,6 +140,9 @@ class _Material(TypedDict):
     normal_scale: float
     alpha: Literal["opaque", "mask", "blend"]
     alpha_cutoff: float
+    specular: tuple[float, float, float] | None
+    glossiness: float
+    specular_glossiness_texture: int | None
 
 class _MeshArrays(TypedDict):
     name: str
@@ -149,6 +152,7 @@ class _MeshArrays(TypedDict):
     triangle_source: npt.NDArray[np.uint32]
     colors: npt.NDArray[np.float32] | None
     uvs: npt.NDArray[np.float32] | None
+    tangents: npt.NDArray[np.float32] | None
     material: int
 
 class Scene(_pybind11_object):
@@ -161,10 +165,12 @@ class Scene(_pybind11_object):
                      occlusion_strength: float = ..., emissive_texture: int | None = ...,
                      normal_texture: int | None = ..., normal_scale: float = ...,
                      alpha: Literal["opaque", "mask", "blend"] = ..., alpha_cutoff: float = ...,
-                     name: str = ...) -> int: ...
+                     specular: Sequence[float] | None = ..., glossiness: float = ...,
+                     specular_glossiness_texture: int | None = ..., name: str = ...) -> int: ...
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
-                 colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ..., material: int | None = ...,
-                 name: str = ..., file_order: bool = ...) -> int: ...
+                 colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ...,
+                 tangents: npt.ArrayLike | None = ..., material: int | None = ..., name: str = ...,
+                 file_order: bool = ...) -> int: ...
     def add_instance(self, mesh: int, transform: npt.ArrayLike | None = ..., *, name: str = ...) -> int: ...
     def set_transform(self, node: int, transform: npt.ArrayLike) -> None: ...
     def mesh(self, index: int) -> _MeshArrays: ...

@@ -50,6 +50,7 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
                 double roughness, bool unlit, const py::handle& emissive, std::optional<int> metallicRoughnessTexture,
                 std::optional<int> occlusionTexture, double occlusionStrength, std::optional<int> emissiveTexture,
                 std::optional<int> normalTexture, double normalScale, const std::string& alpha, double alphaCutoff,
+                const py::handle& specular, double glossiness, std::optional<int> specularGlossinessTexture,
                 const std::string& name) {
     if (alpha != "opaque" && alpha != "mask" && alpha != "blend")
         throw InputError{"alpha: '" + alpha + "' is not an alpha mode (opaque, mask, blend)"};
@@ -70,12 +71,16 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
     material.normalScale = float(normalScale);
     material.alphaMode = alpha == "mask" ? AlphaMode::Mask : alpha == "blend" ? AlphaMode::Blend : AlphaMode::Opaque;
     material.alphaCutoff = float(alphaCutoff);
+    material.specularGlossiness = !specular.is_none();
+    if (material.specularGlossiness) material.specularFactor = vectorFrom<3>(specular, "specular");
+    material.glossinessFactor = float(glossiness);
+    material.specularGlossinessTexture = specularGlossinessTexture.value_or(-1);
     return take(s.scene.addMaterial(std::move(material)));
 }
 
 int addMesh(PyScene& s, const py::handle& positions, const py::handle& indices, const py::handle& normals,
-            const py::handle& colors, const py::handle& uvs, std::optional<int> material, const std::string& name,
-            bool fileOrder) {
+            const py::handle& colors, const py::handle& uvs, const py::handle& tangents, std::optional<int> material,
+            const std::string& name, bool fileOrder) {
     Mesh mesh;
     mesh.name = name;
     mesh.positions = vectorsFrom<3>(positions, "positions");
@@ -83,6 +88,7 @@ int addMesh(PyScene& s, const py::handle& positions, const py::handle& indices, 
     if (!normals.is_none()) mesh.normals = vectorsFrom<3>(normals, "normals");
     if (!colors.is_none()) mesh.colors = colorsFrom(colors);
     if (!uvs.is_none()) mesh.uvs = vectorsFrom<2>(uvs, "uvs");
+    if (!tangents.is_none()) mesh.tangents = vectorsFrom<4>(tangents, "tangents");
     mesh.material = material.value_or(-1);
     py::gil_scoped_release unlocked;  // normals and the vertex-cache order
     return take(s.scene.addMesh(std::move(mesh), !fileOrder));
@@ -131,6 +137,11 @@ py::list materialList(const Scene& scene) {
         d["normal_scale"] = m.normalScale;
         d["alpha"] = m.alphaMode == AlphaMode::Mask ? "mask" : m.alphaMode == AlphaMode::Blend ? "blend" : "opaque";
         d["alpha_cutoff"] = m.alphaCutoff;
+        d["specular"] = m.specularGlossiness ? py::object(py::make_tuple(m.specularFactor.r, m.specularFactor.g,
+                                                                          m.specularFactor.b))
+                                             : py::object(py::none());
+        d["glossiness"] = m.glossinessFactor;
+        d["specular_glossiness_texture"] = index(m.specularGlossinessTexture);
         out.append(d);
     }
     return out;
@@ -183,6 +194,7 @@ py::dict meshDict(const Mesh& mesh) {
     d["triangle_source"] = source;
     d["colors"] = mesh.colors.empty() ? py::object(py::none()) : py::object(rows(mesh.colors, 4, 0.0f));
     d["uvs"] = mesh.uvs.empty() ? py::object(py::none()) : py::object(rows(mesh.uvs, 2, 0.0f));
+    d["tangents"] = mesh.tangents.empty() ? py::object(py::none()) : py::object(rows(mesh.tangents, 4, 0.0f));
     d["material"] = mesh.material;
     return d;
 }
@@ -227,7 +239,8 @@ void bindScene(py::module_& m) {
              py::arg("occlusion_texture") = py::none(), py::arg("occlusion_strength") = 1.0,
              py::arg("emissive_texture") = py::none(), py::arg("normal_texture") = py::none(),
              py::arg("normal_scale") = 1.0, py::arg("alpha") = "opaque", py::arg("alpha_cutoff") = 0.5,
-             py::arg("name") = "",
+             py::arg("specular") = py::none(), py::arg("glossiness") = 1.0,
+             py::arg("specular_glossiness_texture") = py::none(), py::arg("name") = "",
              "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
              "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
              "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
@@ -238,13 +251,20 @@ void bindScene(py::module_& m) {
              "normals, x and y x normal_scale; a mesh's tangents are generated when it is drawn).\n"
              "alpha (the base colour's, texture and vertex colours included): 'opaque' (ignored), 'mask' (fragments\n"
              "below alpha_cutoff are discarded) or 'blend' (drawn after the rest, far to near, over what is\n"
-             "behind; depth and ids are written as for the others). Returns its index.")
+             "behind; depth and ids are written as for the others).\n"
+             "specular (RGB in [0, 1]) makes it a KHR_materials_pbrSpecularGlossiness material: color is the\n"
+             "diffuse colour, metallic and roughness are not read, the reflectance at normal incidence is specular\n"
+             "(x the rgb of specular_glossiness_texture) and roughness 1 - glossiness (x its alpha).\n"
+             "Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
+             py::arg("tangents") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,
              "A triangle mesh: positions (N, 3), indices (T, 3) or (3T,) of an integer dtype, counter-clockwise\n"
-             "= front; normals (N, 3) (computed when None), colors (N, 3|4), uvs (N, 2). Checked (dtype, shape,\n"
-             "finite values, indices below N) and finished as a loaded mesh is: its triangles are reordered for\n"
+             "= front; normals (N, 3) (computed when None), colors (N, 3|4), uvs (N, 2), tangents (N, 4) as glTF's\n"
+             "TANGENT (xyz toward increasing u, w = +1 or -1 the handedness; generated for a normal map when None).\n"
+             "Checked (dtype, shape, finite values, indices below N) and finished as a loaded mesh is: its\n"
+             "triangles are reordered for\n"
              "the vertex cache unless file_order, and triangle ids stay those of `indices`. Returns its index.")
         .def("add_instance", &addInstance, py::arg("mesh"), py::arg("transform") = py::none(), py::kw_only(),
              py::arg("name") = "",

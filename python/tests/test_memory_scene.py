@@ -6,6 +6,7 @@ import struct
 import zlib
 
 import numpy as np
+import pytest
 
 import frugal
 
@@ -197,6 +198,58 @@ def test_alpha_modes_are_drawn_and_listed():
     assert np.abs(gl.color.astype(int) - software.color).max() <= 1
     np.testing.assert_array_equal(gl.ids, software.ids)
     assert (gl.color != render(False, "auto").color).any()
+
+
+def test_specular_glossiness_is_drawn_and_listed():
+    """A KHR_materials_pbrSpecularGlossiness material with its map: listed as given, drawn alike by GL
+    and the software reference, and unlike the metallic-roughness material of the same colour."""
+    grid, grid_indices, _, uvs = grid_arrays()
+    texels = np.random.default_rng(41).integers(0, 256, (8, 8, 4), np.uint8)
+    camera = frugal.Camera.look_at((0.3, 0.8, 3.5), (0, 0, 0), fov=50)
+
+    def render(specular, backend):
+        scene = frugal.Scene()
+        options = {}
+        if specular:
+            options = dict(specular=(0.9, 0.6, 0.2), glossiness=0.7,
+                           specular_glossiness_texture=scene.add_texture(texels, srgb=False))
+        material = scene.add_material((0.4, 0.5, 0.8), metallic=0.0, roughness=0.5, **options)
+        listed = scene.materials[material]
+        assert (listed["specular"] is not None) == specular
+        if specular:
+            assert listed["specular_glossiness_texture"] == 0 and listed["glossiness"] == np.float32(0.7)
+        scene.add_instance(scene.add_mesh(grid, grid_indices, uvs=uvs, material=material))
+        return frugal.Renderer(scene, size=(160, 120), backend=backend).render(camera).color
+
+    glossy = render(True, "auto")
+    assert np.abs(glossy.astype(int) - render(True, "software")).max() <= 1
+    assert (glossy != render(False, "auto")).any()
+
+
+def test_given_tangents_are_kept_and_drawn():
+    """Tangents given to add_mesh are the mesh's (given back by mesh()), and a normal map is read in
+    their basis: the same mesh with the tangents turned about the normal draws differently; GL and
+    the software reference agree."""
+    grid, grid_indices, _, uvs = grid_arrays()
+    texels = np.random.default_rng(42).integers(0, 256, (8, 8, 4), np.uint8)
+    camera = frugal.Camera.look_at((0.3, 0.8, 3.5), (0, 0, 0), fov=50)
+
+    def render(tangent, backend):
+        scene = frugal.Scene()
+        normal_map = scene.add_texture(texels, srgb=False)
+        material = scene.add_material((0.8, 0.7, 0.5), metallic=0.0, roughness=0.4, normal_texture=normal_map)
+        tangents = np.tile(np.array(tangent, np.float32), (len(grid), 1))
+        mesh = scene.add_mesh(grid, grid_indices, uvs=uvs, tangents=tangents, material=material)
+        np.testing.assert_array_equal(scene.mesh(mesh)["tangents"], tangents)
+        scene.add_instance(mesh)
+        return frugal.Renderer(scene, size=(160, 120), backend=backend).render(camera).color
+
+    along_u = render((1, 0, 0, 1), "auto")
+    assert np.abs(along_u.astype(int) - render((1, 0, 0, 1), "software")).max() <= 1
+    assert (along_u != render((0, 1, 0, -1), "auto")).any()
+    scene = frugal.Scene()
+    with pytest.raises(frugal.InputError, match=r"tangents: expected an \(N, 4\) array"):
+        scene.add_mesh(grid, grid_indices, tangents=np.ones((len(grid), 3), np.float32))
 
 
 def test_mesh_arrays_round_trip():

@@ -282,9 +282,13 @@ std::string minimalFrameUnsupported(const Scene& scene) {
         if (mesh.material < 0) continue;
         const Material& material = scene.materials[std::size_t(mesh.material)];
         if (material.baseColorTexture >= 0 || material.metallicRoughnessTexture >= 0 ||
-            material.occlusionTexture >= 0 || material.emissiveTexture >= 0 || material.normalTexture >= 0)
+            material.occlusionTexture >= 0 || material.emissiveTexture >= 0 || material.normalTexture >= 0 ||
+            material.specularGlossinessTexture >= 0)
             return "material " + std::to_string(mesh.material) + quotedName(material.name) +
                    " has a texture, which the minimal frame does not draw";
+        if (material.specularGlossiness || material.alphaMode != AlphaMode::Opaque)
+            return "material " + std::to_string(mesh.material) + quotedName(material.name) +
+                   " is specular-glossiness or not opaque, which the minimal frame does not draw";
     }
     return {};
 }

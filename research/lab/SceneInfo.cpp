@@ -102,11 +102,12 @@ void printShading(const Scene& scene, std::ostream& out) {
         if (!drawn[i]) continue;
         const Mesh& mesh = scene.meshes[i];
         const Material& m = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)] : kDefault;
-        std::string terms = m.unlit ? "unlit" : "metallic-roughness BRDF";
+        std::string terms = m.unlit ? "unlit" : m.specularGlossiness ? "specular-glossiness BRDF" : "metallic-roughness BRDF";
         if (m.baseColorTexture >= 0) terms += ", base colour map";
         if (!mesh.colors.empty()) terms += ", vertex colours";
         if (!m.unlit) {
-            if (m.metallicRoughnessTexture >= 0) terms += ", metallic-roughness map";
+            if (m.metallicRoughnessTexture >= 0 && !m.specularGlossiness) terms += ", metallic-roughness map";
+            if (m.specularGlossinessTexture >= 0 && m.specularGlossiness) terms += ", specular-glossiness map";
             if (m.occlusionTexture >= 0) terms += ", occlusion map";
             if (m.emissiveTexture >= 0) terms += ", emissive map";
             if (m.normalTexture >= 0)
@@ -138,11 +139,17 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         out << "  '" << m.name << "' base colour " << fmt(m.baseColorFactor.r) << "," << fmt(m.baseColorFactor.g) << ","
             << fmt(m.baseColorFactor.b) << "," << fmt(m.baseColorFactor.a)
             << (m.baseColorTexture >= 0 ? ", texture " + std::to_string(m.baseColorTexture) : std::string())
-            << (m.unlit ? ", unlit"
-                        : ", metallic " + fmt(m.metallicFactor) + ", roughness " + fmt(m.roughnessFactor))
-            << (m.doubleSided ? ", double-sided" : ", single-sided");
+            << (m.unlit                ? ", unlit"
+                : m.specularGlossiness ? ", specular " + fmt(m.specularFactor.r) + "," + fmt(m.specularFactor.g) + "," +
+                                             fmt(m.specularFactor.b) + ", glossiness " + fmt(m.glossinessFactor)
+                                       : ", metallic " + fmt(m.metallicFactor) + ", roughness " + fmt(m.roughnessFactor))
+            << (m.doubleSided ? ", double-sided" : ", single-sided")
+            << (m.alphaMode == AlphaMode::Mask    ? ", alpha mask at " + fmt(m.alphaCutoff)
+                : m.alphaMode == AlphaMode::Blend ? std::string(", blended")
+                                                  : std::string());
         if (!m.unlit) {
             if (m.metallicRoughnessTexture >= 0) out << ", metallic-roughness map " << m.metallicRoughnessTexture;
+            if (m.specularGlossinessTexture >= 0) out << ", specular-glossiness map " << m.specularGlossinessTexture;
             if (m.occlusionTexture >= 0)
                 out << ", occlusion map " << m.occlusionTexture << " at " << fmt(m.occlusionStrength);
             if (m.emissiveTexture >= 0) out << ", emissive map " << m.emissiveTexture;

@@ -73,7 +73,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         {params.metallicRoughnessTexture, kMetallicRoughnessBit},
         {params.occlusionTexture, kOcclusionBit},
         {params.emissiveTexture, kEmissiveBit},
-        {params.normalTexture, kNormalMapBit}};
+        {params.normalTexture, kNormalMapBit},
+        {params.specularGlossinessTexture, kSpecularGlossinessMapBit}};
     GLuint textures[kTextureUnits] = {};
     for (int unit = 0; unit < kTextureUnits; ++unit) {
         if (maps[unit].first == kNoHandle) continue;
@@ -84,7 +85,11 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
             variant |= maps[unit].second;
         }
     }
-    if (params.unlit) variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit);  // light only
+    if (params.specularGlossiness) variant = (variant & ~kMetallicRoughnessBit) | kSpecularGlossinessBit;
+    else variant &= ~kSpecularGlossinessMapBit;
+    if (params.unlit)  // light only
+        variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit | kSpecularGlossinessBit |
+                     kSpecularGlossinessMapBit);
     if (mesh.layout.tangent < 0) variant &= ~kNormalMapBit;  // no basis to read it in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
     if (params.unlit) variant |= kUnlitBit;
@@ -123,6 +128,9 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform3fv(p->emissive, 1, glm::value_ptr(params.emissive));
     if ((variant & kAlphaMaskBit) && state_.uniformChanged(p->alphaCutoffValue, params.alphaCutoff))
         gl_.Uniform1f(p->alphaCutoff, params.alphaCutoff);
+    const glm::vec4 specularGlossiness(params.specular, params.glossiness);
+    if ((variant & kSpecularGlossinessBit) && state_.uniformChanged(p->specularGlossinessValue, specularGlossiness))
+        gl_.Uniform4fv(p->specularGlossiness, 1, glm::value_ptr(specularGlossiness));
     const glm::vec2 metallicRoughness(params.metallic, params.roughness);
     if (state_.uniformChanged(p->metallicRoughnessValue, metallicRoughness))
         gl_.Uniform2fv(p->metallicRoughness, 1, glm::value_ptr(metallicRoughness));

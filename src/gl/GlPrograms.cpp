@@ -1,10 +1,10 @@
 // The GL backend's program variants (the class: GlBackendImpl.h).
 //
 // Programs: one variant of shaders/mesh.vert + mesh.frag per combination of what a draw uses — each
-// of the material's maps, vertex colours, ids, an unlit material — compiled on first use (each also
-// in an instanced form for drawInstances, but for the normal map's; and by alpha mode: 2048 possible, a
-// scene uses a few). A variant leaves out what the draw does not use instead of feeding it white (a 1×1 white
-// texture, a white colour varying, an unused flat id varying), because each of those costs llvmpipe
+// of the material's maps, vertex colours, ids, an unlit material, its alpha mode, specular-glossiness
+// — compiled on first use (each also in an instanced form for drawInstances, but for the normal
+// map's): 8192 possible, a scene uses a few. A variant leaves out what the draw does not use instead
+// of feeding it white (a 1×1 white texture, a white colour varying, an unused flat id varying), because each of those costs llvmpipe
 // time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so leaving it out changes no
 // bit. The interpolated white colour was not always 1.0: llvmpipe
 // interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about 15 % of
@@ -80,6 +80,8 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kUnlitBit) defines += "#define FRUGAL_UNLIT\n";
     if (variant & kAlphaMaskBit) defines += "#define FRUGAL_ALPHA_MASK\n";
     if (variant & kAlphaBlendBit) defines += "#define FRUGAL_ALPHA_BLEND\n";
+    if (variant & kSpecularGlossinessBit) defines += "#define FRUGAL_SPECULAR_GLOSSINESS\n";
+    if (variant & kSpecularGlossinessMapBit) defines += "#define FRUGAL_SPECULAR_GLOSSINESS_MAP\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -99,10 +101,11 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.occlusionStrength = gl_.GetUniformLocation(p.name, "u_occlusionStrength");
     p.normalScale = gl_.GetUniformLocation(p.name, "u_normalScale");
     p.alphaCutoff = gl_.GetUniformLocation(p.name, "u_alphaCutoff");
+    p.specularGlossiness = gl_.GetUniformLocation(p.name, "u_specularGlossiness");
     // Each map on its own texture unit, in DrawParams' order (absent samplers: location -1, ignored).
     state_.useProgram(p.name);
-    const char* samplers[kTextureUnits] = {"u_baseColor", "u_metallicRoughnessMap", "u_occlusionMap", "u_emissiveMap",
-                                           "u_normalMap"};
+    const char* samplers[kTextureUnits] = {"u_baseColor",   "u_metallicRoughnessMap", "u_occlusionMap",
+                                           "u_emissiveMap", "u_normalMap",            "u_specularGlossinessMap"};
     for (int unit = 0; unit < kTextureUnits; ++unit)
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, samplers[unit]), unit);
     return {};

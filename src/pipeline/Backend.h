@@ -83,6 +83,9 @@ struct IndexRange {
 //       (0 where the sum is 0);  S = E·n·l·V·D
 //     dielectric = E·n·l·base.rgb/π·(1 − Fl(0.04)) + S·Fl(0.04);  metal = S·Fl(base.rgb),
 //     Fl(f0) = f0 + (1 − f0)·c5(v·h)
+//   Specular-glossiness (DrawParams::specularGlossiness): m = 0 (the metal terms are not computed),
+//   the dielectric's 0.04 becomes f0 = specular × the map's rgb, per channel, in F and Fl above,
+//   and r = 1 − glossiness × the map's alpha.
 //   rgb = mix(dielectric, metal, m) of both, summed, + the material's emissive. An unlit material
 //   (DrawParams::unlit, KHR_materials_unlit) has rgb = base.rgb. Alpha (DrawParams::alphaMode): a = 1
 //   for Opaque; Mask discards the fragment (no colour, depth or id) where base.a < alphaCutoff and
@@ -140,6 +143,11 @@ struct DrawParams {
     bool doubleSided = false;           // false: cull back faces (counter-clockwise is front)
     AlphaMode alphaMode = AlphaMode::Opaque;  // see the shading model above
     float alphaCutoff = 0.5f;                 // Mask's
+    // KHR_materials_pbrSpecularGlossiness (Material): metallic, roughness and their map unread.
+    bool specularGlossiness = false;
+    glm::vec3 specular{1.0f};
+    float glossiness = 1.0f;
+    TextureHandle specularGlossinessTexture = kNoHandle;  // rgb × specular, alpha × glossiness
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
 };

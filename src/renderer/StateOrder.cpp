@@ -19,7 +19,10 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
         const std::uint32_t maps = material ? (material->metallicRoughnessTexture >= 0 ? 4u : 0u) |
                                                   (material->occlusionTexture >= 0 ? 8u : 0u) |
                                                   (material->emissiveTexture >= 0 ? 16u : 0u) |
-                                                  (material->normalTexture >= 0 ? 32u : 0u)
+                                                  (material->normalTexture >= 0 ? 32u : 0u) |
+                                                  (material->specularGlossiness ? 64u : 0u) |
+                                                  (material->specularGlossinessTexture >= 0 ? 128u : 0u) |
+                                                  (std::uint32_t(material->alphaMode) << 8)
                                             : 0u;
         sets.push_back({1 + ((textured ? 1u : 0u) | (mesh.colors.empty() ? 0u : 2u) | maps),
                         std::uint32_t(1 + meshIndex), textured ? std::uint32_t(1 + material->baseColorTexture) : 0u,

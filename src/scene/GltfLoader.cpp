@@ -228,14 +228,29 @@ struct TextureTransform {
     int texCoord = 0;
 };
 
+// A texture reference written inside an extension (tinygltf leaves those as JSON values).
+struct ExtensionTexture {
+    int index = -1, texCoord = 0;
+    tinygltf::ExtensionMap extensions;
+};
+
+// KHR_materials_pbrSpecularGlossiness as a material writes it (defaults where it does not).
+struct SpecularGlossiness {
+    bool present = false;
+    glm::vec4 diffuse{1.0f};
+    glm::vec3 specular{1.0f};
+    float glossiness = 1.0f;
+    ExtensionTexture diffuseTexture, specularGlossinessTexture;
+};
+
 // A material's textures as drawn: each map it has (base colour, metallic-roughness, occlusion,
 // emissive, normal), sampled at one set of coordinates through one transform, the first map's. (frugal keeps
 // one set of texture coordinates per mesh.) A map that asks for other coordinates is not drawn.
 struct MaterialMaps {
-    enum Map { kBaseColor, kMetallicRoughness, kOcclusion, kEmissive, kNormal, kMapCount };
-    static constexpr const char* kNames[kMapCount] = {"base colour", "metallic-roughness", "occlusion", "emissive",
-                                                      "normal"};
-    std::array<int, kMapCount> texture{-1, -1, -1, -1, -1};  // glTF texture, -1 = none or not drawn
+    enum Map { kBaseColor, kMetallicRoughness, kOcclusion, kEmissive, kNormal, kSpecularGlossiness, kMapCount };
+    static constexpr const char* kNames[kMapCount] = {"base colour", "metallic-roughness", "occlusion",
+                                                      "emissive",    "normal",             "specular-glossiness"};
+    std::array<int, kMapCount> texture{-1, -1, -1, -1, -1, -1};  // glTF texture, -1 = none or not drawn
     TextureTransform transform;  // the coordinates they share
     bool differing = false;      // a map was left out for its coordinates
     bool any() const { return std::any_of(texture.begin(), texture.end(), [](int t) { return t >= 0; }); }
@@ -289,6 +304,8 @@ private:
     int useTexture(int gltfTexture, int material, bool srgb, const char* use);
     // The textures of material `material` that are drawn, and the coordinates they share.
     MaterialMaps mapsOf(int material) const;
+    SpecularGlossiness specularGlossinessOf(int material) const;
+    ExtensionTexture extensionTexture(const tinygltf::Value& value, const std::string& where) const;
     void convertAnimations();
     void addCamera(int node);
 
@@ -459,6 +476,61 @@ TextureTransform textureTransformOf(int texCoord, const tinygltf::ExtensionMap& 
     return out;
 }
 
+ExtensionTexture Converter::extensionTexture(const tinygltf::Value& value, const std::string& where) const {
+    if (!value.IsObject()) fail(where, ": not an object");
+    const auto integer = [&](const char* name, double limit) {
+        const double d = extensionNumber(value.Get(name), cat(where, ".", name));
+        if (d < 0.0 || d >= limit || d != std::floor(d))
+            fail(where, ".", name, ": ", d, std::string(name) == "index" ? " is not a texture (the file has " : " is not a set index (",
+                 std::string(name) == "index" ? cat(model_.textures.size(), ")") : std::string("0 to 255)"));
+        return int(d);
+    };
+    if (!value.Has("index")) fail(where, ": no index");
+    ExtensionTexture out;
+    out.index = integer("index", double(model_.textures.size()));
+    if (value.Has("texCoord")) out.texCoord = integer("texCoord", 256.0);
+    if (value.Has("extensions")) {
+        const tinygltf::Value& extensions = value.Get("extensions");
+        if (!extensions.IsObject()) fail(where, ".extensions: not an object");
+        for (const std::string& key : extensions.Keys()) out.extensions[key] = extensions.Get(key);
+    }
+    return out;
+}
+
+SpecularGlossiness Converter::specularGlossinessOf(int material) const {
+    const tinygltf::Material& src = model_.materials[std::size_t(material)];
+    SpecularGlossiness out;
+    const auto it = src.extensions.find("KHR_materials_pbrSpecularGlossiness");
+    if (it == src.extensions.end()) return out;
+    out.present = true;
+    const tinygltf::Value& ext = it->second;
+    const std::string at = cat("materials[", material, "].extensions.KHR_materials_pbrSpecularGlossiness");
+    if (!ext.IsObject()) fail(at, ": not an object");
+    // Factors: numbers in [0, 1], as the extension defines them.
+    const auto factors = [&](const char* name, float* values, int count) {
+        if (!ext.Has(name)) return;
+        const tinygltf::Value& v = ext.Get(name);
+        if (!v.IsArray() || v.ArrayLen() != std::size_t(count)) fail(at, ".", name, ": not an array of ", count, " numbers");
+        for (int k = 0; k < count; ++k) {
+            const double d = extensionNumber(v.Get(k), cat(at, ".", name, "[", k, "]"));
+            if (!(d >= 0.0 && d <= 1.0)) fail(at, ".", name, "[", k, "]: ", d, " is not in [0, 1]");
+            values[k] = float(d);
+        }
+    };
+    factors("diffuseFactor", &out.diffuse[0], 4);
+    factors("specularFactor", &out.specular[0], 3);
+    if (ext.Has("glossinessFactor")) {
+        const double d = extensionNumber(ext.Get("glossinessFactor"), at + ".glossinessFactor");
+        if (!(d >= 0.0 && d <= 1.0)) fail(at, ".glossinessFactor: ", d, " is not in [0, 1]");
+        out.glossiness = float(d);
+    }
+    if (ext.Has("diffuseTexture")) out.diffuseTexture = extensionTexture(ext.Get("diffuseTexture"), at + ".diffuseTexture");
+    if (ext.Has("specularGlossinessTexture"))
+        out.specularGlossinessTexture =
+            extensionTexture(ext.Get("specularGlossinessTexture"), at + ".specularGlossinessTexture");
+    return out;
+}
+
 MaterialMaps Converter::mapsOf(int material) const {
     const tinygltf::Material& src = model_.materials[std::size_t(material)];
     const std::string where = cat("materials[", material, "]");
@@ -469,13 +541,22 @@ MaterialMaps Converter::mapsOf(int material) const {
     };
     const tinygltf::TextureInfo& base = src.pbrMetallicRoughness.baseColorTexture;
     const tinygltf::TextureInfo& mr = src.pbrMetallicRoughness.metallicRoughnessTexture;
+    // With KHR_materials_pbrSpecularGlossiness the diffuse texture is the base colour's, and the
+    // specular-glossiness map replaces the metallic-roughness one.
+    const SpecularGlossiness sg = specularGlossinessOf(material);
+    const ExtensionTexture& diffuse = sg.diffuseTexture;
+    const ExtensionTexture& specular = sg.specularGlossinessTexture;
     const Reference references[MaterialMaps::kMapCount] = {
-        {base.index, base.texCoord, base.extensions, ".pbrMetallicRoughness.baseColorTexture"},
-        {mr.index, mr.texCoord, mr.extensions, ".pbrMetallicRoughness.metallicRoughnessTexture"},
+        sg.present ? Reference{diffuse.index, diffuse.texCoord, diffuse.extensions,
+                               ".extensions.KHR_materials_pbrSpecularGlossiness.diffuseTexture"}
+                   : Reference{base.index, base.texCoord, base.extensions, ".pbrMetallicRoughness.baseColorTexture"},
+        {sg.present ? -1 : mr.index, mr.texCoord, mr.extensions, ".pbrMetallicRoughness.metallicRoughnessTexture"},
         {src.occlusionTexture.index, src.occlusionTexture.texCoord, src.occlusionTexture.extensions,
          ".occlusionTexture"},
         {src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions, ".emissiveTexture"},
         {src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, ".normalTexture"},
+        {specular.index, specular.texCoord, specular.extensions,
+         ".extensions.KHR_materials_pbrSpecularGlossiness.specularGlossinessTexture"},
     };
     MaterialMaps maps;
     bool first = true;
@@ -885,6 +966,12 @@ void Converter::convertMaterials() {
         const double cutoff = src.alphaCutoff;
         if (!(cutoff >= 0.0)) fail(where, ".alphaCutoff: ", cutoff, " is negative");
         material.alphaCutoff = toFloat(cutoff, where + ".alphaCutoff");
+        if (const SpecularGlossiness sg = specularGlossinessOf(m); sg.present) {
+            material.specularGlossiness = true;
+            material.baseColorFactor = sg.diffuse;  // the diffuse colour is the base colour
+            material.specularFactor = sg.specular;
+            material.glossinessFactor = sg.glossiness;
+        }
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
         const MaterialMaps maps = mapsOf(m);  // (KHR_texture_transform: one transform for them all)
@@ -892,11 +979,15 @@ void Converter::convertMaterials() {
         material.baseColorTransform = maps.transform.matrix;
         int* const targets[MaterialMaps::kMapCount] = {&material.baseColorTexture, &material.metallicRoughnessTexture,
                                                        &material.occlusionTexture, &material.emissiveTexture,
-                                                       &material.normalTexture};
+                                                       &material.normalTexture, &material.specularGlossinessTexture};
         for (int k = 0; k < MaterialMaps::kMapCount; ++k) {
             if (maps.texture[std::size_t(k)] < 0) continue;
-            // Colour is sRGB-encoded (base colour, emission); data is linear.
-            const bool srgb = k == MaterialMaps::kBaseColor || k == MaterialMaps::kEmissive;
+            // Colour is sRGB-encoded (base colour, emission); data is linear. The Khronos renderer
+            // reads both textures of KHR_materials_pbrSpecularGlossiness as linear (the extension
+            // says their rgb is sRGB), and so does frugal: its images are measured against that
+            // renderer's (docs/fidelity.md).
+            const bool srgb =
+                (k == MaterialMaps::kBaseColor && !material.specularGlossiness) || k == MaterialMaps::kEmissive;
             *targets[k] = useTexture(maps.texture[std::size_t(k)], m, srgb, MaterialMaps::kNames[k]);
         }
         // Emission from a texture that is not drawn: none (rather than the factor's full brightness
@@ -918,7 +1009,7 @@ void Converter::untextureMeshesWithoutUvs() {
             copy.name += " (untextured)";
             if (copy.emissiveTexture >= 0) copy.emissiveFactor = glm::vec3(0.0f);  // its emission needs it
             copy.baseColorTexture = copy.metallicRoughnessTexture = copy.occlusionTexture = -1;
-            copy.emissiveTexture = copy.normalTexture = -1;
+            copy.emissiveTexture = copy.normalTexture = copy.specularGlossinessTexture = -1;
             scene_.materials.push_back(copy);
         }
         mesh.material = it->second;
@@ -990,10 +1081,11 @@ Scene Converter::run() {
     scene_.source = path_;
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
     // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (one
-    // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor.
+    // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor;
+    // KHR_materials_pbrSpecularGlossiness is Material::specularGlossiness (specularGlossinessOf).
     for (const std::string& name : extensions_)
         if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
-            name != "KHR_materials_emissive_strength")
+            name != "KHR_materials_emissive_strength" && name != "KHR_materials_pbrSpecularGlossiness")
             report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();

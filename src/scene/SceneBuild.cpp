@@ -90,7 +90,8 @@ Result<int> Scene::addMaterial(Material material) {
                                                 {"metallic-roughness texture", material.metallicRoughnessTexture},
                                                 {"occlusion texture", material.occlusionTexture},
                                                 {"emissive texture", material.emissiveTexture},
-                                                {"normal texture", material.normalTexture}};
+                                                {"normal texture", material.normalTexture},
+                                                {"specular-glossiness texture", material.specularGlossinessTexture}};
     for (const auto& [what, index] : maps)
         if (index < -1 || index >= int(textures.size()))
             return bad(std::string("material: ") + what + " " + std::to_string(index) +
@@ -101,7 +102,10 @@ Result<int> Scene::addMaterial(Material material) {
     };
     for (const std::string& problem :
          {factorProblem("metallic", material.metallicFactor), factorProblem("roughness", material.roughnessFactor),
-          factorProblem("occlusion strength", material.occlusionStrength)})
+          factorProblem("occlusion strength", material.occlusionStrength),
+          factorProblem("glossiness", material.glossinessFactor), factorProblem("specular red", material.specularFactor.r),
+          factorProblem("specular green", material.specularFactor.g),
+          factorProblem("specular blue", material.specularFactor.b)})
         if (!problem.empty()) return bad(problem);
     if (!std::isfinite(material.normalScale))
         return bad("material: normal scale " + fmt(double(material.normalScale)) + " is not finite");

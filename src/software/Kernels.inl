@@ -401,6 +401,7 @@ struct Light {
         F8 metallic, roughness;
         const F8* occlusion;  // the occlusion map's red, or nullptr: none
         F8 emission[3];
+        const F8* specular = nullptr;  // specular-glossiness: the dielectric's f0 per channel (no metal)
     };
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
@@ -416,17 +417,24 @@ struct Light {
         // The environment.
         F8 a, b;
         dfg(nv, r, a, b);
-        const F8 fd = iblFresnel(f0, r, cv, a, b);
-        F8 dielectric[3], metal[3];
-        for (int c = 0; c < 3; ++c) {
-            dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
-            metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
+        F8 dielectric[3], metal[3] = {zero, zero, zero};  // (no metal terms with specular-glossiness)
+        if (surface.specular) {
+            for (int c = 0; c < 3; ++c) {
+                const F8 fd = iblFresnel(surface.specular[c], r, cv, a, b);
+                dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
+            }
+        } else {
+            const F8 fd = iblFresnel(f0, r, cv, a, b);
+            for (int c = 0; c < 3; ++c) {
+                dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
+                metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
+            }
         }
         if (surface.occlusion) {
             const F8 occlusion = one + occlusionStrength * (*surface.occlusion - one);
             for (int c = 0; c < 3; ++c) {
                 dielectric[c] = dielectric[c] * occlusion;
-                metal[c] = metal[c] * occlusion;
+                if (!surface.specular) metal[c] = metal[c] * occlusion;
             }
         }
 
@@ -441,6 +449,14 @@ struct Light {
         const F8 radiance = intensity * nl;
         const F8 specular = radiance * (visibility * distribution);
         const F8 ch = pow5(one - vh);
+        if (surface.specular) {
+            for (int c = 0; c < 3; ++c) {
+                const F8 fl = surface.specular[c] + (one - surface.specular[c]) * ch;
+                dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
+                out[c] = dielectric[c] + surface.emission[c];
+            }
+            return;
+        }
         const F8 fl = f0 + (one - f0) * ch;
         for (int c = 0; c < 3; ++c) {
             dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
@@ -576,7 +592,18 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 const Vec3 v = normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
                 Light::Surface surface{light.metallicFactor, light.roughnessFactor, nullptr,
                                        {light.emission[0], light.emission[1], light.emission[2]}};
-                F8 map[4];
+                F8 map[4], specular[3];
+                if (shading.specularGlossiness) {
+                    F8 glossiness = simd::splat(shading.glossiness);
+                    for (int c = 0; c < 3; ++c) specular[c] = simd::splat(shading.specular[c]);
+                    if (shading.specularGlossinessMap) {
+                        sampleLanes(*shading.specularGlossinessMap, s, tt, lanes, map);
+                        for (int c = 0; c < 3; ++c) specular[c] = specular[c] * map[c];
+                        glossiness = glossiness * map[3];
+                    }
+                    surface.specular = specular;
+                    surface.roughness = one - glossiness;
+                }
                 if (shading.metallicRoughness) {
                     sampleLanes(*shading.metallicRoughness, s, tt, lanes, map);
                     surface.metallic = surface.metallic * map[2];

@@ -18,6 +18,8 @@
 // the BRDF of pipeline/Backend.h in mesh.frag's order of operations (Kernels.inl, `Light`); a = 1, or
 // base.a for a blended draw; a masked draw discards where base.a < cutoff (an ordered compare: NaN
 // passes).
+// Specular-glossiness: f0 = specular · the map's rgb per channel where the BRDF has 0.04, r = 1 −
+// glossiness · its alpha, no metal terms (rgb = dielectric + emission).
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
@@ -184,11 +186,18 @@ struct DrawShading {
     float occlusionStrength = 1.0f;
     const SoftwareTexture* normalMap = nullptr;  // read in the tangent basis (varyings 12–17)
     float normalScale = 1.0f;
+    // KHR_materials_pbrSpecularGlossiness (DrawParams): metallic, roughness and their map unread.
+    bool specularGlossiness = false;
+    glm::vec3 specular{1.0f};
+    float glossiness = 1.0f;
+    const SoftwareTexture* specularGlossinessMap = nullptr;
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
     glm::vec3 emission{0.0f};
-    bool mapped() const { return texture || metallicRoughness || occlusion || emissive || normalMap; }  // reads uvs
+    bool mapped() const {  // reads uvs
+        return texture || metallicRoughness || occlusion || emissive || normalMap || specularGlossinessMap;
+    }
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting

@@ -213,6 +213,8 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.uvTransform = params.uvTransform;
     input.shading.factor = params.baseColorFactor;
     input.shading.metallic = params.metallic;
+    input.shading.specular = params.specular;
+    input.shading.glossiness = params.glossiness;
     input.shading.roughness = params.roughness;
     input.shading.unlit = params.unlit;
     input.shading.emission = params.emissive;
@@ -225,7 +227,11 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     };
     input.shading.texture = texture(params.texture);
     if (!params.unlit) {  // the other maps are light (as the GL backend's variants)
-        input.shading.metallicRoughness = texture(params.metallicRoughnessTexture);
+        input.shading.specularGlossiness = params.specularGlossiness;
+        if (params.specularGlossiness)
+            input.shading.specularGlossinessMap = texture(params.specularGlossinessTexture);
+        else
+            input.shading.metallicRoughness = texture(params.metallicRoughnessTexture);
         input.shading.occlusion = texture(params.occlusionTexture);
         input.shading.emissive = texture(params.emissiveTexture);
         input.shading.normalMap = texture(params.normalTexture);

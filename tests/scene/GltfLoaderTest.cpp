@@ -9,6 +9,7 @@
 #include <functional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -203,7 +204,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .triangles = 12,
          .instances = 1,
          .textures = 1,
-         .unsupported = {"KHR_materials_pbrSpecularGlossiness", kMipmaps}},
+         .unsupported = {kMipmaps}},
         // A glTF 1.0 style material (technique + values) declared through a required extension: the
         // geometry loads, the material is the default one, the extension is reported.
         {.file = "BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf",
@@ -1394,6 +1395,45 @@ TEST(GltfLoaderTest, MapsAreReadAndDecodedAsTheirUseSays) {
     EXPECT_EQ(other->materials[0].emissiveFactor, glm::vec3(0.0f));
     const std::string differing = "textures of one material on different coordinates (the first one's are used)";
     EXPECT_EQ(other->unsupported, std::vector<std::string>{differing});
+
+    // KHR_materials_pbrSpecularGlossiness: the diffuse colour and texture become the base colour's
+    // (pbrMetallicRoughness is the fallback and unread); both of its textures are read as linear,
+    // as the Khronos renderer reads them.
+    const Json sgMaterial = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.1, 0.1, 1}},
+                                                       {"metallicRoughnessTexture", texture}}},
+                             {"extensions",
+                              {{"KHR_materials_pbrSpecularGlossiness",
+                                {{"diffuseFactor", {0.5, 0.25, 1.0, 0.75}},
+                                 {"specularFactor", {0.2, 0.3, 0.4}},
+                                 {"glossinessFactor", 0.625},
+                                 {"diffuseTexture", texture},
+                                 {"specularGlossinessTexture", texture}}}}}};
+    const Result<Scene> sg = withMaps(sgMaterial, "sg");
+    ASSERT_TRUE(sg.ok()) << sg.error().message;
+    EXPECT_TRUE(sg->unsupported.empty()) << sg->unsupported.front();
+    const Material& g = sg->materials[0];
+    EXPECT_TRUE(g.specularGlossiness);
+    EXPECT_EQ(g.baseColorFactor, glm::vec4(0.5f, 0.25f, 1.0f, 0.75f));
+    EXPECT_EQ(g.specularFactor, glm::vec3(0.2f, 0.3f, 0.4f));
+    EXPECT_EQ(g.glossinessFactor, 0.625f);
+    EXPECT_EQ(g.metallicRoughnessTexture, -1) << "not read under the extension";
+    ASSERT_GE(g.specularGlossinessTexture, 0);
+    EXPECT_EQ(g.specularGlossinessTexture, g.baseColorTexture) << "both linear: one texture";
+    EXPECT_FALSE(sg->textures[std::size_t(g.baseColorTexture)].srgb);
+    for (const auto& [member, value, message] :
+         {std::tuple<std::string, Json, std::string>{"glossinessFactor", 1.5, ".glossinessFactor: 1.5 is not in [0, 1]"},
+          {"specularFactor", {1, 1}, ".specularFactor: not an array of 3 numbers"},
+          {"diffuseFactor", {1, 1, 1, -1}, ".diffuseFactor[3]: -1 is not in [0, 1]"},
+          {"diffuseTexture", {{"index", 3}}, ".diffuseTexture.index: 3 is not a texture (the file has 1)"},
+          {"specularGlossinessTexture", {{"texCoord", 0}}, ".specularGlossinessTexture: no index"}}) {
+        Json bad = sgMaterial;
+        bad["extensions"]["KHR_materials_pbrSpecularGlossiness"][member] = value;
+        const Result<Scene> refused = withMaps(bad, "sgbad");
+        ASSERT_FALSE(refused.ok()) << member;
+        EXPECT_NE(refused.error().message.find("materials[0].extensions.KHR_materials_pbrSpecularGlossiness" + message),
+                  std::string::npos)
+            << refused.error().message;
+    }
 
     const Result<Scene> strong = withMaps({{"occlusionTexture", {{"index", 0}, {"strength", 1.5}}}}, "strong");
     ASSERT_FALSE(strong.ok());

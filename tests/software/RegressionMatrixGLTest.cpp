@@ -246,6 +246,40 @@ Scene maps() {
     return scene;
 }
 
+// KHR_materials_pbrSpecularGlossiness: specular colours grey (0.04, 0.2) and coloured, glossiness
+// 0, 0.5 and 1, a specular-glossiness map (sRGB rgb, linear alpha; nearest and linear) with and
+// without a diffuse texture, an occlusion map beside it, a metallic-roughness map it must ignore
+// and an unlit one.
+Scene specularGlossiness() {
+    Scene scene;
+    std::mt19937 rng(41);
+    const int map = randomTexture(scene, rng, 8, 8, true, Filter::Linear, Wrap::Repeat);
+    const int nearest = randomTexture(scene, rng, 5, 7, true, Filter::Nearest, Wrap::MirroredRepeat);
+    const int diffuse = randomTexture(scene, rng, 6, 6, true, Filter::Linear, Wrap::Repeat);
+    const int data = randomTexture(scene, rng, 4, 4, false, Filter::Linear, Wrap::ClampToEdge);
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(mesh, true);
+    const glm::vec3 speculars[] = {glm::vec3(0.04f), glm::vec3(0.2f), {0.9f, 0.6f, 0.2f}, glm::vec3(1.0f)};
+    const float glossiness[] = {0.0f, 0.5f, 1.0f};
+    for (int k = 0; k < 12; ++k) {
+        Material m;
+        m.specularGlossiness = true;
+        m.baseColorFactor = {0.5f, 0.6f, 0.8f, 1.0f};
+        m.specularFactor = speculars[k % 4];
+        m.glossinessFactor = glossiness[k % 3];
+        m.metallicFactor = 1.0f;  // not read
+        if (k >= 4) m.specularGlossinessTexture = k % 2 ? map : nearest;
+        if (k >= 6) m.baseColorTexture = diffuse;
+        if (k == 8) m.occlusionTexture = data;
+        if (k == 9) m.metallicRoughnessTexture = data;  // not read
+        if (k == 10) m.emissiveFactor = {0.2f, 0.1f, 0.0f};
+        m.unlit = k == 11;
+        place(scene, mesh, m, {float(k % 4) - 1.5f, float(k / 4) - 1.0f, 0.0f});
+    }
+    scene.buildInstances();
+    return scene;
+}
+
 // Alpha. Top row: masked spheres, a random texture's alpha against cutoffs 0, 0.3, 0.5 and 1,
 // nearest and linear, three of them double-sided so that their inside shows through the holes.
 // Below, over an opaque backdrop that covers half of them (the rest blend over the background):
@@ -391,6 +425,7 @@ std::vector<MatrixCase> matrix() {
         {"maps", maps, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"normal-maps", normalMaps, 640, 360, lookFrom({0.2f, 0.3f, 4.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"specular-glossiness", specularGlossiness, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
     };
 }
 
