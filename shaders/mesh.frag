@@ -11,12 +11,13 @@
 // only by the materials that have it; without FRUGAL_IDS there is no id output; FRUGAL_UNLIT
 // (KHR_materials_unlit) writes the base colour; FRUGAL_ALPHA_MASK discards a fragment whose alpha is
 // below the cutoff (GLSL's discard writes no colour, depth or id); alpha is written as it is only by
-// FRUGAL_ALPHA_BLEND (the draw blends), else 1, as glTF's OPAQUE and MASK ask. Sampling a 1×1 white texture instead cost +0.64 ms
-// per bunny frame on llvmpipe. The maps are read as the Khronos renderer reads them: metallic ×
-// blue and roughness × green of the metallic-roughness map; the occlusion map's red darkens the
-// environment's light only, by 1 + strength · (red − 1); emission × the emissive map's rgb; the
-// normal map's rgb · 2 − 1, x and y × scale, normalised, in the basis (tangent, bitangent, normal),
-// each normalised and flipped with the normal on back faces. FRUGAL_SPECULAR_GLOSSINESS
+// FRUGAL_ALPHA_BLEND (the draw blends), else 1, as glTF's OPAQUE and MASK ask. Sampling a 1×1
+// white texture instead cost +0.64 ms per bunny frame on llvmpipe. The maps are read as the
+// Khronos renderer reads them: metallic × blue and roughness × green of the metallic-roughness map;
+// the occlusion map's red darkens the environment's light only, by 1 + strength · (red − 1);
+// emission × the emissive map's rgb; the normal map's rgb · 2 − 1, x and y × scale, normalised, in
+// the basis (tangent, bitangent, normal), each normalised and flipped with the normal on back
+// faces. FRUGAL_SPECULAR_GLOSSINESS
 // (KHR_materials_pbrSpecularGlossiness, as the Khronos renderer's getSpecularGlossinessInfo reads
 // it): no metal terms; the dielectric's f0 is the specular colour (× the map's rgb with
 // FRUGAL_SPECULAR_GLOSSINESS_MAP), per channel, and r = 1 − glossiness (× the map's alpha).

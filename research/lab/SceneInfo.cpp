@@ -102,7 +102,9 @@ void printShading(const Scene& scene, std::ostream& out) {
         if (!drawn[i]) continue;
         const Mesh& mesh = scene.meshes[i];
         const Material& m = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)] : kDefault;
-        std::string terms = m.unlit ? "unlit" : m.specularGlossiness ? "specular-glossiness BRDF" : "metallic-roughness BRDF";
+        std::string terms = m.unlit                ? "unlit"
+                            : m.specularGlossiness ? "specular-glossiness BRDF"
+                                                   : "metallic-roughness BRDF";
         if (m.baseColorTexture >= 0) terms += ", base colour map";
         if (!mesh.colors.empty()) terms += ", vertex colours";
         if (!m.unlit) {

@@ -297,7 +297,8 @@ struct OcclusionCuller::State {
             const bool singleSided = mesh.material < 0 || !w.scene.materials[std::size_t(mesh.material)].doubleSided;
             // A masked or blended surface hides nothing (a discarded or blended fragment shows what
             // is behind it): tested, never written.
-            const bool occluder = mesh.material < 0 || w.scene.materials[std::size_t(mesh.material)].alphaMode == AlphaMode::Opaque;
+            const bool occluder =
+                mesh.material < 0 || w.scene.materials[std::size_t(mesh.material)].alphaMode == AlphaMode::Opaque;
             const ClusterVertices& cv = w.maps[std::size_t(instance.mesh)].vertices;
             const glm::mat4 m = w.viewProjection * w.world[std::size_t(instance.node)];
             std::uint32_t slot = slots[i];

@@ -4,10 +4,10 @@
 // of the material's maps, vertex colours, ids, an unlit material, its alpha mode, specular-glossiness
 // — compiled on first use (each also in an instanced form for drawInstances, but for the normal
 // map's): 8192 possible, a scene uses a few. A variant leaves out what the draw does not use instead
-// of feeding it white (a 1×1 white texture, a white colour varying, an unused flat id varying), because each of those costs llvmpipe
-// time per frame (docs/gl/README.md). The white texel is 1.0 exactly, so leaving it out changes no
-// bit. The interpolated white colour was not always 1.0: llvmpipe
-// interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about 15 % of
+// of feeding it white (a 1×1 white texture, a white colour varying, an unused flat id varying),
+// because each of those costs llvmpipe time per frame (docs/gl/README.md). The white texel is 1.0
+// exactly, so leaving it out changes no bit. The interpolated white colour was not always 1.0:
+// llvmpipe interpolates a varying as (a·(1/w))·w, which for a = 1 is p·(1/p), 1 − 2⁻²⁴ for about 15 % of
 // floats p; so "no vertex colours" is now exactly white, and a few pixels changed by one step
 // against the program that fed white (docs/gl/README.md).
 // Uniform values are per-program state in GL, so each variant keeps its own uniform cache.

@@ -68,7 +68,8 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
         // renderer's, which counts a vertex once per use).
         glm::dvec3 sum(0.0);
         for (const std::uint32_t index : mesh.indices) sum += glm::dvec3(mesh.positions[index]);
-        renderer.centroids_.push_back(mesh.indices.empty() ? glm::vec3(0.0f) : glm::vec3(sum / double(mesh.indices.size())));
+        const double uses = double(mesh.indices.size());
+        renderer.centroids_.push_back(mesh.indices.empty() ? glm::vec3(0.0f) : glm::vec3(sum / uses));
     }
     renderer.textures_.reserve(scene.textures.size());
     for (std::size_t i = 0; i < scene.textures.size(); ++i) {

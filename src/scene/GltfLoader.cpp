@@ -478,17 +478,16 @@ TextureTransform textureTransformOf(int texCoord, const tinygltf::ExtensionMap& 
 
 ExtensionTexture Converter::extensionTexture(const tinygltf::Value& value, const std::string& where) const {
     if (!value.IsObject()) fail(where, ": not an object");
-    const auto integer = [&](const char* name, double limit) {
+    const auto integer = [&](const char* name, double limit, const std::string& what) {
         const double d = extensionNumber(value.Get(name), cat(where, ".", name));
-        if (d < 0.0 || d >= limit || d != std::floor(d))
-            fail(where, ".", name, ": ", d, std::string(name) == "index" ? " is not a texture (the file has " : " is not a set index (",
-                 std::string(name) == "index" ? cat(model_.textures.size(), ")") : std::string("0 to 255)"));
+        if (d < 0.0 || d >= limit || d != std::floor(d)) fail(where, ".", name, ": ", d, what);
         return int(d);
     };
     if (!value.Has("index")) fail(where, ": no index");
     ExtensionTexture out;
-    out.index = integer("index", double(model_.textures.size()));
-    if (value.Has("texCoord")) out.texCoord = integer("texCoord", 256.0);
+    out.index = integer("index", double(model_.textures.size()),
+                        cat(" is not a texture (the file has ", model_.textures.size(), ")"));
+    if (value.Has("texCoord")) out.texCoord = integer("texCoord", 256.0, " is not a set index (0 to 255)");
     if (value.Has("extensions")) {
         const tinygltf::Value& extensions = value.Get("extensions");
         if (!extensions.IsObject()) fail(where, ".extensions: not an object");
@@ -510,7 +509,8 @@ SpecularGlossiness Converter::specularGlossinessOf(int material) const {
     const auto factors = [&](const char* name, float* values, int count) {
         if (!ext.Has(name)) return;
         const tinygltf::Value& v = ext.Get(name);
-        if (!v.IsArray() || v.ArrayLen() != std::size_t(count)) fail(at, ".", name, ": not an array of ", count, " numbers");
+        if (!v.IsArray() || v.ArrayLen() != std::size_t(count))
+            fail(at, ".", name, ": not an array of ", count, " numbers");
         for (int k = 0; k < count; ++k) {
             const double d = extensionNumber(v.Get(k), cat(at, ".", name, "[", k, "]"));
             if (!(d >= 0.0 && d <= 1.0)) fail(at, ".", name, "[", k, "]: ", d, " is not in [0, 1]");
@@ -524,7 +524,8 @@ SpecularGlossiness Converter::specularGlossinessOf(int material) const {
         if (!(d >= 0.0 && d <= 1.0)) fail(at, ".glossinessFactor: ", d, " is not in [0, 1]");
         out.glossiness = float(d);
     }
-    if (ext.Has("diffuseTexture")) out.diffuseTexture = extensionTexture(ext.Get("diffuseTexture"), at + ".diffuseTexture");
+    if (ext.Has("diffuseTexture"))
+        out.diffuseTexture = extensionTexture(ext.Get("diffuseTexture"), at + ".diffuseTexture");
     if (ext.Has("specularGlossinessTexture"))
         out.specularGlossinessTexture =
             extensionTexture(ext.Get("specularGlossinessTexture"), at + ".specularGlossinessTexture");

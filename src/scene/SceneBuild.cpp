@@ -103,7 +103,8 @@ Result<int> Scene::addMaterial(Material material) {
     for (const std::string& problem :
          {factorProblem("metallic", material.metallicFactor), factorProblem("roughness", material.roughnessFactor),
           factorProblem("occlusion strength", material.occlusionStrength),
-          factorProblem("glossiness", material.glossinessFactor), factorProblem("specular red", material.specularFactor.r),
+          factorProblem("glossiness", material.glossinessFactor),
+          factorProblem("specular red", material.specularFactor.r),
           factorProblem("specular green", material.specularFactor.g),
           factorProblem("specular blue", material.specularFactor.b)})
         if (!problem.empty()) return bad(problem);

@@ -92,7 +92,8 @@ private:
     // A triangle of a masked or blended draw: what is pending shaded first, then it alone rasterized
     // (by `rasterize`) and shaded; where the mask discarded its fragment, depth and id put back.
     template <class Rasterize>
-    void rasterizeAlone(const Triangle& t, const DrawShading& shading, TileState& tile, const Rasterize& rasterize) const;
+    void rasterizeAlone(const Triangle& t, const DrawShading& shading, TileState& tile,
+                        const Rasterize& rasterize) const;
     void transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
                            std::uint64_t triangles);
     void setup(const SetupJob& job, std::uint64_t skip, std::uint64_t count, Segment& segment);
