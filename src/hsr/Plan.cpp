@@ -52,9 +52,9 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     // Blended instances (AlphaMode::Blend) are drawn after the rest, as listed, depth-tested
     // (SceneRenderer::draw orders them): their polygons take part in the flags only, with the whole
     // depth range, so that every polygon sharing a pixel with one of them writes its depth.
-    bool anyBlended = false;
-    if (frugal::anyBlended(*scene_))
-        for (const DrawCommand& command : list) anyBlended = anyBlended || blendedInstance(*scene_, command.instance);
+    const bool blending = anyBlended(*scene_) && std::any_of(list.begin(), list.end(), [&](const DrawCommand& c) {
+        return blendedInstance(*scene_, c.instance);
+    });
 
     // The listed triangles, then their polygons in the order of their first listed triangle.
     const ScreenTriangles screen = screenTriangles(*scene_, frame, world, list, width, height);
@@ -77,7 +77,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
             depthSum.push_back(0.0f);
             triangleCount.push_back(0);
             group.push_back(exemptInstance(ref.instance));
-            blended.push_back(anyBlended && blendedInstance(*scene_, ref.instance) ? 1 : 0);
+            blended.push_back(blending && blendedInstance(*scene_, ref.instance) ? 1 : 0);
         }
         const std::uint32_t p = slot[global];
         polygonOfListed[i] = p;
@@ -93,7 +93,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     for (std::size_t p = 0; p < polygons; ++p) depth[p] = depthSum[p] / float(triangleCount[p]);
     std::vector<std::uint32_t> order = backToFront(depth);
     std::vector<std::uint8_t> flags;
-    if (anyBlended) {
+    if (blending) {
         // depthsort flags only what meets a blended polygon: its other polygons share one group.
         for (std::size_t p = 0; p < polygons; ++p) {
             if (blended[p]) {
@@ -105,7 +105,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
             }
         }
     }
-    if (mode == Mode::Adaptive || mode == Mode::AdaptiveConvex || anyBlended) {
+    if (mode == Mode::Adaptive || mode == Mode::AdaptiveConvex || blending) {
         flags = mode == Mode::Adaptive ? flagOverlaps(extents) : flagOverlaps(extents, group);
         // Each run of consecutive flagged polygons in submission order (Plan.h: ties).
         for (auto run = order.begin(); run != order.end();) {
@@ -133,7 +133,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
     // command, consecutive triangle numbers a range.
     DrawList out;
     for (std::uint32_t p : order) {
-        if (anyBlended && blended[p]) {  // drawn whole below, depth-tested
+        if (blending && blended[p]) {  // drawn whole below, depth-tested
             ++local.flagged;
             continue;
         }
@@ -150,7 +150,7 @@ DrawList Planner::plan(Mode mode, const FrameParams& frame, const std::vector<gl
                 ranges.push_back(IndexRange{ref.triangle, 1});
         }
     }
-    if (anyBlended)
+    if (blending)
         for (const DrawCommand& command : list)
             if (blendedInstance(*scene_, command.instance))
                 out.push_back(DrawCommand{command.instance, command.ranges, DepthMode::Test});

@@ -133,11 +133,11 @@ void SceneRenderer::drawSequence(std::span<const DrawCommand* const> list, const
         params.normalScale = material.normalScale;
         params.doubleSided = material.doubleSided && !cullAllBackFaces_;
         params.alphaMode = material.alphaMode;
+        params.alphaCutoff = material.alphaCutoff;
         params.specularGlossiness = material.specularGlossiness;
         params.specular = material.specularFactor;
         params.glossiness = material.glossinessFactor;
         params.specularGlossinessTexture = handle(material.specularGlossinessTexture);
-        params.alphaCutoff = material.alphaCutoff;
         params.firstId = instance.firstId;
         params.depth = command.depth;
         return params;
