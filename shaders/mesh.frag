@@ -21,6 +21,12 @@
 // (KHR_materials_pbrSpecularGlossiness, as the Khronos renderer's getSpecularGlossinessInfo reads
 // it): no metal terms; the dielectric's f0 is the specular colour (× the map's rgb with
 // FRUGAL_SPECULAR_GLOSSINESS_MAP), per channel, and r = 1 − glossiness (× the map's alpha).
+// FRUGAL_CLEARCOAT (KHR_materials_clearcoat, as the Khronos renderer's getClearCoatInfo and main()
+// draw it): k = factor (× the map's red) × Schlick(0.04, 1, nc·v), nc the coat's normal (its map in
+// the tangent basis, not normalised after it, or the normal before the base normal map); the
+// environment's colour becomes env·(1 − k) + L·k before occlusion, the light's light·(1 − k) +
+// the coat's GGX specular (roughness factor × the map's green; no Fresnel)·k, the emission
+// emission·(1 − k).
 #version 330 core
 
 in vec3 v_normal;
@@ -41,6 +47,18 @@ uniform vec4 u_specularGlossiness;  // rgb the specular colour, a the glossiness
 #endif
 #ifdef FRUGAL_SPECULAR_GLOSSINESS_MAP
 uniform sampler2D u_specularGlossinessMap;  // unit 5
+#endif
+#ifdef FRUGAL_CLEARCOAT
+uniform vec3 u_clearcoat;  // the factor, the roughness factor, the normal map's scale
+#endif
+#ifdef FRUGAL_CLEARCOAT_MAP
+uniform sampler2D u_clearcoatMap;  // unit 6
+#endif
+#ifdef FRUGAL_CLEARCOAT_ROUGHNESS_MAP
+uniform sampler2D u_clearcoatRoughnessMap;  // unit 7
+#endif
+#ifdef FRUGAL_CLEARCOAT_NORMAL_MAP
+uniform sampler2D u_clearcoatNormalMap;  // unit 8
 #endif
 
 layout(location = 0) out vec4 o_color;
@@ -64,9 +82,11 @@ uniform float u_occlusionStrength;
 #ifdef FRUGAL_EMISSIVE_MAP
 uniform sampler2D u_emissiveMap;  // unit 3
 #endif
-#ifdef FRUGAL_NORMAL_MAP
+#ifdef FRUGAL_TANGENTS
 in vec3 v_tangent;
 in vec3 v_bitangent;
+#endif
+#ifdef FRUGAL_NORMAL_MAP
 uniform sampler2D u_normalMap;  // unit 4
 uniform float u_normalScale;
 #endif
@@ -80,6 +100,15 @@ const float kDielectricF0 = 0.04;
 
 float clampedDot(vec3 a, vec3 b) { return clamp(dot(a, b), 0.0, 1.0); }
 float pow5(float x) { float x2 = x * x; return (x2 * x2) * x; }
+
+// The GGX specular lobe's V·D (the Khronos renderer's BRDF_specularGGX): height-correlated Smith
+// visibility times the distribution, at alpha² = r⁴.
+float ggx(float nl, float nv, float nh, float alpha2) {
+    float sum = nl * sqrt((nv * nv) * (1.0 - alpha2) + alpha2) + nv * sqrt((nl * nl) * (1.0 - alpha2) + alpha2);
+    float visibility = sum > 0.0 ? 0.5 / sum : 0.0;
+    float f = (nh * nh) * (alpha2 - 1.0) + 1.0;
+    return visibility * (alpha2 / max(kPi * (f * f), 1.0e-30));
+}
 
 // The Khronos renderer's getIBLGGXFresnel (specular weight 1): single and multiple scattering.
 float iblFresnel(float f0, float r, float c5, vec2 ab) {
@@ -111,12 +140,22 @@ void main() {
 #else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
-#ifdef FRUGAL_NORMAL_MAP
+#ifdef FRUGAL_TANGENTS
     vec3 t = normalize(v_tangent), b = normalize(v_bitangent);
     if (!gl_FrontFacing) {
         t = -t;
         b = -b;
     }
+#endif
+#ifdef FRUGAL_CLEARCOAT
+    vec3 nc = n;
+#ifdef FRUGAL_CLEARCOAT_NORMAL_MAP
+    vec3 mc = texture(u_clearcoatNormalMap, v_uv).rgb * 2.0 - vec3(1.0);
+    mc = normalize(mc * vec3(u_clearcoat.z, u_clearcoat.z, 1.0));
+    nc = (t * mc.x + b * mc.y) + n * mc.z;
+#endif
+#endif
+#ifdef FRUGAL_NORMAL_MAP
     vec3 m = texture(u_normalMap, v_uv).rgb * 2.0 - vec3(1.0);
     m = normalize(m * vec3(u_normalScale, u_normalScale, 1.0));
     n = normalize((t * m.x + b * m.y) + n * m.z);
@@ -155,6 +194,29 @@ void main() {
 #endif
 #ifdef FRUGAL_OCCLUSION_MAP
     float occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, v_uv).r - 1.0);
+#endif
+#ifdef FRUGAL_CLEARCOAT
+    // The coat over the environment's colour; the light's is gathered from 0 below.
+    float coat = u_clearcoat.x, coatRoughness = u_clearcoat.y;
+#ifdef FRUGAL_CLEARCOAT_MAP
+    coat = coat * texture(u_clearcoatMap, v_uv).r;
+#endif
+#ifdef FRUGAL_CLEARCOAT_ROUGHNESS_MAP
+    coatRoughness = coatRoughness * texture(u_clearcoatRoughnessMap, v_uv).g;
+#endif
+    float k = coat * (kDielectricF0 + (1.0 - kDielectricF0) * pow5(1.0 - clampedDot(nc, v)));
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 environment = dielectric;
+#else
+    vec3 environment = dielectric * (1.0 - metallic) + metal * metallic;
+    metal = vec3(0.0);
+#endif
+    environment = environment * (1.0 - k) + u_environment * k;
+#ifdef FRUGAL_OCCLUSION_MAP
+    environment = environment * occlusion;
+#endif
+    dielectric = vec3(0.0);
+#elif defined(FRUGAL_OCCLUSION_MAP)
     dielectric = dielectric * occlusion;
 #ifndef FRUGAL_SPECULAR_GLOSSINESS
     metal = metal * occlusion;
@@ -165,12 +227,8 @@ void main() {
     vec3 l = u_toLight;
     vec3 h = normalize(l + v);
     float nl = clampedDot(n, l), nh = clampedDot(n, h), vh = clampedDot(v, h);
-    float ggx = nl * sqrt((nv * nv) * (1.0 - alpha2) + alpha2) + nv * sqrt((nl * nl) * (1.0 - alpha2) + alpha2);
-    float visibility = ggx > 0.0 ? 0.5 / ggx : 0.0;
-    float f = (nh * nh) * (alpha2 - 1.0) + 1.0;
-    float distribution = alpha2 / max(kPi * (f * f), 1.0e-30);
     float radiance = u_light * nl;
-    float specular = radiance * (visibility * distribution);
+    float specular = radiance * ggx(nl, nv, nh, alpha2);
     float ch = pow5(1.0 - vh);
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 fl = f0 + (1.0 - f0) * ch;
@@ -186,9 +244,17 @@ void main() {
     emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
 #endif
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
-    vec3 linear = dielectric + emissive;
+    vec3 lit = dielectric;
 #else
-    vec3 linear = (dielectric * (1.0 - metallic) + metal * metallic) + emissive;
+    vec3 lit = dielectric * (1.0 - metallic) + metal * metallic;
+#endif
+#ifdef FRUGAL_CLEARCOAT
+    float ncl = clampedDot(nc, l);
+    float coatAlpha2 = (coatRoughness * coatRoughness) * (coatRoughness * coatRoughness);
+    float coatSpecular = u_light * (ncl * ggx(ncl, clampedDot(nc, v), clampedDot(nc, h), coatAlpha2));
+    vec3 linear = (environment + (lit * (1.0 - k) + coatSpecular * k)) + emissive * (1.0 - k);
+#else
+    vec3 linear = lit + emissive;
 #endif
 #endif
 #ifdef FRUGAL_ALPHA_BLEND

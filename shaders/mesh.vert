@@ -6,8 +6,9 @@
 // three rows, computes the same bits.
 //
 // Variants: GlBackend.cpp puts `#define`s after the #version line, one per input a draw uses:
-// FRUGAL_UV (uvs: the material has a map), FRUGAL_NORMAL_MAP (the tangent basis, in world space:
-// the tangent by the model matrix, the bitangent cross(normal, tangent) · w), FRUGAL_COLORS
+// FRUGAL_UV (uvs: the material has a map), FRUGAL_TANGENTS (a normal map's tangent basis, the
+// surface's or the clear coat's, in world space: the tangent by the model matrix, the bitangent
+// cross(normal, tangent) · w), FRUGAL_COLORS
 // (vertex colours), FRUGAL_IDS (the id pass), FRUGAL_INSTANCED (a batched draw: the per-draw
 // uniforms u_mvp, u_normalMatrix, u_model and u_firstId come per instance from attributes 5–15
 // instead, the same values the CPU computes). A varying that is not needed is not there at all:
@@ -48,7 +49,7 @@ layout(location = 3) in vec2 a_uv;  // constant (0,0) when the mesh has no uvs
 uniform mat3 u_uvTransform;         // KHR_texture_transform, identity without
 out vec2 v_uv;
 #endif
-#ifdef FRUGAL_NORMAL_MAP
+#ifdef FRUGAL_TANGENTS
 layout(location = 5) in vec4 a_tangent;  // never instanced: location 5 is free
 out vec3 v_tangent;                      // world space, not normalised
 out vec3 v_bitangent;
@@ -70,7 +71,7 @@ void main() {
     v_normal = NORMAL_MATRIX * a_normal;
     v_position = ((MODEL_COLUMN(0) * a_position.x + MODEL_COLUMN(1) * a_position.y) +
                   MODEL_COLUMN(2) * a_position.z) + MODEL_COLUMN(3);
-#ifdef FRUGAL_NORMAL_MAP
+#ifdef FRUGAL_TANGENTS
     v_tangent = (MODEL_COLUMN(0) * a_tangent.x + MODEL_COLUMN(1) * a_tangent.y) + MODEL_COLUMN(2) * a_tangent.z;
     v_bitangent = cross(v_normal, v_tangent) * a_tangent.w;
 #endif

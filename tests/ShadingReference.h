@@ -18,6 +18,10 @@ struct ShadedMaterial {
     double metallic = 1.0, roughness = 1.0;
     glm::dvec3 emissive{0.0};
     double occlusion = 1.0;  // what the occlusion map leaves of the environment's light
+    // A clear coat (KHR_materials_clearcoat) of this factor (0: none) and roughness, whose normal
+    // is coatNormal (unit), or n where that is 0.
+    double coat = 0.0, coatRoughness = 0.0;
+    glm::dvec3 coatNormal{0.0};
 };
 
 // Linear rgb of `material` at a point with unit normal n, seen along unit v (towards the eye).
@@ -40,23 +44,33 @@ inline glm::dvec3 referenceShade(const ShadedMaterial& material, glm::dvec3 n, g
     glm::dvec3 dielectric = env * base * (1.0 - fd) + env * fd;
     glm::dvec3 metal;
     for (int c = 0; c < 3; ++c) metal[c] = env * iblFresnel(base[c]);
-    dielectric *= material.occlusion;
-    metal *= material.occlusion;
+    // The coat: k of the light reflected by it, the rest passed to what is below.
+    const glm::dvec3 nc = material.coatNormal == glm::dvec3(0.0) ? n : material.coatNormal;
+    const double k = material.coat * (0.04 + 0.96 * c5(saturate(glm::dot(nc, v))));
+    const glm::dvec3 environment = ((dielectric * (1.0 - m) + metal * m) * (1.0 - k) + env * k) * material.occlusion;
+    dielectric = metal = glm::dvec3(0.0);
 
     const glm::dvec3 l = glm::dvec3(lighting.toLight);
     const glm::dvec3 h = glm::normalize(l + v);
     const double nl = saturate(glm::dot(n, l)), nh = saturate(glm::dot(n, h)), vh = saturate(glm::dot(v, h));
-    const double ggx =
-        nl * std::sqrt(nv * nv * (1.0 - alpha2) + alpha2) + nv * std::sqrt(nl * nl * (1.0 - alpha2) + alpha2);
-    const double visibility = ggx > 0.0 ? 0.5 / ggx : 0.0;
-    const double f = nh * nh * (alpha2 - 1.0) + 1.0;
-    const double distribution = f > 0.0 ? alpha2 / (kPi * f * f) : 0.0;
+    // The GGX lobe's visibility × distribution at alpha² a2.
+    const auto lobe = [&](double dl, double dv, double dh, double a2) {
+        const double ggx = dl * std::sqrt(dv * dv * (1.0 - a2) + a2) + dv * std::sqrt(dl * dl * (1.0 - a2) + a2);
+        const double visibility = ggx > 0.0 ? 0.5 / ggx : 0.0;
+        const double f = dh * dh * (a2 - 1.0) + 1.0;
+        return visibility * (f > 0.0 ? a2 / (kPi * f * f) : 0.0);
+    };
     const double e = double(lighting.light) * nl;
-    const double specular = e * visibility * distribution;
+    const double specular = e * lobe(nl, nv, nh, alpha2);
     const double fl = 0.04 + 0.96 * c5(vh);
     dielectric += e * base / kPi * (1.0 - fl) + specular * fl;
     metal += (base + (1.0 - base) * c5(vh)) * specular;
-    return dielectric * (1.0 - m) + metal * m + material.emissive;
+    const double ncl = saturate(glm::dot(nc, l));
+    const double coatSpecular =
+        double(lighting.light) * ncl *
+        lobe(ncl, saturate(glm::dot(nc, v)), saturate(glm::dot(nc, h)), std::pow(material.coatRoughness, 4.0));
+    return environment + (dielectric * (1.0 - m) + metal * m) * (1.0 - k) + coatSpecular * k +
+           material.emissive * (1.0 - k);
 }
 
 // rgb^(1/2.2) in [0, 1], as the backends encode it for an 8-bit image.

@@ -90,10 +90,53 @@ struct Material {
     glm::vec3 specularFactor{1.0f};  // each in [0, 1]
     float glossinessFactor = 1.0f;   // [0, 1]
     int specularGlossinessTexture = -1;
+    // KHR_materials_clearcoat, as the Khronos renderer draws it, when clearcoatFactor > 0: a
+    // dielectric coat (reflectance 0.04 at normal incidence) over the material. With k =
+    // clearcoatFactor × the map's red × Fresnel (Schlick, 0.04 to 1, at the coat normal · v), the
+    // environment's light becomes env · (1 − k) + radiance · k before occlusion darkens it, each
+    // light's becomes light · (1 − k) + the coat's GGX specular (no Fresnel) · k, and emission
+    // · (1 − k). The coat's roughness is clearcoatRoughnessFactor × its map's green; its normal is
+    // the coat normal map's in the tangent basis (read as normalTexture is, at
+    // clearcoatNormalScale, not normalised after the basis, as the Khronos renderer reads it),
+    // else the surface's normal without the base normal map. All three maps are linear.
+    float clearcoatFactor = 0.0f;           // [0, 1]; 0: no coat
+    int clearcoatTexture = -1;              // red × clearcoatFactor
+    float clearcoatRoughnessFactor = 0.0f;  // [0, 1]
+    int clearcoatRoughnessTexture = -1;     // green × clearcoatRoughnessFactor
+    int clearcoatNormalTexture = -1;
+    float clearcoatNormalScale = 1.0f;
+
+    bool clearcoat() const { return clearcoatFactor > 0.0f; }
+    // Is a tangent basis read (a normal map of the surface or of its coat)?
+    bool tangentSpace() const { return normalTexture >= 0 || (clearcoat() && clearcoatNormalTexture >= 0); }
+    bool hasTextures() const;  // does it sample any (kMaterialMaps)?
 
     // Every member equal (floats by value: a NaN is never equal, so it always counts as a change).
     bool operator==(const Material&) const = default;
 };
+
+// Every texture a material can sample, in one list (the order of DrawParams' maps and of the GL
+// backend's texture units): what messages call it, and its member. `material.*map.texture`.
+struct MaterialMap {
+    const char* name;
+    int Material::*texture;
+};
+inline constexpr MaterialMap kMaterialMaps[] = {
+    {"texture", &Material::baseColorTexture},
+    {"metallic-roughness texture", &Material::metallicRoughnessTexture},
+    {"occlusion texture", &Material::occlusionTexture},
+    {"emissive texture", &Material::emissiveTexture},
+    {"normal texture", &Material::normalTexture},
+    {"specular-glossiness texture", &Material::specularGlossinessTexture},
+    {"clear-coat texture", &Material::clearcoatTexture},
+    {"clear-coat roughness texture", &Material::clearcoatRoughnessTexture},
+    {"clear-coat normal texture", &Material::clearcoatNormalTexture}};
+
+inline bool Material::hasTextures() const {
+    for (const MaterialMap& map : kMaterialMaps)
+        if (this->*map.texture >= 0) return true;
+    return false;
+}
 
 struct Mesh {
     std::string name;
@@ -103,7 +146,8 @@ struct Mesh {
     std::vector<glm::vec2> uvs;                 // empty = no texture coordinates
     // glTF's TANGENT: xyz the direction of increasing u, w = ±1 the handedness (the bitangent is
     // cross(normal, xyz) · w, toward decreasing v: "up" in the image). Empty = none: a mesh whose
-    // material has a normal map gets generated ones when it is uploaded (generateTangents).
+    // material reads a tangent basis (Material::tangentSpace) gets generated ones when it is
+    // uploaded (generateTangents).
     std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
     std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file

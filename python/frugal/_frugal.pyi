@@ -143,6 +143,12 @@ class _Material(TypedDict):
     specular: tuple[float, float, float] | None
     glossiness: float
     specular_glossiness_texture: int | None
+    clearcoat: float
+    clearcoat_roughness: float
+    clearcoat_texture: int | None
+    clearcoat_roughness_texture: int | None
+    clearcoat_normal_texture: int | None
+    clearcoat_normal_scale: float
 
 class _MeshArrays(TypedDict):
     name: str
@@ -166,7 +172,10 @@ class Scene(_pybind11_object):
                      normal_texture: int | None = ..., normal_scale: float = ...,
                      alpha: Literal["opaque", "mask", "blend"] = ..., alpha_cutoff: float = ...,
                      specular: Sequence[float] | None = ..., glossiness: float = ...,
-                     specular_glossiness_texture: int | None = ..., name: str = ...) -> int: ...
+                     specular_glossiness_texture: int | None = ..., clearcoat: float = ...,
+                     clearcoat_roughness: float = ..., clearcoat_texture: int | None = ...,
+                     clearcoat_roughness_texture: int | None = ..., clearcoat_normal_texture: int | None = ...,
+                     clearcoat_normal_scale: float = ..., name: str = ...) -> int: ...
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
                  colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ...,
                  tangents: npt.ArrayLike | None = ..., material: int | None = ..., name: str = ...,

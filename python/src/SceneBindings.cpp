@@ -51,7 +51,9 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
                 std::optional<int> occlusionTexture, double occlusionStrength, std::optional<int> emissiveTexture,
                 std::optional<int> normalTexture, double normalScale, const std::string& alpha, double alphaCutoff,
                 const py::handle& specular, double glossiness, std::optional<int> specularGlossinessTexture,
-                const std::string& name) {
+                double clearcoat, double clearcoatRoughness, std::optional<int> clearcoatTexture,
+                std::optional<int> clearcoatRoughnessTexture, std::optional<int> clearcoatNormalTexture,
+                double clearcoatNormalScale, const std::string& name) {
     if (alpha != "opaque" && alpha != "mask" && alpha != "blend")
         throw InputError{"alpha: '" + alpha + "' is not an alpha mode (opaque, mask, blend)"};
     Material material;
@@ -75,6 +77,12 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
     if (material.specularGlossiness) material.specularFactor = vectorFrom<3>(specular, "specular");
     material.glossinessFactor = float(glossiness);
     material.specularGlossinessTexture = specularGlossinessTexture.value_or(-1);
+    material.clearcoatFactor = float(clearcoat);
+    material.clearcoatRoughnessFactor = float(clearcoatRoughness);
+    material.clearcoatTexture = clearcoatTexture.value_or(-1);
+    material.clearcoatRoughnessTexture = clearcoatRoughnessTexture.value_or(-1);
+    material.clearcoatNormalTexture = clearcoatNormalTexture.value_or(-1);
+    material.clearcoatNormalScale = float(clearcoatNormalScale);
     return take(s.scene.addMaterial(std::move(material)));
 }
 
@@ -142,6 +150,12 @@ py::list materialList(const Scene& scene) {
                                              : py::object(py::none());
         d["glossiness"] = m.glossinessFactor;
         d["specular_glossiness_texture"] = index(m.specularGlossinessTexture);
+        d["clearcoat"] = m.clearcoatFactor;
+        d["clearcoat_roughness"] = m.clearcoatRoughnessFactor;
+        d["clearcoat_texture"] = index(m.clearcoatTexture);
+        d["clearcoat_roughness_texture"] = index(m.clearcoatRoughnessTexture);
+        d["clearcoat_normal_texture"] = index(m.clearcoatNormalTexture);
+        d["clearcoat_normal_scale"] = m.clearcoatNormalScale;
         out.append(d);
     }
     return out;
@@ -240,7 +254,10 @@ void bindScene(py::module_& m) {
              py::arg("emissive_texture") = py::none(), py::arg("normal_texture") = py::none(),
              py::arg("normal_scale") = 1.0, py::arg("alpha") = "opaque", py::arg("alpha_cutoff") = 0.5,
              py::arg("specular") = py::none(), py::arg("glossiness") = 1.0,
-             py::arg("specular_glossiness_texture") = py::none(), py::arg("name") = "",
+             py::arg("specular_glossiness_texture") = py::none(), py::arg("clearcoat") = 0.0,
+             py::arg("clearcoat_roughness") = 0.0, py::arg("clearcoat_texture") = py::none(),
+             py::arg("clearcoat_roughness_texture") = py::none(), py::arg("clearcoat_normal_texture") = py::none(),
+             py::arg("clearcoat_normal_scale") = 1.0, py::arg("name") = "",
              "A glTF metallic-roughness material: base colour (RGB or RGBA, linear factors), a texture index,\n"
              "whether back faces are drawn (single-sided by default, as glTF), metallic and roughness in [0, 1]\n"
              "(glTF's defaults: 1 and 1; 0 and about 0.5 is a plastic), and unlit (KHR_materials_unlit: the\n"
@@ -255,6 +272,10 @@ void bindScene(py::module_& m) {
              "specular (RGB in [0, 1]) makes it a KHR_materials_pbrSpecularGlossiness material: color is the\n"
              "diffuse colour, metallic and roughness are not read, the reflectance at normal incidence is specular\n"
              "(x the rgb of specular_glossiness_texture) and roughness 1 - glossiness (x its alpha).\n"
+             "clearcoat in [0, 1] (0: none) coats it as KHR_materials_clearcoat does: a clear dielectric layer\n"
+             "(x the red of clearcoat_texture) of clearcoat_roughness (x the green of\n"
+             "clearcoat_roughness_texture), with its own normal map, clearcoat_normal_texture, at\n"
+             "clearcoat_normal_scale.\n"
              "Returns its index.")
         .def("add_mesh", &addMesh, py::arg("positions"), py::arg("indices"), py::kw_only(),
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),

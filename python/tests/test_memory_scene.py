@@ -226,6 +226,35 @@ def test_specular_glossiness_is_drawn_and_listed():
     assert (glossy != render(False, "auto")).any()
 
 
+def test_clear_coat_is_drawn_and_listed():
+    """A KHR_materials_clearcoat coat with its three maps: listed as given, drawn alike by GL and the
+    software reference, unlike the uncoated material; a coat of 0 draws as none."""
+    grid, grid_indices, _, uvs = grid_arrays()
+    texels = np.random.default_rng(43).integers(0, 256, (8, 8, 4), np.uint8)
+    camera = frugal.Camera.look_at((0.3, 0.8, 3.5), (0, 0, 0), fov=50)
+
+    def render(coat, backend):
+        scene = frugal.Scene()
+        texture = scene.add_texture(texels, srgb=False)
+        options = dict(clearcoat=coat, clearcoat_roughness=0.2, clearcoat_texture=texture,
+                       clearcoat_roughness_texture=texture, clearcoat_normal_texture=texture,
+                       clearcoat_normal_scale=0.5)
+        material = scene.add_material((0.5, 0.02, 0.01), metallic=0.0, roughness=0.5, **options)
+        listed = scene.materials[material]
+        assert listed["clearcoat"] == np.float32(coat) and listed["clearcoat_roughness"] == np.float32(0.2)
+        assert listed["clearcoat_texture"] == listed["clearcoat_normal_texture"] == texture
+        assert listed["clearcoat_normal_scale"] == 0.5
+        scene.add_instance(scene.add_mesh(grid, grid_indices, uvs=uvs, material=material))
+        return frugal.Renderer(scene, size=(160, 120), backend=backend).render(camera).color
+
+    coated = render(1.0, "auto")
+    assert np.abs(coated.astype(int) - render(1.0, "software")).max() <= 1
+    uncoated = render(0.0, "auto")
+    assert (coated != uncoated).any()
+    with pytest.raises(frugal.InputError, match="clear coat 1.5 is not in"):
+        frugal.Scene().add_material(clearcoat=1.5)
+
+
 def test_given_tangents_are_kept_and_drawn():
     """Tangents given to add_mesh are the mesh's (given back by mesh()), and a normal map is read in
     their basis: the same mesh with the tangents turned about the normal draws differently; GL and

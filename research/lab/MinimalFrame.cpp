@@ -281,14 +281,12 @@ std::string minimalFrameUnsupported(const Scene& scene) {
                    " has vertex colours, which the minimal frame does not draw";
         if (mesh.material < 0) continue;
         const Material& material = scene.materials[std::size_t(mesh.material)];
-        if (material.baseColorTexture >= 0 || material.metallicRoughnessTexture >= 0 ||
-            material.occlusionTexture >= 0 || material.emissiveTexture >= 0 || material.normalTexture >= 0 ||
-            material.specularGlossinessTexture >= 0)
+        if (material.hasTextures())
             return "material " + std::to_string(mesh.material) + quotedName(material.name) +
                    " has a texture, which the minimal frame does not draw";
-        if (material.specularGlossiness || material.alphaMode != AlphaMode::Opaque)
+        if (material.specularGlossiness || material.alphaMode != AlphaMode::Opaque || material.clearcoat())
             return "material " + std::to_string(mesh.material) + quotedName(material.name) +
-                   " is specular-glossiness or not opaque, which the minimal frame does not draw";
+                   " is specular-glossiness, clear-coated or not opaque, which the minimal frame does not draw";
     }
     return {};
 }

@@ -112,8 +112,14 @@ void printShading(const Scene& scene, std::ostream& out) {
             if (m.specularGlossinessTexture >= 0 && m.specularGlossiness) terms += ", specular-glossiness map";
             if (m.occlusionTexture >= 0) terms += ", occlusion map";
             if (m.emissiveTexture >= 0) terms += ", emissive map";
-            if (m.normalTexture >= 0)
-                terms += mesh.tangents.empty() ? ", normal map (tangents generated)" : ", normal map";
+            if (m.normalTexture >= 0) terms += ", normal map";
+            if (m.clearcoat()) {
+                terms += ", clear coat";
+                if (m.clearcoatTexture >= 0) terms += ", clear-coat map";
+                if (m.clearcoatRoughnessTexture >= 0) terms += ", clear-coat roughness map";
+                if (m.clearcoatNormalTexture >= 0) terms += ", clear-coat normal map";
+            }
+            if (m.tangentSpace() && mesh.tangents.empty()) terms += " (tangents generated)";
         }
         if (m.alphaMode == AlphaMode::Mask) terms += ", alpha mask (cutoff " + fmt(double(m.alphaCutoff)) + ")";
         if (m.alphaMode == AlphaMode::Blend) terms += ", blended (drawn last, far to near)";
@@ -156,6 +162,15 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
                 out << ", occlusion map " << m.occlusionTexture << " at " << fmt(m.occlusionStrength);
             if (m.emissiveTexture >= 0) out << ", emissive map " << m.emissiveTexture;
             if (m.normalTexture >= 0) out << ", normal map " << m.normalTexture << " at " << fmt(m.normalScale);
+            if (m.clearcoat()) {
+                out << ", clear coat " << fmt(m.clearcoatFactor) << " of roughness " << fmt(m.clearcoatRoughnessFactor);
+                if (m.clearcoatTexture >= 0) out << ", clear-coat map " << m.clearcoatTexture;
+                if (m.clearcoatRoughnessTexture >= 0)
+                    out << ", clear-coat roughness map " << m.clearcoatRoughnessTexture;
+                if (m.clearcoatNormalTexture >= 0)
+                    out << ", clear-coat normal map " << m.clearcoatNormalTexture << " at "
+                        << fmt(m.clearcoatNormalScale);
+            }
             if (m.emissiveFactor != glm::vec3(0.0f))
                 out << ", emissive " << fmt(m.emissiveFactor.r) << "," << fmt(m.emissiveFactor.g) << ","
                     << fmt(m.emissiveFactor.b);

@@ -55,14 +55,21 @@ enum Variant : unsigned {
     kOcclusionBit = 64u,
     kEmissiveBit = 128u,
     kNormalMapBit = 256u,
-    kAlphaMaskBit = 512u,   // AlphaMode::Mask: discard below the cutoff
-    kAlphaBlendBit = 1024u,  // AlphaMode::Blend: alpha written as it is (else 1)
+    kAlphaMaskBit = 512u,               // AlphaMode::Mask: discard below the cutoff
+    kAlphaBlendBit = 1024u,             // AlphaMode::Blend: alpha written as it is (else 1)
     kSpecularGlossinessBit = 2048u,     // KHR_materials_pbrSpecularGlossiness
     kSpecularGlossinessMapBit = 4096u,  // its map
-    kVariantCount = 8192u
+    kClearcoatBit = 8192u,              // KHR_materials_clearcoat
+    kClearcoatMapBit = 16384u,          // its maps
+    kClearcoatRoughnessMapBit = 32768u,
+    kClearcoatNormalMapBit = 65536u,
+    kVariantCount = 131072u
 };
-constexpr unsigned kMapBits =
-    kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit | kSpecularGlossinessMapBit;
+constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
+                              kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
+                              kClearcoatNormalMapBit;
+constexpr unsigned kClearcoatBits =
+    kClearcoatBit | kClearcoatMapBit | kClearcoatRoughnessMapBit | kClearcoatNormalMapBit;
 
 // One instance of a batched draw as the instanced variant reads it (attributes 5–15, mesh.vert):
 // the same values the uniforms of a single draw would get. The model matrix goes as its first three
@@ -88,11 +95,12 @@ struct GlProgram {
     bool failed = false;  // did not compile; not tried again
     GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
     GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
-    GLint occlusionStrength = -1, normalScale = -1, alphaCutoff = -1, specularGlossiness = -1;
+    GLint occlusionStrength = -1, normalScale = -1, alphaCutoff = -1, specularGlossiness = -1, clearcoat = -1;
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue, specularGlossinessValue;
     CachedUniform<glm::vec2> metallicRoughnessValue;
+    CachedUniform<glm::vec3> clearcoatValue;  // factor, roughness, normal scale
     CachedUniform<glm::vec3> eyeValue, toLightValue, emissiveValue;
     CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue, alphaCutoffValue;
     CachedUniform<std::uint32_t> firstIdValue;

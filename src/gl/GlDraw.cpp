@@ -74,7 +74,10 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         {params.occlusionTexture, kOcclusionBit},
         {params.emissiveTexture, kEmissiveBit},
         {params.normalTexture, kNormalMapBit},
-        {params.specularGlossinessTexture, kSpecularGlossinessMapBit}};
+        {params.specularGlossinessTexture, kSpecularGlossinessMapBit},
+        {params.clearcoatTexture, kClearcoatMapBit},
+        {params.clearcoatRoughnessTexture, kClearcoatRoughnessMapBit},
+        {params.clearcoatNormalTexture, kClearcoatNormalMapBit}};
     GLuint textures[kTextureUnits] = {};
     for (int unit = 0; unit < kTextureUnits; ++unit) {
         if (maps[unit].first == kNoHandle) continue;
@@ -87,10 +90,12 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     }
     if (params.specularGlossiness) variant = (variant & ~kMetallicRoughnessBit) | kSpecularGlossinessBit;
     else variant &= ~kSpecularGlossinessMapBit;
+    if (params.clearcoat > 0.0f) variant |= kClearcoatBit;
+    else variant &= ~kClearcoatBits;
     if (params.unlit)  // light only
         variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit | kSpecularGlossinessBit |
-                     kSpecularGlossinessMapBit);
-    if (mesh.layout.tangent < 0) variant &= ~kNormalMapBit;  // no basis to read it in
+                     kSpecularGlossinessMapBit | kClearcoatBits);
+    if (mesh.layout.tangent < 0) variant &= ~(kNormalMapBit | kClearcoatNormalMapBit);  // no basis to read them in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
     if (params.unlit) variant |= kUnlitBit;
     if (params.alphaMode == AlphaMode::Mask) variant |= kAlphaMaskBit;
@@ -131,6 +136,9 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     const glm::vec4 specularGlossiness(params.specular, params.glossiness);
     if ((variant & kSpecularGlossinessBit) && state_.uniformChanged(p->specularGlossinessValue, specularGlossiness))
         gl_.Uniform4fv(p->specularGlossiness, 1, glm::value_ptr(specularGlossiness));
+    const glm::vec3 clearcoat(params.clearcoat, params.clearcoatRoughness, params.clearcoatNormalScale);
+    if ((variant & kClearcoatBit) && state_.uniformChanged(p->clearcoatValue, clearcoat))
+        gl_.Uniform3fv(p->clearcoat, 1, glm::value_ptr(clearcoat));
     const glm::vec2 metallicRoughness(params.metallic, params.roughness);
     if (state_.uniformChanged(p->metallicRoughnessValue, metallicRoughness))
         gl_.Uniform2fv(p->metallicRoughness, 1, glm::value_ptr(metallicRoughness));

@@ -74,6 +74,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kOcclusionBit) defines += "#define FRUGAL_OCCLUSION_MAP\n";
     if (variant & kEmissiveBit) defines += "#define FRUGAL_EMISSIVE_MAP\n";
     if (variant & kNormalMapBit) defines += "#define FRUGAL_NORMAL_MAP\n";
+    if (variant & (kNormalMapBit | kClearcoatNormalMapBit)) defines += "#define FRUGAL_TANGENTS\n";
     if (variant & kColorsBit) defines += "#define FRUGAL_COLORS\n";
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
     if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
@@ -82,6 +83,10 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kAlphaBlendBit) defines += "#define FRUGAL_ALPHA_BLEND\n";
     if (variant & kSpecularGlossinessBit) defines += "#define FRUGAL_SPECULAR_GLOSSINESS\n";
     if (variant & kSpecularGlossinessMapBit) defines += "#define FRUGAL_SPECULAR_GLOSSINESS_MAP\n";
+    if (variant & kClearcoatBit) defines += "#define FRUGAL_CLEARCOAT\n";
+    if (variant & kClearcoatMapBit) defines += "#define FRUGAL_CLEARCOAT_MAP\n";
+    if (variant & kClearcoatRoughnessMapBit) defines += "#define FRUGAL_CLEARCOAT_ROUGHNESS_MAP\n";
+    if (variant & kClearcoatNormalMapBit) defines += "#define FRUGAL_CLEARCOAT_NORMAL_MAP\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -102,10 +107,13 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.normalScale = gl_.GetUniformLocation(p.name, "u_normalScale");
     p.alphaCutoff = gl_.GetUniformLocation(p.name, "u_alphaCutoff");
     p.specularGlossiness = gl_.GetUniformLocation(p.name, "u_specularGlossiness");
+    p.clearcoat = gl_.GetUniformLocation(p.name, "u_clearcoat");
     // Each map on its own texture unit, in DrawParams' order (absent samplers: location -1, ignored).
     state_.useProgram(p.name);
-    const char* samplers[kTextureUnits] = {"u_baseColor",   "u_metallicRoughnessMap", "u_occlusionMap",
-                                           "u_emissiveMap", "u_normalMap",            "u_specularGlossinessMap"};
+    const char* samplers[kTextureUnits] = {
+        "u_baseColor",         "u_metallicRoughnessMap",  "u_occlusionMap", "u_emissiveMap",
+        "u_normalMap",         "u_specularGlossinessMap", "u_clearcoatMap", "u_clearcoatRoughnessMap",
+        "u_clearcoatNormalMap"};
     for (int unit = 0; unit < kTextureUnits; ++unit)
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, samplers[unit]), unit);
     return {};

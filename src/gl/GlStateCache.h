@@ -51,7 +51,7 @@ struct CachedUniform {
 // except for the bindings, which start at GL's 0.
 // The texture units a mesh program samples (GlPrograms.cpp): base colour, metallic-roughness,
 // occlusion, emissive, normal.
-constexpr int kTextureUnits = 6;
+constexpr int kTextureUnits = 9;
 
 class GlStateCache {
 public:

@@ -148,6 +148,12 @@ struct DrawParams {
     glm::vec3 specular{1.0f};
     float glossiness = 1.0f;
     TextureHandle specularGlossinessTexture = kNoHandle;  // rgb × specular, alpha × glossiness
+    // KHR_materials_clearcoat (Material): no coat at clearcoat 0.
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+    TextureHandle clearcoatTexture = kNoHandle;           // red × clearcoat
+    TextureHandle clearcoatRoughnessTexture = kNoHandle;  // green × clearcoatRoughness
+    TextureHandle clearcoatNormalTexture = kNoHandle;     // read as normalTexture is, at clearcoatNormalScale
+    float clearcoatNormalScale = 1.0f;
     std::uint32_t firstId = 1;          // id = firstId + mesh.triangleSource[t]
     DepthMode depth = DepthMode::Test;
 };

@@ -48,11 +48,12 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     renderer.meshes_.reserve(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
-        // A normal map needs tangents: a mesh without them is uploaded with generated ones.
+        // A normal map (the surface's or its coat's) needs tangents: a mesh without them is
+        // uploaded with generated ones.
         Mesh withTangents;
         const bool needsTangents = mesh.tangents.empty() && mesh.material >= 0 &&
                                    std::size_t(mesh.material) < scene.materials.size() &&
-                                   scene.materials[std::size_t(mesh.material)].normalTexture >= 0;
+                                   scene.materials[std::size_t(mesh.material)].tangentSpace();
         if (needsTangents) {
             withTangents = mesh;
             generateTangents(withTangents);
@@ -138,6 +139,14 @@ void SceneRenderer::drawSequence(std::span<const DrawCommand* const> list, const
         params.specular = material.specularFactor;
         params.glossiness = material.glossinessFactor;
         params.specularGlossinessTexture = handle(material.specularGlossinessTexture);
+        if (material.clearcoat()) {
+            params.clearcoat = material.clearcoatFactor;
+            params.clearcoatRoughness = material.clearcoatRoughnessFactor;
+            params.clearcoatTexture = handle(material.clearcoatTexture);
+            params.clearcoatRoughnessTexture = handle(material.clearcoatRoughnessTexture);
+            params.clearcoatNormalTexture = handle(material.clearcoatNormalTexture);
+            params.clearcoatNormalScale = material.clearcoatNormalScale;
+        }
         params.firstId = instance.firstId;
         params.depth = command.depth;
         return params;

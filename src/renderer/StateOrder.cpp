@@ -16,14 +16,16 @@ std::vector<order::Rss> drawStates(const Scene& scene, const DrawList& list, boo
         const bool textured = material && material->baseColorTexture >= 0;
         const bool doubleSided = material && material->doubleSided && !cullAllBackFaces;
         // The program: which inputs and maps the draw's shader variant reads.
-        const std::uint32_t maps = material ? (material->metallicRoughnessTexture >= 0 ? 4u : 0u) |
-                                                  (material->occlusionTexture >= 0 ? 8u : 0u) |
-                                                  (material->emissiveTexture >= 0 ? 16u : 0u) |
-                                                  (material->normalTexture >= 0 ? 32u : 0u) |
-                                                  (material->specularGlossiness ? 64u : 0u) |
-                                                  (material->specularGlossinessTexture >= 0 ? 128u : 0u) |
-                                                  (std::uint32_t(material->alphaMode) << 8)
-                                            : 0u;
+        const std::uint32_t maps =
+            material ? (material->metallicRoughnessTexture >= 0 ? 4u : 0u) |
+                           (material->occlusionTexture >= 0 ? 8u : 0u) | (material->emissiveTexture >= 0 ? 16u : 0u) |
+                           (material->normalTexture >= 0 ? 32u : 0u) | (material->specularGlossiness ? 64u : 0u) |
+                           (material->specularGlossinessTexture >= 0 ? 128u : 0u) |
+                           (std::uint32_t(material->alphaMode) << 8) | (material->clearcoat() ? 1024u : 0u) |
+                           (material->clearcoatTexture >= 0 ? 2048u : 0u) |
+                           (material->clearcoatRoughnessTexture >= 0 ? 4096u : 0u) |
+                           (material->clearcoatNormalTexture >= 0 ? 8192u : 0u)
+                     : 0u;
         sets.push_back({1 + ((textured ? 1u : 0u) | (mesh.colors.empty() ? 0u : 2u) | maps),
                         std::uint32_t(1 + meshIndex), textured ? std::uint32_t(1 + material->baseColorTexture) : 0u,
                         std::uint32_t(2 + mesh.material), doubleSided ? 2u : 1u,

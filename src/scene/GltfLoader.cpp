@@ -231,6 +231,7 @@ struct TextureTransform {
 // A texture reference written inside an extension (tinygltf leaves those as JSON values).
 struct ExtensionTexture {
     int index = -1, texCoord = 0;
+    double scale = 1.0;  // a normal texture's
     tinygltf::ExtensionMap extensions;
 };
 
@@ -243,14 +244,34 @@ struct SpecularGlossiness {
     ExtensionTexture diffuseTexture, specularGlossinessTexture;
 };
 
+// KHR_materials_clearcoat as a material writes it (defaults where it does not).
+struct Clearcoat {
+    bool present = false;
+    float factor = 0.0f, roughness = 0.0f;
+    ExtensionTexture texture, roughnessTexture, normalTexture;
+};
+
 // A material's textures as drawn: each map it has (base colour, metallic-roughness, occlusion,
 // emissive, normal), sampled at one set of coordinates through one transform, the first map's. (frugal keeps
 // one set of texture coordinates per mesh.) A map that asks for other coordinates is not drawn.
 struct MaterialMaps {
-    enum Map { kBaseColor, kMetallicRoughness, kOcclusion, kEmissive, kNormal, kSpecularGlossiness, kMapCount };
-    static constexpr const char* kNames[kMapCount] = {"base colour", "metallic-roughness", "occlusion",
-                                                      "emissive",    "normal",             "specular-glossiness"};
-    std::array<int, kMapCount> texture{-1, -1, -1, -1, -1, -1};  // glTF texture, -1 = none or not drawn
+    // Material's maps, in kMaterialMaps' order.
+    enum Map {
+        kBaseColor,
+        kMetallicRoughness,
+        kOcclusion,
+        kEmissive,
+        kNormal,
+        kSpecularGlossiness,
+        kClearcoat,
+        kClearcoatRoughness,
+        kClearcoatNormal,
+        kMapCount
+    };
+    static constexpr const char* kNames[kMapCount] = {
+        "base colour", "metallic-roughness",   "occlusion",        "emissive", "normal", "specular-glossiness",
+        "clear-coat",  "clear-coat roughness", "clear-coat normal"};
+    std::array<int, kMapCount> texture{-1, -1, -1, -1, -1, -1, -1, -1, -1};  // glTF texture, -1 = none or not drawn
     TextureTransform transform;  // the coordinates they share
     bool differing = false;      // a map was left out for its coordinates
     bool any() const { return std::any_of(texture.begin(), texture.end(), [](int t) { return t >= 0; }); }
@@ -305,6 +326,7 @@ private:
     // The textures of material `material` that are drawn, and the coordinates they share.
     MaterialMaps mapsOf(int material) const;
     SpecularGlossiness specularGlossinessOf(int material) const;
+    Clearcoat clearcoatOf(int material) const;
     ExtensionTexture extensionTexture(const tinygltf::Value& value, const std::string& where) const;
     void convertAnimations();
     void addCamera(int node);
@@ -488,6 +510,7 @@ ExtensionTexture Converter::extensionTexture(const tinygltf::Value& value, const
     out.index = integer("index", double(model_.textures.size()),
                         cat(" is not a texture (the file has ", model_.textures.size(), ")"));
     if (value.Has("texCoord")) out.texCoord = integer("texCoord", 256.0, " is not a set index (0 to 255)");
+    if (value.Has("scale")) out.scale = extensionNumber(value.Get("scale"), where + ".scale");
     if (value.Has("extensions")) {
         const tinygltf::Value& extensions = value.Get("extensions");
         if (!extensions.IsObject()) fail(where, ".extensions: not an object");
@@ -532,6 +555,32 @@ SpecularGlossiness Converter::specularGlossinessOf(int material) const {
     return out;
 }
 
+Clearcoat Converter::clearcoatOf(int material) const {
+    const tinygltf::Material& src = model_.materials[std::size_t(material)];
+    Clearcoat out;
+    const auto it = src.extensions.find("KHR_materials_clearcoat");
+    if (it == src.extensions.end()) return out;
+    out.present = true;
+    const tinygltf::Value& ext = it->second;
+    const std::string at = cat("materials[", material, "].extensions.KHR_materials_clearcoat");
+    if (!ext.IsObject()) fail(at, ": not an object");
+    const auto factor = [&](const char* name) {  // a number in [0, 1], as the extension defines it
+        if (!ext.Has(name)) return 0.0f;
+        const double d = extensionNumber(ext.Get(name), cat(at, ".", name));
+        if (!(d >= 0.0 && d <= 1.0)) fail(at, ".", name, ": ", d, " is not in [0, 1]");
+        return float(d);
+    };
+    out.factor = factor("clearcoatFactor");
+    out.roughness = factor("clearcoatRoughnessFactor");
+    const auto texture = [&](const char* name, ExtensionTexture& into) {
+        if (ext.Has(name)) into = extensionTexture(ext.Get(name), cat(at, ".", name));
+    };
+    texture("clearcoatTexture", out.texture);
+    texture("clearcoatRoughnessTexture", out.roughnessTexture);
+    texture("clearcoatNormalTexture", out.normalTexture);
+    return out;
+}
+
 MaterialMaps Converter::mapsOf(int material) const {
     const tinygltf::Material& src = model_.materials[std::size_t(material)];
     const std::string where = cat("materials[", material, "]");
@@ -547,6 +596,12 @@ MaterialMaps Converter::mapsOf(int material) const {
     const SpecularGlossiness sg = specularGlossinessOf(material);
     const ExtensionTexture& diffuse = sg.diffuseTexture;
     const ExtensionTexture& specular = sg.specularGlossinessTexture;
+    // A clear coat's maps are drawn only where there is a coat (factor above 0).
+    const Clearcoat coat = clearcoatOf(material);
+    const bool coated = coat.factor > 0.0f;
+    const auto coatReference = [coated](const ExtensionTexture& t, const char* member) {
+        return Reference{coated ? t.index : -1, t.texCoord, t.extensions, member};
+    };
     const Reference references[MaterialMaps::kMapCount] = {
         sg.present ? Reference{diffuse.index, diffuse.texCoord, diffuse.extensions,
                                ".extensions.KHR_materials_pbrSpecularGlossiness.diffuseTexture"}
@@ -558,6 +613,9 @@ MaterialMaps Converter::mapsOf(int material) const {
         {src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, ".normalTexture"},
         {specular.index, specular.texCoord, specular.extensions,
          ".extensions.KHR_materials_pbrSpecularGlossiness.specularGlossinessTexture"},
+        coatReference(coat.texture, ".extensions.KHR_materials_clearcoat.clearcoatTexture"),
+        coatReference(coat.roughnessTexture, ".extensions.KHR_materials_clearcoat.clearcoatRoughnessTexture"),
+        coatReference(coat.normalTexture, ".extensions.KHR_materials_clearcoat.clearcoatNormalTexture"),
     };
     MaterialMaps maps;
     bool first = true;
@@ -744,11 +802,13 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
     const bool textured = maps.any();
     const int texCoord = textured ? maps.transform.texCoord : 0;
     const std::string uvName = cat("TEXCOORD_", texCoord);
-    // Tangents are kept for a normal map only (and only with the normals they belong to).
+    // Tangents are kept for a normal map only, the surface's or its coat's (and only with the
+    // normals they belong to).
     static constexpr int kVec4[] = {TINYGLTF_TYPE_VEC4};
     static constexpr int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
-    if (const int tangent = accessor("TANGENT");
-        tangent >= 0 && maps.texture[MaterialMaps::kNormal] >= 0 && !mesh.normals.empty())
+    const bool normalMapped =
+        maps.texture[MaterialMaps::kNormal] >= 0 || maps.texture[MaterialMaps::kClearcoatNormal] >= 0;
+    if (const int tangent = accessor("TANGENT"); tangent >= 0 && normalMapped && !mesh.normals.empty())
         mesh.tangents = toVectors<glm::vec4>(readFloats(tangent, "TANGENT of " + where, kVec4, nullptr, kFloat));
     if (const int uv = accessor(uvName); uv >= 0) {
         mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
@@ -973,14 +1033,18 @@ void Converter::convertMaterials() {
             material.specularFactor = sg.specular;
             material.glossinessFactor = sg.glossiness;
         }
+        if (const Clearcoat coat = clearcoatOf(m); coat.factor > 0.0f) {
+            material.clearcoatFactor = coat.factor;
+            material.clearcoatRoughnessFactor = coat.roughness;
+            material.clearcoatNormalScale = toFloat(
+                coat.normalTexture.scale, where + ".extensions.KHR_materials_clearcoat.clearcoatNormalTexture.scale");
+        }
         // Features are reported, and textures decoded, only for materials the drawn meshes use.
         if (!materialUsed_[std::size_t(m)]) continue;
         const MaterialMaps maps = mapsOf(m);  // (KHR_texture_transform: one transform for them all)
         if (maps.differing) report("textures of one material on different coordinates (the first one's are used)");
         material.baseColorTransform = maps.transform.matrix;
-        int* const targets[MaterialMaps::kMapCount] = {&material.baseColorTexture, &material.metallicRoughnessTexture,
-                                                       &material.occlusionTexture, &material.emissiveTexture,
-                                                       &material.normalTexture, &material.specularGlossinessTexture};
+        static_assert(std::size(kMaterialMaps) == MaterialMaps::kMapCount);
         for (int k = 0; k < MaterialMaps::kMapCount; ++k) {
             if (maps.texture[std::size_t(k)] < 0) continue;
             // Colour is sRGB-encoded (base colour, emission); data is linear. The Khronos renderer
@@ -989,7 +1053,8 @@ void Converter::convertMaterials() {
             // renderer's (docs/fidelity.md).
             const bool srgb =
                 (k == MaterialMaps::kBaseColor && !material.specularGlossiness) || k == MaterialMaps::kEmissive;
-            *targets[k] = useTexture(maps.texture[std::size_t(k)], m, srgb, MaterialMaps::kNames[k]);
+            material.*kMaterialMaps[k].texture =
+                useTexture(maps.texture[std::size_t(k)], m, srgb, MaterialMaps::kNames[k]);
         }
         // Emission from a texture that is not drawn: none (rather than the factor's full brightness
         // everywhere).
@@ -1009,8 +1074,7 @@ void Converter::untextureMeshesWithoutUvs() {
             Material copy = scene_.materials[std::size_t(mesh.material)];
             copy.name += " (untextured)";
             if (copy.emissiveTexture >= 0) copy.emissiveFactor = glm::vec3(0.0f);  // its emission needs it
-            copy.baseColorTexture = copy.metallicRoughnessTexture = copy.occlusionTexture = -1;
-            copy.emissiveTexture = copy.normalTexture = copy.specularGlossinessTexture = -1;
+            for (const MaterialMap& map : kMaterialMaps) copy.*map.texture = -1;
             scene_.materials.push_back(copy);
         }
         mesh.material = it->second;
@@ -1083,10 +1147,12 @@ Scene Converter::run() {
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
     // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (one
     // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor;
-    // KHR_materials_pbrSpecularGlossiness is Material::specularGlossiness (specularGlossinessOf).
+    // KHR_materials_pbrSpecularGlossiness is Material::specularGlossiness (specularGlossinessOf);
+    // KHR_materials_clearcoat, Material::clearcoatFactor and the rest (clearcoatOf).
     for (const std::string& name : extensions_)
         if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
-            name != "KHR_materials_emissive_strength" && name != "KHR_materials_pbrSpecularGlossiness")
+            name != "KHR_materials_emissive_strength" && name != "KHR_materials_pbrSpecularGlossiness" &&
+            name != "KHR_materials_clearcoat")
             report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();

@@ -86,15 +86,9 @@ Result<int> Scene::addMaterial(Material material) {
         return bad("material: base colour " + text(material.baseColorFactor) + " is not finite");
     if (!isFinite(material.emissiveFactor) || glm::any(glm::lessThan(material.emissiveFactor, glm::vec3(0.0f))))
         return bad("material: emissive " + text(material.emissiveFactor) + " is not finite and at least 0");
-    const std::pair<const char*, int> maps[] = {{"texture", material.baseColorTexture},
-                                                {"metallic-roughness texture", material.metallicRoughnessTexture},
-                                                {"occlusion texture", material.occlusionTexture},
-                                                {"emissive texture", material.emissiveTexture},
-                                                {"normal texture", material.normalTexture},
-                                                {"specular-glossiness texture", material.specularGlossinessTexture}};
-    for (const auto& [what, index] : maps)
-        if (index < -1 || index >= int(textures.size()))
-            return bad(std::string("material: ") + what + " " + std::to_string(index) +
+    for (const MaterialMap& map : kMaterialMaps)
+        if (const int index = material.*map.texture; index < -1 || index >= int(textures.size()))
+            return bad(std::string("material: ") + map.name + " " + std::to_string(index) +
                        " does not exist (the scene has " + std::to_string(textures.size()) + ")");
     const auto factorProblem = [](const char* name, float value) -> std::string {
         if (value >= 0.0f && value <= 1.0f) return {};
@@ -106,10 +100,15 @@ Result<int> Scene::addMaterial(Material material) {
           factorProblem("glossiness", material.glossinessFactor),
           factorProblem("specular red", material.specularFactor.r),
           factorProblem("specular green", material.specularFactor.g),
-          factorProblem("specular blue", material.specularFactor.b)})
+          factorProblem("specular blue", material.specularFactor.b),
+          factorProblem("clear coat", material.clearcoatFactor),
+          factorProblem("clear-coat roughness", material.clearcoatRoughnessFactor)})
         if (!problem.empty()) return bad(problem);
     if (!std::isfinite(material.normalScale))
         return bad("material: normal scale " + fmt(double(material.normalScale)) + " is not finite");
+    if (!std::isfinite(material.clearcoatNormalScale))
+        return bad("material: clear-coat normal scale " + fmt(double(material.clearcoatNormalScale)) +
+                   " is not finite");
     if (!(material.alphaCutoff >= 0.0f && std::isfinite(material.alphaCutoff)))
         return bad("material: alpha cutoff " + fmt(double(material.alphaCutoff)) + " is not finite and at least 0");
     if (int(material.alphaMode) > int(AlphaMode::Blend))

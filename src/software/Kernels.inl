@@ -376,6 +376,17 @@ inline Vec3 normalize(const Vec3& a) {
     return {a.x * rsq, a.y * rsq, a.z * rsq};
 }
 
+// mesh.frag's ggx(): the GGX lobe's visibility × distribution at alpha² (visibility 0 where its
+// denominator is 0).
+inline F8 ggx(F8 nl, F8 nv, F8 nh, F8 alpha2) {
+    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
+    const F8 sum =
+        nl * simd::sqrt((nv * nv) * (one - alpha2) + alpha2) + nv * simd::sqrt((nl * nl) * (one - alpha2) + alpha2);
+    const F8 visibility = simd::selectf(simd::lt(zero, sum), simd::splat(0.5f) / sum, zero);
+    const F8 f = (nh * nh) * (alpha2 - one) + one;
+    return visibility * (alpha2 / simd::max(simd::splat(kPi) * (f * f), simd::splat(1.0e-30f)));
+}
+
 // The Khronos renderer's getIBLGGXFresnel (mesh.frag's iblFresnel).
 inline F8 iblFresnel(F8 f0, F8 r, F8 c5, F8 a, F8 b) {
     const F8 one = simd::splat(1.0f);
@@ -402,6 +413,9 @@ struct Light {
         const F8* occlusion;  // the occlusion map's red, or nullptr: none
         F8 emission[3];
         const F8* specular = nullptr;  // specular-glossiness: the dielectric's f0 per channel (no metal)
+        const F8* coat = nullptr;      // the clear coat's factor × its map, or nullptr: no coat
+        F8 coatRoughness{};
+        Vec3 coatNormal{};
     };
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
@@ -430,7 +444,18 @@ struct Light {
                 metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
             }
         }
-        if (surface.occlusion) {
+        // The clear coat over the environment's colour; the light's is then gathered from 0.
+        F8 k = zero, coated[3] = {zero, zero, zero};
+        if (surface.coat) {
+            k = *surface.coat * (f0 + (one - f0) * pow5(one - saturate(dot(surface.coatNormal, v))));
+            const F8 occlusion = surface.occlusion ? one + occlusionStrength * (*surface.occlusion - one) : one;
+            for (int c = 0; c < 3; ++c) {
+                coated[c] = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
+                coated[c] = coated[c] * (one - k) + environment * k;
+                if (surface.occlusion) coated[c] = coated[c] * occlusion;
+                dielectric[c] = metal[c] = zero;
+            }
+        } else if (surface.occlusion) {
             const F8 occlusion = one + occlusionStrength * (*surface.occlusion - one);
             for (int c = 0; c < 3; ++c) {
                 dielectric[c] = dielectric[c] * occlusion;
@@ -441,28 +466,34 @@ struct Light {
         // The directional light.
         const Vec3 h = normalize({toLight.x + v.x, toLight.y + v.y, toLight.z + v.z});
         const F8 nl = saturate(dot(n, toLight)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
-        const F8 ggx = nl * simd::sqrt((nv * nv) * (one - alpha2) + alpha2) +
-                       nv * simd::sqrt((nl * nl) * (one - alpha2) + alpha2);
-        const F8 visibility = simd::selectf(simd::lt(zero, ggx), simd::splat(0.5f) / ggx, zero);
-        const F8 f = (nh * nh) * (alpha2 - one) + one;
-        const F8 distribution = alpha2 / simd::max(pi * (f * f), simd::splat(1.0e-30f));
         const F8 radiance = intensity * nl;
-        const F8 specular = radiance * (visibility * distribution);
+        const F8 specular = radiance * ggx(nl, nv, nh, alpha2);
         const F8 ch = pow5(one - vh);
+        F8 lit[3];
         if (surface.specular) {
             for (int c = 0; c < 3; ++c) {
                 const F8 fl = surface.specular[c] + (one - surface.specular[c]) * ch;
-                dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-                out[c] = dielectric[c] + surface.emission[c];
+                lit[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
             }
+        } else {
+            const F8 fl = f0 + (one - f0) * ch;
+            for (int c = 0; c < 3; ++c) {
+                dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
+                metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
+                lit[c] = dielectric[c] * (one - metallic) + metal[c] * metallic;
+            }
+        }
+        if (!surface.coat) {
+            for (int c = 0; c < 3; ++c) out[c] = lit[c] + surface.emission[c];
             return;
         }
-        const F8 fl = f0 + (one - f0) * ch;
-        for (int c = 0; c < 3; ++c) {
-            dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-            metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
-            out[c] = (dielectric[c] * (one - metallic) + metal[c] * metallic) + surface.emission[c];
-        }
+        const Vec3& nc = surface.coatNormal;
+        const F8 ncl = saturate(dot(nc, toLight));
+        const F8 cr = surface.coatRoughness;
+        const F8 coatSpecular =
+            intensity * (ncl * ggx(ncl, saturate(dot(nc, v)), saturate(dot(nc, h)), (cr * cr) * (cr * cr)));
+        for (int c = 0; c < 3; ++c)
+            out[c] = (coated[c] + (lit[c] * (one - k) + coatSpecular * k)) + surface.emission[c] * (one - k);
     }
 
     Vec3 eye, toLight;
@@ -500,10 +531,11 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const bool mapped = shading.mapped();
     const bool colored = shading.colors;
     const bool normalMapped = shading.normalMap != nullptr;
+    const bool tangentSpace = shading.tangentSpace();
     Plane a[kAttributes];
     // Varyings eight at a time (the same operations per lane as plane()), the rest alone; the
     // tangent basis (12–17) only for a normal map.
-    const int planes = normalMapped ? kAttributes : 12;
+    const int planes = tangentSpace ? kAttributes : 12;
     int first = 0;
     for (; first + 8 <= planes; first += 8) {
         const F8 a0 = simd::loadf(v0.a + first) * simd::splat(v0.oow);
@@ -525,7 +557,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     int usedCount = 0;
     for (int i = 0; i < kAttributes; ++i)
         if ((!shading.unlit && (i < 3 || (i >= 9 && i < 12))) || (colored && i >= 3 && i < 7) ||
-            (mapped && i >= 7 && i < 9) || (normalMapped && i >= 12))
+            (mapped && i >= 7 && i < 9) || (tangentSpace && i >= 12))
             used[usedCount++] = i;
 
     const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), c255 = simd::splat(255.0f);
@@ -573,22 +605,30 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             if (!shading.unlit) {
                 Vec3 n = normalize({value[0], value[1], value[2]});
                 if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
-                if (normalMapped) {
-                    Vec3 tangent = normalize({value[12], value[13], value[14]});
-                    Vec3 bitangent = normalize({value[15], value[16], value[17]});
+                Vec3 tangent{}, bitangent{};
+                if (tangentSpace) {
+                    tangent = normalize({value[12], value[13], value[14]});
+                    bitangent = normalize({value[15], value[16], value[17]});
                     if (!t.front) {
                         tangent = {simd::neg(tangent.x), simd::neg(tangent.y), simd::neg(tangent.z)};
                         bitangent = {simd::neg(bitangent.x), simd::neg(bitangent.y), simd::neg(bitangent.z)};
                     }
+                }
+                // A normal map's vector: rgb · 2 − 1, x and y · scale, normalised, in the basis.
+                const auto mappedNormal = [&](const SoftwareTexture& map, float scaleFactor, const Vec3& normal) {
                     F8 stored[4];
-                    sampleLanes(*shading.normalMap, s, tt, lanes, stored);
-                    const F8 two = simd::splat(2.0f), scale = simd::splat(shading.normalScale);
+                    sampleLanes(map, s, tt, lanes, stored);
+                    const F8 two = simd::splat(2.0f), scale = simd::splat(scaleFactor);
                     const Vec3 m = normalize({(stored[0] * two - one) * scale, (stored[1] * two - one) * scale,
                                               stored[2] * two - one});
-                    n = normalize({(tangent.x * m.x + bitangent.x * m.y) + n.x * m.z,
-                                   (tangent.y * m.x + bitangent.y * m.y) + n.y * m.z,
-                                   (tangent.z * m.x + bitangent.z * m.y) + n.z * m.z});
-                }
+                    return Vec3{(tangent.x * m.x + bitangent.x * m.y) + normal.x * m.z,
+                                (tangent.y * m.x + bitangent.y * m.y) + normal.y * m.z,
+                                (tangent.z * m.x + bitangent.z * m.y) + normal.z * m.z};
+                };
+                Vec3 coatNormal = n;  // the clear coat's: before the base normal map
+                if (shading.clearcoatNormalMap)
+                    coatNormal = mappedNormal(*shading.clearcoatNormalMap, shading.clearcoatNormalScale, n);
+                if (normalMapped) n = normalize(mappedNormal(*shading.normalMap, shading.normalScale, n));
                 const Vec3 v = normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
                 Light::Surface surface{light.metallicFactor, light.roughnessFactor, nullptr,
                                        {light.emission[0], light.emission[1], light.emission[2]}};
@@ -617,6 +657,20 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 if (shading.emissive) {
                     sampleLanes(*shading.emissive, s, tt, lanes, map);
                     for (int c = 0; c < 3; ++c) surface.emission[c] = surface.emission[c] * map[c];
+                }
+                F8 coat = simd::splat(shading.clearcoat);
+                if (shading.clearcoat > 0.0f) {
+                    surface.coatRoughness = simd::splat(shading.clearcoatRoughness);
+                    if (shading.clearcoatMap) {
+                        sampleLanes(*shading.clearcoatMap, s, tt, lanes, map);
+                        coat = coat * map[0];
+                    }
+                    if (shading.clearcoatRoughnessMap) {
+                        sampleLanes(*shading.clearcoatRoughnessMap, s, tt, lanes, map);
+                        surface.coatRoughness = surface.coatRoughness * map[1];
+                    }
+                    surface.coat = &coat;
+                    surface.coatNormal = coatNormal;
                 }
                 light.shade(base, n, v, surface, linear);
             }

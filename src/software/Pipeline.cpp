@@ -157,8 +157,9 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.normals = mesh.normals.empty() ? nullptr : mesh.normals.data();
     vertexJob.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
     vertexJob.uvs = mesh.uvs.empty() ? nullptr : mesh.uvs.data();
-    vertexJob.tangents = record.shading.normalMap && !mesh.tangents.empty() ? mesh.tangents.data() : nullptr;
-    if (vertexJob.tangents == nullptr) record.shading.normalMap = nullptr;  // no basis to read it in
+    vertexJob.tangents = record.shading.tangentSpace() && !mesh.tangents.empty() ? mesh.tangents.data() : nullptr;
+    if (vertexJob.tangents == nullptr)  // no basis to read them in
+        record.shading.normalMap = record.shading.clearcoatNormalMap = nullptr;
     vertexJob.mvp = input.mvp;
     vertexJob.normalMatrix = input.normalMatrix;
     vertexJob.model = input.model;

@@ -20,6 +20,11 @@
 // passes).
 // Specular-glossiness: f0 = specular · the map's rgb per channel where the BRDF has 0.04, r = 1 −
 // glossiness · its alpha, no metal terms (rgb = dielectric + emission).
+// Clear coat (mesh.frag's FRUGAL_CLEARCOAT): the coat normal nc = (t · m.x + b · m.y) + n · m.z,
+// m the coat map's normalised vector as below, else n (before the base normal map);
+// k = coat · (0.04 + 0.96 · (1 − sat(nc · v))⁵); env = mix(dielectric, metal, metallic) · (1 − k)
+// + L · k, then · occlusion; with lit the light's mix, rgb = (env + (lit · (1 − k) + E · (ncl ·
+// ggx) · k)) + emission · (1 − k), mesh.frag's ggx() at the coat's dots and alpha² = rc⁴.
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
@@ -191,13 +196,18 @@ struct DrawShading {
     glm::vec3 specular{1.0f};
     float glossiness = 1.0f;
     const SoftwareTexture* specularGlossinessMap = nullptr;
+    // KHR_materials_clearcoat (DrawParams): no coat at clearcoat 0.
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f, clearcoatNormalScale = 1.0f;
+    const SoftwareTexture *clearcoatMap = nullptr, *clearcoatRoughnessMap = nullptr, *clearcoatNormalMap = nullptr;
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
     glm::vec3 emission{0.0f};
     bool mapped() const {  // reads uvs
-        return texture || metallicRoughness || occlusion || emissive || normalMap || specularGlossinessMap;
+        return texture || metallicRoughness || occlusion || emissive || normalMap || specularGlossinessMap ||
+               clearcoatMap || clearcoatRoughnessMap || clearcoatNormalMap;
     }
+    bool tangentSpace() const { return normalMap || clearcoatNormalMap; }  // reads varyings 12–17
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting

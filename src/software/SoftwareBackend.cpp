@@ -235,6 +235,14 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
         input.shading.occlusion = texture(params.occlusionTexture);
         input.shading.emissive = texture(params.emissiveTexture);
         input.shading.normalMap = texture(params.normalTexture);
+        if (params.clearcoat > 0.0f) {
+            input.shading.clearcoat = params.clearcoat;
+            input.shading.clearcoatRoughness = params.clearcoatRoughness;
+            input.shading.clearcoatNormalScale = params.clearcoatNormalScale;
+            input.shading.clearcoatMap = texture(params.clearcoatTexture);
+            input.shading.clearcoatRoughnessMap = texture(params.clearcoatRoughnessTexture);
+            input.shading.clearcoatNormalMap = texture(params.clearcoatNormalTexture);
+        }
     }
     input.shading.normalScale = params.normalScale;
     input.shading.occlusionStrength = params.occlusionStrength;

@@ -143,11 +143,17 @@ TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
     if (!fs::exists(file)) FRUGAL_SKIP_IF_MISSING(file << " (assimp-testmodels)");
     const CliRun run = runFrugal(dir, {"info", file.string()});
     ASSERT_EQ(run.status, 0) << run.err;
-    for (const char* line : {"shading: 5 variants\n", "  metallic-roughness BRDF, emissive map: 9 meshes\n",
-                             "  metallic-roughness BRDF, normal map (tangents generated): 6 meshes\n",
-                             "  metallic-roughness BRDF, base colour map, blended (drawn last, far to near): 1 mesh\n"})
+    for (const char* line : {"shading: 11 variants\n", "  metallic-roughness BRDF, emissive map: 9 meshes\n",
+                             "  metallic-roughness BRDF, normal map (tangents generated): 4 meshes\n",
+                             "  metallic-roughness BRDF, base colour map, blended (drawn last, far to near): 1 mesh\n",
+                             "  metallic-roughness BRDF, clear coat, clear-coat roughness map: 1 mesh\n",
+                             "  metallic-roughness BRDF, normal map, clear coat, clear-coat normal map (tangents "
+                             "generated): 1 mesh\n"})
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " in\n" << run.out;
     EXPECT_NE(run.out.find("512x512, linear filter, linear data\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("single-sided, clear coat 1 of roughness 0.03, clear-coat normal map 5 at 1\n"),
+              std::string::npos)
+        << run.out;
 }
 
 struct BadCase {

@@ -1025,6 +1025,88 @@ TEST_P(GlBackendGLTest, NormalMapsTurnTheNormalInTheTangentBasis) {
     backend->destroyTarget(target);
 }
 
+// KHR_materials_clearcoat: a coat of factor × the coat map's red and roughness × its map's green
+// over the material, its normal the coat normal map's in the tangent basis (or the surface's, and
+// never the base normal map's), on front and back faces.
+TEST_P(GlBackendGLTest, ClearCoatLiesOverTheMaterialWithItsOwnMapsAndNormal) {
+    Backend* backend = backend_.get();
+    const auto texel = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+        Texture t;
+        t.width = t.height = 1;
+        t.rgba = {r, g, b, 255};
+        t.srgb = false;
+        const TextureHandle handle = backend->uploadTexture(t);
+        EXPECT_NE(handle, kNoHandle);
+        return handle;
+    };
+    const TextureHandle coatMap = texel(128, 64, 0), normals = texel(255, 64, 160);
+    Mesh quad = frontAndBack();
+    quad.tangents.assign(quad.positions.size(), glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+    const MeshHandle mesh = backend->uploadMesh(quad);
+    ASSERT_NE(mesh, kNoHandle);
+    const TargetHandle target = backend->createTarget(kWidth, kHeight);
+    const auto drawn = [&](DrawParams params) {
+        backend->clear(target, Rect{0, 0, kWidth, kHeight}, glm::vec4(0.0f), 1.0f);
+        backend->beginFrame(target, simpleFrame(false));
+        params.mesh = mesh;
+        params.baseColorFactor = kFactor;
+        params.metallic = 0.5f;
+        params.roughness = 0.6f;
+        params.doubleSided = true;
+        backend->draw(params, all(quad));
+        return backend->readBack(target);
+    };
+    const double unorm = 1.0 / 255.0;
+    const auto stored = [&](double byte) { return byte * unorm * 2.0 - 1.0; };
+    const glm::dvec3 mapped = glm::normalize(glm::dvec3(stored(255) * 2.0, stored(64) * 2.0, stored(160)));
+    const glm::dvec3 baseMapped = glm::normalize(glm::dvec3(stored(255), stored(64), stored(160)));
+    struct Case {
+        const char* what;
+        float coat, roughness;
+        TextureHandle coatTexture, roughnessTexture, normalTexture, baseNormal;
+        double expectedCoat, expectedRoughness;
+        glm::dvec3 coatNormal;  // in the tangent basis (+x, +y, +z); 0: the surface's
+    };
+    const Case cases[] = {
+        {"smooth coat", 1.0f, 0.0f, kNoHandle, kNoHandle, kNoHandle, kNoHandle, 1.0, 0.0, {}},
+        {"half a rough coat", 0.5f, 0.7f, kNoHandle, kNoHandle, kNoHandle, kNoHandle, 0.5, 0.7, {}},
+        {"coat maps", 1.0f, 0.5f, coatMap, coatMap, kNoHandle, kNoHandle, 128 * unorm, 0.5 * 64 * unorm, {}},
+        {"coat normal map", 1.0f, 0.1f, kNoHandle, kNoHandle, normals, kNoHandle, 1.0, 0.1, mapped},
+        {"base normal map only", 1.0f, 0.1f, kNoHandle, kNoHandle, kNoHandle, normals, 1.0, 0.1, {}},
+    };
+    for (const Case& c : cases) {
+        DrawParams params;
+        params.clearcoat = c.coat;
+        params.clearcoatRoughness = c.roughness;
+        params.clearcoatTexture = c.coatTexture;
+        params.clearcoatRoughnessTexture = c.roughnessTexture;
+        params.clearcoatNormalTexture = c.normalTexture;
+        params.clearcoatNormalScale = 2.0f;
+        params.normalTexture = c.baseNormal;  // at scale 1
+        const Buffers b = drawn(params);
+        test::ShadedMaterial material{glm::dvec3(kFactor), 0.5, 0.6};
+        material.coat = c.expectedCoat;
+        material.coatRoughness = c.expectedRoughness;
+        for (const bool front : {true, false}) {
+            const double side = front ? 1.0 : -1.0;  // a back face flips the whole basis
+            const glm::dvec3 surface(0.0, 0.0, side);
+            const glm::dvec3 n = c.baseNormal != kNoHandle ? side * baseMapped : surface;
+            material.coatNormal = c.coatNormal == glm::dvec3(0.0) ? surface : side * c.coatNormal;
+            const int x = front ? kFrontX : kBackX;
+            EXPECT_TRUE(colorIs(b, x, kCentroidY, shadedAt(x, kCentroidY, 0.5f, glm::vec3(n), material), 2))
+                << c.what << (front ? ", front" : ", back");
+        }
+    }
+    // A coat of 0 is none: the same bytes as no coat at all, its maps unread.
+    DrawParams uncoated;
+    DrawParams zero = uncoated;
+    zero.clearcoatTexture = coatMap;
+    zero.clearcoatNormalTexture = normals;
+    EXPECT_EQ(drawn(zero).rgba, drawn(uncoated).rgba);
+    backend->releaseMesh(mesh);
+    backend->destroyTarget(target);
+}
+
 TEST_P(GlBackendGLTest, TexturedMeshWithoutUvsSamplesTheFirstTexel) {
     Texture tex;
     tex.width = 2;

@@ -228,8 +228,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .meshes = 27,
          .triangles = 37116,
          .instances = 27,
-         .textures = 9,
-         .unsupported = {"KHR_materials_clearcoat"}},
+         .textures = 10},
         {.file = "IncorrectVertexArrays/Cube.gltf",
          .error = "bufferViews[2]: byteOffset 504 + byteLength 432 is beyond the end of buffer 0 (514 bytes)"},
         {.file = "IndexOutOfRange/AllIndicesOutOfRange.gltf",
@@ -1431,6 +1430,55 @@ TEST(GltfLoaderTest, MapsAreReadAndDecodedAsTheirUseSays) {
         const Result<Scene> refused = withMaps(bad, "sgbad");
         ASSERT_FALSE(refused.ok()) << member;
         EXPECT_NE(refused.error().message.find("materials[0].extensions.KHR_materials_pbrSpecularGlossiness" + message),
+                  std::string::npos)
+            << refused.error().message;
+    }
+
+    // KHR_materials_clearcoat: its factors and three linear maps; the coat's normal map keeps the
+    // file's tangents. Without a coat (factor 0, the default) nothing of it is read.
+    const Json ccMaterial = {{"pbrMetallicRoughness", {{"baseColorTexture", texture}}},
+                             {"extensions",
+                              {{"KHR_materials_clearcoat",
+                                {{"clearcoatFactor", 0.75},
+                                 {"clearcoatRoughnessFactor", 0.125},
+                                 {"clearcoatTexture", texture},
+                                 {"clearcoatRoughnessTexture", texture},
+                                 {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}};
+    const Result<Scene> cc = withMaps(ccMaterial, "cc");
+    ASSERT_TRUE(cc.ok()) << cc.error().message;
+    EXPECT_TRUE(cc->unsupported.empty()) << cc->unsupported.front();
+    const Material& c = cc->materials[0];
+    EXPECT_TRUE(c.clearcoat());
+    EXPECT_EQ(c.clearcoatFactor, 0.75f);
+    EXPECT_EQ(c.clearcoatRoughnessFactor, 0.125f);
+    EXPECT_EQ(c.clearcoatNormalScale, 0.5f);
+    ASSERT_GE(c.clearcoatTexture, 0);
+    EXPECT_FALSE(cc->textures[std::size_t(c.clearcoatTexture)].srgb);
+    EXPECT_EQ(c.clearcoatRoughnessTexture, c.clearcoatTexture);
+    EXPECT_EQ(c.clearcoatNormalTexture, c.clearcoatTexture);
+    EXPECT_NE(c.baseColorTexture, c.clearcoatTexture) << "the base colour is sRGB";
+    EXPECT_TRUE(c.tangentSpace());
+    EXPECT_EQ(cc->meshes[0].tangents.size(), 4u) << "the file's tangents, for the coat's normal map";
+    Json uncoated = ccMaterial;
+    uncoated["extensions"]["KHR_materials_clearcoat"].erase("clearcoatFactor");
+    const Result<Scene> none = withMaps(uncoated, "ccnone");
+    ASSERT_TRUE(none.ok()) << none.error().message;
+    EXPECT_FALSE(none->materials[0].clearcoat());
+    EXPECT_EQ(none->materials[0].clearcoatTexture, -1);
+    EXPECT_EQ(none->materials[0].clearcoatNormalTexture, -1);
+    EXPECT_TRUE(none->meshes[0].tangents.empty()) << "no coat: its normal map needs no tangents";
+    EXPECT_EQ(none->textures.size(), 1u) << "only the base colour's";
+    for (const auto& [member, value, message] :
+         {std::tuple<std::string, Json, std::string>{"clearcoatFactor", 1.5, ".clearcoatFactor: 1.5 is not in [0, 1]"},
+          {"clearcoatRoughnessFactor", -0.5, ".clearcoatRoughnessFactor: -0.5 is not in [0, 1]"},
+          {"clearcoatFactor", "1", ".clearcoatFactor: not a number"},
+          {"clearcoatTexture", {{"index", 3}}, ".clearcoatTexture.index: 3 is not a texture (the file has 1)"},
+          {"clearcoatNormalTexture", {{"index", 0}, {"scale", "x"}}, ".clearcoatNormalTexture.scale: not a number"}}) {
+        Json bad = ccMaterial;
+        bad["extensions"]["KHR_materials_clearcoat"][member] = value;
+        const Result<Scene> refused = withMaps(bad, "ccbad");
+        ASSERT_FALSE(refused.ok()) << member;
+        EXPECT_NE(refused.error().message.find("materials[0].extensions.KHR_materials_clearcoat" + message),
                   std::string::npos)
             << refused.error().message;
     }

@@ -385,6 +385,72 @@ Scene normalMaps() {
     return scene;
 }
 
+// KHR_materials_clearcoat: coats of roughness 0, 0.03 and 1 over a rough dielectric and over a
+// metal, at factors 1 and 0.5; a coat map (nearest) and a coat roughness map (linear); coat normal
+// maps at scales 1 and 10, with generated tangents and with the file's, beside a base normal map
+// and alone; a coat over specular-glossiness, over an occluded emissive surface, on the inside of
+// a double-sided sphere, on a blended surface, and on an unlit one (which ignores it).
+Scene clearcoat() {
+    Scene scene;
+    std::mt19937 rng(42);
+    const int coatMap = randomTexture(scene, rng, 5, 7, false, Filter::Nearest, Wrap::Repeat);
+    const int roughnessMap = randomTexture(scene, rng, 8, 8, false, Filter::Linear, Wrap::MirroredRepeat);
+    const int normals = randomTexture(scene, rng, 8, 8, false, Filter::Linear, Wrap::Repeat);
+    const int data = randomTexture(scene, rng, 4, 4, false, Filter::Linear, Wrap::ClampToEdge);
+    Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(mesh, true);
+    Mesh cut = mesh;  // a sphere without its front cap: its inside shows
+    std::vector<std::uint32_t> kept;
+    for (std::size_t t = 0; t < cut.triangleCount(); ++t)
+        if (cut.positions[cut.indices[3 * t]].z < 0.3f)
+            kept.insert(kept.end(), cut.indices.begin() + std::ptrdiff_t(3 * t),
+                        cut.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    cut.indices = kept;
+    cut.triangleSource.clear();
+    finalizeMesh(cut, false);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float coatRoughness[] = {0.0f, 0.03f, 1.0f};
+    for (int k = 0; k < 16; ++k) {
+        Material m;
+        m.baseColorFactor = {0.5f, 0.02f, 0.01f, 1.0f};
+        m.metallicFactor = k == 3 ? 1.0f : 0.0f;
+        m.roughnessFactor = 0.44f;
+        m.clearcoatFactor = k == 3 ? 0.5f : 1.0f;
+        m.clearcoatRoughnessFactor = coatRoughness[k % 3];
+        Mesh copy = k == 12 ? cut : mesh;
+        if (k == 4) m.clearcoatTexture = coatMap;
+        if (k == 5) m.clearcoatRoughnessTexture = roughnessMap;
+        if (k >= 6 && k <= 9) m.clearcoatNormalTexture = normals;
+        m.clearcoatNormalScale = k == 7 ? 10.0f : 1.0f;
+        if (k == 8) m.normalTexture = data;
+        if (k == 9)  // the file's tangents
+            for (std::size_t v = 0; v < copy.positions.size(); ++v) {
+                const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f));
+                copy.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
+            }
+        if (k == 10) {
+            m.specularGlossiness = true;
+            m.specularFactor = {0.9f, 0.6f, 0.2f};
+            m.glossinessFactor = 0.5f;
+        }
+        if (k == 11) {
+            m.occlusionTexture = data;
+            m.emissiveFactor = {0.3f, 0.2f, 0.1f};
+        }
+        m.doubleSided = k == 12;
+        if (k == 13) {
+            m.alphaMode = AlphaMode::Blend;
+            m.baseColorFactor.a = 0.4f;
+        }
+        m.unlit = k == 14;
+        if (k == 15) m.clearcoatFactor = 0.0f;  // no coat: its maps are not read
+        if (k == 15) m.clearcoatNormalTexture = normals;
+        place(scene, std::move(copy), m, {float(k % 4) - 1.5f, float(k / 4) - 1.5f, 0.0f});
+    }
+    scene.buildInstances();
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -406,7 +472,12 @@ std::vector<MatrixCase> matrix() {
         {"default-800x600", [] { return loaded("builtin:default"); }, 800, 600, {}, {}},
         {"default-1920x1080", [] { return loaded("builtin:default"); }, 1920, 1080, {}, {}},
         {"default-61x47", [] { return loaded("builtin:default"); }, 61, 47, {}, {}},
-        {"dominoes1404-800x600", [] { return loaded("builtin:dominoes?polygons=1404&static=0.9866"); }, 800, 600, {}, {}},
+        {"dominoes1404-800x600",
+         [] { return loaded("builtin:dominoes?polygons=1404&static=0.9866"); },
+         800,
+         600,
+         {},
+         {}},
         {"cubes-800x600", [] { return loaded("builtin:cubes"); }, 800, 600, {}, {}},
         {"bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}},
         {"bunny-1920x1080", [bunny] { return loaded(bunny); }, 1920, 1080, {}, {}},
@@ -426,6 +497,7 @@ std::vector<MatrixCase> matrix() {
         {"normal-maps", normalMaps, 640, 360, lookFrom({0.2f, 0.3f, 4.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"specular-glossiness", specularGlossiness, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"clearcoat", clearcoat, 640, 560, lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
     };
 }
 
