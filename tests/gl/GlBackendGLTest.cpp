@@ -925,19 +925,24 @@ TEST_P(GlBackendGLTest, EachProgramVariantGetsTheCurrentUniforms) {
     }
 }
 
+// A 1×1 texture of `rgba`, uploaded.
+TextureHandle uploadTexel(Backend& backend, std::vector<std::uint8_t> rgba, bool srgb) {
+    Texture t;
+    t.width = t.height = 1;
+    t.rgba = std::move(rgba);
+    t.srgb = srgb;
+    const TextureHandle handle = backend.uploadTexture(t);
+    EXPECT_NE(handle, kNoHandle);
+    return handle;
+}
+
 // Each map scales what glTF says it scales, read from a 1×1 texture (so every pixel samples the one
 // texel): metallic × blue and roughness × green, the environment's light × the occlusion's red at
 // its strength, emission × the emissive map's decoded rgb.
 TEST_P(GlBackendGLTest, MapsScaleTheFactorsAsGltfReadsThem) {
     Backend* backend = backend_.get();
     const auto texel = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b, bool srgb) {
-        Texture t;
-        t.width = t.height = 1;
-        t.rgba = {r, g, b, 255};
-        t.srgb = srgb;
-        const TextureHandle handle = backend->uploadTexture(t);
-        EXPECT_NE(handle, kNoHandle);
-        return handle;
+        return uploadTexel(*backend, {r, g, b, 255}, srgb);
     };
     const TextureHandle mr = texel(0, 64, 191, false), occlusion = texel(0, 0, 0, false),
                         emissive = texel(255, 0, 0, true);
@@ -1031,13 +1036,7 @@ TEST_P(GlBackendGLTest, NormalMapsTurnTheNormalInTheTangentBasis) {
 TEST_P(GlBackendGLTest, ClearCoatLiesOverTheMaterialWithItsOwnMapsAndNormal) {
     Backend* backend = backend_.get();
     const auto texel = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-        Texture t;
-        t.width = t.height = 1;
-        t.rgba = {r, g, b, 255};
-        t.srgb = false;
-        const TextureHandle handle = backend->uploadTexture(t);
-        EXPECT_NE(handle, kNoHandle);
-        return handle;
+        return uploadTexel(*backend, {r, g, b, 255}, false);
     };
     const TextureHandle coatMap = texel(128, 64, 0), normals = texel(255, 64, 160);
     Mesh quad = frontAndBack();

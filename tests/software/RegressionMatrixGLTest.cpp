@@ -345,6 +345,29 @@ Scene alpha() {
 // Normal maps of generated texels at scales 0, 1, 10 and −1, in the basis of generated tangents
 // (from the sphere's uvs, when the renderer uploads it) and of the file's (random unit vectors, w
 // ±1), with mipmap-less linear and nearest samplers; one double-sided (its inside seen through a cut).
+// `mesh` without the triangles whose first vertex lies at z >= 0.3 (a sphere's front cap: its inside
+// shows).
+Mesh withoutFrontCap(Mesh mesh) {
+    std::vector<std::uint32_t> kept;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        if (mesh.positions[mesh.indices[3 * t]].z < 0.3f)
+            kept.insert(kept.end(), mesh.indices.begin() + std::ptrdiff_t(3 * t),
+                        mesh.indices.begin() + std::ptrdiff_t(3 * t + 3));
+    mesh.indices = kept;
+    mesh.triangleSource.clear();
+    finalizeMesh(mesh, false);
+    return mesh;
+}
+
+// Tangents as a file might give them: random unit directions, random handedness.
+void giveRandomTangents(Mesh& mesh, std::mt19937& rng) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f));
+        mesh.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
+    }
+}
+
 Scene normalMaps() {
     Scene scene;
     std::mt19937 rng(39);
@@ -352,17 +375,7 @@ Scene normalMaps() {
     const int nearest = randomTexture(scene, rng, 7, 5, false, Filter::Nearest, Wrap::Repeat);
     Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
     finalizeMesh(mesh, true);
-    Mesh cut = mesh;  // a sphere without its front cap: its inside shows
-    std::vector<std::uint32_t> kept;
-    for (std::size_t t = 0; t < cut.triangleCount(); ++t) {
-        const glm::vec3 c = cut.positions[cut.indices[3 * t]];
-        if (c.z < 0.3f) kept.insert(kept.end(), cut.indices.begin() + std::ptrdiff_t(3 * t),
-                                    cut.indices.begin() + std::ptrdiff_t(3 * t + 3));
-    }
-    cut.indices = kept;
-    cut.triangleSource.clear();
-    finalizeMesh(cut, false);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const Mesh cut = withoutFrontCap(mesh);
     const float scales[] = {0.0f, 1.0f, 10.0f, -1.0f};
     for (int k = 0; k < 8; ++k) {
         Material material;
@@ -373,12 +386,7 @@ Scene normalMaps() {
         material.normalScale = scales[k % 4];
         material.doubleSided = k == 7;
         Mesh copy = k == 7 ? cut : mesh;
-        if (k >= 4 && k < 7) {  // the file's tangents
-            for (std::size_t v = 0; v < copy.positions.size(); ++v) {
-                const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f));
-                copy.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
-            }
-        }
+        if (k >= 4 && k < 7) giveRandomTangents(copy, rng);  // the file's tangents
         place(scene, std::move(copy), material, {float(k % 4) - 1.5f, float(k / 4) - 0.5f, 0.0f});
     }
     scene.buildInstances();
@@ -399,16 +407,7 @@ Scene clearcoat() {
     const int data = randomTexture(scene, rng, 4, 4, false, Filter::Linear, Wrap::ClampToEdge);
     Mesh mesh = sphere(0.45f, glm::vec3(0.0f), 24, 48);
     finalizeMesh(mesh, true);
-    Mesh cut = mesh;  // a sphere without its front cap: its inside shows
-    std::vector<std::uint32_t> kept;
-    for (std::size_t t = 0; t < cut.triangleCount(); ++t)
-        if (cut.positions[cut.indices[3 * t]].z < 0.3f)
-            kept.insert(kept.end(), cut.indices.begin() + std::ptrdiff_t(3 * t),
-                        cut.indices.begin() + std::ptrdiff_t(3 * t + 3));
-    cut.indices = kept;
-    cut.triangleSource.clear();
-    finalizeMesh(cut, false);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const Mesh cut = withoutFrontCap(mesh);
     const float coatRoughness[] = {0.0f, 0.03f, 1.0f};
     for (int k = 0; k < 16; ++k) {
         Material m;
@@ -423,11 +422,7 @@ Scene clearcoat() {
         if (k >= 6 && k <= 9) m.clearcoatNormalTexture = normals;
         m.clearcoatNormalScale = k == 7 ? 10.0f : 1.0f;
         if (k == 8) m.normalTexture = data;
-        if (k == 9)  // the file's tangents
-            for (std::size_t v = 0; v < copy.positions.size(); ++v) {
-                const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.01f));
-                copy.tangents.push_back(glm::vec4(d, u(rng) < 0.0f ? -1.0f : 1.0f));
-            }
+        if (k == 9) giveRandomTangents(copy, rng);  // the file's tangents
         if (k == 10) {
             m.specularGlossiness = true;
             m.specularFactor = {0.9f, 0.6f, 0.2f};
