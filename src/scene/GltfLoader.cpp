@@ -246,7 +246,6 @@ struct SpecularGlossiness {
 
 // KHR_materials_clearcoat as a material writes it (defaults where it does not).
 struct Clearcoat {
-    bool present = false;
     float factor = 0.0f, roughness = 0.0f;
     ExtensionTexture texture, roughnessTexture, normalTexture;
 };
@@ -467,6 +466,13 @@ double extensionNumber(const tinygltf::Value& value, const std::string& where) {
     return d;
 }
 
+// A factor of a material extension: a number in [0, 1], as the extensions define them.
+float extensionFactor(const tinygltf::Value& value, const std::string& where) {
+    const double d = extensionNumber(value, where);
+    if (!(d >= 0.0 && d <= 1.0)) fail(where, ": ", d, " is not in [0, 1]");
+    return float(d);
+}
+
 TextureTransform textureTransformOf(int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& where) {
     TextureTransform out;
     out.texCoord = texCoord;
@@ -534,19 +540,12 @@ SpecularGlossiness Converter::specularGlossinessOf(int material) const {
         const tinygltf::Value& v = ext.Get(name);
         if (!v.IsArray() || v.ArrayLen() != std::size_t(count))
             fail(at, ".", name, ": not an array of ", count, " numbers");
-        for (int k = 0; k < count; ++k) {
-            const double d = extensionNumber(v.Get(k), cat(at, ".", name, "[", k, "]"));
-            if (!(d >= 0.0 && d <= 1.0)) fail(at, ".", name, "[", k, "]: ", d, " is not in [0, 1]");
-            values[k] = float(d);
-        }
+        for (int k = 0; k < count; ++k) values[k] = extensionFactor(v.Get(k), cat(at, ".", name, "[", k, "]"));
     };
     factors("diffuseFactor", &out.diffuse[0], 4);
     factors("specularFactor", &out.specular[0], 3);
-    if (ext.Has("glossinessFactor")) {
-        const double d = extensionNumber(ext.Get("glossinessFactor"), at + ".glossinessFactor");
-        if (!(d >= 0.0 && d <= 1.0)) fail(at, ".glossinessFactor: ", d, " is not in [0, 1]");
-        out.glossiness = float(d);
-    }
+    if (ext.Has("glossinessFactor"))
+        out.glossiness = extensionFactor(ext.Get("glossinessFactor"), at + ".glossinessFactor");
     if (ext.Has("diffuseTexture"))
         out.diffuseTexture = extensionTexture(ext.Get("diffuseTexture"), at + ".diffuseTexture");
     if (ext.Has("specularGlossinessTexture"))
@@ -560,15 +559,11 @@ Clearcoat Converter::clearcoatOf(int material) const {
     Clearcoat out;
     const auto it = src.extensions.find("KHR_materials_clearcoat");
     if (it == src.extensions.end()) return out;
-    out.present = true;
     const tinygltf::Value& ext = it->second;
     const std::string at = cat("materials[", material, "].extensions.KHR_materials_clearcoat");
     if (!ext.IsObject()) fail(at, ": not an object");
-    const auto factor = [&](const char* name) {  // a number in [0, 1], as the extension defines it
-        if (!ext.Has(name)) return 0.0f;
-        const double d = extensionNumber(ext.Get(name), cat(at, ".", name));
-        if (!(d >= 0.0 && d <= 1.0)) fail(at, ".", name, ": ", d, " is not in [0, 1]");
-        return float(d);
+    const auto factor = [&](const char* name) {
+        return ext.Has(name) ? extensionFactor(ext.Get(name), cat(at, ".", name)) : 0.0f;
     };
     out.factor = factor("clearcoatFactor");
     out.roughness = factor("clearcoatRoughnessFactor");
