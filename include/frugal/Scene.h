@@ -26,6 +26,9 @@ namespace frugal {
 
 enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class Filter : std::uint8_t { Nearest, Linear };
+// How a minified texture uses its mipmaps (Texture::mipmaps): not at all (the base level only), the
+// nearest level, or a blend of the two nearest levels (GL's *_MIPMAP_NEAREST and *_MIPMAP_LINEAR).
+enum class MipFilter : std::uint8_t { None, Nearest, Linear };
 // glTF's alphaMode: how the base colour's alpha is used (Material).
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 
@@ -37,9 +40,16 @@ struct Texture {
     std::vector<std::uint8_t> rgba;
     Wrap wrapS = Wrap::Repeat;
     Wrap wrapT = Wrap::Repeat;
-    // Magnification/minification filter, no mipmaps: the GL path and the software reference sample
-    // the base level only. A sampler asking for mipmaps is rendered without and reported.
+    // Sampling, as GL's sampler state: `filter` where the texture is magnified (a texel covers more
+    // than a pixel), `minFilter` within a level where it is minified, and `mipmaps` between levels
+    // there. Mipmaps are made once when the texture is uploaded, each level the average of the area
+    // of the level above that its texels cover (in linear light for sRGB colour), the same levels in
+    // the GL backend and the software reference. The glTF loader sets all three from the file's
+    // sampler, and where the file leaves them undefined, as the Khronos glTF Sample Renderer does:
+    // linear, linear, linear (trilinear).
     Filter filter = Filter::Linear;
+    Filter minFilter = Filter::Linear;
+    MipFilter mipmaps = MipFilter::None;
     // Whether the texels are sRGB-encoded colour (glTF's base colour and emissive textures), decoded
     // to linear before they are filtered; false: linear data. Alpha is always linear.
     bool srgb = true;

@@ -164,7 +164,9 @@ class _MeshArrays(TypedDict):
 class Scene(_pybind11_object):
     def __init__(self) -> None: ...
     def add_texture(self, pixels: npt.ArrayLike, *, wrap: Literal["repeat", "clamp", "mirror"] = ...,
-                    filter: Literal["linear", "nearest"] = ..., srgb: bool = ..., name: str = ...) -> int: ...
+                    filter: Literal["linear", "nearest"] = ...,
+                    min_filter: Literal["linear", "nearest"] | None = ...,
+                    mipmaps: Literal["none", "nearest", "linear"] = ..., srgb: bool = ..., name: str = ...) -> int: ...
     def add_material(self, color: _Colour = ..., *, texture: int | None = ..., double_sided: bool = ...,
                      metallic: float = ..., roughness: float = ..., unlit: bool = ..., emissive: Sequence[float] = ...,
                      metallic_roughness_texture: int | None = ..., occlusion_texture: int | None = ...,

@@ -30,7 +30,14 @@ Wrap wrapFrom(const std::string& name) {
     throw InputError{"wrap: '" + name + "' is not a mode (repeat, clamp, mirror)"};
 }
 
-int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, const std::string& filter, bool srgb,
+Filter filterFrom(const char* what, const std::string& name) {
+    if (name != "linear" && name != "nearest")
+        throw InputError{std::string(what) + ": '" + name + "' is not a filter (linear, nearest)"};
+    return name == "nearest" ? Filter::Nearest : Filter::Linear;
+}
+
+int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, const std::string& filter,
+               const std::optional<std::string>& minFilter, const std::string& mipmaps, bool srgb,
                const std::string& name) {
     Pixels p = pixelsFrom(pixels);
     Texture texture;
@@ -39,9 +46,13 @@ int addTexture(PyScene& s, const py::handle& pixels, const std::string& wrap, co
     texture.height = p.height;
     texture.rgba = std::move(p.rgba);
     texture.wrapS = texture.wrapT = wrapFrom(wrap);
-    if (filter != "linear" && filter != "nearest")
-        throw InputError{"filter: '" + filter + "' is not a filter (linear, nearest)"};
-    texture.filter = filter == "nearest" ? Filter::Nearest : Filter::Linear;
+    texture.filter = filterFrom("filter", filter);
+    texture.minFilter = minFilter ? filterFrom("min_filter", *minFilter) : texture.filter;
+    if (mipmaps != "none" && mipmaps != "nearest" && mipmaps != "linear")
+        throw InputError{"mipmaps: '" + mipmaps + "' is not a mipmap filter (none, nearest, linear)"};
+    texture.mipmaps = mipmaps == "none"      ? MipFilter::None
+                      : mipmaps == "nearest" ? MipFilter::Nearest
+                                             : MipFilter::Linear;
     texture.srgb = srgb;
     return take(s.scene.addTexture(std::move(texture)));
 }
@@ -241,11 +252,14 @@ void bindScene(py::module_& m) {
     py::class_<PyScene>(m, "Scene", "A scene: loaded with frugal.load, or built here from numpy arrays.")
         .def(py::init<>())
         .def("add_texture", &addTexture, py::arg("pixels"), py::kw_only(), py::arg("wrap") = "repeat",
-             py::arg("filter") = "linear", py::arg("srgb") = true, py::arg("name") = "",
+             py::arg("filter") = "linear", py::arg("min_filter") = py::none(), py::arg("mipmaps") = "none",
+             py::arg("srgb") = true, py::arg("name") = "",
              "An (H, W, 4) or (H, W, 3) uint8 image, first row first (texture coordinate v = 0, as glTF).\n"
              "srgb: its colours are sRGB-encoded, as a glTF base colour or emissive texture's (alpha is\n"
              "linear); False for data (a metallic-roughness or occlusion map).\n"
-             "wrap: repeat, clamp or mirror; filter: linear or nearest. Returns its index.")
+             "wrap: repeat, clamp or mirror; filter: linear or nearest where the texture is magnified,\n"
+             "min_filter where it is minified (default: filter); mipmaps: none, nearest or linear (made\n"
+             "when the texture is uploaded; 'linear' blends the two nearest levels). Returns its index.")
         .def("add_material", &addMaterial, py::arg("color") = py::make_tuple(1.0, 1.0, 1.0, 1.0), py::kw_only(),
              py::arg("texture") = py::none(), py::arg("double_sided") = false, py::arg("metallic") = 1.0,
              py::arg("roughness") = 1.0, py::arg("unlit") = false,

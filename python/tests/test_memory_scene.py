@@ -255,6 +255,36 @@ def test_clear_coat_is_drawn_and_listed():
         frugal.Scene().add_material(clearcoat=1.5)
 
 
+def test_mipmaps_average_a_minified_texture():
+    """A one-texel checker tiled far more often than the grid has pixels: without mipmaps the base
+    level aliases into noise, with them each pixel takes the average of its footprint (a flat colour
+    between the two); GL and the software reference agree on both. Bad filters are refused."""
+    grid, grid_indices, _, uvs = grid_arrays()
+    camera = frugal.Camera.look_at((0.3, 0.8, 3.5), (0, 0, 0), fov=50)
+
+    def render(mipmaps, backend):
+        scene = frugal.Scene()
+        texture = scene.add_texture(checker(64), min_filter="nearest" if mipmaps == "none" else "linear",
+                                    mipmaps=mipmaps)
+        material = scene.add_material(texture=texture, metallic=0.0, roughness=1.0, unlit=True)
+        scene.add_instance(scene.add_mesh(grid, grid_indices, uvs=uvs * 16, material=material))
+        return frugal.Renderer(scene, size=(160, 120), backend=backend, ids=True).render(camera)
+
+    aliased, averaged = render("none", "auto").color, render("linear", "auto")
+    covered = averaged.ids > 0
+    averaged = averaged.color
+    assert covered.sum() > 4000, "the grid fills a quarter of the image"
+    assert np.abs(aliased.astype(int) - render("none", "software").color).max() <= 1
+    assert np.abs(averaged.astype(int) - render("linear", "software").color).max() <= 1
+    # Aliased, neighbouring pixels jump between the checker's two colours; averaged, they barely move.
+    assert np.abs(np.diff(aliased[..., 2].astype(int), axis=1))[covered[:, 1:]].mean() > 40
+    assert np.abs(np.diff(averaged[..., 2].astype(int), axis=1))[covered[:, 1:]].mean() < 5
+    with pytest.raises(frugal.InputError, match="mipmaps: 'tri' is not a mipmap filter"):
+        frugal.Scene().add_texture(checker(), mipmaps="tri")
+    with pytest.raises(frugal.InputError, match="min_filter: 'cubic' is not a filter"):
+        frugal.Scene().add_texture(checker(), min_filter="cubic")
+
+
 def test_given_tangents_are_kept_and_drawn():
     """Tangents given to add_mesh are the mesh's (given back by mesh()), and a normal map is read in
     their basis: the same mesh with the tangents turned about the normal draws differently; GL and

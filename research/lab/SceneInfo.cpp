@@ -179,10 +179,14 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
     }
     printShading(scene, out);
     out << "textures: " << scene.textures.size() << "\n";
-    for (const Texture& t : scene.textures)
-        out << "  '" << t.name << "' " << t.width << "x" << t.height
-            << (t.filter == Filter::Nearest ? ", nearest" : ", linear") << " filter"
-            << (t.srgb ? ", sRGB colour" : ", linear data") << "\n";
+    for (const Texture& t : scene.textures) {
+        const auto name = [](Filter f) { return f == Filter::Nearest ? "nearest" : "linear"; };
+        out << "  '" << t.name << "' " << t.width << "x" << t.height << ", " << name(t.filter) << " filter";
+        if (t.minFilter != t.filter) out << " (" << name(t.minFilter) << " minified)";
+        if (t.mipmaps == MipFilter::Nearest) out << ", nearest mipmap";
+        if (t.mipmaps == MipFilter::Linear) out << ", mipmaps blended";
+        out << (t.srgb ? ", sRGB colour" : ", linear data") << "\n";
+    }
     const double detail = sceneDetail(scene);
     out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
     out << "cameras: " << scene.cameras.size() << "\n";

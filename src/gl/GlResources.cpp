@@ -7,12 +7,14 @@
 // the vertex stage in 32-bit unsigned arithmetic.
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <utility>
 #include <vector>
 
 #include "gl/GlApi.h"
 #include "gl/GlBackendImpl.h"
 #include "pipeline/IndexRanges.h"
+#include "pipeline/Mipmaps.h"
 
 namespace frugal::gl {
 
@@ -143,13 +145,33 @@ TextureHandle GlBackend::uploadTexture(const Texture& texture) {
     const GLint format = texture.srgb ? GLint(GL_SRGB8_ALPHA8) : GLint(GL_RGBA8);
     gl_.TexImage2D(GL_TEXTURE_2D, 0, format, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                    texture.rgba.data());
-    // Base level only (Scene.h: no mipmaps in either backend).
-    const GLint filter = texture.filter == Filter::Nearest ? GL_NEAREST : GL_LINEAR;
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    // Mipmaps made on the CPU (pipeline/Mipmaps.h), level by level: the software reference samples
+    // the same texels, which glGenerateMipmap (each driver's own filter) would not promise.
+    int levels = 1;
+    if (texture.mipmaps != MipFilter::None) {
+        std::vector<MipLevel> mips;
+        try {
+            mips = mipLevels(texture);
+        } catch (const std::bad_alloc&) {
+            gl_.DeleteTextures(1, &name);
+            state_.forgetTexture(name);
+            return kNoHandle;
+        }
+        for (const MipLevel& level : mips)
+            gl_.TexImage2D(GL_TEXTURE_2D, levels++, format, level.width, level.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                           level.rgba.data());
+    }
+    const auto glFilter = [](Filter f) { return f == Filter::Nearest ? GL_NEAREST : GL_LINEAR; };
+    GLint minFilter = glFilter(texture.minFilter);
+    if (texture.mipmaps == MipFilter::Nearest)
+        minFilter = texture.minFilter == Filter::Nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST;
+    else if (texture.mipmaps == MipFilter::Linear)
+        minFilter = texture.minFilter == Filter::Nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR;
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, glFilter(texture.filter));
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrapMode(texture.wrapS));
     gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrapMode(texture.wrapT));
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, levels - 1);
     if (gl_.GetError() != GL_NO_ERROR) {
         gl_.DeleteTextures(1, &name);
         state_.forgetTexture(name);

@@ -156,7 +156,7 @@ Texture makeChecker(int size, int cells) {
     Texture texture;
     texture.name = "checker";
     texture.width = texture.height = size;
-    texture.filter = Filter::Nearest;
+    texture.filter = texture.minFilter = Filter::Nearest;  // no mipmaps (the default)
     texture.rgba.resize(std::size_t(size) * size * 4);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {

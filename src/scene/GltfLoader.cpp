@@ -961,20 +961,40 @@ int Converter::useTexture(int gltfTexture, int material, bool srgb, const char* 
                  " bits)", drawn));
         return result;
     }
+    // The sampler's filters; where the file leaves them undefined (no sampler, or no filter in it),
+    // LINEAR and LINEAR_MIPMAP_LINEAR, the Khronos glTF Sample Renderer's defaults.
+    int magFilter = -1, minFilter = -1;
     if (texture.sampler >= 0) {
         const tinygltf::Sampler& sampler = model_.samplers[std::size_t(texture.sampler)];
         out.wrapS = toWrap(sampler.wrapS);
         out.wrapT = toWrap(sampler.wrapT);
-        // One filter for both directions: the magnification filter, else the base-level part of the
-        // minification filter (NEAREST_MIPMAP_* samples the base level with NEAREST).
-        const int filter = sampler.magFilter >= 0 ? sampler.magFilter : sampler.minFilter;
-        out.filter =
-            (filter == TINYGLTF_TEXTURE_FILTER_NEAREST || filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
-             filter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
-                ? Filter::Nearest
-                : Filter::Linear;
-        if (sampler.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST)
-            report("mipmaps (sampled base level only)");
+        magFilter = sampler.magFilter;
+        minFilter = sampler.minFilter;
+    }
+    out.filter = magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+    switch (minFilter) {
+        case TINYGLTF_TEXTURE_FILTER_NEAREST:
+            out.minFilter = Filter::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR:
+            out.minFilter = Filter::Linear;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+            out.minFilter = Filter::Nearest;
+            out.mipmaps = MipFilter::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+            out.minFilter = Filter::Linear;
+            out.mipmaps = MipFilter::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+            out.minFilter = Filter::Nearest;
+            out.mipmaps = MipFilter::Linear;
+            break;
+        default:  // LINEAR_MIPMAP_LINEAR, or undefined
+            out.minFilter = Filter::Linear;
+            out.mipmaps = MipFilter::Linear;
+            break;
     }
     result = int(scene_.textures.size());
     scene_.textures.push_back(std::move(out));

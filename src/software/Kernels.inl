@@ -281,24 +281,29 @@ inline int soaNearestAxis(float coord, int size, Wrap wrap) {
     return c < 0 ? 0 : (c > last ? last : c);
 }
 
-// Texel at (s, t) as four floats.
-inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
-    const std::uint32_t* texels = tex.texels.data();
-    const int w = tex.width, h = tex.height;
-    if (tex.filter == Filter::Nearest) {
-        const int x = tex.aos ? aosNearestAxis(s, w, tex.wrapS) : soaNearestAxis(s, w, tex.wrapS);
-        const int y = tex.aos ? aosNearestAxis(t, h, tex.wrapT) : soaNearestAxis(t, h, tex.wrapT);
-        const std::uint32_t texel = texels[std::size_t(y) * w + x];
-        for (int c = 0; c < 4; ++c) out[c] = decode(tex, texel, c);
-        return;
-    }
-    if (tex.aos) {
-        int x0, x1, y0, y1, ws, wt;
-        aosLinearAxis(s, w, tex.wrapS, &x0, &x1, &ws);
-        aosLinearAxis(t, h, tex.wrapT, &y0, &y1, &wt);
-        const std::uint32_t row0 = lerp8(ws, texels[std::size_t(y0) * w + x0], texels[std::size_t(y0) * w + x1]);
-        const std::uint32_t row1 = lerp8(ws, texels[std::size_t(y1) * w + x0], texels[std::size_t(y1) * w + x1]);
-        const std::uint32_t texel = lerp8(wt, row0, row1);
+// A level's texel at (s, t) with one filter, on the AoS path: the packed bytes.
+inline std::uint32_t aosTexel(const SoftwareTexture& tex, const SoftwareTexture::Level& level, Filter filter, float s,
+                              float t) {
+    const std::uint32_t* texels = level.texels.data();
+    const int w = level.width, h = level.height;
+    if (filter == Filter::Nearest)
+        return texels[std::size_t(aosNearestAxis(t, h, tex.wrapT)) * w + aosNearestAxis(s, w, tex.wrapS)];
+    int x0, x1, y0, y1, ws, wt;
+    aosLinearAxis(s, w, tex.wrapS, &x0, &x1, &ws);
+    aosLinearAxis(t, h, tex.wrapT, &y0, &y1, &wt);
+    const std::uint32_t row0 = lerp8(ws, texels[std::size_t(y0) * w + x0], texels[std::size_t(y0) * w + x1]);
+    const std::uint32_t row1 = lerp8(ws, texels[std::size_t(y1) * w + x0], texels[std::size_t(y1) * w + x1]);
+    return lerp8(wt, row0, row1);
+}
+
+// The same on the SoA path: four decoded floats.
+inline void soaTexel(const SoftwareTexture& tex, const SoftwareTexture::Level& level, Filter filter, float s, float t,
+                     float out[4]) {
+    const std::uint32_t* texels = level.texels.data();
+    const int w = level.width, h = level.height;
+    if (filter == Filter::Nearest) {
+        const std::uint32_t texel =
+            texels[std::size_t(soaNearestAxis(t, h, tex.wrapT)) * w + soaNearestAxis(s, w, tex.wrapS)];
         for (int c = 0; c < 4; ++c) out[c] = decode(tex, texel, c);
         return;
     }
@@ -317,12 +322,79 @@ inline void sample(const SoftwareTexture& tex, float s, float t, float out[4]) {
     }
 }
 
-// A texture at eight pixels' coordinates (s, t); lanes not in `lanes` read 0.
-inline void sampleLanes(const SoftwareTexture& tex, const float s[8], const float t[8], unsigned lanes, F8 out[4]) {
+// The level of detail of one pixel's quad (Shading.h): the coordinates' differences across the
+// quad, and what they select in a texture.
+struct Footprint {
+    float dsdx = 0.0f, dtdx = 0.0f, dsdy = 0.0f, dtdy = 0.0f;
+};
+struct Lod {
+    bool minified = false;
+    int level0 = 0, level1 = 0;
+    float blend = 0.0f;  // of level1, mipmaps linear only
+};
+
+inline Lod levelOfDetail(const SoftwareTexture& tex, const Footprint& f) {
+    const float width = float(tex.levels[0].width), height = float(tex.levels[0].height);
+    const float sx = f.dsdx * width, sy = f.dsdy * width, tx = f.dtdx * height, ty = f.dtdy * height;
+    const float rx = sx * sx + tx * tx, ry = sy * sy + ty * ty;
+    const float rho2 = rx > ry ? rx : ry;  // maxps
+    const int last = int(tex.levels.size()) - 1;
+    const std::uint32_t bits = std::bit_cast<std::uint32_t>(rho2);
+    const int exponent = int((bits >> 23) & 0xFFu) - 127;
+    Lod lod;
+    if (tex.mipmaps != MipFilter::Linear) {
+        lod.minified = rho2 > 1.0f;
+        if (tex.mipmaps == MipFilter::Nearest) lod.level0 = std::clamp((exponent + 1) >> 1, 0, last);
+        lod.level1 = lod.level0;
+        return lod;
+    }
+    const float mantissa = std::bit_cast<float>((bits & 0x007FFFFFu) | 0x3F800000u);
+    const float value = (float(exponent - 1) + mantissa) * 0.5f;
+    lod.minified = value > 0.0f;
+    const float whole = std::floor(value);
+    if (!(whole >= 0.0f)) return lod;  // level 0 alone (NaN cannot reach here: its exponent is 128)
+    if (whole >= float(last)) {
+        lod.level0 = lod.level1 = last;
+        return lod;
+    }
+    lod.level0 = int(whole);
+    lod.level1 = lod.level0 + 1;
+    lod.blend = value - whole;
+    return lod;
+}
+
+// Texel at (s, t) as four floats; `footprint` is read only where the texture needs a level of
+// detail (SoftwareTexture::lod).
+inline void sample(const SoftwareTexture& tex, float s, float t, const Footprint& footprint, float out[4]) {
+    Lod lod;
+    if (tex.lod()) lod = levelOfDetail(tex, footprint);
+    const Filter filter = lod.minified ? tex.minFilter : tex.filter;
+    const SoftwareTexture::Level& level0 = tex.levels[std::size_t(lod.level0)];
+    const bool blend = lod.blend > 0.0f;
+    if (tex.aos) {
+        std::uint32_t texel = aosTexel(tex, level0, filter, s, t);
+        if (blend) {  // the weight in 8 bits, truncated
+            const std::uint32_t next = aosTexel(tex, tex.levels[std::size_t(lod.level1)], filter, s, t);
+            texel = lerp8(int(lod.blend * 256.0f), texel, next);
+        }
+        for (int c = 0; c < 4; ++c) out[c] = decode(tex, texel, c);
+        return;
+    }
+    soaTexel(tex, level0, filter, s, t, out);
+    if (!blend) return;
+    float next[4];
+    soaTexel(tex, tex.levels[std::size_t(lod.level1)], filter, s, t, next);
+    for (int c = 0; c < 4; ++c) out[c] = simd::fmas(lod.blend, next[c] - out[c], out[c]);
+}
+
+// A texture at eight pixels' coordinates (s, t) and their quads' footprints; lanes not in `lanes`
+// read 0.
+inline void sampleLanes(const SoftwareTexture& tex, const float s[8], const float t[8], const Footprint footprints[8],
+                        unsigned lanes, F8 out[4]) {
     float rgba[4][8];
     for (int l = 0; l < 8; ++l) {
         float texel[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        if (lanes & (1u << l)) sample(tex, s[l], t[l], texel);
+        if (lanes & (1u << l)) sample(tex, s[l], t[l], footprints[l], texel);
         for (int c = 0; c < 4; ++c) rgba[c][l] = texel[c];
     }
     for (int c = 0; c < 4; ++c) out[c] = simd::loadf(rgba[c]);
@@ -532,6 +604,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const bool colored = shading.colors;
     const bool normalMapped = shading.normalMap != nullptr;
     const bool tangentSpace = shading.tangentSpace();
+    const bool lod = shading.lod();
     Plane a[kAttributes];
     // Varyings eight at a time (the same operations per lane as plane()), the rest alone; the
     // tangent basis (12–17) only for a normal map.
@@ -588,8 +661,29 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 simd::storef(s, value[7]);
                 simd::storef(tt, value[8]);
             }
+            // Each pixel's quad, where a texture needs its level of detail: uvs interpolated as
+            // above on the quads' two rows (helper pixels included), differences across each quad.
+            Footprint footprints[8];
+            if (lod) {
+                float u[2][8], v[2][8];
+                for (int row = 0; row < 2; ++row) {
+                    const F8 qy = simd::splat(float((y & ~1) + row));
+                    const auto atRow = [&](const Plane& p) {
+                        return simd::fma(simd::splat(p.dady), qy,
+                                         simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
+                    };
+                    const F8 r = one / atRow(w);
+                    simd::storef(u[row], atRow(a[7]) * r);
+                    simd::storef(v[row], atRow(a[8]) * r);
+                }
+                for (int l = 0; l < 8; ++l) {
+                    const int left = l & ~1;  // bx is even: lane parity is x parity
+                    footprints[l] = {u[0][left + 1] - u[0][left], v[0][left + 1] - v[0][left], u[1][left] - u[0][left],
+                                     v[1][left] - v[0][left]};
+                }
+            }
             F8 texel[4] = {one, one, one, one};
-            if (textured) sampleLanes(*shading.texture, s, tt, lanes, texel);
+            if (textured) sampleLanes(*shading.texture, s, tt, footprints, lanes, texel);
             F8 base[4];
             for (int c = 0; c < 4; ++c) base[c] = (colored ? factor[c] * value[3 + c] : factor[c]) * texel[c];
             if (shading.alphaMode == AlphaMode::Mask) {
@@ -617,7 +711,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 // A normal map's vector: rgb · 2 − 1, x and y · scale, normalised, in the basis.
                 const auto mappedNormal = [&](const SoftwareTexture& map, float scaleFactor, const Vec3& normal) {
                     F8 stored[4];
-                    sampleLanes(map, s, tt, lanes, stored);
+                    sampleLanes(map, s, tt, footprints, lanes, stored);
                     const F8 two = simd::splat(2.0f), scale = simd::splat(scaleFactor);
                     const Vec3 m = normalize({(stored[0] * two - one) * scale, (stored[1] * two - one) * scale,
                                               stored[2] * two - one});
@@ -637,7 +731,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                     F8 glossiness = simd::splat(shading.glossiness);
                     for (int c = 0; c < 3; ++c) specular[c] = simd::splat(shading.specular[c]);
                     if (shading.specularGlossinessMap) {
-                        sampleLanes(*shading.specularGlossinessMap, s, tt, lanes, map);
+                        sampleLanes(*shading.specularGlossinessMap, s, tt, footprints, lanes, map);
                         for (int c = 0; c < 3; ++c) specular[c] = specular[c] * map[c];
                         glossiness = glossiness * map[3];
                     }
@@ -645,28 +739,28 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                     surface.roughness = one - glossiness;
                 }
                 if (shading.metallicRoughness) {
-                    sampleLanes(*shading.metallicRoughness, s, tt, lanes, map);
+                    sampleLanes(*shading.metallicRoughness, s, tt, footprints, lanes, map);
                     surface.metallic = surface.metallic * map[2];
                     surface.roughness = surface.roughness * map[1];
                 }
                 F8 occlusion[4];
                 if (shading.occlusion) {
-                    sampleLanes(*shading.occlusion, s, tt, lanes, occlusion);
+                    sampleLanes(*shading.occlusion, s, tt, footprints, lanes, occlusion);
                     surface.occlusion = &occlusion[0];
                 }
                 if (shading.emissive) {
-                    sampleLanes(*shading.emissive, s, tt, lanes, map);
+                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, map);
                     for (int c = 0; c < 3; ++c) surface.emission[c] = surface.emission[c] * map[c];
                 }
                 F8 coat = simd::splat(shading.clearcoat);
                 if (shading.clearcoat > 0.0f) {
                     surface.coatRoughness = simd::splat(shading.clearcoatRoughness);
                     if (shading.clearcoatMap) {
-                        sampleLanes(*shading.clearcoatMap, s, tt, lanes, map);
+                        sampleLanes(*shading.clearcoatMap, s, tt, footprints, lanes, map);
                         coat = coat * map[0];
                     }
                     if (shading.clearcoatRoughnessMap) {
-                        sampleLanes(*shading.clearcoatRoughnessMap, s, tt, lanes, map);
+                        sampleLanes(*shading.clearcoatRoughnessMap, s, tt, footprints, lanes, map);
                         surface.coatRoughness = surface.coatRoughness * map[1];
                     }
                     surface.coat = &coat;

@@ -49,8 +49,20 @@
 // value, a partial one the quad's window z (the quad ignores glClipControl: st_cb_clear.c gives the
 // clear its own rasterizer state).
 //
-// Texture sampling (no mipmaps: the base level only, as the GL backend sets it up). Texels are RGBA8;
-// a texel is decoded as float(x) · float(1/255).
+// Texture sampling. Texels are RGBA8; a texel is decoded as float(x) · float(1/255).
+// - Level of detail (lp_bld_sample.c, with llvmpipe's defaults: no "brilinear", no "rho
+//   approximation", one level of detail per 2×2 quad), computed only where a texture has mipmaps
+//   or minifies with another filter than it magnifies with. In the quad of pixels (x & ~1, y & ~1)
+//   + {0, 1}², the coordinates' differences, top right − top left (x) and bottom left − top left (y),
+//   each × the base level's width (s) or height (t); ρ² = max(sx² + tx², sy² + ty²), each square
+//   and sum rounded; minified where ρ² > 1 (lod > 0). Mipmaps nearest: level (e + 1) >> 1, e the
+//   exponent of ρ² (⌊log2 ρ²⌋). Mipmaps linear: lod = 0.5 · ((e − 1) + m), m the mantissa of ρ² in
+//   [1, 2) (gallivm's piece-wise linear log2, exact at powers of two), level ⌊lod⌋ and the next,
+//   blended by lod − ⌊lod⌋; at or below level 0, level 0 alone, at or past the last level, the last.
+//   The blend: AoS, the 8-bit lerp below with weight ⌊frac · 256⌋; SoA, fma(w, v1 − v0, v0).
+//   Coordinates are scaled by each level's own size. Where a vector of pixels mixes minified and
+//   magnified quads under different filters, llvmpipe's AoS path picks one filter for all of them (its
+//   first quad's); here each pixel takes its own: they differ there, rarely.
 // - Wrap modes repeat and clamp-to-edge on both axes take llvmpipe's AoS 8-bit path
 //   (lp_bld_sample_aos.c). Linear: s·(size·256) rounded to an integer, minus 128; the low 8 bits are
 //   the weight, the rest the texel; the two texels of a row are blended per 8-bit channel as
@@ -130,9 +142,16 @@ inline const DecodeTable& srgbDecode(bool fused) {
 }
 
 struct SoftwareTexture {
-    int width = 0, height = 0;
-    std::vector<std::uint32_t> texels;  // RGBA8, little-endian (R in the low byte), row 0 = v 0
-    Filter filter = Filter::Linear;
+    struct Level {
+        int width = 0, height = 0;
+        std::vector<std::uint32_t> texels;  // RGBA8, little-endian (R in the low byte), row 0 = v 0
+    };
+    // The base level, then its mipmaps when it has them (pipeline/Mipmaps.h).
+    std::vector<Level> levels;
+    Filter filter = Filter::Linear, minFilter = Filter::Linear;  // magnified; minified, in a level
+    MipFilter mipmaps = MipFilter::None;
+    // Whether sampling needs the level of detail (the footprint of a pixel's quad, above).
+    bool lod() const { return mipmaps != MipFilter::None || minFilter != filter; }
     Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
     bool aos = true;  // both axes repeat or clamp-to-edge, not sRGB: llvmpipe's AoS 8-bit path
     const DecodeTable* rgb = &unormDecode();  // how R, G and B are decoded (alpha: unormDecode)
@@ -208,6 +227,13 @@ struct DrawShading {
                clearcoatMap || clearcoatRoughnessMap || clearcoatNormalMap;
     }
     bool tangentSpace() const { return normalMap || clearcoatNormalMap; }  // reads varyings 12–17
+    bool lod() const {  // a texture needs each quad's level of detail
+        for (const SoftwareTexture* t :
+             {texture, metallicRoughness, occlusion, emissive, normalMap, specularGlossinessMap, clearcoatMap,
+              clearcoatRoughnessMap, clearcoatNormalMap})
+            if (t != nullptr && t->lod()) return true;
+        return false;
+    }
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting

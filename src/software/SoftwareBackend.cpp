@@ -16,6 +16,7 @@
 
 #include "pipeline/Handles.h"
 #include "pipeline/IndexRanges.h"
+#include "pipeline/Mipmaps.h"
 #include "software/Pipeline.h"
 #include "software/Shading.h"
 
@@ -169,21 +170,29 @@ TextureHandle SoftwareBackend::uploadTexture(const Texture& texture) {
         texture.rgba.size() != std::size_t(texture.width) * std::size_t(texture.height) * 4)
         return kNoHandle;
     sw::SoftwareTexture t;
-    t.width = texture.width;
-    t.height = texture.height;
     t.filter = texture.filter;
+    t.minFilter = texture.minFilter;
+    t.mipmaps = texture.mipmaps;
     t.wrapS = texture.wrapS;
     t.wrapT = texture.wrapT;
     const auto simple = [](Wrap w) { return w == Wrap::Repeat || w == Wrap::ClampToEdge; };
     // llvmpipe filters sRGB textures in float, after decoding (Shading.h).
     t.aos = simple(t.wrapS) && simple(t.wrapT) && !texture.srgb;
     t.rgb = texture.srgb ? &sw::srgbDecode(raster::cpuHasFma()) : &sw::unormDecode();
+    const auto addLevel = [&t](int width, int height, const std::vector<std::uint8_t>& rgba) {
+        sw::SoftwareTexture::Level& level = t.levels.emplace_back();
+        level.width = width;
+        level.height = height;
+        level.texels.resize(std::size_t(width) * std::size_t(height));
+        std::memcpy(level.texels.data(), rgba.data(), rgba.size());  // little-endian: R is the low byte
+    };
     try {
-        t.texels.resize(std::size_t(t.width) * std::size_t(t.height));
+        addLevel(texture.width, texture.height, texture.rgba);
+        if (texture.mipmaps != MipFilter::None)  // the GL backend's levels (pipeline/Mipmaps.h)
+            for (const MipLevel& level : mipLevels(texture)) addLevel(level.width, level.height, level.rgba);
     } catch (const std::bad_alloc&) {
         return kNoHandle;
     }
-    std::memcpy(t.texels.data(), texture.rgba.data(), texture.rgba.size());  // little-endian: R is the low byte
     return textures_.add(std::move(t));
 }
 

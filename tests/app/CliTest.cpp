@@ -150,7 +150,7 @@ TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
                              "  metallic-roughness BRDF, normal map, clear coat, clear-coat normal map (tangents "
                              "generated): 1 mesh\n"})
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " in\n" << run.out;
-    EXPECT_NE(run.out.find("512x512, linear filter, linear data\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("512x512, linear filter, mipmaps blended, linear data\n"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("single-sided, clear coat 1 of roughness 0.03, clear-coat normal map 5 at 1\n"),
               std::string::npos)
         << run.out;

@@ -170,8 +170,6 @@ struct AssimpCase {
     bool facesPlusZ = false;  // every triangle is counter-clockwise seen from +z (Asset Generator quads)
 };
 
-const std::string kMipmaps = "mipmaps (sampled base level only)";
-
 const std::vector<AssimpCase>& assimpCases() {
     static const std::vector<AssimpCase> cases = {
         {.file = "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
@@ -191,20 +189,17 @@ const std::vector<AssimpCase>& assimpCases() {
          .meshes = 1,
          .triangles = 12,
          .instances = 1,
-         .textures = 1,
-         .unsupported = {kMipmaps}},
+         .textures = 1},
         {.file = "BoxTextured-glTF-Embedded/BoxTextured.gltf",
          .meshes = 1,
          .triangles = 12,
          .instances = 1,
-         .textures = 1,
-         .unsupported = {kMipmaps}},
+         .textures = 1},
         {.file = "BoxTextured-glTF-pbrSpecularGlossiness/BoxTextured.gltf",
          .meshes = 1,
          .triangles = 12,
          .instances = 1,
-         .textures = 1,
-         .unsupported = {kMipmaps}},
+         .textures = 1},
         // A glTF 1.0 style material (technique + values) declared through a required extension: the
         // geometry loads, the material is the default one, the extension is reported.
         {.file = "BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf",
@@ -212,12 +207,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .triangles = 12,
          .instances = 1,
          .unsupported = {"KHR_technique_webgl"}},
-        {.file = "BoxTextured-glTF/BoxTextured.gltf",
-         .meshes = 1,
-         .triangles = 12,
-         .instances = 1,
-         .textures = 1,
-         .unsupported = {kMipmaps}},
+        {.file = "BoxTextured-glTF/BoxTextured.gltf", .meshes = 1, .triangles = 12, .instances = 1, .textures = 1},
         // Every triangle touches an infinite position: all dropped, with a warning.
         {.file = "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb",
          .meshes = 1,
@@ -407,7 +397,9 @@ TEST(GltfAssimpModelsTest, TexturedBoxHasItsImageSamplerAndUvs) {
     EXPECT_EQ(texture.rgba.size(), 211u * 211u * 4u);
     EXPECT_EQ(texture.wrapS, Wrap::MirroredRepeat);  // sampler: wrapS 33648, wrapT 33071
     EXPECT_EQ(texture.wrapT, Wrap::ClampToEdge);
-    EXPECT_EQ(texture.filter, Filter::Linear);
+    EXPECT_EQ(texture.filter, Filter::Linear);      // magFilter 9729
+    EXPECT_EQ(texture.minFilter, Filter::Nearest);  // minFilter 9986, NEAREST_MIPMAP_LINEAR
+    EXPECT_EQ(texture.mipmaps, MipFilter::Linear);
     ASSERT_EQ(scene->materials.size(), 1u);
     EXPECT_EQ(scene->materials[0].baseColorTexture, 0);
     EXPECT_EQ(scene->meshes[0].uvs.size(), scene->meshes[0].positions.size());
@@ -1247,7 +1239,9 @@ TEST(GltfLoaderTest, TexturesOfEveryPngFormatBecomeRgba8) {
         EXPECT_EQ(texture.width, 2);
         EXPECT_EQ(texture.height, 1);
         EXPECT_EQ(texture.rgba, format.rgba) << "format " << i;
-        EXPECT_EQ(texture.filter, Filter::Nearest);
+        EXPECT_EQ(texture.filter, Filter::Nearest);    // magFilter 9728
+        EXPECT_EQ(texture.minFilter, Filter::Linear);  // minFilter 9987, LINEAR_MIPMAP_LINEAR
+        EXPECT_EQ(texture.mipmaps, MipFilter::Linear);
         EXPECT_EQ(texture.wrapS, Wrap::ClampToEdge);
         EXPECT_EQ(texture.wrapT, Wrap::MirroredRepeat);
         const Material& material = scene->materials[0];
@@ -1255,7 +1249,52 @@ TEST(GltfLoaderTest, TexturesOfEveryPngFormatBecomeRgba8) {
         EXPECT_EQ(material.baseColorTexture, 0);
         EXPECT_EQ(material.baseColorFactor, glm::vec4(0.5f, 1, 1, 1));
         EXPECT_TRUE(material.doubleSided);
-        EXPECT_EQ(scene->unsupported, (std::vector<std::string>{"mipmaps (sampled base level only)"}));
+        EXPECT_TRUE(scene->unsupported.empty());
+    }
+}
+
+// Each of glTF's minification filters, and what a file that leaves the filters undefined gets: the
+// Khronos glTF Sample Renderer's defaults, LINEAR and LINEAR_MIPMAP_LINEAR.
+TEST(GltfLoaderTest, SamplersGiveTheFiltersAndMipmapsTheyName) {
+    struct Case {
+        int magFilter, minFilter;  // -1: undefined; both -1 and no sampler at all for the last case
+        Filter filter, minified;
+        MipFilter mipmaps;
+    };
+    const Case cases[] = {
+        {9728, 9728, Filter::Nearest, Filter::Nearest, MipFilter::None},
+        {9729, 9729, Filter::Linear, Filter::Linear, MipFilter::None},
+        {9729, 9984, Filter::Linear, Filter::Nearest, MipFilter::Nearest},
+        {9728, 9985, Filter::Nearest, Filter::Linear, MipFilter::Nearest},
+        {9729, 9986, Filter::Linear, Filter::Nearest, MipFilter::Linear},
+        {9729, 9987, Filter::Linear, Filter::Linear, MipFilter::Linear},
+        {9728, -1, Filter::Nearest, Filter::Linear, MipFilter::Linear},
+        {-1, -1, Filter::Linear, Filter::Linear, MipFilter::Linear},
+    };
+    for (std::size_t i = 0; i < std::size(cases); ++i) {
+        const Case& c = cases[i];
+        Asset asset = quad();
+        const std::string image = png(2, 1, 0, 8, std::string("\x0a\xc8", 2));
+        asset.accessor(image, kUByte, "SCALAR", image.size());  // bufferView 2 holds the PNG
+        asset.json["images"] = {{{"bufferView", 2}, {"mimeType", "image/png"}}};
+        Json sampler = Json::object();
+        if (c.magFilter >= 0) sampler["magFilter"] = c.magFilter;
+        if (c.minFilter >= 0) sampler["minFilter"] = c.minFilter;
+        const bool last = i + 1 == std::size(cases);
+        if (!last) asset.json["samplers"] = Json::array({sampler});
+        asset.json["textures"] = Json::array({last ? Json{{"source", 0}} : Json{{"source", 0}, {"sampler", 0}}});
+        asset.json["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+        asset.primitive()["material"] = 0;
+        asset.primitive()["attributes"]["TEXCOORD_0"] =
+            asset.accessor(bytesOf<float>({0, 0, 1, 0, 1, 1, 0, 1}), kFloat, "VEC2", 4);
+        const Result<Scene> scene = load(writeGlb(test::freshDir("GltfSampler" + std::to_string(i)), "sampler", asset));
+        ASSERT_TRUE(scene.ok()) << scene.error().message;
+        ASSERT_EQ(scene->textures.size(), 1u);
+        const Texture& texture = scene->textures[0];
+        EXPECT_EQ(texture.filter, c.filter) << "case " << i;
+        EXPECT_EQ(texture.minFilter, c.minified) << "case " << i;
+        EXPECT_EQ(texture.mipmaps, c.mipmaps) << "case " << i;
+        EXPECT_TRUE(scene->unsupported.empty()) << "case " << i;
     }
 }
 

@@ -165,7 +165,7 @@ int randomTexture(Scene& scene, std::mt19937& rng, int w, int h, bool srgb, Filt
     t.width = w;
     t.height = h;
     t.srgb = srgb;
-    t.filter = filter;
+    t.filter = t.minFilter = filter;
     t.wrapS = t.wrapT = wrap;
     for (int i = 0; i < w * h * 4; ++i) t.rgba.push_back(std::uint8_t(rng() & 0xFFu));
     return *scene.addTexture(std::move(t));
@@ -446,6 +446,65 @@ Scene clearcoat() {
     return scene;
 }
 
+// Mipmaps: strips of floor receding from the camera, magnified near it and minified to the last
+// level far away, each under another sampler: mipmaps none, nearest and linear; minification nearest
+// and linear under either magnification (glTF's NEAREST_MIPMAP_LINEAR under LINEAR, BoxTextured's);
+// sRGB and linear data (llvmpipe's float and 8-bit paths); repeat, clamp and mirrored; sizes 64×64,
+// 37×23, 16×64 and 1×1; one strip with a rotating, stretching texture transform. Behind them, a
+// sphere whose texture shrinks to a few pixels.
+Scene mipmaps() {
+    Scene scene;
+    std::mt19937 rng(39);
+    struct Sampler {
+        int w, h;
+        bool srgb;
+        Filter mag, min;
+        MipFilter mip;
+        Wrap wrap;
+    };
+    constexpr Filter N = Filter::Nearest, L = Filter::Linear;
+    const Sampler samplers[] = {
+        {64, 64, true, L, L, MipFilter::Linear, Wrap::Repeat},
+        {64, 64, false, L, L, MipFilter::Linear, Wrap::Repeat},
+        {64, 64, false, L, N, MipFilter::Linear, Wrap::Repeat},
+        {64, 64, true, L, N, MipFilter::Linear, Wrap::MirroredRepeat},
+        {37, 23, false, L, L, MipFilter::Nearest, Wrap::ClampToEdge},
+        {37, 23, true, N, N, MipFilter::Nearest, Wrap::Repeat},
+        {32, 32, false, N, L, MipFilter::None, Wrap::Repeat},
+        {16, 64, false, L, N, MipFilter::Linear, Wrap::MirroredRepeat},
+        {64, 64, true, L, L, MipFilter::Linear, Wrap::Repeat},
+        {1, 1, true, L, L, MipFilter::Linear, Wrap::Repeat},
+    };
+    const int strips = int(std::size(samplers));
+    for (int k = 0; k < strips; ++k) {
+        const Sampler& sampler = samplers[k];
+        const int texture = randomTexture(scene, rng, sampler.w, sampler.h, sampler.srgb, sampler.mag, sampler.wrap);
+        scene.textures[std::size_t(texture)].minFilter = sampler.min;
+        scene.textures[std::size_t(texture)].mipmaps = sampler.mip;
+        Material m;
+        m.baseColorTexture = texture;
+        m.metallicFactor = 0.0f;
+        if (k == 8)  // rotated and stretched: footprints longer along one axis than the other
+            m.baseColorTransform =
+                glm::mat3(glm::vec3(0.8f, 0.6f, 0.0f), glm::vec3(-2.4f, 3.2f, 0.0f), glm::vec3(0.1f, 0.2f, 1.0f));
+        Mesh strip;
+        const float x0 = float(k) - float(strips) * 0.5f, x1 = x0 + 0.95f;
+        strip.positions = {{x0, 0.0f, 2.0f}, {x1, 0.0f, 2.0f}, {x1, 0.0f, -60.0f}, {x0, 0.0f, -60.0f}};
+        strip.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
+        strip.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 40.0f}, {0.0f, 40.0f}};
+        strip.indices = {0, 1, 2, 0, 2, 3};
+        place(scene, std::move(strip), m, {0.0f, -1.0f, 0.0f});
+    }
+    Mesh ball = sphere(0.6f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(ball, true);
+    Material m;
+    m.baseColorTexture = 0;
+    m.roughnessFactor = 0.5f;
+    place(scene, std::move(ball), m, {1.0f, 0.2f, -12.0f});
+    scene.buildInstances();
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -493,6 +552,7 @@ std::vector<MatrixCase> matrix() {
         {"alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"specular-glossiness", specularGlossiness, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"clearcoat", clearcoat, 640, 560, lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
     };
 }
 
