@@ -26,7 +26,8 @@
 // the tangent basis, not normalised after it, or the normal before the base normal map); the
 // environment's colour becomes env·(1 − k) + L·k before occlusion, the light's light·(1 − k) +
 // the coat's GGX specular (roughness factor × the map's green; no Fresnel)·k, the emission
-// emission·(1 − k).
+// emission·(1 − k). FRUGAL_TONEMAP_NEUTRAL and FRUGAL_TONEMAP_ACES map the linear colour before its
+// encoding, as the Khronos renderer's tonemapping.glsl does (FrameParams::tonemap).
 #version 330 core
 
 in vec3 v_normal;
@@ -123,6 +124,34 @@ vec3 iblFresnel(vec3 f0, float r, float c5, vec2 ab) {
     vec3 favg = f0 + (1.0 - f0) / 21.0;
     return fss + (ems * fss) * favg / (1.0 - favg * ems);
 }
+
+#ifdef FRUGAL_TONEMAP_NEUTRAL
+// The Khronos PBR Neutral operator (the Khronos renderer's toneMap_KhronosPbrNeutral).
+vec3 toneMapNeutral(vec3 c) {
+    const float start = 0.8 - 0.04;
+    const float d = 1.0 - start;
+    float x = min(c.r, min(c.g, c.b));
+    float offset = x < 0.08 ? x - (6.25 * x) * x : 0.04;
+    c = c - offset;
+    float peak = max(c.r, max(c.g, c.b));
+    if (peak < start) return c;
+    float newPeak = 1.0 - (d * d) / ((peak + d) - start);
+    c = c * (newPeak / peak);
+    float g = 1.0 - 1.0 / (0.15 * (peak - newPeak) + 1.0);
+    return c * (1.0 - g) + vec3(newPeak * g);
+}
+#endif
+#ifdef FRUGAL_TONEMAP_ACES
+// Stephen Hill's ACES fit (the Khronos renderer's toneMapACES_Hill and its matrices).
+const mat3 kAcesInput = mat3(0.59719, 0.07600, 0.02840, 0.35458, 0.90834, 0.13383, 0.04823, 0.01566, 0.83777);
+const mat3 kAcesOutput = mat3(1.60475, -0.10208, -0.00327, -0.53108, 1.10813, -0.07276, -0.07367, -0.00605, 1.07602);
+vec3 toneMapAces(vec3 c) {
+    c = kAcesInput * c;
+    vec3 a = c * (c + 0.0245786) - 0.000090537;
+    vec3 b = c * (0.983729 * c + 0.4329510) + 0.238081;
+    return clamp(kAcesOutput * (a / b), 0.0, 1.0);
+}
+#endif
 
 void main() {
     vec4 base = u_baseColorFactor;
@@ -256,6 +285,11 @@ void main() {
 #else
     vec3 linear = lit + emissive;
 #endif
+#endif
+#ifdef FRUGAL_TONEMAP_NEUTRAL
+    linear = toneMapNeutral(linear);
+#elif defined(FRUGAL_TONEMAP_ACES)
+    linear = toneMapAces(linear);
 #endif
 #ifdef FRUGAL_ALPHA_BLEND
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);

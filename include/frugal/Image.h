@@ -26,6 +26,13 @@ inline constexpr std::uint32_t kDepthMax = 0xFFFFFFu;
 //         it separates depths about 2⁻²³·d apart at any distance and any near/far ratio.
 enum class DepthFormat : std::uint8_t { D24, D32F };
 
+// How linear colour becomes the colour image's values, before the display encoding rgb^(1/2.2) and
+// the clamp to [0, 1]: as it is (None, the default), or through a tone-mapping operator as the
+// Khronos glTF Sample Renderer applies them (its tonemapping.glsl): PbrNeutral, the Khronos PBR
+// Neutral operator (colours below 0.76 keep their hue and value, brighter ones are compressed
+// toward white), Aces, Stephen Hill's fit of the ACES filmic curve (its toneMapACES_Hill).
+enum class ToneMap : std::uint8_t { None, PbrNeutral, Aces };
+
 inline const char* depthFormatName(DepthFormat format) { return format == DepthFormat::D32F ? "d32f" : "d24"; }
 // Window z of the far plane: what a target of `format` is cleared to.
 inline float farDepth(DepthFormat format) { return format == DepthFormat::D32F ? 0.0f : 1.0f; }

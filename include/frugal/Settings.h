@@ -164,6 +164,13 @@ inline constexpr std::array<ChoiceInfo, 2> kDepthFormatInfos{{
              "apart at any near/far ratio"},
 }};
 
+inline constexpr std::array<ChoiceInfo, 3> kToneMapInfos{{
+    {"none", "linear colour as it is, clamped at 1 (default)"},
+    {"pbr-neutral", "the Khronos PBR Neutral operator: hue and value kept below 0.76, brighter colours compressed "
+                    "toward white"},
+    {"aces", "Stephen Hill's fit of the ACES filmic curve"},
+}};
+
 constexpr const CullTraits& traitsOf(Cull v) { return kCullTraits[std::size_t(v)]; }
 constexpr const OrderTraits& traitsOf(Order v) { return kOrderTraits[std::size_t(v)]; }
 constexpr const HsrTraits& traitsOf(Hsr v) { return kHsrTraits[std::size_t(v)]; }
@@ -174,6 +181,7 @@ constexpr const ChoiceInfo& infoOf(Hsr v) { return traitsOf(v).info; }
 constexpr const ChoiceInfo& infoOf(BackendKind v) { return kBackendInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(DepthInterp v) { return kDepthInterpInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(DepthFormat v) { return kDepthFormatInfos[std::size_t(v)]; }
+constexpr const ChoiceInfo& infoOf(ToneMap v) { return kToneMapInfos[std::size_t(v)]; }
 
 // Every value of an enum, in its order: values<Cull>() is {None, Sphere, ...}.
 template <class T>
@@ -184,6 +192,7 @@ constexpr auto values() {
         else if constexpr (std::is_same_v<T, Hsr>) return kHsrTraits.size();
         else if constexpr (std::is_same_v<T, BackendKind>) return kBackendInfos.size();
         else if constexpr (std::is_same_v<T, DepthInterp>) return kDepthInterpInfos.size();
+        else if constexpr (std::is_same_v<T, ToneMap>) return kToneMapInfos.size();
         else return kDepthFormatInfos.size();
     }();
     std::array<T, n> out{};
@@ -197,6 +206,7 @@ inline constexpr auto kCulls = values<Cull>();
 inline constexpr auto kOrders = values<Order>();
 inline constexpr auto kHsrs = values<Hsr>();
 inline constexpr auto kDepthFormats = values<DepthFormat>();
+inline constexpr auto kToneMaps = values<ToneMap>();
 
 // The tables hold their enum's values in order, so that traitsOf(v) is v's row.
 static_assert([] {
@@ -259,6 +269,7 @@ struct Settings {
     Hsr hsr = Hsr::ZBuffer;
     DepthFormat depthFormat = DepthFormat::D24;
     glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
+    ToneMap tonemap = ToneMap::None;  // frugal/Image.h
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
 

@@ -42,6 +42,7 @@ _Cull = Literal["none", "sphere", "backface", "cones", "paper", "conservative", 
 _Order = Literal["submit", "key", "paper", "greedy", "best"]
 _Hsr = Literal["zbuffer", "depthsort", "adaptive", "adaptive-convex"]
 _DepthFormat = Literal["d24", "d32f"]
+_Tonemap = Literal["none", "pbr-neutral", "aces"]
 # </settings: choices>
 
 # Every setting with its value, as default_settings(), settings() and Renderer.settings give them.
@@ -62,6 +63,7 @@ class _Settings(TypedDict):
     exact_static: bool
     hsr: _Hsr
     depth_format: _DepthFormat
+    tonemap: _Tonemap
     background: tuple[float, float, float, float]
     ids: bool
     # </settings: dict>
@@ -98,6 +100,7 @@ def settings(
     exact_static: bool = ...,
     hsr: _Hsr = ...,
     depth_format: _DepthFormat = ...,
+    tonemap: _Tonemap = ...,
     background: _Colour = ...,
     ids: bool = ...,
     # </settings: keywords>
@@ -468,6 +471,7 @@ class Renderer(_pybind11_object):
         exact_static: bool = ...,
         hsr: _Hsr = ...,
         depth_format: _DepthFormat = ...,
+        tonemap: _Tonemap = ...,
         background: _Colour = ...,
         ids: bool = ...,
         # </settings: renderer keywords>

@@ -62,6 +62,28 @@ def test_occlusion_ahead_makes_the_next_frames_plan_and_changes_no_image():
             ahead.render(cameras[0], next_time=float("nan"))
 
 
+def test_tone_mapping_maps_the_lit_pixels_alike_on_both_backends():
+    """tonemap= as the command line's --tonemap: each operator changes the lit pixels, not the
+    background; GL and the software reference agree within a step; a bad name is refused."""
+    import numpy as np
+    scene = frugal.load("builtin:materials")
+
+    def render(backend, **settings):
+        with frugal.Renderer(scene, size=(96, 72), backend=backend, ids=True, **settings) as r:
+            return r.render()
+
+    plain = render("auto")
+    background = plain.ids == 0
+    for op in ("pbr-neutral", "aces"):
+        mapped = render("auto", tonemap=op)
+        assert np.array_equal(mapped.color[background], plain.color[background])
+        assert (mapped.color[~background] != plain.color[~background]).any(axis=-1).mean() > 0.5
+        assert np.abs(mapped.color.astype(int) - render("software", tonemap=op).color).max() <= 1
+    assert np.array_equal(render("auto", tonemap="none").color, plain.color)
+    with pytest.raises(frugal.InputError, match="tonemap: 'filmic' is not a tone-mapping operator"):
+        frugal.Renderer(scene, tonemap="filmic")
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

@@ -76,6 +76,7 @@ FlagGroup renderFlags(RenderOptions& o) {
         flag::frames("--frames", "frames A to B inclusive, at --fps (default the scene's, 30)", o.frames),
         flag::number("--fps", "N", "frames per second of --frames (default the scene's)", o.fps, 1e-3, 1e6),
         setting("background"),
+        setting("tonemap"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),
         flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",
@@ -202,11 +203,17 @@ Camera cameraOf(const RenderOptions& options, int frame) {
 
 FrameSetupOf frameSetups(const RenderOptions& options, const Scene& scene, bool writeIds) {
     const Settings& s = options.settings;
-    return frugal::frameSetups(scene, options.scene,
-                               [&options, &scene](int frame) {
-                                   return AskedFrame{cameraOf(options, frame), frameTimeOf(options, scene, frame)};
-                               },
-                               s.width, s.height, writeIds, s.depthFormat);
+    FrameSetupOf setups = frugal::frameSetups(scene, options.scene,
+                                              [&options, &scene](int frame) {
+                                                  return AskedFrame{cameraOf(options, frame),
+                                                                    frameTimeOf(options, scene, frame)};
+                                              },
+                                              s.width, s.height, writeIds, s.depthFormat);
+    return [setups = std::move(setups), tonemap = s.tonemap](int frame) -> Result<FrameSetup> {
+        Result<FrameSetup> setup = setups(frame);
+        if (setup) setup->params.tonemap = tonemap;
+        return setup;
+    };
 }
 
 }  // namespace frugal

@@ -63,7 +63,9 @@ enum Variant : unsigned {
     kClearcoatMapBit = 16384u,          // its maps
     kClearcoatRoughnessMapBit = 32768u,
     kClearcoatNormalMapBit = 65536u,
-    kVariantCount = 131072u
+    kToneMapNeutralBit = 131072u,  // FrameParams::tonemap
+    kToneMapAcesBit = 262144u,
+    kVariantCount = 524288u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |

@@ -100,6 +100,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (params.unlit) variant |= kUnlitBit;
     if (params.alphaMode == AlphaMode::Mask) variant |= kAlphaMaskBit;
     if (params.alphaMode == AlphaMode::Blend) variant |= kAlphaBlendBit;
+    if (frame_.tonemap == ToneMap::PbrNeutral) variant |= kToneMapNeutralBit;
+    if (frame_.tonemap == ToneMap::Aces) variant |= kToneMapAcesBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 

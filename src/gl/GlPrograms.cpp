@@ -87,6 +87,8 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kClearcoatMapBit) defines += "#define FRUGAL_CLEARCOAT_MAP\n";
     if (variant & kClearcoatRoughnessMapBit) defines += "#define FRUGAL_CLEARCOAT_ROUGHNESS_MAP\n";
     if (variant & kClearcoatNormalMapBit) defines += "#define FRUGAL_CLEARCOAT_NORMAL_MAP\n";
+    if (variant & kToneMapNeutralBit) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
+    if (variant & kToneMapAcesBit) defines += "#define FRUGAL_TONEMAP_ACES\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;

@@ -90,6 +90,13 @@ struct IndexRange {
 //   (DrawParams::unlit, KHR_materials_unlit) has rgb = base.rgb. Alpha (DrawParams::alphaMode): a = 1
 //   for Opaque; Mask discards the fragment (no colour, depth or id) where base.a < alphaCutoff and
 //   writes a = 1 elsewhere; Blend writes a = base.a, blended as above.
+// Tone mapping (FrameParams::tonemap), when asked for, maps rgb first, as the Khronos renderer's
+// tonemapping.glsl does (mix written out as above, each matrix product summed from its first column):
+//   PbrNeutral: x = min(r, min(g, b)); rgb −= x < 0.08 ? x − (6.25·x)·x : 0.04; p = max(r, max(g, b));
+//     unless p < 0.76: q = 1 − d²/((p + d) − 0.76) with d = 1 − 0.76, rgb ·= q/p, then
+//     rgb = mix(rgb, q, 1 − 1/(0.15·(p − q) + 1)).
+//   Aces: c = I·rgb; c = (c·(c + 0.0245786) − 0.000090537) / (c·(0.983729·c + 0.432951) + 0.238081);
+//     rgb = clamp(O·c, 0, 1), I and O the Khronos renderer's ACESInputMat and ACESOutputMat.
 // The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample Renderer, and a
 // unencoded; the 8-bit target clamps to [0,1] and rounds to nearest (a blended draw mixes these
 // encoded bytes, as the Khronos renderer's canvas does). The clear colour (the
@@ -113,6 +120,7 @@ struct FrameParams {
     // The projection's depth convention (frugal/Image.h); the target drawn into must have this format.
     DepthFormat depthFormat = DepthFormat::D24;
     Lighting lighting;
+    ToneMap tonemap = ToneMap::None;  // applied to rgb before its encoding (frugal/Image.h, below)
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
 };
 

@@ -154,6 +154,10 @@ std::vector<SettingInfo> makeTable() {
     t.push_back(choice("depth-format", "F", "a depth format", kImage,
                        "the depth buffer (see 'frugal info SCENE' for the depth resolution each gives)",
                        [](auto& s) -> auto& { return s.depthFormat; }));
+    t.push_back(choice("tonemap", "OP", "a tone-mapping operator", kImage,
+                       "how linear colour is mapped before its display encoding, as the Khronos glTF Sample Renderer "
+                       "maps it (the background is not)",
+                       [](auto& s) -> auto& { return s.tonemap; }));
     SettingInfo background = entry("background", SettingKind::Colour, "R,G,B[,A]", kImage,
                                    "clear colour in [0,1] (default 0.12,0.13,0.15)");
     background.get = [](const Settings& s) {

@@ -24,7 +24,7 @@ constexpr int kSlotClear = 0;       // sealed mask kClear: what P_ss (exact stat
 constexpr int kSlotDirty = 1;       // paper's steps: kClear | kCopy, what P_ds is tested against
 
 bool sameFrame(const FrameParams& a, const FrameParams& b) {
-    return a.view == b.view && a.projection == b.projection && a.lighting == b.lighting &&
+    return a.view == b.view && a.projection == b.projection && a.lighting == b.lighting && a.tonemap == b.tonemap &&
            a.writeIds == b.writeIds;
 }
 

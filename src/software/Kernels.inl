@@ -573,6 +573,46 @@ struct Light {
     F8 emission[3];
 };
 
+// FrameParams::tonemap on a pixel's linear rgb, in mesh.frag's operations (pipeline/Backend.h).
+void toneMap(ToneMap op, F8 rgb[3]) {
+    const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
+    if (op == ToneMap::PbrNeutral) {
+        const float start = 0.8f - 0.04f, d = 1.0f - start;  // folded in float, as the compiler folds them
+        const F8 x = simd::min(rgb[0], simd::min(rgb[1], rgb[2]));
+        const F8 offset =
+            simd::selectf(simd::lt(x, simd::splat(0.08f)), x - (simd::splat(6.25f) * x) * x, simd::splat(0.04f));
+        F8 c[3];
+        for (int k = 0; k < 3; ++k) c[k] = rgb[k] - offset;
+        const F8 peak = simd::max(c[0], simd::max(c[1], c[2]));
+        const F8 newPeak = one - simd::splat(d * d) / ((peak + simd::splat(d)) - simd::splat(start));
+        const F8 scale = newPeak / peak;
+        const F8 g = one - one / (simd::splat(0.15f) * (peak - newPeak) + one);
+        const I8 below = simd::lt(peak, simd::splat(start));
+        for (int k = 0; k < 3; ++k) rgb[k] = simd::selectf(below, c[k], (c[k] * scale) * (one - g) + newPeak * g);
+        return;
+    }
+    if (op != ToneMap::Aces) return;
+    // The matrices by columns, as GLSL's mat3 constructor takes them; each product summed from the
+    // first column.
+    static constexpr float in[3][3] = {
+        {0.59719f, 0.07600f, 0.02840f}, {0.35458f, 0.90834f, 0.13383f}, {0.04823f, 0.01566f, 0.83777f}};
+    static constexpr float out[3][3] = {
+        {1.60475f, -0.10208f, -0.00327f}, {-0.53108f, 1.10813f, -0.07276f}, {-0.07367f, -0.00605f, 1.07602f}};
+    const auto product = [](const float(&m)[3][3], const F8 v[3], F8 r[3]) {
+        for (int k = 0; k < 3; ++k)
+            r[k] = (simd::splat(m[0][k]) * v[0] + simd::splat(m[1][k]) * v[1]) + simd::splat(m[2][k]) * v[2];
+    };
+    F8 c[3], fitted[3];
+    product(in, rgb, c);
+    for (int k = 0; k < 3; ++k) {
+        const F8 a = c[k] * (c[k] + simd::splat(0.0245786f)) - simd::splat(0.000090537f);
+        const F8 b = c[k] * (simd::splat(0.983729f) * c[k] + simd::splat(0.4329510f)) + simd::splat(0.238081f);
+        fitted[k] = a / b;
+    }
+    product(out, fitted, c);
+    for (int k = 0; k < 3; ++k) rgb[k] = simd::min(simd::max(c[k], zero), one);
+}
+
 void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const Triangle& t = *tile.won[index];
     const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
@@ -769,6 +809,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 light.shade(base, n, v, surface, linear);
             }
 
+            toneMap(shading.tonemap, linear);
             // Colour: linear rgb encoded lane by lane (ColorEncoding); alpha converted as it is.
             std::uint32_t rgb[8] = {};
             for (int c = 0; c < 3; ++c) {

@@ -239,6 +239,7 @@ struct DrawShading {
     float light = 0.0f, environment = 0.0f;  // Lighting
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
+    ToneMap tonemap = ToneMap::None;          // FrameParams::tonemap
     AlphaMode alphaMode = AlphaMode::Opaque;  // Mask, Blend: drawn at once, not deferred (Pipeline.cpp)
     float alphaCutoff = 0.5f;
 };

@@ -258,6 +258,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.toLight = frame_.lighting.toLight;
     input.shading.light = frame_.lighting.light;
     input.shading.environment = frame_.lighting.environment;
+    input.shading.tonemap = frame_.tonemap;
     input.shading.writeIds = frame_.writeIds;
     input.shading.depthTest = params.depth == DepthMode::Test;
     input.shading.alphaMode = params.alphaMode;

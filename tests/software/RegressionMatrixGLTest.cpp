@@ -40,6 +40,7 @@ struct MatrixCase {
     int width, height;
     Camera camera;
     Tolerance tolerance;
+    ToneMap tonemap = ToneMap::None;
 };
 
 Scene loaded(const std::string& spec) {
@@ -505,6 +506,22 @@ Scene mipmaps() {
     return scene;
 }
 
+// Colours from black to far past white for the tone-mapping operators: the material spheres, each
+// also emissive, from 0 to 6 in hues of every kind, beside unlit and blended ones.
+Scene bright() {
+    Scene scene = materials();
+    for (std::size_t k = 0; k < scene.materials.size(); ++k) {
+        Material& m = scene.materials[k];
+        const float level = float(k) * 0.4f;
+        m.emissiveFactor = glm::vec3(level, level * float(k % 3) * 0.5f, level * float(k % 5) * 0.25f);
+        if (k == 4) {
+            m.alphaMode = AlphaMode::Blend;
+            m.baseColorFactor.a = 0.5f;
+        }
+    }
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -552,6 +569,8 @@ std::vector<MatrixCase> matrix() {
         {"alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"specular-glossiness", specularGlossiness, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"clearcoat", clearcoat, 640, 560, lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
+        {"tonemap-pbr-neutral", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::PbrNeutral},
+        {"tonemap-aces", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::Aces},
         {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
     };
 }
@@ -568,6 +587,7 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
 
     Result<FrameSetup> setup = setUpFrame(scene, c.camera, 0.0, c.width, c.height, true);
     ASSERT_TRUE(setup) << setup.error().message;
+    setup->params.tonemap = c.tonemap;
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
