@@ -40,6 +40,12 @@ uniform vec3 u_toLight;            // world space, unit
 uniform float u_light;             // the directional light's intensity
 uniform float u_environment;       // the uniform environment's radiance
 uniform vec3 u_emissive;           // the material's emission
+#ifdef FRUGAL_LIGHTS
+// The scene's punctual lights (pipeline/Backend.h, FrameLight), four vec4 each: position and type
+// (0 directional, 1 point, 2 spot); where it shines and its range (0 = none); intensity and the
+// outer cone's cosine; the inner cone's cosine. Then their count.
+uniform vec4 u_lights[4 * FRUGAL_LIGHTS + 1];
+#endif
 #ifdef FRUGAL_ALPHA_MASK
 uniform float u_alphaCutoff;
 #endif
@@ -252,6 +258,53 @@ void main() {
 #endif
 #endif
 
+#ifdef FRUGAL_LIGHTS
+    // The scene's punctual lights, each as the directional light below with its own l and E.
+#ifdef FRUGAL_CLEARCOAT
+    vec3 coatSpecular = vec3(0.0);
+    float coatAlpha2 = (coatRoughness * coatRoughness) * (coatRoughness * coatRoughness);
+    float ncv = clampedDot(nc, v);
+#endif
+    int lightCount = int(u_lights[4 * FRUGAL_LIGHTS].x);
+    for (int i = 0; i < lightCount; ++i) {
+        vec4 at = u_lights[4 * i], axis = u_lights[4 * i + 1], power = u_lights[4 * i + 2];
+        vec3 e = power.rgb;
+        vec3 l = -axis.xyz;
+        if (at.w > 0.5) {
+            vec3 pointToLight = at.xyz - v_position;
+            l = normalize(pointToLight);
+            float d2 = dot(pointToLight, pointToLight);
+            float fade = 1.0 / d2;
+            if (axis.w > 0.0) {
+                float q = d2 / (axis.w * axis.w);
+                fade = max(min(1.0 - q * q, 1.0), 0.0) / d2;
+            }
+            e = e * fade;
+            if (at.w > 1.5) {
+                float c = -dot(axis.xyz, l), innerCos = u_lights[4 * i + 3].x;
+                float t = (c - power.w) / (innerCos - power.w);
+                e = e * (c > power.w ? (c < innerCos ? t * t : 1.0) : 0.0);
+            }
+        }
+        vec3 h = normalize(l + v);
+        float nl = clampedDot(n, l), nh = clampedDot(n, h), vh = clampedDot(v, h);
+        vec3 radiance = e * nl;
+        vec3 specular = radiance * ggx(nl, nv, nh, alpha2);
+        float ch = pow5(1.0 - vh);
+#ifdef FRUGAL_SPECULAR_GLOSSINESS
+        vec3 fl = f0 + (1.0 - f0) * ch;
+        dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + specular * fl;
+#else
+        float fl = kDielectricF0 + (1.0 - kDielectricF0) * ch;
+        dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + specular * fl;
+        metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
+#endif
+#ifdef FRUGAL_CLEARCOAT
+        float ncl = clampedDot(nc, l);
+        coatSpecular += e * (ncl * ggx(ncl, ncv, clampedDot(nc, h), coatAlpha2));
+#endif
+    }
+#else
     // The directional light.
     vec3 l = u_toLight;
     vec3 h = normalize(l + v);
@@ -267,6 +320,7 @@ void main() {
     dielectric += (base.rgb * (radiance / kPi)) * (1.0 - fl) + vec3(specular * fl);
     metal += (base.rgb + (1.0 - base.rgb) * ch) * specular;
 #endif
+#endif
 
     vec3 emissive = u_emissive;
 #ifdef FRUGAL_EMISSIVE_MAP
@@ -278,9 +332,11 @@ void main() {
     vec3 lit = dielectric * (1.0 - metallic) + metal * metallic;
 #endif
 #ifdef FRUGAL_CLEARCOAT
+#ifndef FRUGAL_LIGHTS
     float ncl = clampedDot(nc, l);
     float coatAlpha2 = (coatRoughness * coatRoughness) * (coatRoughness * coatRoughness);
     float coatSpecular = u_light * (ncl * ggx(ncl, clampedDot(nc, v), clampedDot(nc, h), coatAlpha2));
+#endif
     vec3 linear = (environment + (lit * (1.0 - k) + coatSpecular * k)) + emissive * (1.0 - k);
 #else
     vec3 linear = lit + emissive;

@@ -166,6 +166,32 @@ struct Mesh {
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
+// KHR_lights_punctual's kinds of light.
+enum class LightType : std::uint8_t { Directional, Point, Spot };
+
+// A punctual light (KHR_lights_punctual), placed by the nodes that refer to it (Node::light): at the
+// node's origin, shining down the node's −Z (directional and spot lights). In the extension's units:
+// a directional light's intensity in lux (lm/m²), a point or spot light's in candela (lm/sr), with
+// the Lambert lobe albedo/π (pipeline/Backend.h). A scene with lights is lit by them and the
+// environment; one without gets the default directional light.
+struct PunctualLight {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};   // linear, each at least 0
+    float intensity = 1.0f;  // finite, at least 0
+    // Point and spot: 0 = unbounded (the inverse square alone), else where the light ends (> 0):
+    // the inverse square times max(min(1 − (d / range)⁴, 1), 0), as the Khronos renderer fades it.
+    float range = 0.0f;
+    // Spot: full intensity within innerConeAngle of the axis, none beyond outerConeAngle, between
+    // them ((cos θ − cos outer) / (cos inner − cos outer))²; radians, 0 ≤ inner < outer ≤ π/2.
+    float innerConeAngle = 0.0f;
+    float outerConeAngle = 0.785398163f;
+};
+
+// How many punctual lights a frame draws: the first ones, in node order (a file with more is told
+// so: Scene::unsupported).
+inline constexpr int kMaxLights = 8;
+
 struct Node {
     std::string name;
     int parent = -1;
@@ -178,6 +204,7 @@ struct Node {
     glm::vec3 scale{1.0f};
     std::vector<int> meshes;  // indices into Scene::meshes (a glTF mesh's primitives)
     int camera = -1;
+    int light = -1;  // index into Scene::lights
 };
 
 // One drawn mesh: a (node, mesh) pair. Instances are numbered in a stable order (node order, then
@@ -242,6 +269,7 @@ struct Scene {
     std::vector<int> roots;
     std::vector<Instance> instances;
     std::vector<SceneCamera> cameras;
+    std::vector<PunctualLight> lights;  // placed by Node::light
     std::vector<Animation> animations;
     // Features in the file that frugal does not model, by name ("skins", "morph targets",
     // "KHR_materials_clearcoat", ...). Reported by `frugal info` and as a warning on render.

@@ -202,6 +202,29 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         out << "  the automatic view (no camera in the scene):\n";
         printDepthPrecision(scene, std::nullopt, detail, longSide, out);
     }
+    // Punctual lights, by the nodes that place them (KHR_lights_punctual); none: the default light.
+    std::size_t placed = 0;
+    for (const Node& node : scene.nodes) placed += node.light >= 0;
+    out << "lights: " << placed;
+    if (placed == 0) out << " (the default directional light)";
+    if (placed > std::size_t(kMaxLights)) out << " (the first " << kMaxLights << " are drawn)";
+    out << "\n";
+    for (const Node& node : scene.nodes) {
+        if (node.light < 0) continue;
+        const PunctualLight& l = scene.lights[std::size_t(node.light)];
+        const char* type = l.type == LightType::Directional ? "directional"
+                           : l.type == LightType::Point     ? "point"
+                                                            : "spot";
+        out << "  '" << l.name << "' " << type << " on node '" << node.name << "', colour " << fmt(l.color.r) << ","
+            << fmt(l.color.g) << "," << fmt(l.color.b) << " x " << fmt(l.intensity)
+            << (l.type == LightType::Directional ? " lx" : " cd");
+        if (l.type != LightType::Directional)
+            out << ", range " << (l.range > 0.0f ? fmt(l.range) : std::string("unbounded"));
+        if (l.type == LightType::Spot)
+            out << ", cone " << fmt(glm::degrees(l.innerConeAngle)) << " to " << fmt(glm::degrees(l.outerConeAngle))
+                << " deg";
+        out << "\n";
+    }
     std::size_t channels = 0;
     for (const Animation& a : scene.animations) channels += a.channels.size();
     out << "animations: " << scene.animations.size() << " (" << channels << " channels, " << fmt(scene.duration())

@@ -9,14 +9,15 @@
 //                     many short ranges gathered into one index buffer
 #pragma once
 
+#include <array>
 #include <cassert>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
-#include <utility>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,7 +66,8 @@ enum Variant : unsigned {
     kClearcoatNormalMapBit = 65536u,
     kToneMapNeutralBit = 131072u,  // FrameParams::tonemap
     kToneMapAcesBit = 262144u,
-    kVariantCount = 524288u
+    kLightsBit = 524288u,  // the scene's punctual lights (Lighting::lights) instead of the directional light
+    kVariantCount = 1048576u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
@@ -98,6 +100,7 @@ struct GlProgram {
     GLint mvp = -1, normalMatrix = -1, model = -1, firstId = -1, baseColorFactor = -1, metallicRoughness = -1;
     GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
     GLint occlusionStrength = -1, normalScale = -1, alphaCutoff = -1, specularGlossiness = -1, clearcoat = -1;
+    GLint lights = -1;  // vec4 u_lights[4 · kMaxLights + 1] (mesh.frag)
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue, specularGlossinessValue;
@@ -106,6 +109,7 @@ struct GlProgram {
     CachedUniform<glm::vec3> eyeValue, toLightValue, emissiveValue;
     CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue, alphaCutoffValue;
     CachedUniform<std::uint32_t> firstIdValue;
+    CachedUniform<std::array<glm::vec4, 4 * kMaxLights + 1>> lightsValue;
 };
 
 // Byte offsets of the attribute sections in a mesh's vertex buffer (positions first, at 0);

@@ -24,6 +24,7 @@
 // gathered. The mesh's indices are read back from its buffer once, on the first gathered draw (no
 // CPU copy is kept for meshes never culled).
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -102,6 +103,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (params.alphaMode == AlphaMode::Blend) variant |= kAlphaBlendBit;
     if (frame_.tonemap == ToneMap::PbrNeutral) variant |= kToneMapNeutralBit;
     if (frame_.tonemap == ToneMap::Aces) variant |= kToneMapAcesBit;
+    if (!params.unlit && !frame_.lighting.lights.empty()) variant |= kLightsBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 
@@ -122,6 +124,22 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (state_.uniformChanged(p->lightValue, light.light)) gl_.Uniform1f(p->light, light.light);
     if (state_.uniformChanged(p->environmentValue, light.environment))
         gl_.Uniform1f(p->environment, light.environment);
+    if (variant & kLightsBit) {
+        // Four vec4 a light (position, type; direction, range; intensity, outer cosine; inner
+        // cosine), then the count.
+        std::array<glm::vec4, 4 * kMaxLights + 1> packed{};
+        const std::size_t count = std::min(light.lights.size(), std::size_t(kMaxLights));
+        for (std::size_t i = 0; i < count; ++i) {
+            const FrameLight& l = light.lights[i];
+            packed[4 * i] = glm::vec4(l.position, float(l.type));
+            packed[4 * i + 1] = glm::vec4(l.direction, l.range);
+            packed[4 * i + 2] = glm::vec4(l.intensity, l.outerCos);
+            packed[4 * i + 3] = glm::vec4(l.innerCos, 0.0f, 0.0f, 0.0f);
+        }
+        packed[4 * kMaxLights] = glm::vec4(float(count), 0.0f, 0.0f, 0.0f);
+        if (state_.uniformChanged(p->lightsValue, packed))
+            gl_.Uniform4fv(p->lights, GLsizei(packed.size()), glm::value_ptr(packed[0]));
+    }
     // The material: the same for every instance of a batched draw.
     if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));

@@ -89,6 +89,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kClearcoatNormalMapBit) defines += "#define FRUGAL_CLEARCOAT_NORMAL_MAP\n";
     if (variant & kToneMapNeutralBit) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
     if (variant & kToneMapAcesBit) defines += "#define FRUGAL_TONEMAP_ACES\n";
+    if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -100,6 +101,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.baseColorFactor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
     p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
     p.eye = gl_.GetUniformLocation(p.name, "u_eye");
+    p.lights = gl_.GetUniformLocation(p.name, "u_lights");
     p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
     p.light = gl_.GetUniformLocation(p.name, "u_light");
     p.environment = gl_.GetUniformLocation(p.name, "u_environment");

@@ -18,6 +18,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -103,10 +104,30 @@ struct IndexRange {
 // background) is written as given, not encoded. With the default light a white rough dielectric
 // facing the light and the viewer is about 1.0 of diffuse light (0.3 + 0.7) less the 4 % the
 // surface reflects, plus that reflection.
+// A scene's punctual light where a frame sees it (Scene::lights, placed by its node at the frame's
+// time). Its term is the directional light's above with l and E per pixel, in mesh.frag's operations:
+// a directional light's l = −direction and E = intensity; a point or spot light's pointToLight =
+// position − p, l = normalize(pointToLight), d2 = dot(pointToLight, pointToLight), E = intensity ·
+// (1/d2, or max(min(1 − q·q, 1), 0)/d2 with q = d2 / range² when it has a range); a spot light's E
+// also × ((c − outerCos) / (innerCos − outerCos))² where c = dot(direction, −l) is between the
+// cosines, × 0 at or beyond outerCos. The clear coat's lobe is summed over the lights the same way.
+struct FrameLight {
+    LightType type = LightType::Directional;
+    glm::vec3 position{0.0f};                // world space (point, spot)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // where it shines, world space, unit (directional, spot)
+    glm::vec3 intensity{1.0f};               // colour × intensity
+    float range = 0.0f;                      // 0 = unbounded
+    float outerCos = 0.0f, innerCos = 1.0f;  // spot: the cones' cosines
+    bool operator==(const FrameLight&) const = default;
+};
+
 struct Lighting {
     glm::vec3 toLight = glm::normalize(glm::vec3(0.35f, 0.8f, 0.5f));  // world space, unit
     float light = 0.7f * 3.14159265f;  // the directional light's intensity (white): E above
     float environment = 0.3f;          // the uniform environment's radiance (white): L above
+    // The scene's punctual lights, at most kMaxLights: when there are any, they light the frame
+    // instead of the directional light above (the environment stays).
+    std::vector<FrameLight> lights;
     bool operator==(const Lighting&) const = default;
 };
 

@@ -32,6 +32,10 @@ struct FrameSetup {
 Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double time, int width, int height,
                               bool writeIds, DepthFormat format = DepthFormat::D24, const Bounds* knownBounds = nullptr);
 
+// The punctual lights of `scene` placed by the nodes' world transforms `world`: the first
+// kMaxLights nodes with a light, in node order (pipeline/Backend.h).
+std::vector<FrameLight> frameLights(const Scene& scene, const std::vector<glm::mat4>& world);
+
 // A sequence's frame `frame` with its camera and time resolved (setUpFrame): how a harness asks for
 // the frames it measures. Errors as one line.
 using FrameSetupOf = std::function<Result<FrameSetup>(int frame)>;

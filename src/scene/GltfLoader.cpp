@@ -289,6 +289,7 @@ private:
     const std::string& path_;
     const LoadOptions& options_;
     std::vector<std::string> extensions_;
+    int lightNodes_ = 0;  // nodes of the scene that place a light
     Scene scene_;
     std::vector<std::vector<int>> meshPrimitives_;  // glTF mesh → indices into scene_.meshes
     std::vector<bool> materialUsed_;
@@ -329,6 +330,7 @@ private:
     ExtensionTexture extensionTexture(const tinygltf::Value& value, const std::string& where) const;
     void convertAnimations();
     void addCamera(int node);
+    void convertLights();
 
     template <class T, class Decode>
     std::vector<T> read(int accessor, const std::string& use, AccessorRequest request, Decode decode,
@@ -698,6 +700,60 @@ void Converter::convertNodes() {
         }
         if (src.camera >= 0) addCamera(n);
         if (src.skin >= 0) report("skins");
+        if (const auto it = src.extensions.find("KHR_lights_punctual"); it != src.extensions.end()) {
+            const std::string where = cat("nodes[", n, "].extensions.KHR_lights_punctual");
+            if (!it->second.IsObject() || !it->second.Has("light")) fail(where, ": no light");
+            const double light = extensionNumber(it->second.Get("light"), where + ".light");
+            if (!(light >= 0.0 && light < double(model_.lights.size()) && light == std::floor(light)))
+                fail(where, ".light: ", light, " is not a light index (the file has ", model_.lights.size(), ")");
+            scene_.nodes[std::size_t(n)].light = int(light);
+            if (++lightNodes_ == kMaxLights + 1)
+                report(cat("more than ", kMaxLights, " punctual lights (the first ", kMaxLights, " are drawn)"));
+        }
+    }
+    convertLights();
+}
+
+// KHR_lights_punctual's lights, all of them in file order (nodes refer to them by index).
+void Converter::convertLights() {
+    for (int l = 0; l < int(model_.lights.size()); ++l) {
+        const tinygltf::Light& src = model_.lights[std::size_t(l)];
+        const std::string where = cat("extensions.KHR_lights_punctual.lights[", l, "]");
+        PunctualLight light;
+        light.name = src.name;
+        if (src.type == "directional")
+            light.type = LightType::Directional;
+        else if (src.type == "point")
+            light.type = LightType::Point;
+        else if (src.type == "spot")
+            light.type = LightType::Spot;
+        else
+            fail(where, ".type: '", oneLine(src.type, 40), "' is not a light type (directional, point, spot)");
+        if (!src.color.empty()) {
+            if (src.color.size() != 3) fail(where, ".color: ", src.color.size(), " numbers, not 3");
+            for (int c = 0; c < 3; ++c) {
+                const double v = src.color[std::size_t(c)];
+                if (!(v >= 0.0 && v <= 3.4e38))
+                    fail(where, ".color[", c, "]: ", v, " is not a colour value (0 or more)");
+                light.color[c] = float(v);
+            }
+        }
+        if (!(src.intensity >= 0.0 && src.intensity <= 3.4e38))
+            fail(where, ".intensity: ", src.intensity, " is not an intensity (0 or more)");
+        light.intensity = float(src.intensity);
+        if (!(src.range >= 0.0 && src.range <= 3.4e38)) fail(where, ".range: ", src.range, " is not a range (above 0)");
+        light.range = light.type == LightType::Directional ? 0.0f : float(src.range);
+        if (light.type == LightType::Spot) {
+            const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+            constexpr double kHalfPi = 1.5707963267948966;
+            if (!(outer > 0.0 && outer <= kHalfPi))
+                fail(where, ".spot.outerConeAngle: ", outer, " is not in (0, pi/2]");
+            if (!(inner >= 0.0 && inner < outer))
+                fail(where, ".spot.innerConeAngle: ", inner, " is not in [0, outerConeAngle ", outer, ")");
+            light.innerConeAngle = float(inner);
+            light.outerConeAngle = float(outer);
+        }
+        scene_.lights.push_back(std::move(light));
     }
 }
 
@@ -1163,11 +1219,12 @@ Scene Converter::run() {
     // KHR_materials_unlit is Material::unlit; KHR_texture_transform, Material::baseColorTransform (one
     // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor;
     // KHR_materials_pbrSpecularGlossiness is Material::specularGlossiness (specularGlossinessOf);
-    // KHR_materials_clearcoat, Material::clearcoatFactor and the rest (clearcoatOf).
+    // KHR_materials_clearcoat, Material::clearcoatFactor and the rest (clearcoatOf); KHR_lights_punctual,
+    // Scene::lights and Node::light (convertLights).
     for (const std::string& name : extensions_)
         if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
             name != "KHR_materials_emissive_strength" && name != "KHR_materials_pbrSpecularGlossiness" &&
-            name != "KHR_materials_clearcoat")
+            name != "KHR_materials_clearcoat" && name != "KHR_lights_punctual")
             report(oneLine(name, 80));
     checkBufferViews();
     convertNodes();

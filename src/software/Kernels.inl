@@ -477,7 +477,8 @@ struct Light {
           intensity(simd::splat(s.light)),
           environment(simd::splat(s.environment)),
           occlusionStrength(simd::splat(s.occlusionStrength)),
-          emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)} {}
+          emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)},
+          lights(s.lights) {}
 
     // What the maps give one pixel (mesh.frag): the material's factors where there is no map.
     struct Surface {
@@ -488,6 +489,7 @@ struct Light {
         const F8* coat = nullptr;      // the clear coat's factor × its map, or nullptr: no coat
         F8 coatRoughness{};
         Vec3 coatNormal{};
+        Vec3 position{};  // world space: where the punctual lights are seen from
     };
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
@@ -535,6 +537,10 @@ struct Light {
             }
         }
 
+        if (!lights.empty()) {
+            shadeLights(base, n, v, surface, dielectric, metal, coated, k, out);
+            return;
+        }
         // The directional light.
         const Vec3 h = normalize({toLight.x + v.x, toLight.y + v.y, toLight.z + v.z});
         const F8 nl = saturate(dot(n, toLight)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
@@ -568,9 +574,81 @@ struct Light {
             out[c] = (coated[c] + (lit[c] * (one - k) + coatSpecular * k)) + surface.emission[c] * (one - k);
     }
 
+    // The scene's punctual lights (mesh.frag's FRUGAL_LIGHTS) in place of the directional light,
+    // from the environment's terms on: each light's l and E per pixel, its lobes summed into the
+    // dielectric and metal terms (and the clear coat's), in light order.
+    void shadeLights(const F8 base[4], const Vec3& n, const Vec3& v, const Surface& surface, F8 dielectric[3],
+                     F8 metal[3], const F8 coated[3], F8 k, F8 out[3]) const {
+        const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), pi = simd::splat(kPi);
+        const F8 f0 = simd::splat(kDielectricF0);
+        const F8 r = surface.roughness;
+        const F8 alpha2 = (r * r) * (r * r);
+        const F8 nv = saturate(dot(n, v));
+        const Vec3& nc = surface.coatNormal;
+        const F8 cr = surface.coatRoughness;
+        const F8 coatAlpha2 = (cr * cr) * (cr * cr);
+        const F8 ncv = surface.coat ? saturate(dot(nc, v)) : zero;
+        F8 coatSpecular[3] = {zero, zero, zero};
+        const Vec3& p = surface.position;
+        for (const FrameLight& light : lights) {
+            F8 e[3] = {simd::splat(light.intensity.r), simd::splat(light.intensity.g), simd::splat(light.intensity.b)};
+            const Vec3 axis{simd::splat(light.direction.x), simd::splat(light.direction.y),
+                            simd::splat(light.direction.z)};
+            Vec3 l{simd::neg(axis.x), simd::neg(axis.y), simd::neg(axis.z)};
+            if (light.type != LightType::Directional) {
+                const Vec3 pointToLight{simd::splat(light.position.x) - p.x, simd::splat(light.position.y) - p.y,
+                                        simd::splat(light.position.z) - p.z};
+                l = normalize(pointToLight);
+                const F8 d2 = dot(pointToLight, pointToLight);
+                F8 fade = one / d2;
+                if (light.range > 0.0f) {
+                    const F8 q = d2 / simd::splat(light.range * light.range);
+                    fade = simd::max(simd::min(one - q * q, one), zero) / d2;
+                }
+                for (int c = 0; c < 3; ++c) e[c] = e[c] * fade;
+                if (light.type == LightType::Spot) {
+                    const F8 cosine = simd::neg(dot(axis, l)), outer = simd::splat(light.outerCos);
+                    const F8 t = (cosine - outer) / simd::splat(light.innerCos - light.outerCos);
+                    const F8 inside = simd::selectf(simd::lt(cosine, simd::splat(light.innerCos)), t * t, one);
+                    const F8 cone = simd::selectf(simd::lt(outer, cosine), inside, zero);
+                    for (int c = 0; c < 3; ++c) e[c] = e[c] * cone;
+                }
+            }
+            const Vec3 h = normalize({l.x + v.x, l.y + v.y, l.z + v.z});
+            const F8 nl = saturate(dot(n, l)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
+            const F8 lobe = ggx(nl, nv, nh, alpha2);
+            const F8 ch = pow5(one - vh);
+            for (int c = 0; c < 3; ++c) {
+                const F8 radiance = e[c] * nl;
+                const F8 specular = radiance * lobe;
+                if (surface.specular) {
+                    const F8 fl = surface.specular[c] + (one - surface.specular[c]) * ch;
+                    dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
+                } else {
+                    const F8 fl = f0 + (one - f0) * ch;
+                    dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
+                    metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
+                }
+            }
+            if (surface.coat) {
+                const F8 ncl = saturate(dot(nc, l));
+                const F8 coatLobe = ncl * ggx(ncl, ncv, saturate(dot(nc, h)), coatAlpha2);
+                for (int c = 0; c < 3; ++c) coatSpecular[c] = coatSpecular[c] + e[c] * coatLobe;
+            }
+        }
+        for (int c = 0; c < 3; ++c) {
+            const F8 lit = surface.specular ? dielectric[c]
+                                            : dielectric[c] * (one - surface.metallic) + metal[c] * surface.metallic;
+            out[c] = surface.coat
+                         ? (coated[c] + (lit * (one - k) + coatSpecular[c] * k)) + surface.emission[c] * (one - k)
+                         : lit + surface.emission[c];
+        }
+    }
+
     Vec3 eye, toLight;
     F8 metallicFactor, roughnessFactor, intensity, environment, occlusionStrength;
     F8 emission[3];
+    std::span<const FrameLight> lights;
 };
 
 // FrameParams::tonemap on a pixel's linear rgb, in mesh.frag's operations (pipeline/Backend.h).
@@ -806,6 +884,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                     surface.coat = &coat;
                     surface.coatNormal = coatNormal;
                 }
+                surface.position = {value[9], value[10], value[11]};
                 light.shade(base, n, v, surface, linear);
             }
 

@@ -25,6 +25,10 @@
 // k = coat · (0.04 + 0.96 · (1 − sat(nc · v))⁵); env = mix(dielectric, metal, metallic) · (1 − k)
 // + L · k, then · occlusion; with lit the light's mix, rgb = (env + (lit · (1 − k) + E · (ncl ·
 // ggx) · k)) + emission · (1 − k), mesh.frag's ggx() at the coat's dots and alpha² = rc⁴.
+// Punctual lights (mesh.frag's FRUGAL_LIGHTS, DrawShading::lights): in place of the directional
+// light, each light's l and E per pixel as pipeline/Backend.h writes them (FrameLight), its lobe the
+// directional light's with E per channel, summed in light order into the dielectric and metal terms
+// and the clear coat's (Kernels.inl, Light::shadeLights).
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
@@ -93,12 +97,15 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include <frugal/Image.h>
 #include <frugal/Scene.h>
+
+#include "pipeline/Backend.h"
 
 namespace frugal::sw {
 
@@ -237,6 +244,7 @@ struct DrawShading {
     glm::vec3 eye{0.0f};  // world space
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};
     float light = 0.0f, environment = 0.0f;  // Lighting
+    std::span<const FrameLight> lights;      // Lighting::lights: none, the directional light above
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
     ToneMap tonemap = ToneMap::None;          // FrameParams::tonemap

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <new>
 #include <string>
 #include <thread>
@@ -87,6 +88,8 @@ private:
             pipeline_.flush(target->view());
         else
             pipeline_.discard();
+        // The pending draws' lights (beginFrame) are read no more; the current frame's stay.
+        while (lightSets_.size() > 1) lightSets_.pop_front();
     }
 
     sw::Pipeline pipeline_;
@@ -96,6 +99,9 @@ private:
 
     TargetHandle frameTarget_ = kNoHandle;
     FrameParams frame_;
+    // Each frame's punctual lights, kept where a pending draw reads them until it is rasterized (a
+    // frame may begin on the same target before the draws of the one before are flushed).
+    std::deque<std::vector<FrameLight>> lightSets_;
     StateChanges changes_;  // draws only (no GL state here)
     glm::mat4 viewProjection_{1.0f};
     glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
@@ -204,6 +210,7 @@ void SoftwareBackend::beginFrame(TargetHandle target, const FrameParams& frame) 
     if (target != frameTarget_) flush();
     frameTarget_ = target;
     frame_ = frame;
+    if (lightSets_.empty() || lightSets_.back() != frame.lighting.lights) lightSets_.push_back(frame.lighting.lights);
     viewProjection_ = frame.projection * frame.view;  // as GlBackend::beginFrame, in float with glm
     eye_ = eyePosition(frame.view);
 }
@@ -259,6 +266,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.light = frame_.lighting.light;
     input.shading.environment = frame_.lighting.environment;
     input.shading.tonemap = frame_.tonemap;
+    input.shading.lights = lightSets_.back();  // beginFrame's: frame_'s own may be replaced before a flush
     input.shading.writeIds = frame_.writeIds;
     input.shading.depthTest = params.depth == DepthMode::Test;
     input.shading.alphaMode = params.alphaMode;

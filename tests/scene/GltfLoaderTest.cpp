@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestSupport.h"
+#include "pipeline/Frame.h"
 #include "scene/Load.h"
 
 namespace frugal {
@@ -1255,6 +1256,94 @@ TEST(GltfLoaderTest, TexturesOfEveryPngFormatBecomeRgba8) {
 
 // Each of glTF's minification filters, and what a file that leaves the filters undefined gets: the
 // Khronos glTF Sample Renderer's defaults, LINEAR and LINEAR_MIPMAP_LINEAR.
+// KHR_lights_punctual: each kind of light with its fields (defaults where the file leaves them out),
+// placed by nodes in and out of the chosen scene; bad lights and references refused with one line.
+TEST(GltfLoaderTest, PunctualLightsArePlacedByTheirNodes) {
+    const auto withLights = [](const Json& lights, const Json& nodeExtension, const std::string& name) {
+        Asset asset = quad();
+        asset.json["extensionsUsed"] = {"KHR_lights_punctual"};
+        asset.json["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+        asset.json["nodes"].push_back({{"name", "lamp"}, {"translation", {1, 2, 3}}, {"extensions", nodeExtension}});
+        asset.json["nodes"].push_back(
+            {{"name", "elsewhere"}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        asset.json["scenes"][0]["nodes"] = {0, 1};
+        return load(writeGlb(test::freshDir("GltfLights" + name), name, asset));
+    };
+    const Json lights = Json::array({{{"type", "spot"},
+                                      {"name", "beam"},
+                                      {"color", {1, 0.5, 0.25}},
+                                      {"intensity", 20},
+                                      {"range", 7},
+                                      {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}},
+                                     {{"type", "directional"}},
+                                     {{"type", "point"}, {"intensity", 0}}});
+    const Result<Scene> scene = withLights(lights, {{"KHR_lights_punctual", {{"light", 0}}}}, "good");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->unsupported.empty());
+    ASSERT_EQ(scene->lights.size(), 3u);
+    const PunctualLight& spot = scene->lights[0];
+    EXPECT_EQ(spot.name, "beam");
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.color, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(spot.intensity, 20.0f);
+    EXPECT_EQ(spot.range, 7.0f);
+    EXPECT_EQ(spot.innerConeAngle, 0.1f);
+    EXPECT_EQ(spot.outerConeAngle, 0.5f);
+    const PunctualLight& sun = scene->lights[1];
+    EXPECT_EQ(sun.type, LightType::Directional);
+    EXPECT_EQ(sun.color, glm::vec3(1.0f));
+    EXPECT_EQ(sun.intensity, 1.0f);
+    EXPECT_EQ(scene->lights[2].intensity, 0.0f);
+    ASSERT_EQ(scene->nodes.size(), 3u);
+    EXPECT_EQ(scene->nodes[0].light, -1);
+    EXPECT_EQ(scene->nodes[1].light, 0);
+    EXPECT_EQ(scene->nodes[2].light, -1) << "a node outside the chosen scene places nothing";
+    const std::vector<FrameLight> placed = frameLights(*scene, scene->worldTransforms(0.0));
+    ASSERT_EQ(placed.size(), 1u);
+    EXPECT_EQ(placed[0].position, glm::vec3(1.0f, 2.0f, 3.0f));
+    EXPECT_EQ(placed[0].direction, glm::vec3(0.0f, 0.0f, -1.0f));
+    EXPECT_EQ(placed[0].intensity, glm::vec3(20.0f, 10.0f, 5.0f));
+    EXPECT_FLOAT_EQ(placed[0].outerCos, std::cos(0.5f));
+    EXPECT_FLOAT_EQ(placed[0].innerCos, std::cos(0.1f));
+
+    // Nine lit nodes: the first eight light a frame, and the file is told so.
+    Asset many = quad();
+    many.json["extensions"] = {{"KHR_lights_punctual", {{"lights", Json::array({{{"type", "point"}}})}}}};
+    for (int k = 0; k < 9; ++k) {
+        many.json["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        many.json["scenes"][0]["nodes"].push_back(k + 1);
+    }
+    const Result<Scene> crowded = load(writeGlb(test::freshDir("GltfLightsMany"), "many", many));
+    ASSERT_TRUE(crowded.ok()) << crowded.error().message;
+    EXPECT_EQ(crowded->unsupported, (std::vector<std::string>{"more than 8 punctual lights (the first 8 are drawn)"}));
+    EXPECT_EQ(frameLights(*crowded, crowded->worldTransforms(0.0)).size(), std::size_t(kMaxLights));
+
+    struct Bad {
+        Json lights, node;
+        std::string message;
+    };
+    const Json use0 = {{"KHR_lights_punctual", {{"light", 0}}}};
+    const std::vector<Bad> bad = {
+        {Json::array({{{"type", "area"}}}), use0, "lights[0].type: 'area' is not a light type"},
+        {Json::array({{{"type", "point"}, {"intensity", -1}}}), use0, "lights[0].intensity: -1 is not an intensity"},
+        {Json::array({{{"type", "point"}, {"color", {1, -1, 0}}}}), use0, "lights[0].color[1]: -1 is not a colour"},
+        {Json::array({{{"type", "point"}, {"range", -2}}}), use0, "lights[0].range: -2 is not a range"},
+        {Json::array({{{"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}}}}), use0,
+         "lights[0].spot.innerConeAngle: 0.6 is not in [0, outerConeAngle 0.5)"},
+        {Json::array({{{"type", "spot"}, {"spot", {{"outerConeAngle", 2}}}}}), use0,
+         "lights[0].spot.outerConeAngle: 2 is not in (0, pi/2]"},
+        {Json::array({{{"type", "point"}}}),
+         {{"KHR_lights_punctual", {{"light", 3}}}},
+         "nodes[1].extensions.KHR_lights_punctual.light: 3 is not a light index (the file has 1)"},
+    };
+    for (std::size_t i = 0; i < bad.size(); ++i) {
+        const Result<Scene> refused = withLights(bad[i].lights, bad[i].node, "bad" + std::to_string(i));
+        ASSERT_FALSE(refused.ok()) << bad[i].message;
+        EXPECT_NE(refused.error().message.find(bad[i].message), std::string::npos) << refused.error().message;
+        EXPECT_EQ(refused.error().message.find('\n'), std::string::npos) << refused.error().message;
+    }
+}
+
 TEST(GltfLoaderTest, SamplersGiveTheFiltersAndMipmapsTheyName) {
     struct Case {
         int magFilter, minFilter;  // -1: undefined; both -1 and no sampler at all for the last case

@@ -522,6 +522,86 @@ Scene bright() {
     return scene;
 }
 
+// KHR_lights_punctual: a floor and spheres of every kind of material (dielectric, metal, rough
+// and smooth, specular-glossiness, clear-coated, textured, unlit, blended) under a coloured
+// directional light, a point light whose range ends on the floor (so pixels lie beyond it, at it and
+// near it), an unbounded point light close to a sphere, and two spot lights whose cones' edges
+// cross the floor (one with equal inner and outer angles but for a hair), on nodes rotated, scaled
+// and parented.
+Scene lights() {
+    Scene scene;
+    std::mt19937 rng(40);
+    Mesh floor;
+    floor.positions = {{-6.0f, -1.0f, 4.0f}, {6.0f, -1.0f, 4.0f}, {6.0f, -1.0f, -6.0f}, {-6.0f, -1.0f, -6.0f}};
+    floor.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
+    floor.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    Material plain;
+    plain.baseColorFactor = {0.8f, 0.8f, 0.8f, 1.0f};
+    plain.metallicFactor = 0.0f;
+    plain.roughnessFactor = 0.6f;
+    place(scene, std::move(floor), plain, {0.0f, 0.0f, 0.0f});
+    const int texture = randomTexture(scene, rng, 8, 8, true, Filter::Linear, Wrap::Repeat);
+    Mesh ball = sphere(0.45f, glm::vec3(0.0f), 24, 48);
+    finalizeMesh(ball, true);
+    for (int k = 0; k < 8; ++k) {
+        Material m;
+        m.baseColorFactor = {0.9f, 0.6f, 0.3f, 1.0f};
+        m.metallicFactor = k == 1 || k == 2 ? 1.0f : 0.0f;
+        m.roughnessFactor = k == 2 ? 0.05f : 0.5f;
+        if (k == 3) {
+            m.specularGlossiness = true;
+            m.specularFactor = {0.9f, 0.6f, 0.2f};
+            m.glossinessFactor = 0.7f;
+        }
+        if (k == 4) {
+            m.clearcoatFactor = 1.0f;
+            m.clearcoatRoughnessFactor = 0.1f;
+        }
+        if (k == 5) m.baseColorTexture = texture;
+        m.unlit = k == 6;
+        if (k == 7) {
+            m.alphaMode = AlphaMode::Blend;
+            m.baseColorFactor.a = 0.5f;
+        }
+        place(scene, ball, m, {float(k % 4) * 1.4f - 2.1f, -0.5f, float(k / 4) * -1.6f});
+    }
+    const auto light = [&](LightType type, glm::vec3 color, float intensity, float range, float inner, float outer,
+                           glm::vec3 at, glm::quat rotation, int parent) {
+        PunctualLight l;
+        l.type = type;
+        l.color = color;
+        l.intensity = intensity;
+        l.range = range;
+        l.innerConeAngle = inner;
+        l.outerConeAngle = outer;
+        scene.lights.push_back(l);
+        Node node;
+        node.translation = at;
+        node.rotation = rotation;
+        node.light = int(scene.lights.size()) - 1;
+        node.parent = parent;
+        scene.nodes.push_back(node);
+        const int index = int(scene.nodes.size()) - 1;
+        if (parent < 0)
+            scene.roots.push_back(index);
+        else
+            scene.nodes[std::size_t(parent)].children.push_back(index);
+        return index;
+    };
+    const glm::quat down = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+    light(LightType::Directional, {1.0f, 0.9f, 0.7f}, 1.5f, 0.0f, 0.0f, 0.0f, {0.0f, 5.0f, 0.0f},
+          glm::angleAxis(glm::radians(-60.0f), glm::normalize(glm::vec3(1.0f, 0.3f, 0.0f))), -1);
+    light(LightType::Point, {0.2f, 0.5f, 1.0f}, 8.0f, 2.5f, 0.0f, 0.0f, {-2.0f, 0.5f, 1.0f}, glm::quat(1, 0, 0, 0), -1);
+    const int holder = light(LightType::Point, {1.0f, 0.3f, 0.3f}, 2.0f, 0.0f, 0.0f, 0.0f, {0.7f, 0.3f, 0.6f},
+                             glm::quat(1, 0, 0, 0), -1);
+    scene.nodes[std::size_t(holder)].scale = glm::vec3(2.0f);  // a scaled parent: the child's axis stays unit
+    light(LightType::Spot, {1.0f, 1.0f, 0.8f}, 30.0f, 0.0f, 0.2f, 0.45f, {0.5f, 1.0f, 0.0f}, down, holder);
+    light(LightType::Spot, {0.6f, 1.0f, 0.6f}, 20.0f, 6.0f, 0.3f, 0.3001f, {2.0f, 3.0f, -2.0f}, down, -1);
+    scene.buildInstances();
+    return scene;
+}
+
 Scene scaled(float scale) {
     Mesh mesh = sphere(scale);
     for (glm::vec3& p : mesh.positions) p += glm::vec3(scale * 0.3f, -scale * 0.2f, 0.0f);
@@ -571,6 +651,7 @@ std::vector<MatrixCase> matrix() {
         {"clearcoat", clearcoat, 640, 560, lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f), {}},
         {"tonemap-pbr-neutral", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::PbrNeutral},
         {"tonemap-aces", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::Aces},
+        {"lights", lights, 640, 400, lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f), {}},
         {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
     };
 }
