@@ -315,6 +315,12 @@ struct Scene {
     // matrix. Returns the node's index, which setTransform and Renderer::setTransform take.
     // Instances and ids are numbered by buildInstances(): call it once the scene is built.
     Result<int> addInstance(int mesh, const glm::mat4& transform, std::string name = {});
+    // A punctual light placed by a new root node with `transform` (a finite matrix) as its local
+    // matrix: at its origin, shining down its −Z. The light must be one a glTF file may hold: its
+    // type one of LightType's, colour and intensity finite and at least 0, range finite and at least
+    // 0, a spot's cone angles 0 ≤ inner < outer ≤ π/2. Returns the node's index (setTransform moves
+    // it); the first kMaxLights lit nodes light a frame.
+    Result<int> addLight(PunctualLight light, const glm::mat4& transform, std::string name = {});
     // Node `node`'s local transform becomes `transform` (a finite matrix), at every time.
     Result<bool> setTransform(int node, const glm::mat4& transform);
 };

@@ -120,6 +120,25 @@ int addInstance(PyScene& s, int mesh, const py::handle& transform, const std::st
     return node;
 }
 
+int addLight(PyScene& s, const std::string& kind, const py::handle& color, double intensity, double range,
+             double innerCone, double outerCone, const py::handle& transform, const std::string& name) {
+    PunctualLight light;
+    light.name = name;
+    if (kind == "directional") light.type = LightType::Directional;
+    else if (kind == "point") light.type = LightType::Point;
+    else if (kind == "spot") light.type = LightType::Spot;
+    else throw InputError{"kind: '" + kind + "' is not a kind of light (directional, point, spot)"};
+    light.color = vectorFrom<3>(color, "color");
+    light.intensity = float(intensity);
+    light.range = float(range);
+    light.innerConeAngle = float(innerCone);
+    light.outerConeAngle = float(outerCone);
+    const glm::mat4 m = transform.is_none() ? glm::mat4(1.0f) : matrixFrom(transform, "transform");
+    const int node = take(s.scene.addLight(std::move(light), m, name));
+    s.dirty = true;
+    return node;
+}
+
 // The drawn instances in draw order: node, mesh, first id (a triangle's id is first_id plus its
 // index in the mesh's source, 0 = background) and triangle count.
 py::list instanceList(Scene& scene) {
@@ -304,6 +323,16 @@ void bindScene(py::module_& m) {
         .def("add_instance", &addInstance, py::arg("mesh"), py::arg("transform") = py::none(), py::kw_only(),
              py::arg("name") = "",
              "Places mesh `mesh` with a 4x4 model matrix (row-major, translation in the last column).\n"
+             "Returns the node, which set_transform and Renderer.set_transform take.")
+        .def("add_light", &addLight, py::arg("kind") = "point", py::kw_only(),
+             py::arg("color") = py::make_tuple(1.0, 1.0, 1.0), py::arg("intensity") = 1.0, py::arg("range") = 0.0,
+             py::arg("inner_cone") = 0.0, py::arg("outer_cone") = 0.7853981633974483,
+             py::arg("transform") = py::none(), py::arg("name") = "",
+             "A punctual light as glTF's KHR_lights_punctual holds one: kind directional, point or spot;\n"
+             "color linear RGB; intensity in lux (directional) or candela (point, spot); range where a point\n"
+             "or spot light ends (0 = unbounded); a spot's inner and outer cone angles in radians. Placed by\n"
+             "a new node with `transform` (4x4, row-major): at its origin, shining down its -Z. A scene with\n"
+             "lights is lit by them (the first 8) and the environment instead of the default light.\n"
              "Returns the node, which set_transform and Renderer.set_transform take.")
         .def(
             "set_transform",

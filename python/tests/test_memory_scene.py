@@ -285,6 +285,38 @@ def test_mipmaps_average_a_minified_texture():
         frugal.Scene().add_texture(checker(), min_filter="cubic")
 
 
+def test_punctual_lights_light_the_scene_and_move_with_their_node():
+    """add_light: a spot light over the grid lights it instead of the default light, alike on GL and
+    the software reference; moving its node moves the light; bad lights are refused."""
+    grid, grid_indices, _, _ = grid_arrays()
+    camera = frugal.Camera.look_at((0.3, 0.8, 3.5), (0, 0, 0), fov=50)
+    above = np.array([[1, 0, 0, 0.3], [0, 1, 0, 0], [0, 0, 1, 1.5], [0, 0, 0, 1]], np.float32)  # -Z toward the grid
+
+    def render(lit, backend, moved=False):
+        scene = frugal.Scene()
+        material = scene.add_material((0.8, 0.8, 0.8), metallic=0.0, roughness=0.5)
+        scene.add_instance(scene.add_mesh(grid, grid_indices, material=material))
+        if lit:
+            node = scene.add_light("spot", color=(1, 0.8, 0.6), intensity=8.0, inner_cone=0.2, outer_cone=0.5,
+                                   transform=above, name="lamp")
+            if moved:
+                shifted = above.copy()
+                shifted[0, 3] = -0.6
+                scene.set_transform(node, shifted)
+        return frugal.Renderer(scene, size=(160, 120), backend=backend).render(camera).color
+
+    spot = render(True, "auto")
+    assert np.abs(spot.astype(int) - render(True, "software")).max() <= 1
+    assert (spot != render(False, "auto")).any(axis=-1).mean() > 0.2, "the spot replaces the default light"
+    assert (spot != render(True, "auto", moved=True)).any(axis=-1).mean() > 0.05, "the light moves with its node"
+    with pytest.raises(frugal.InputError, match="kind: 'area' is not a kind of light"):
+        frugal.Scene().add_light("area")
+    with pytest.raises(frugal.InputError, match="inner cone angle 0.6 is not in \\[0, the outer angle 0.5\\)"):
+        frugal.Scene().add_light("spot", inner_cone=0.6, outer_cone=0.5)
+    with pytest.raises(frugal.InputError, match="intensity -1 is not finite and at least 0"):
+        frugal.Scene().add_light(intensity=-1)
+
+
 def test_given_tangents_are_kept_and_drawn():
     """Tangents given to add_mesh are the mesh's (given back by mesh()), and a normal map is read in
     their basis: the same mesh with the tangents turned about the normal draws differently; GL and

@@ -141,6 +141,37 @@ Result<int> Scene::addInstance(int mesh, const glm::mat4& transform, std::string
     return int(nodes.size()) - 1;
 }
 
+Result<int> Scene::addLight(PunctualLight light, const glm::mat4& transform, std::string name) {
+    const std::string what = "light" + quotedName(light.name);
+    if (int(light.type) > int(LightType::Spot))
+        return bad(what + ": type " + std::to_string(int(light.type)) + " is not directional, point or spot");
+    for (int c = 0; c < 3; ++c)
+        if (!(light.color[c] >= 0.0f && std::isfinite(light.color[c])))
+            return bad(what + ": colour " + fmt(double(light.color[c])) + " is not finite and at least 0");
+    if (!(light.intensity >= 0.0f && std::isfinite(light.intensity)))
+        return bad(what + ": intensity " + fmt(double(light.intensity)) + " is not finite and at least 0");
+    if (!(light.range >= 0.0f && std::isfinite(light.range)))
+        return bad(what + ": range " + fmt(double(light.range)) + " is not finite and at least 0 (0 = unbounded)");
+    if (light.type == LightType::Spot) {
+        if (!(light.outerConeAngle > 0.0f && light.outerConeAngle <= 1.57079637f))
+            return bad(what + ": outer cone angle " + fmt(double(light.outerConeAngle)) + " is not in (0, pi/2]");
+        if (!(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle))
+            return bad(what + ": inner cone angle " + fmt(double(light.innerConeAngle)) +
+                       " is not in [0, the outer angle " + fmt(double(light.outerConeAngle)) + ")");
+    }
+    if (const std::string problem = matrixProblem(transform); !problem.empty())
+        return bad(what + ": transform: " + problem);
+    lights.push_back(std::move(light));
+    Node node;
+    node.name = std::move(name);
+    node.hasMatrix = true;
+    node.matrix = transform;
+    node.light = int(lights.size()) - 1;
+    nodes.push_back(std::move(node));
+    roots.push_back(int(nodes.size()) - 1);
+    return int(nodes.size()) - 1;
+}
+
 Result<bool> Scene::setTransform(int node, const glm::mat4& transform) {
     if (node < 0 || node >= int(nodes.size()))
         return bad("node " + std::to_string(node) + " does not exist (the scene has " + std::to_string(nodes.size()) +

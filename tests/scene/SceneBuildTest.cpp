@@ -74,6 +74,49 @@ TEST(SceneBuildTest, BadValuesAreRefusedWithTheirNumbers) {
     EXPECT_EQ(scene.setTransform(3, glm::mat4(1.0f)).error().message, "node 3 does not exist (the scene has 0)");
 }
 
+// Punctual lights: each placed by a new root node; a light no glTF file could hold is refused with
+// its number, and adds nothing.
+TEST(SceneBuildTest, LightsArePlacedByNewNodesOrRefused) {
+    Scene scene;
+    PunctualLight spot;
+    spot.name = "beam";
+    spot.type = LightType::Spot;
+    spot.innerConeAngle = 0.2f;
+    spot.outerConeAngle = 0.5f;
+    glm::mat4 at(1.0f);
+    at[3] = glm::vec4(1.0f, 2.0f, 3.0f, 1.0f);
+    const Result<int> node = scene.addLight(spot, at, "lamp");
+    ASSERT_TRUE(node) << node.error().message;
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_EQ(scene.nodes[std::size_t(*node)].light, 0);
+    EXPECT_EQ(scene.nodes[std::size_t(*node)].name, "lamp");
+    EXPECT_EQ(scene.roots, std::vector<int>{*node});
+
+    const auto refused = [&](PunctualLight light, glm::mat4 transform = glm::mat4(1.0f)) {
+        const Result<int> r = scene.addLight(light, transform);
+        EXPECT_EQ(scene.lights.size(), 1u);
+        return r ? std::string("accepted") : r.error().message;
+    };
+    PunctualLight bad = spot;
+    bad.innerConeAngle = 0.5f;
+    EXPECT_EQ(refused(bad), "light 'beam': inner cone angle 0.5 is not in [0, the outer angle 0.5)");
+    bad = spot;
+    bad.outerConeAngle = 2.0f;
+    EXPECT_EQ(refused(bad), "light 'beam': outer cone angle 2 is not in (0, pi/2]");
+    bad = {};
+    bad.intensity = -1.0f;
+    EXPECT_EQ(refused(bad), "light: intensity -1 is not finite and at least 0");
+    bad = {};
+    bad.color.g = std::nanf("");
+    EXPECT_EQ(refused(bad), "light: colour nan is not finite and at least 0");
+    bad = {};
+    bad.range = -2.0f;
+    EXPECT_EQ(refused(bad), "light: range -2 is not finite and at least 0 (0 = unbounded)");
+    glm::mat4 infinite(1.0f);
+    infinite[3][1] = INFINITY;
+    EXPECT_EQ(refused({}, infinite), "light: transform: row 1, column 3 is inf, not finite");
+}
+
 TEST(SceneBuildTest, AMeshIsFinishedAsALoaderFinishesIt) {
     Scene scene;
     Mesh expected = quad();
