@@ -238,6 +238,9 @@ private:
     FrameParams frame_;
     glm::mat4 viewProjection_{1.0f};
     glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
+    // frame_.lighting.lights as mesh.frag's u_lights reads them: four vec4 a light (position, type;
+    // direction, range; intensity, outer cosine; inner cosine), then the count. Set by beginFrame.
+    std::array<glm::vec4, 4 * kMaxLights + 1> lights_{};
 
     // The streamed index buffer of gathered draws, and its CPU side.
     GLuint streamIbo_ = 0;

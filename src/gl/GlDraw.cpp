@@ -63,6 +63,16 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
     // The lighting goes to each program on its first draw of the frame (uniforms are per program).
     viewProjection_ = frame.projection * frame.view;
     eye_ = eyePosition(frame.view);
+    lights_ = {};
+    const std::size_t count = std::min(frame.lighting.lights.size(), std::size_t(kMaxLights));
+    for (std::size_t i = 0; i < count; ++i) {
+        const FrameLight& l = frame.lighting.lights[i];
+        lights_[4 * i] = glm::vec4(l.position, float(l.type));
+        lights_[4 * i + 1] = glm::vec4(l.direction, l.range);
+        lights_[4 * i + 2] = glm::vec4(l.intensity, l.outerCos);
+        lights_[4 * i + 3] = glm::vec4(l.innerCos, 0.0f, 0.0f, 0.0f);
+    }
+    lights_[4 * kMaxLights] = glm::vec4(float(count), 0.0f, 0.0f, 0.0f);
 }
 
 GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
@@ -124,22 +134,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (state_.uniformChanged(p->lightValue, light.light)) gl_.Uniform1f(p->light, light.light);
     if (state_.uniformChanged(p->environmentValue, light.environment))
         gl_.Uniform1f(p->environment, light.environment);
-    if (variant & kLightsBit) {
-        // Four vec4 a light (position, type; direction, range; intensity, outer cosine; inner
-        // cosine), then the count.
-        std::array<glm::vec4, 4 * kMaxLights + 1> packed{};
-        const std::size_t count = std::min(light.lights.size(), std::size_t(kMaxLights));
-        for (std::size_t i = 0; i < count; ++i) {
-            const FrameLight& l = light.lights[i];
-            packed[4 * i] = glm::vec4(l.position, float(l.type));
-            packed[4 * i + 1] = glm::vec4(l.direction, l.range);
-            packed[4 * i + 2] = glm::vec4(l.intensity, l.outerCos);
-            packed[4 * i + 3] = glm::vec4(l.innerCos, 0.0f, 0.0f, 0.0f);
-        }
-        packed[4 * kMaxLights] = glm::vec4(float(count), 0.0f, 0.0f, 0.0f);
-        if (state_.uniformChanged(p->lightsValue, packed))
-            gl_.Uniform4fv(p->lights, GLsizei(packed.size()), glm::value_ptr(packed[0]));
-    }
+    if ((variant & kLightsBit) && state_.uniformChanged(p->lightsValue, lights_))
+        gl_.Uniform4fv(p->lights, GLsizei(lights_.size()), glm::value_ptr(lights_[0]));
     // The material: the same for every instance of a batched draw.
     if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));

@@ -742,7 +742,7 @@ void Converter::convertLights() {
             fail(where, ".intensity: ", src.intensity, " is not an intensity (0 or more)");
         light.intensity = float(src.intensity);
         if (!(src.range >= 0.0 && src.range <= 3.4e38)) fail(where, ".range: ", src.range, " is not a range (above 0)");
-        light.range = light.type == LightType::Directional ? 0.0f : float(src.range);
+        light.range = float(src.range);  // read for point and spot lights only (frameLights)
         if (light.type == LightType::Spot) {
             const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
             constexpr double kHalfPi = 1.5707963267948966;

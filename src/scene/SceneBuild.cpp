@@ -39,6 +39,17 @@ std::string matrixProblem(const glm::mat4& m) {
     return {};
 }
 
+// A new root node of `scene` with `transform` (checked) as its local matrix: what an instance and a
+// light are placed by.
+Node& addRoot(Scene& scene, const glm::mat4& transform, std::string name) {
+    Node& node = scene.nodes.emplace_back();
+    node.name = std::move(name);
+    node.hasMatrix = true;
+    node.matrix = transform;
+    scene.roots.push_back(int(scene.nodes.size()) - 1);
+    return node;
+}
+
 std::string meshProblem(const Mesh& mesh, std::size_t materials) {
     const std::size_t vertices = mesh.positions.size();
     if (mesh.indices.size() % 3 != 0)
@@ -131,13 +142,8 @@ Result<int> Scene::addInstance(int mesh, const glm::mat4& transform, std::string
                    std::to_string(meshes.size()) + ")");
     if (const std::string problem = matrixProblem(transform); !problem.empty())
         return bad("instance: transform: " + problem);
-    Node node;
-    node.name = std::move(name);
-    node.hasMatrix = true;
-    node.matrix = transform;
+    Node& node = addRoot(*this, transform, std::move(name));
     node.meshes = {mesh};
-    nodes.push_back(std::move(node));
-    roots.push_back(int(nodes.size()) - 1);
     return int(nodes.size()) - 1;
 }
 
@@ -162,13 +168,7 @@ Result<int> Scene::addLight(PunctualLight light, const glm::mat4& transform, std
     if (const std::string problem = matrixProblem(transform); !problem.empty())
         return bad(what + ": transform: " + problem);
     lights.push_back(std::move(light));
-    Node node;
-    node.name = std::move(name);
-    node.hasMatrix = true;
-    node.matrix = transform;
-    node.light = int(lights.size()) - 1;
-    nodes.push_back(std::move(node));
-    roots.push_back(int(nodes.size()) - 1);
+    addRoot(*this, transform, std::move(name)).light = int(lights.size()) - 1;
     return int(nodes.size()) - 1;
 }
 

@@ -471,10 +471,8 @@ inline F8 iblFresnel(F8 f0, F8 r, F8 c5, F8 a, F8 b) {
 struct Light {
     explicit Light(const DrawShading& s)
         : eye{simd::splat(s.eye.x), simd::splat(s.eye.y), simd::splat(s.eye.z)},
-          toLight{simd::splat(s.toLight.x), simd::splat(s.toLight.y), simd::splat(s.toLight.z)},
           metallicFactor(simd::splat(s.metallic)),
           roughnessFactor(simd::splat(s.roughness)),
-          intensity(simd::splat(s.light)),
           environment(simd::splat(s.environment)),
           occlusionStrength(simd::splat(s.occlusionStrength)),
           emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)},
@@ -537,53 +535,10 @@ struct Light {
             }
         }
 
-        if (!lights.empty()) {
-            shadeLights(base, n, v, surface, dielectric, metal, coated, k, out);
-            return;
-        }
-        // The directional light.
-        const Vec3 h = normalize({toLight.x + v.x, toLight.y + v.y, toLight.z + v.z});
-        const F8 nl = saturate(dot(n, toLight)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
-        const F8 radiance = intensity * nl;
-        const F8 specular = radiance * ggx(nl, nv, nh, alpha2);
-        const F8 ch = pow5(one - vh);
-        F8 lit[3];
-        if (surface.specular) {
-            for (int c = 0; c < 3; ++c) {
-                const F8 fl = surface.specular[c] + (one - surface.specular[c]) * ch;
-                lit[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-            }
-        } else {
-            const F8 fl = f0 + (one - f0) * ch;
-            for (int c = 0; c < 3; ++c) {
-                dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-                metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
-                lit[c] = dielectric[c] * (one - metallic) + metal[c] * metallic;
-            }
-        }
-        if (!surface.coat) {
-            for (int c = 0; c < 3; ++c) out[c] = lit[c] + surface.emission[c];
-            return;
-        }
-        const Vec3& nc = surface.coatNormal;
-        const F8 ncl = saturate(dot(nc, toLight));
-        const F8 cr = surface.coatRoughness;
-        const F8 coatSpecular =
-            intensity * (ncl * ggx(ncl, saturate(dot(nc, v)), saturate(dot(nc, h)), (cr * cr) * (cr * cr)));
-        for (int c = 0; c < 3; ++c)
-            out[c] = (coated[c] + (lit[c] * (one - k) + coatSpecular * k)) + surface.emission[c] * (one - k);
-    }
-
-    // The scene's punctual lights (mesh.frag's FRUGAL_LIGHTS) in place of the directional light,
-    // from the environment's terms on: each light's l and E per pixel, its lobes summed into the
-    // dielectric and metal terms (and the clear coat's), in light order.
-    void shadeLights(const F8 base[4], const Vec3& n, const Vec3& v, const Surface& surface, F8 dielectric[3],
-                     F8 metal[3], const F8 coated[3], F8 k, F8 out[3]) const {
-        const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), pi = simd::splat(kPi);
-        const F8 f0 = simd::splat(kDielectricF0);
-        const F8 r = surface.roughness;
-        const F8 alpha2 = (r * r) * (r * r);
-        const F8 nv = saturate(dot(n, v));
+        // The lights: each light's l and E per pixel, its lobes summed into the dielectric and metal
+        // terms (and the clear coat's), in light order. The default directional light is the
+        // one-light case: with l and E the same in every channel, these are mesh.frag's operations
+        // for it as well as for FRUGAL_LIGHTS (DrawShading::lights).
         const Vec3& nc = surface.coatNormal;
         const F8 cr = surface.coatRoughness;
         const F8 coatAlpha2 = (cr * cr) * (cr * cr);
@@ -637,16 +592,15 @@ struct Light {
             }
         }
         for (int c = 0; c < 3; ++c) {
-            const F8 lit = surface.specular ? dielectric[c]
-                                            : dielectric[c] * (one - surface.metallic) + metal[c] * surface.metallic;
+            const F8 lit = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
             out[c] = surface.coat
                          ? (coated[c] + (lit * (one - k) + coatSpecular[c] * k)) + surface.emission[c] * (one - k)
                          : lit + surface.emission[c];
         }
     }
 
-    Vec3 eye, toLight;
-    F8 metallicFactor, roughnessFactor, intensity, environment, occlusionStrength;
+    Vec3 eye;
+    F8 metallicFactor, roughnessFactor, environment, occlusionStrength;
     F8 emission[3];
     std::span<const FrameLight> lights;
 };
@@ -766,12 +720,13 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             I8 mask = simd::eq(simd::loadi(winnerRow + (bx - tile.x0)), me);
             if (simd::laneBits(mask) == 0) continue;
             const F8 px = simd::tofloat(lane + simd::splati(bx));
-            const auto at = [&](const Plane& p) {
-                return simd::fma(simd::splat(p.dady), py, simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
+            // A plane at these pixels of row `row`.
+            const auto at = [&](const Plane& p, F8 row) {
+                return simd::fma(simd::splat(p.dady), row, simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
             };
-            const F8 oow = one / at(w);
+            const F8 oow = one / at(w, py);
             F8 value[kAttributes];
-            for (int k = 0; k < usedCount; ++k) value[used[k]] = at(a[used[k]]) * oow;
+            for (int k = 0; k < usedCount; ++k) value[used[k]] = at(a[used[k]], py) * oow;
 
             float s[8] = {}, tt[8] = {};
             const unsigned lanes = simd::laneBits(mask);
@@ -786,13 +741,9 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
                 float u[2][8], v[2][8];
                 for (int row = 0; row < 2; ++row) {
                     const F8 qy = simd::splat(float((y & ~1) + row));
-                    const auto atRow = [&](const Plane& p) {
-                        return simd::fma(simd::splat(p.dady), qy,
-                                         simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
-                    };
-                    const F8 r = one / atRow(w);
-                    simd::storef(u[row], atRow(a[7]) * r);
-                    simd::storef(v[row], atRow(a[8]) * r);
+                    const F8 r = one / at(w, qy);
+                    simd::storef(u[row], at(a[7], qy) * r);
+                    simd::storef(v[row], at(a[8], qy) * r);
                 }
                 for (int l = 0; l < 8; ++l) {
                     const int left = l & ~1;  // bx is even: lane parity is x parity

@@ -28,7 +28,8 @@
 // Punctual lights (mesh.frag's FRUGAL_LIGHTS, DrawShading::lights): in place of the directional
 // light, each light's l and E per pixel as pipeline/Backend.h writes them (FrameLight), its lobe the
 // directional light's with E per channel, summed in light order into the dielectric and metal terms
-// and the clear coat's (Kernels.inl, Light::shadeLights).
+// and the clear coat's (Kernels.inl, Light::shadeLights). A frame without them draws the directional
+// light as the one FrameLight it has: the same operations, E equal in every channel.
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)
@@ -229,22 +230,23 @@ struct DrawShading {
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
     glm::vec3 emission{0.0f};
+    // Every texture slot above, nullptr where the draw has none.
+    std::array<const SoftwareTexture*, 9> maps() const {
+        return {texture,      metallicRoughness,     occlusion,         emissive, normalMap, specularGlossinessMap,
+                clearcoatMap, clearcoatRoughnessMap, clearcoatNormalMap};
+    }
     bool mapped() const {  // reads uvs
-        return texture || metallicRoughness || occlusion || emissive || normalMap || specularGlossinessMap ||
-               clearcoatMap || clearcoatRoughnessMap || clearcoatNormalMap;
+        const auto all = maps();
+        return std::any_of(all.begin(), all.end(), [](const SoftwareTexture* t) { return t != nullptr; });
     }
     bool tangentSpace() const { return normalMap || clearcoatNormalMap; }  // reads varyings 12–17
     bool lod() const {  // a texture needs each quad's level of detail
-        for (const SoftwareTexture* t :
-             {texture, metallicRoughness, occlusion, emissive, normalMap, specularGlossinessMap, clearcoatMap,
-              clearcoatRoughnessMap, clearcoatNormalMap})
-            if (t != nullptr && t->lod()) return true;
-        return false;
+        const auto all = maps();
+        return std::any_of(all.begin(), all.end(), [](const SoftwareTexture* t) { return t != nullptr && t->lod(); });
     }
     glm::vec3 eye{0.0f};  // world space
-    glm::vec3 toLight{0.0f, 0.0f, 1.0f};
-    float light = 0.0f, environment = 0.0f;  // Lighting
-    std::span<const FrameLight> lights;      // Lighting::lights: none, the directional light above
+    float environment = 0.0f;            // Lighting
+    std::span<const FrameLight> lights;  // Lighting::lights, or its directional light as the only one
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
     ToneMap tonemap = ToneMap::None;          // FrameParams::tonemap

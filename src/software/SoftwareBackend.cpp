@@ -210,7 +210,15 @@ void SoftwareBackend::beginFrame(TargetHandle target, const FrameParams& frame) 
     if (target != frameTarget_) flush();
     frameTarget_ = target;
     frame_ = frame;
-    if (lightSets_.empty() || lightSets_.back() != frame.lighting.lights) lightSets_.push_back(frame.lighting.lights);
+    // The lights the shading reads: the scene's, or the directional light as the only one.
+    std::vector<FrameLight> lights = frame.lighting.lights;
+    if (lights.empty()) {
+        FrameLight directional;
+        directional.direction = -frame.lighting.toLight;
+        directional.intensity = glm::vec3(frame.lighting.light);
+        lights.push_back(directional);
+    }
+    if (lightSets_.empty() || lightSets_.back() != lights) lightSets_.push_back(std::move(lights));
     viewProjection_ = frame.projection * frame.view;  // as GlBackend::beginFrame, in float with glm
     eye_ = eyePosition(frame.view);
 }
@@ -262,8 +270,6 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     }
     input.shading.normalScale = params.normalScale;
     input.shading.occlusionStrength = params.occlusionStrength;
-    input.shading.toLight = frame_.lighting.toLight;
-    input.shading.light = frame_.lighting.light;
     input.shading.environment = frame_.lighting.environment;
     input.shading.tonemap = frame_.tonemap;
     input.shading.lights = lightSets_.back();  // beginFrame's: frame_'s own may be replaced before a flush
