@@ -270,6 +270,7 @@ struct Settings {
     DepthFormat depthFormat = DepthFormat::D24;
     glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
     ToneMap tonemap = ToneMap::None;  // frugal/Image.h
+    int samples = 1;  // multisampling: 1, 2, 4 or 8 samples a pixel (Backend::createTarget)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
 
@@ -295,6 +296,7 @@ struct SettingInfo {
     std::string help;       // what it does, one paragraph
     std::string topic;      // the group of flags it is listed under: "image", "culling", "order", ...
     long long min = 0, max = 0;        // Whole and Pair: each number's range
+    std::vector<long long> only;       // Whole: when not empty, the values allowed (within the range)
     std::vector<ChoiceInfo> choices;   // Choice: every value, in the enum's order
     bool flag = true;       // a flag of the commands that render (ids is not: `render --ids FILE` sets it)
     std::function<SettingValue(const Settings&)> get;
@@ -308,7 +310,7 @@ const std::vector<SettingInfo>& settingInfos();
 // The setting named `name` (the command line's "cull-bins" or Python's "cull_bins"), or nullptr.
 const SettingInfo* findSetting(std::string_view name);
 
-// What a value of `info` must be, for a refusal: "a whole number from 0 to 256", "a method (none,
+// What a value of `info` must be, for a refusal: "a whole number from 0 to 256", "1, 2, 4 or 8", "a method (none,
 // sphere, ...)", "a size (WxH, each 1 to 65536)", "a colour (r,g,b or r,g,b,a, each 0 to 1)", "true
 // or false". Every front end refuses a value as "<the value as it shows it> is not <expected>".
 std::string expected(const SettingInfo& info);

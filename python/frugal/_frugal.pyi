@@ -64,6 +64,7 @@ class _Settings(TypedDict):
     hsr: _Hsr
     depth_format: _DepthFormat
     tonemap: _Tonemap
+    samples: int
     background: tuple[float, float, float, float]
     ids: bool
     # </settings: dict>
@@ -101,6 +102,7 @@ def settings(
     hsr: _Hsr = ...,
     depth_format: _DepthFormat = ...,
     tonemap: _Tonemap = ...,
+    samples: int = ...,
     background: _Colour = ...,
     ids: bool = ...,
     # </settings: keywords>
@@ -475,6 +477,7 @@ class Renderer(_pybind11_object):
         hsr: _Hsr = ...,
         depth_format: _DepthFormat = ...,
         tonemap: _Tonemap = ...,
+        samples: int = ...,
         background: _Colour = ...,
         ids: bool = ...,
         # </settings: renderer keywords>

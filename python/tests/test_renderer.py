@@ -84,6 +84,58 @@ def test_tone_mapping_maps_the_lit_pixels_alike_on_both_backends():
         frugal.Renderer(scene, tonemap="filmic")
 
 
+def test_multisampling_smooths_edges_alike_on_both_backends():
+    """samples= as the command line's --samples: 4 samples blend the edges with the background and
+    keep the inside of surfaces; GL and the software reference agree (depth and ids exactly, each
+    pixel's first sample); 2 is drawn as 4 here; a count that is not 1, 2, 4 or 8 is refused."""
+    import numpy as np
+    scene = frugal.load("builtin:cubes")
+
+    def render(backend, **settings):
+        with frugal.Renderer(scene, size=(192, 144), backend=backend, ids=True, background=(0, 0, 0), **settings) as r:
+            return r.render()
+
+    one = render("auto")
+    four = render("auto", samples=4)
+    edges = (one.color[..., :3] != four.color[..., :3]).any(axis=-1)
+    assert 100 < edges.sum() < (one.ids != 0).sum() / 3
+    software = render("software", samples=4)
+    assert np.abs(four.color.astype(int) - software.color).max() <= 1
+    assert np.array_equal(four.depth_values, software.depth_values)
+    assert np.array_equal(four.ids, software.ids)
+    assert np.array_equal(render("auto", samples=2).color, four.color)
+    with pytest.raises(frugal.InputError, match="samples: 3 is not 1, 2, 4 or 8"):
+        frugal.Renderer(scene, samples=3)
+
+
+def test_a_transparent_background_gives_straight_alpha():
+    """Over a transparent background a multisampled edge is partly covered: its alpha is the
+    covered share and its colour the surface's own (straight alpha, as PNG defines it), not
+    darkened by the background; with an opaque background every pixel has alpha 255."""
+    import numpy as np
+    scene = frugal.Scene()
+    positions = np.array([[-1, -1, 0], [1, -0.7, 0], [0.2, 1, 0]], dtype=np.float32)
+    material = scene.add_material((1.0, 0.5, 0.25), unlit=True, double_sided=True)
+    scene.add_instance(scene.add_mesh(positions, np.array([[0, 1, 2]], dtype=np.uint32), material=material),
+                       np.eye(4))
+    camera = frugal.Camera.look_at((0, 0, 3), (0, 0, 0))
+    for backend in ("auto", "software"):
+        with frugal.Renderer(scene, size=(64, 48), samples=4, background=(0, 0, 0, 0), backend=backend) as r:
+            f = r.render(camera)
+        alpha = f.color[..., 3]
+        inside = f.color[alpha == 255][:, :3]
+        partial = (alpha > 0) & (alpha < 255)
+        edge = f.color[partial][:, :3]
+        assert len(inside) > 100 and len(edge) > 20
+        # Within what 8 bits premultiplied by the alpha keep: half a step times 255 / alpha, and a
+        # rounding on either side.
+        error = np.abs(edge.astype(int) - inside[0]).max(axis=1)
+        assert (error <= 255.0 / alpha[partial] / 2 + 1.5).all(), backend
+        assert (f.color[alpha == 0] == 0).all()
+        with frugal.Renderer(scene, size=(64, 48), samples=4, backend=backend) as r:
+            assert (r.render(camera).color[..., 3] == 255).all()
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

@@ -162,10 +162,11 @@ def light_setup():
 def frugal_args(model_path, camera, time, output):
     """frugal's command line for the same view (its --camera default could pick a
     file's camera, so eye and target are always given), on a transparent
-    background so that its coverage can be read from alpha as the references'."""
+    background so that its coverage can be read from alpha as the references',
+    with 4 samples a pixel as their WebGL contexts have (antialias: true)."""
     num = lambda v: "%d" % v if v == int(v) else repr(v)
     vec = lambda v: ",".join(num(c) for c in v)
     return ["render", model_path, "-o", output, "--eye", vec(camera["eye"]),
             "--target", vec(camera["target"]), "--up", vec(camera["up"]),
             "--fov", num(camera["yfov_deg"]), "--size", "%dx%d" % tuple(camera["size"]),
-            "--time", num(time), "--background", "0,0,0,0"]
+            "--time", num(time), "--background", "0,0,0,0", "--samples", "4"]

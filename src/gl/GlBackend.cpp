@@ -86,6 +86,12 @@ std::string GlBackend::initialise() {
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
     gl_.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize_);
     maxTargetSize_ = std::min({maxRenderbuffer, maxViewport[0], maxViewport[1]});
+    // Renderbuffers of every format but integer ones take GL_MAX_SAMPLES; the ids' R32UI takes
+    // GL_MAX_INTEGER_SAMPLES.
+    GLint maxSamples = 1, maxIntegerSamples = 1;
+    gl_.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    gl_.GetIntegerv(GL_MAX_INTEGER_SAMPLES, &maxIntegerSamples);
+    maxSamples_ = std::max(1, std::min(maxSamples, maxIntegerSamples));
 
     // The full variant has every line of both sources: if it compiles, the others do.
     if (std::string reason = compileVariant(kTextureBit | kColorsBit | kIdsBit); !reason.empty()) return reason;
@@ -112,10 +118,10 @@ std::string GlBackend::initialise() {
     return {};
 }
 
-TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format) {
+TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format, int samples) {
     // Sizes outside what GL can attach or view are refused, not clamped: the caller reports them.
     if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_) return kNoHandle;
-    if (!supportsDepthFormat(format)) return kNoHandle;
+    if (!supportsDepthFormat(format) || samples < 1 || samples > maxSamples_) return kNoHandle;
     activate();
     while (gl_.GetError() != GL_NO_ERROR) {
     }
@@ -133,7 +139,15 @@ TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format) 
         GL_RGBA8, GL_R32UI, format == DepthFormat::D32F ? GLenum(GL_DEPTH_COMPONENT32F) : GLenum(GL_DEPTH_COMPONENT24)};
     for (int i = 0; i < 3; ++i) {
         gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
-        gl_.RenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
+        if (samples > 1)  // at least `samples`, as the driver chooses (the same count for each)
+            gl_.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, formats[i], width, height);
+        else
+            gl_.RenderbufferStorage(GL_RENDERBUFFER, formats[i], width, height);
+    }
+    if (samples > 1) {
+        GLint made = 0;
+        gl_.GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &made);
+        t.samples = std::max(1, int(made));
     }
     gl_.BindRenderbuffer(GL_RENDERBUFFER, 0);
     gl_.GenFramebuffers(1, &t.fbo);
@@ -147,6 +161,13 @@ TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format) 
         deleteTarget(t);
         return kNoHandle;
     }
+    if (t.samples > 1) {  // the single-sampled target readBack resolves into
+        t.resolved = createTarget(width, height, format, 1);
+        if (t.resolved == kNoHandle) {
+            deleteTarget(t);
+            return kNoHandle;
+        }
+    }
     const TargetHandle handle = targets_.add(t);
     clear(handle, Rect{0, 0, width, height}, glm::vec4(0.0f), farDepth(format));
     return handle;
@@ -155,6 +176,7 @@ TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format) 
 void GlBackend::destroyTarget(TargetHandle target) {
     GlTarget* t = targets_.find(target);
     if (t == nullptr) return;
+    if (t->resolved != kNoHandle) destroyTarget(t->resolved);
     activate();
     deleteTarget(*t);
     targets_.remove(target);
@@ -228,6 +250,25 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     check("copy");
 }
 
+GlTarget& GlBackend::resolve(GlTarget& from, Planes planes) {
+    GlTarget& to = *targets_.find(from.resolved);
+    // glBlitFramebuffer to one sample: the colour's samples averaged, depth's and the integer ids'
+    // sample 0 (llvmpipe's u_blitter). Colour and ids in separate blits, as copy() does.
+    state_.setScissor(false);
+    const int w = from.width, h = from.height;
+    state_.readFrom(from, GL_COLOR_ATTACHMENT0);
+    state_.drawInto(to, DrawSet::Color);
+    gl_.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT | (planes.depth ? GL_DEPTH_BUFFER_BIT : 0),
+                        GL_NEAREST);
+    if (planes.ids) {
+        state_.readFrom(from, GL_COLOR_ATTACHMENT1);
+        state_.drawInto(to, DrawSet::Ids);
+        gl_.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    check("resolve");
+    return to;
+}
+
 void GlBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
     GlTarget* t = targets_.find(target);
     assert(t != nullptr && "readBack: no such target");
@@ -236,6 +277,7 @@ void GlBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
         return;
     }
     activate();
+    if (t->samples > 1) t = &resolve(*t, planes);
     out.width = t->width;
     out.height = t->height;
     out.rgba.resize(out.pixelCount() * 4);

@@ -38,8 +38,11 @@ enum Attribute : GLuint { kPosition = 0, kNormal = 1, kColor = 2, kUv = 3, kId =
 // One FBO with its renderbuffers (the top of GlBackend.cpp).
 struct GlTarget : CachedFramebuffer {
     int width = 0, height = 0;
+    int samples = 1;  // as GL made the renderbuffers
     GLuint color = 0, ids = 0, depth = 0;
     DepthFormat depthFormat = DepthFormat::D24;
+    // A multisampled target's single-sampled twin, which readBack resolves into.
+    TargetHandle resolved = kNoHandle;
     // false: every id is known to be 0 (the top of GlBackend.cpp). True until the first clear, as
     // new renderbuffers hold undefined values.
     bool idsDirty = true;
@@ -144,12 +147,13 @@ public:
     std::string name() const override { return contextKindName(context_->kind()); }
     std::string renderer() const override { return renderer_; }
     int maxTargetSize() const override { return maxTargetSize_; }
+    int maxSamples() const override { return maxSamples_; }
     int maxTextureSize() const override { return maxTextureSize_; }
 
     bool supportsDepthFormat(DepthFormat format) const override {
         return format == DepthFormat::D24 || gl_.ClipControl != nullptr;
     }
-    TargetHandle createTarget(int width, int height, DepthFormat format) override;
+    TargetHandle createTarget(int width, int height, DepthFormat format, int samples) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     TextureHandle uploadTexture(const Texture& texture) override;
@@ -194,6 +198,9 @@ private:
 
     // --- targets (GlBackend.cpp) --------------------------------------------------------------
     void deleteTarget(GlTarget& t);
+    // Resolves multisampled `from` into its single-sampled twin, which it returns: colour averaged,
+    // depth and ids of sample 0 (Backend::createTarget).
+    GlTarget& resolve(GlTarget& from, Planes planes);
 
     // --- meshes and textures (GlResources.cpp) ------------------------------------------------
     void deleteMesh(GlMesh& m);
@@ -226,7 +233,7 @@ private:
     GlStateCache state_{gl_};
     bool initialised_ = false;
     std::string renderer_;
-    int maxTargetSize_ = 0, maxTextureSize_ = 0;
+    int maxTargetSize_ = 0, maxTextureSize_ = 0, maxSamples_ = 1;
 
     std::unordered_map<unsigned, GlProgram> programs_;  // by variant (at most kVariantCount), made on first use
 

@@ -234,9 +234,16 @@ public:
     // Whether createTarget can make targets of `format` (D32F needs glClipControl: GL 4.5 or
     // ARB_clip_control).
     virtual bool supportsDepthFormat(DepthFormat format) const = 0;
+    // Most samples a target may have (GL_MAX_SAMPLES; the software backend's llvmpipe's 4).
+    virtual int maxSamples() const = 0;
     // A target cleared to transparent black, the far depth of `format` and id 0. kNoHandle when width
-    // or height is < 1 or > maxTargetSize(), the format is not supported, or the allocation fails.
-    virtual TargetHandle createTarget(int width, int height, DepthFormat format = DepthFormat::D24) = 0;
+    // or height is < 1 or > maxTargetSize(), the format is not supported, `samples` is < 1 or >
+    // maxSamples(), or the allocation fails. With `samples` > 1 it is multisampled with at least that
+    // many samples, as GL chooses (llvmpipe, and the software backend after it, has 4): colour,
+    // depth and ids are kept per sample, copy() copies every sample, and readBack resolves: the
+    // samples' mean colour, sample 0's depth and id (raster/Rasterizer.h, 6.).
+    virtual TargetHandle createTarget(int width, int height, DepthFormat format = DepthFormat::D24,
+                                      int samples = 1) = 0;
     virtual void destroyTarget(TargetHandle target) = 0;
 
     virtual MeshHandle uploadMesh(const Mesh& mesh) = 0;
@@ -291,8 +298,8 @@ public:
 inline std::string describe(const Backend& backend) { return backend.name() + " (" + backend.renderer() + ")"; }
 
 // copy()'s contract as every backend checks it, on its own target records (width, height,
-// depthFormat): both targets exist (asserted), they are two, of one size and one depth format
-// (asserted); the region is `rect` clipped to them. Nothing when there is nothing to copy.
+// depthFormat, samples): both targets exist (asserted), they are two, of one size, depth format and
+// sample count (asserted); the region is `rect` clipped to them. Nothing when there is nothing to copy.
 template <class Target>
 std::optional<Rect> copyRegion(const Target* source, const Target* dest, bool sameTarget, const Rect& rect,
                                bool anyPlane) {
@@ -300,6 +307,7 @@ std::optional<Rect> copyRegion(const Target* source, const Target* dest, bool sa
     if (source == nullptr || dest == nullptr || sameTarget) return std::nullopt;
     assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
     assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
+    assert(source->samples == dest->samples && "copy: targets differ in samples");
     const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
     if (r.empty() || !anyPlane) return std::nullopt;
     return r;

@@ -24,10 +24,11 @@ bool cpuHasFma() {
 #endif
 }
 
-Viewport makeViewport(int width, int height, DepthFormat format) {
+Viewport makeViewport(int width, int height, DepthFormat format, int samples) {
     Viewport v;
     v.width = width;
     v.height = height;
+    v.samples = samples;
     // pipe_viewport_state from glViewport(0, 0, W, H) with depth range [0, 1], in float.
     v.sx = float(width) * 0.5f;
     v.tx = float(width) * 0.5f;
@@ -83,11 +84,10 @@ SetupVertex* VertexPool::add() {
     return &blocks_[block][used_++ % kBlock];
 }
 
-
-void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out) {
+void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out, float offset) {
     // lp_state_setup.c init_args + calc_coef4, each operation rounded to float.
     Triangle& t = *out;
-    const float x0c = v0->x - 0.5f, y0c = v0->y - 0.5f;
+    const float x0c = v0->x - offset, y0c = v0->y - offset;
     const float dx01 = v0->x - v1->x, dy01 = v0->y - v1->y;
     const float dx20 = v2->x - v0->x, dy20 = v2->y - v0->y;
     const float e = dx01 * dy20, f = dy01 * dx20;
@@ -103,12 +103,13 @@ bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVert
                    const Viewport& viewport, Triangle* out) {
     const SetupVertex* v[3] = {v0, v1, v2};
     std::int64_t X[3], Y[3];
+    const float offset = pixelOffset(viewport);
     for (int i = 0; i < 3; ++i)
-        if (!fixedPosition(v[i]->x, v[i]->y, &X[i], &Y[i])) return false;
+        if (!fixedPosition(v[i]->x, v[i]->y, &X[i], &Y[i], offset)) return false;
     const SetupOrder order = setupEdges(X, Y, cullBack, viewport, out);
     if (order == SetupOrder::Dropped) return false;
     if (order == SetupOrder::Swapped) std::swap(v[0], v[1]);
-    setupDepthPlane(v[0], v[1], v[2], out);
+    setupDepthPlane(v[0], v[1], v[2], out, offset);
     out->v[0] = v[0];
     out->v[1] = v[1];
     out->v[2] = v[2];

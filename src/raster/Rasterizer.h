@@ -18,8 +18,8 @@
 // clipper's starting vertex (2.) and the float rounding of the depth product (5.) made it exact.
 // Mesa's sources read: lp_setup_tri.c, lp_rast.h, lp_state_setup.c, draw_pipe_clip.c,
 // draw_cliptest_tmp.h, draw_pipe_cull.c, draw_pt_vsplit.c. Not covered, because frugal never uses
-// them: window-system framebuffers (flipped, bottom_edge_rule = 1), scissored draws, MSAA, polygon
-// offset, depth clamp, a viewport origin other than (0, 0).
+// them: window-system framebuffers (flipped, bottom_edge_rule = 1), scissored draws, polygon
+// offset, depth clamp, a viewport origin other than (0, 0). Multisampling is 6. below.
 //
 // Two depth formats (frugal/Image.h). D24 is what the rules below describe. D32F is drawn with
 // glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) and GL_GREATER into a 32-bit float buffer (reversed
@@ -29,7 +29,7 @@
 // else, the depth plane equation included, is the same arithmetic.
 //
 // Conventions. Window coordinates y-up, origin bottom-left; pixel (px, py) has its centre at
-// (px + 0.5, py + 0.5) and is tested there only (no multisampling). Depth is window z in [0, 1] stored
+// (px + 0.5, py + 0.5) and is tested there only (multisampled targets: 6.). Depth is window z in [0, 1] stored
 // as 24-bit unsigned integers, 0 near; the test is GL_LESS and writes on pass. Within a tile the
 // triangles are rasterized in submission order, so a tie in depth keeps the first triangle drawn.
 //
@@ -91,6 +91,24 @@
 //    vertex 0 (2.) makes another vertex anchor the plane of each fan triangle, and clipped
 //    slivers then differ by hundreds of LSB.
 //
+// 6. Multisampling (llvmpipe supports 4 samples; lp_rast.c lp_sample_pos_4x, lp_scene.c,
+//    lp_rast_tri_tmp.h under MULTISAMPLE, lp_setup_tri.c, lp_state_setup.c, lp_bld_interp.c). Sample s
+//    sits at (px, py) + kSamplePositions[s]: (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625,
+//    0.875), in fixed point (96, 32), (224, 96), (32, 160), (160, 224). Three things change:
+//    - setup's pixel offset is 0, not 0.5: X = round_even(x·256) (3.), and the planes' x0c = x0,
+//      y0c = y0 (4.);
+//    - coverage per sample: the edge constant becomes c + sy·dcdy − sx·dcdx (sx, sy the sample's
+//      fixed position), so sample s of (px, py) is covered when ⌊(c − 1 + sy·dcdy − sx·dcdx)/256⌋
+//      − dcdx·px + dcdy·py ≥ 0. A multisampled triangle's Edge::k holds c − 1 itself, and the
+//      kernel derives each sample's constant;
+//    - depth per sample, at the sample's position: z = fma(dzdy, py + sy, fma(dzdx, px + sx, a))
+//      (px + sx, py + sy exact in float), tested and stored per sample. The fragment shader runs
+//      once per pixel: its varyings at the pixel's centre, a = fma(dady, py + 0.5, fma(dadx, px +
+//      0.5, a0)), and its colour goes to every sample the triangle covers and passes there.
+//    The resolve (glBlitFramebuffer to one sample, u_blitter's shaders): colour is the samples'
+//    mean, summed in float from sample 0 and scaled by 1/4; depth and ids (an integer format) are
+//    sample 0's.
+//
 // Where this departs: a triangle whose window coordinates are not finite or whose fixed-point
 // coordinates leave ±2^26 (262144 pixels; clipping keeps every vertex of ordinary input within the
 // viewport, so only absurd inputs such as clip coordinates near 1e20 get there) is dropped.
@@ -128,7 +146,8 @@ struct SetupVertex {
     float a[kAttributes];
 };
 
-// Edge in pixel units: a pixel is inside when k − dx·px + dy·py ≥ 0 (see 3. above).
+// Edge in pixel units: a pixel is inside when k − dx·px + dy·py ≥ 0 (see 3. above). Multisampled
+// (6. above): k is c − 1 in 1/256 pixel, from which each sample's constant is made.
 struct Edge {
     std::int64_t k;
     std::int32_t dx, dy;
@@ -146,14 +165,25 @@ struct Triangle {
     bool depthTest;               // DepthMode::Test; false: every covered pixel passes, no depth written
 };
 
+// Multisampling (6. above): llvmpipe's standard positions of 4 samples, in pixels and in setup's
+// fixed point.
+inline constexpr int kMaxSamples = 4;
+inline constexpr float kSamplePositions[kMaxSamples][2] = {
+    {0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
+inline constexpr int kSampleFixed[kMaxSamples][2] = {{96, 32}, {224, 96}, {32, 160}, {160, 224}};
+
 struct Viewport {
     int width = 0, height = 0;
+    int samples = 1;                       // 1, or kMaxSamples (6. above)
     float sx = 0, tx = 0, sy = 0, ty = 0;  // W/2, W/2, H/2, H/2
     float sz = 0.5f, tz = 0.5f;            // depth scale and offset: 0.5, 0.5 (D32F: 1, 0)
     bool halfZ = false;                    // D32F's zero-to-one clip space (near plane z ≥ 0)
 };
 
-Viewport makeViewport(int width, int height, DepthFormat format = DepthFormat::D24);
+Viewport makeViewport(int width, int height, DepthFormat format = DepthFormat::D24, int samples = 1);
+
+// Setup's pixel offset: 0.5 (the pixel's centre is its sample), 0 when multisampled (6. above).
+inline float pixelOffset(const Viewport& viewport) { return viewport.samples > 1 ? 0.0f : 0.5f; }
 
 // Whether this CPU has FMA, and so whether llvmpipe's JIT fuses the viewport's multiply-adds (1.).
 bool cpuHasFma();
@@ -181,18 +211,19 @@ bool setupTriangle(const SetupVertex* v0, const SetupVertex* v1, const SetupVert
 
 // setupTriangle in its three steps, for callers that keep fixed-point positions or need the depth
 // plane only of some triangles (cull/Occlusion.cpp):
-// - fixedPosition: a window position in setup's fixed point, round_even((x − 0.5)·256); false when
-//   it is not representable (|…| ≥ 2^26, or NaN);
+// - fixedPosition: a window position in setup's fixed point, round_even((x − offset)·256), offset
+//   pixelOffset(); false when it is not representable (|…| ≥ 2^26, or NaN);
 // - setupEdges: from the fixed-point positions in the order given, the edges, bounds and facing
 //   (3. above). Dropped, or the order the edges were set up in: Swapped for a front face (v0 and
 //   v1 exchanged, in X and Y too);
-// - setupDepthPlane: the depth plane (4. above) of the vertices in that order.
+// - setupDepthPlane: the depth plane (4. above) of the vertices in that order, x0c = x0 − offset.
 // (fixedPosition and setupEdges are inline, below: integer arithmetic and one rounding each.)
 enum class SetupOrder { Dropped, Given, Swapped };
-inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y);
+inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y, float offset = 0.5f);
 inline SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack, const Viewport& viewport,
                              Triangle* out);
-void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out);
+void setupDepthPlane(const SetupVertex* v0, const SetupVertex* v1, const SetupVertex* v2, Triangle* out,
+                     float offset = 0.5f);
 
 // Stable storage for vertices made by the clipper (pointers stay valid until clear()).
 class VertexPool {
@@ -257,11 +288,11 @@ inline std::int64_t floorDiv256(std::int64_t a) { return a >> 8; }
 inline std::int64_t ceilDiv256(std::int64_t a) { return -((-a) >> 8); }
 }  // namespace detail
 
-inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y) {
+inline bool fixedPosition(float x, float y, std::int64_t* X, std::int64_t* Y, float offset) {
     constexpr float kLimit = 67108864.0f;  // 2^26: see "Where this departs" in Rasterizer.h
     // lp_setup_tri.c calc_fixed_position: (pos - pixel_offset) * FIXED_ONE, then CVTPS2DQ.
-    const float fx = (x - 0.5f) * 256.0f;
-    const float fy = (y - 0.5f) * 256.0f;
+    const float fx = (x - offset) * 256.0f;
+    const float fy = (y - offset) * 256.0f;
     if (!(std::fabs(fx) < kLimit) || !(std::fabs(fy) < kLimit)) return false;  // also NaN
     *X = detail::roundEven(fx);
     *Y = detail::roundEven(fy);
@@ -279,13 +310,16 @@ inline SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack
         std::swap(Y[0], Y[1]);
     }
 
-    // Pixels whose centre sample (256·px, 256·py) lies within the vertices' fixed-point bounds.
+    // Pixels with a sample (the centre (256·px, 256·py); multisampled, (256·px, 256·py) plus 32 to
+    // 224 on either axis) within the vertices' fixed-point bounds.
+    const bool multi = viewport.samples > 1;
+    const std::int64_t lo = multi ? 32 : 0, hi = multi ? 224 : 0;
     const std::int64_t minX = std::min({X[0], X[1], X[2]}), maxX = std::max({X[0], X[1], X[2]});
     const std::int64_t minY = std::min({Y[0], Y[1], Y[2]}), maxY = std::max({Y[0], Y[1], Y[2]});
-    const std::int64_t x0 = std::max<std::int64_t>(detail::ceilDiv256(minX), 0);
-    const std::int64_t x1 = std::min<std::int64_t>(detail::floorDiv256(maxX), viewport.width - 1);
-    const std::int64_t y0 = std::max<std::int64_t>(detail::ceilDiv256(minY), 0);
-    const std::int64_t y1 = std::min<std::int64_t>(detail::floorDiv256(maxY), viewport.height - 1);
+    const std::int64_t x0 = std::max<std::int64_t>(detail::ceilDiv256(minX - hi), 0);
+    const std::int64_t x1 = std::min<std::int64_t>(detail::floorDiv256(maxX - lo), viewport.width - 1);
+    const std::int64_t y0 = std::max<std::int64_t>(detail::ceilDiv256(minY - hi), 0);
+    const std::int64_t y1 = std::min<std::int64_t>(detail::floorDiv256(maxY - lo), viewport.height - 1);
     if (x0 > x1 || y0 > y1) return SetupOrder::Dropped;
 
     Triangle& t = *out;
@@ -296,7 +330,7 @@ inline SetupOrder setupEdges(std::int64_t X[3], std::int64_t Y[3], bool cullBack
         std::int64_t c = dcdx * X[i] - dcdy * Y[i];
         if (dcdx < 0 || (dcdx == 0 && dcdy > 0)) c += 1;
         // c − 256·dcdx·px + 256·dcdy·py ≥ 1  ⇔  dcdx·px − dcdy·py ≤ ⌊(c − 1)/256⌋.
-        t.e[i].k = detail::floorDiv256(c - 1);
+        t.e[i].k = multi ? c - 1 : detail::floorDiv256(c - 1);
         t.e[i].dx = std::int32_t(dcdx);
         t.e[i].dy = std::int32_t(dcdy);
     }

@@ -56,7 +56,6 @@ std::optional<std::string> memoryProblem(std::uint64_t bytes);
 // Why a frame of width×height does not fit: "needs about 9.7 GB (36 bytes a pixel: target,
 // read-back, PNG encoding), more than the 3.2 GB left (ulimit -v)"; nothing when it fits or nothing
 // is known.
-std::optional<std::string> frameMemoryProblem(int width, int height);
-
+std::optional<std::string> frameMemoryProblem(int width, int height, int samples = 1);
 
 }  // namespace frugal

@@ -28,6 +28,23 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 
 std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
+// Colour with alpha. The target keeps it premultiplied (associated): the blend (rgb·a + dst·(1 − a))
+// and the resolve of a multisampled pixel (the samples' mean) are right for premultiplied colour,
+// so a background whose alpha is below 1 is cleared as (rgb·a, a). A frame's colour image is
+// straight (unassociated) alpha, as PNG defines it and viewers composite it: rgb ÷ a where a is
+// between 0 and 1 (rounded, at most 255), 0 where a is 0. With an opaque background (the default)
+// every pixel has alpha 1 and neither step changes a byte.
+glm::vec4 premultiplied(const glm::vec4& c) { return {c.r * c.a, c.g * c.a, c.b * c.a, c.a}; }
+
+void unpremultiply(std::vector<std::uint8_t>& rgba) {
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        const unsigned a = rgba[i + 3];
+        if (a == 255) continue;
+        for (int c = 0; c < 3; ++c)
+            rgba[i + c] = a == 0 ? 0 : std::uint8_t(std::min(255u, (rgba[i + c] * 255u + a / 2) / a));
+    }
+}
+
 }  // namespace
 
 // Members in the order they are made; they go in reverse, the backend last.
@@ -107,18 +124,17 @@ Result<bool> Renderer::Impl::open() {
         // and what a frame still allocates after its target (the read-back and the PNG encoding): the
         // first frame comes after it.
         const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
-        const std::uint64_t needed =
-            pixels * kTargetBytesPerPixel + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
+        const std::uint64_t pairBytes = kTargetBytesPerPixel * std::uint64_t(s.samples > 1 ? s.samples + 1 : 1);
+        const std::uint64_t needed = pixels * pairBytes + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
         if (const std::optional<std::string> problem = memoryProblem(needed))
-            return Error{
-                "reuse: " + sizeText(s) + " needs about " + gigabytes(needed) +
-                    " more (a static pair of 12 bytes a pixel, then the frame's read-back and PNG encoding), " +
-                    *problem,
-                ErrorKind::OutOfMemory, true};
-        staticTarget = backend->createTarget(s.width, s.height, s.depthFormat);
+            return Error{"reuse: " + sizeText(s) + " needs about " + gigabytes(needed) + " more (a static pair of " +
+                             std::to_string(pairBytes) +
+                             " bytes a pixel, then the frame's read-back and PNG encoding), " + *problem,
+                         ErrorKind::OutOfMemory, true};
+        staticTarget = backend->createTarget(s.width, s.height, s.depthFormat, s.samples);
         if (staticTarget == kNoHandle)
             return Error{"reuse: " + backend->name() + " could not create the static pair (" + sizeText(s) + ", " +
-                             std::to_string(pixels * kTargetBytesPerPixel) + " bytes)",
+                             std::to_string(pixels * pairBytes) + " bytes)",
                          ErrorKind::OutOfMemory, true};
         reuse.emplace(*scene, s.width, s.height, reuseOptionsFrom(s.reuseSettings));
     }
@@ -132,9 +148,9 @@ void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, Fr
     const Settings& s = settings;
     if (reuse) {
         // A culled list, or the whole scene (the planner's own, faster list).
-        FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, s.background)
-                                      : reuse->plan(setup.params, setup.world, s.background);
-        renderer->execute(plan, target, staticTarget, setup.params, setup.world, s.background);
+        FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, premultiplied(s.background))
+                                : reuse->plan(setup.params, setup.world, premultiplied(s.background));
+        renderer->execute(plan, target, staticTarget, setup.params, setup.world, premultiplied(s.background));
         stats.reuse = reuse->stats();
         drawnPlan = std::move(plan);
         drewPlan = true;
@@ -143,14 +159,14 @@ void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, Fr
     drewPlan = false;
     DrawList list = orderFrameDraws(*scene, submitted, s.order, orderCosts->costsUs());
     if (!planner) {
-        renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, list);
+        renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, premultiplied(s.background), list);
         drawnList = std::move(list);
         return;
     }
     HsrStats hsrStats;
     DrawList planned = planner->plan(s.hsr, setup.params, setup.world, list, s.width, s.height, &hsrStats);
     stats.hsr = hsrStats;
-    renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, s.background, planned);
+    renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, premultiplied(s.background), planned);
     drawnList = std::move(planned);
 }
 
@@ -198,11 +214,12 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     if (traitsOf(s.cull).idPass) {
         // The id pass and the oracle's own index buffers come before the clock starts.
         Result<Oracle> oracle =
-            makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, s.background);
+            makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, premultiplied(s.background));
         if (!oracle) return Error{scene->source + ": " + oracle.error().message};
         stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
         t0 = Clock::now();
-        oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, s.background);
+        oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world,
+                                      premultiplied(s.background));
     } else if (culler) {
         const OcclusionTarget cullTarget = occlusionTarget(*backend, s);
         std::optional<DrawList> madeAhead = ahead.take(s.cull, setup->world, setup->view, cullTarget);
@@ -264,6 +281,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         }
     ++framesDone;
 
+    if (s.background.a < 1.0f) unpremultiply(buffers.rgba);  // only a translucent background leaves a < 1
     const View& view = setup->view;
     frame.color = ColorImage{buffers.width, buffers.height, std::move(buffers.rgba)};
     frame.depth = DepthImage{buffers.width, buffers.height, std::move(buffers.depth), buffers.depthFormat,

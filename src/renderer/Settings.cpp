@@ -158,8 +158,16 @@ std::vector<SettingInfo> makeTable() {
                        "how linear colour is mapped before its display encoding, as the Khronos glTF Sample Renderer "
                        "maps it (the background is not)",
                        [](auto& s) -> auto& { return s.tonemap; }));
+    SettingInfo samples = whole("samples", "N", kImage,
+                                "samples a pixel (multisampling, resolved to one colour each): 1 (default), 2, 4 "
+                                "or 8, at least as many as the backend has (llvmpipe and the software backend: 4 for "
+                                "2 and 4; 8 needs a GPU). The depth and id images hold each pixel's first sample",
+                                1, 8, [](auto& s) -> auto& { return s.samples; });
+    samples.only = {1, 2, 4, 8};
+    t.push_back(std::move(samples));
     SettingInfo background = entry("background", SettingKind::Colour, "R,G,B[,A]", kImage,
-                                   "clear colour in [0,1] (default 0.12,0.13,0.15)");
+                                   "clear colour in [0,1] (default 0.12,0.13,0.15); an alpha below 1 makes the image "
+                                   "translucent there, written with straight alpha as PNG defines it");
     background.get = [](const Settings& s) {
         return SettingValue(std::vector<double>{s.background.r, s.background.g, s.background.b, s.background.a});
     };
@@ -197,6 +205,18 @@ const std::vector<ConflictRule>& conflictRules() {
          [](const Settings& s) {
              return s.interp != DepthInterp::Exact && s.backend != BackendKind::Software
                         ? "only the software backend models the span interpolator"
+                        : std::string_view();
+         }},
+        {{"samples", "interp", "more than 1 with span and dda"},
+         [](const Settings& s) {
+             return s.samples > 1 && s.interp != DepthInterp::Exact ? "the span engine models one sample a pixel"
+                                                                    : std::string_view();
+         }},
+        {{"samples", "cull", "more than 1 with occlusion, occlusion-ahead and oracle"},
+         [](const Settings& s) {
+             const CullTraits& cull = traitsOf(s.cull);
+             return s.samples > 1 && (cull.occlusion || cull.idPass)
+                        ? "they find what is visible at pixel centres, and a multisampled pixel is seen at 4 samples"
                         : std::string_view();
          }},
         {{"interp", "depth-format", "span and dda with d32f"},
@@ -237,7 +257,9 @@ std::string check(const SettingInfo& info, const SettingValue& value) {
             return std::holds_alternative<bool>(value) ? "" : refused;
         case SettingKind::Whole: {
             const long long* v = std::get_if<long long>(&value);
-            return v && *v >= info.min && *v <= info.max ? "" : refused;
+            const bool allowed = v && (info.only.empty() || std::find(info.only.begin(), info.only.end(), *v) !=
+                                                                 info.only.end());
+            return allowed && *v >= info.min && *v <= info.max ? "" : refused;
         }
         case SettingKind::Pair: {
             const auto* v = std::get_if<std::array<long long, 2>>(&value);
@@ -334,8 +356,13 @@ std::string expected(const SettingInfo& info) {
     switch (info.kind) {
         case SettingKind::Switch:
             return "true or false";
-        case SettingKind::Whole:
-            return "a whole number from " + range;
+        case SettingKind::Whole: {
+            if (info.only.empty()) return "a whole number from " + range;
+            std::string values;
+            for (std::size_t i = 0; i < info.only.size(); ++i)
+                values += (i == 0 ? "" : i + 1 == info.only.size() ? " or " : ", ") + std::to_string(info.only[i]);
+            return values;
+        }
         case SettingKind::Pair:
             return info.noun + " (" + info.metavar + ", each " + range + ")";
         case SettingKind::Choice: {

@@ -37,13 +37,16 @@ struct VertexJob {
 };
 
 // A render target's planes; rows are `stride` pixels apart (stride is a multiple of 8 so that an
-// eight-pixel span never reaches into the next row).
+// eight-pixel span never reaches into the next row). A multisampled target holds each plane once
+// per sample, `sampleStride` values apart (Rasterizer.h, 6.).
 struct TargetView {
     std::uint32_t* color = nullptr;  // RGBA8, R in the low byte
     std::uint32_t* depth = nullptr;  // 24-bit values, or D32F's float bits
     std::uint32_t* ids = nullptr;
     int width = 0, height = 0, stride = 0;
     DepthFormat depthFormat = DepthFormat::D24;
+    int samples = 1;
+    std::size_t sampleStride = 0;
 };
 
 inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;
@@ -59,9 +62,13 @@ inline constexpr std::uint32_t kKilled = 0xFFFFFFFEu;
 // depth write depends on its colour; its colour on what is below): the pipeline shades what is
 // pending first, then rasterizes and shades that triangle alone (Pipeline.cpp).
 struct TileState {
+    static constexpr int kPlane = kTileSize * kTileSize;  // one sample's winners
     TargetView target;
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;           // the tile's pixels: [x0, x1) × [y0, y1)
-    std::uint32_t winner[kTileSize * kTileSize];  // index into `won`, or kNoWinner
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the tile's pixels: [x0, x1) × [y0, y1)
+    // Per sample (one plane for a single-sampled target): index into `won`, or kNoWinner. The
+    // colour of a triangle at a pixel is the same in every sample it wins (the shader runs once per
+    // pixel), so shade() shades each pixel once and writes every sample it owns.
+    std::uint32_t winner[kMaxSamples * kPlane];
     std::vector<const Triangle*> won;             // triangles that passed the depth test somewhere
     std::vector<std::uint32_t> saved;             // a masked triangle's pixels' depth and ids before it
 };

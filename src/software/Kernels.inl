@@ -61,7 +61,10 @@ void transform(const VertexJob& job, std::size_t begin, std::size_t end) {
 inline std::int64_t max0(std::int64_t a) { return a > 0 ? a : 0; }
 inline std::int64_t min0(std::int64_t a) { return a < 0 ? a : 0; }
 
-void raster(const Triangle& t, TileState& tile) {
+// Samples: the target's (1 or kMaxSamples), a constant so that one sample compiles to the pixel's
+// centre alone.
+template <int Samples>
+void rasterSamples(const Triangle& t, TileState& tile) {
     const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
     const int x1 = t.x1 < tile.x1 - 1 ? t.x1 : tile.x1 - 1;
     const int y0 = t.y0 > tile.y0 ? t.y0 : tile.y0;
@@ -76,74 +79,103 @@ void raster(const Triangle& t, TileState& tile) {
     const bool reversed = tile.target.depthFormat == DepthFormat::D32F;
     std::uint32_t myIndex = kNoWinner;
 
-    for (int by = y0 & ~7; by <= y1; by += 8) {
-        for (int bx = x0 & ~7; bx <= x1; bx += 8) {
-            // Classify the 8×8 block against each edge: outside (skip), inside, or partial.
-            std::int32_t rowBase[3];
-            std::int32_t dx[3], dy[3];
-            int partial = 0;
-            bool reject = false;
+    for (int sample = 0; sample < Samples; ++sample) {
+        // The sample's edges and position (Rasterizer.h, 6.); a single sample is the pixel's centre.
+        const Edge* edges = t.e;
+        Edge sampleEdges[3];
+        float sx = 0.0f, sy = 0.0f;
+        if constexpr (Samples > 1) {
+            const std::int64_t fx = kSampleFixed[sample][0], fy = kSampleFixed[sample][1];
             for (int e = 0; e < 3; ++e) {
-                const Edge& edge = t.e[e];
-                const std::int64_t f0 = edge.k - std::int64_t(edge.dx) * bx + std::int64_t(edge.dy) * by;
-                const std::int64_t lo = f0 - 7 * max0(edge.dx) + 7 * min0(edge.dy);
-                const std::int64_t hi = f0 - 7 * min0(edge.dx) + 7 * max0(edge.dy);
-                if (hi < 0) {
-                    reject = true;
-                    break;
-                }
-                if (lo < 0) {  // |f0| < 7·(|dx| + |dy|) < 2^31 here (Rasterizer.h bounds the coordinates)
-                    rowBase[partial] = std::int32_t(f0);
-                    dx[partial] = edge.dx;
-                    dy[partial] = edge.dy;
-                    ++partial;
-                }
+                sampleEdges[e] = t.e[e];
+                sampleEdges[e].k = (t.e[e].k + fy * t.e[e].dy - fx * t.e[e].dx) >> 8;
             }
-            if (reject) continue;
-
-            const int ry0 = by > y0 ? by : y0;
-            const int ry1 = by + 7 < y1 ? by + 7 : y1;
-            const I8 px = lane + simd::splati(bx);
-            const I8 columns = simd::gt(px, simd::splati(x0 - 1)) & simd::gt(simd::splati(x1 + 1), px);
-            const F8 pxf = simd::tofloat(px);
-            for (int y = ry0; y <= ry1; ++y) {
-                I8 mask = columns;
-                for (int e = 0; e < partial; ++e) {
-                    const I8 f = simd::splati(rowBase[e] + dy[e] * (y - by)) - simd::splati(dx[e]) * lane;
-                    mask = simd::andnot(simd::sra(f, 31), mask);  // f ≥ 0
-                }
-                if (simd::laneBits(mask) == 0) continue;
-                I8 pass = mask;
-                if (t.depthTest) {  // DepthMode::Off skips the depth plane, the read and the write
-                    F8 z = simd::fma(dzdy, simd::splat(float(y)), simd::fma(dzdx, pxf, z0));
-                    std::uint32_t* depthRow = tile.target.depth + std::size_t(y) * stride + bx;
-                    I8 zi;
-                    if (reversed) {
-                        // D32F: lp_build_depth_clamp's min(z, 1) then max(·, 0), minps/maxps taking
-                        // the second operand on a tie or NaN, so −0 and NaN never get through and
-                        // the bits order as the floats do: GL_GREATER is an integer ">".
-                        zi = simd::bits(simd::max(simd::min(z, one), zero));
-                        pass = mask & simd::gt(zi, simd::loadi(depthRow));
-                    } else {
-                        z = simd::min(simd::max(z, zero), one);
-                        zi = simd::toIntRound(z * zscale);
-                        pass = mask & simd::gt(simd::loadi(depthRow), zi);
+            edges = sampleEdges;
+            sx = kSamplePositions[sample][0];
+            sy = kSamplePositions[sample][1];
+        }
+        const std::size_t plane = std::size_t(sample) * tile.target.sampleStride;
+        std::uint32_t* const depthPlane = tile.target.depth + plane;
+        std::uint32_t* const idPlane = tile.target.ids + plane;
+        std::uint32_t* const winnerPlane = tile.winner + sample * TileState::kPlane;
+        for (int by = y0 & ~7; by <= y1; by += 8) {
+            for (int bx = x0 & ~7; bx <= x1; bx += 8) {
+                // Classify the 8×8 block against each edge: outside (skip), inside, or partial.
+                std::int32_t rowBase[3];
+                std::int32_t dx[3], dy[3];
+                int partial = 0;
+                bool reject = false;
+                for (int e = 0; e < 3; ++e) {
+                    const Edge& edge = edges[e];
+                    const std::int64_t f0 = edge.k - std::int64_t(edge.dx) * bx + std::int64_t(edge.dy) * by;
+                    const std::int64_t lo = f0 - 7 * max0(edge.dx) + 7 * min0(edge.dy);
+                    const std::int64_t hi = f0 - 7 * min0(edge.dx) + 7 * max0(edge.dy);
+                    if (hi < 0) {
+                        reject = true;
+                        break;
                     }
-                    if (simd::laneBits(pass) == 0) continue;
-                    simd::storeMasked(depthRow, pass, zi);
+                    if (lo < 0) {  // |f0| < 7·(|dx| + |dy|) < 2^31 here (Rasterizer.h bounds the coordinates)
+                        rowBase[partial] = std::int32_t(f0);
+                        dx[partial] = edge.dx;
+                        dy[partial] = edge.dy;
+                        ++partial;
+                    }
                 }
-                if (myIndex == kNoWinner) {
-                    myIndex = std::uint32_t(tile.won.size());
-                    tile.won.push_back(&t);
+                if (reject) continue;
+
+                const int ry0 = by > y0 ? by : y0;
+                const int ry1 = by + 7 < y1 ? by + 7 : y1;
+                const I8 px = lane + simd::splati(bx);
+                const I8 columns = simd::gt(px, simd::splati(x0 - 1)) & simd::gt(simd::splati(x1 + 1), px);
+                F8 pxf = simd::tofloat(px);
+                if constexpr (Samples > 1) pxf = pxf + simd::splat(sx);
+                for (int y = ry0; y <= ry1; ++y) {
+                    I8 mask = columns;
+                    for (int e = 0; e < partial; ++e) {
+                        const I8 f = simd::splati(rowBase[e] + dy[e] * (y - by)) - simd::splati(dx[e]) * lane;
+                        mask = simd::andnot(simd::sra(f, 31), mask);  // f ≥ 0
+                    }
+                    if (simd::laneBits(mask) == 0) continue;
+                    I8 pass = mask;
+                    if (t.depthTest) {  // DepthMode::Off skips the depth plane, the read and the write
+                        const float fy = Samples > 1 ? float(y) + sy : float(y);
+                        F8 z = simd::fma(dzdy, simd::splat(fy), simd::fma(dzdx, pxf, z0));
+                        std::uint32_t* depthRow = depthPlane + std::size_t(y) * stride + bx;
+                        I8 zi;
+                        if (reversed) {
+                            // D32F: lp_build_depth_clamp's min(z, 1) then max(·, 0), minps/maxps taking
+                            // the second operand on a tie or NaN, so −0 and NaN never get through and
+                            // the bits order as the floats do: GL_GREATER is an integer ">".
+                            zi = simd::bits(simd::max(simd::min(z, one), zero));
+                            pass = mask & simd::gt(zi, simd::loadi(depthRow));
+                        } else {
+                            z = simd::min(simd::max(z, zero), one);
+                            zi = simd::toIntRound(z * zscale);
+                            pass = mask & simd::gt(simd::loadi(depthRow), zi);
+                        }
+                        if (simd::laneBits(pass) == 0) continue;
+                        simd::storeMasked(depthRow, pass, zi);
+                    }
+                    if (myIndex == kNoWinner) {
+                        myIndex = std::uint32_t(tile.won.size());
+                        tile.won.push_back(&t);
+                    }
+                    std::uint32_t* winnerRow = winnerPlane + (y - tile.y0) * kTileSize + (bx - tile.x0);
+                    simd::storeMasked(winnerRow, pass, simd::splati(std::int32_t(myIndex)));
+                    // Ids now, not at shading: a later draw that does not write ids may win the pixel's
+                    // colour and must leave this id in place.
+                    if (t.writesId) simd::storeMasked(idPlane + std::size_t(y) * stride + bx, pass, id);
                 }
-                std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize + (bx - tile.x0);
-                simd::storeMasked(winnerRow, pass, simd::splati(std::int32_t(myIndex)));
-                // Ids now, not at shading: a later draw that does not write ids may win the pixel's
-                // colour and must leave this id in place.
-                if (t.writesId) simd::storeMasked(tile.target.ids + std::size_t(y) * stride + bx, pass, id);
             }
         }
     }
+}
+
+void raster(const Triangle& t, TileState& tile) {
+    if (tile.target.samples > 1)
+        rasterSamples<kMaxSamples>(t, tile);
+    else
+        rasterSamples<1>(t, tile);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -645,18 +677,32 @@ void toneMap(ToneMap op, F8 rgb[3]) {
     for (int k = 0; k < 3; ++k) rgb[k] = simd::min(simd::max(c[k], zero), one);
 }
 
-void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
+template <int Samples>
+void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const Triangle& t = *tile.won[index];
     const int x0 = t.x0 > tile.x0 ? t.x0 : tile.x0;
     const int x1 = t.x1 < tile.x1 - 1 ? t.x1 : tile.x1 - 1;
     const int y0 = t.y0 > tile.y0 ? t.y0 : tile.y0;
     const int y1 = t.y1 < tile.y1 - 1 ? t.y1 : tile.y1 - 1;
 
-    // Plane equations (Rasterizer.h, 4.): 1/w linear, the varyings premultiplied by 1/w.
+    // Plane equations (Rasterizer.h, 4.): 1/w linear, the varyings premultiplied by 1/w. A
+    // multisampled target's planes are at the pixels' corners, read at their centres (6.): the
+    // offsets are 0.5 and 0 or 0 and 0.5 (adding 0 is exact).
     const SetupVertex& v0 = *t.v[0];
     const SetupVertex& v1 = *t.v[1];
     const SetupVertex& v2 = *t.v[2];
-    const float x0c = v0.x - 0.5f, y0c = v0.y - 0.5f;
+    constexpr int samples = Samples;
+    constexpr float offset = samples > 1 ? 0.0f : 0.5f;
+    // Pixel coordinates + 0.5 when multisampled (the one-sample case adds nothing).
+    const auto centred = [](auto v) {
+        if constexpr (samples == 1)
+            return v;
+        else if constexpr (std::is_same_v<decltype(v), float>)
+            return v + 0.5f;
+        else
+            return v + simd::splat(0.5f);
+    };
+    const float x0c = v0.x - offset, y0c = v0.y - offset;
     const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y;
     const float dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
     const float e = dx01 * dy20, f = dy01 * dx20;
@@ -714,12 +760,18 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
     const std::uint32_t stride = std::uint32_t(tile.target.stride);
 
     for (int y = y0; y <= y1; ++y) {
-        const F8 py = simd::splat(float(y));
+        const F8 py = simd::splat(centred(float(y)));
         std::uint32_t* winnerRow = tile.winner + (y - tile.y0) * kTileSize;
         for (int bx = x0 & ~7; bx <= x1; bx += 8) {
-            I8 mask = simd::eq(simd::loadi(winnerRow + (bx - tile.x0)), me);
+            // The samples this triangle owns (one for a single-sampled target), and the pixels with any.
+            I8 owned[kMaxSamples];
+            I8 mask = simd::splati(0);
+            for (int k = 0; k < samples; ++k) {
+                owned[k] = simd::eq(simd::loadi(winnerRow + k * TileState::kPlane + (bx - tile.x0)), me);
+                mask = mask | owned[k];
+            }
             if (simd::laneBits(mask) == 0) continue;
-            const F8 px = simd::tofloat(lane + simd::splati(bx));
+            const F8 px = centred(simd::tofloat(lane + simd::splati(bx)));
             // A plane at these pixels of row `row`.
             const auto at = [&](const Plane& p, F8 row) {
                 return simd::fma(simd::splat(p.dady), row, simd::fma(simd::splat(p.dadx), px, simd::splat(p.a0)));
@@ -740,7 +792,7 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             if (lod) {
                 float u[2][8], v[2][8];
                 for (int row = 0; row < 2; ++row) {
-                    const F8 qy = simd::splat(float((y & ~1) + row));
+                    const F8 qy = simd::splat(centred(float((y & ~1) + row)));
                     const F8 r = one / at(w, qy);
                     simd::storef(u[row], at(a[7], qy) * r);
                     simd::storef(v[row], at(a[8], qy) * r);
@@ -758,7 +810,11 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             if (shading.alphaMode == AlphaMode::Mask) {
                 const I8 killed = simd::lt(base[3], simd::splat(shading.alphaCutoff)) & mask;
                 if (simd::laneBits(killed) != 0) {
-                    simd::storeMasked(winnerRow + (bx - tile.x0), killed, simd::splati(std::int32_t(kKilled)));
+                    for (int k = 0; k < samples; ++k) {
+                        simd::storeMasked(winnerRow + k * TileState::kPlane + (bx - tile.x0), killed & owned[k],
+                                          simd::splati(std::int32_t(kKilled)));
+                        owned[k] = simd::andnot(killed, owned[k]);
+                    }
                     mask = simd::andnot(killed, mask);
                     if (simd::laneBits(mask) == 0) continue;
                 }
@@ -849,18 +905,30 @@ void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
             }
             std::uint32_t* const colorRow = tile.target.color + std::size_t(y) * stride + bx;
             if (shading.alphaMode != AlphaMode::Blend) {
-                simd::storeMasked(colorRow, mask, simd::loadi(rgb) | simd::splati(std::int32_t(0xFF000000u)));
+                const I8 color = simd::loadi(rgb) | simd::splati(std::int32_t(0xFF000000u));
+                for (int k = 0; k < samples; ++k)
+                    simd::storeMasked(colorRow + std::size_t(k) * tile.target.sampleStride, owned[k], color);
                 continue;
             }
             const F8 alpha = simd::min(simd::max(base[3], zero), one);
             std::uint32_t src[8];
             simd::storei(src, simd::loadi(rgb) | simd::sll(simd::toIntRound(alpha * c255), 24));
-            for (unsigned bitsLeft = simd::laneBits(mask); bitsLeft != 0; bitsLeft &= bitsLeft - 1) {
-                const int l = __builtin_ctz(bitsLeft);
-                colorRow[l] = blendOver(src[l], colorRow[l]);
+            for (int k = 0; k < samples; ++k) {  // each sample over its own colour
+                std::uint32_t* const sampleRow = colorRow + std::size_t(k) * tile.target.sampleStride;
+                for (unsigned bitsLeft = simd::laneBits(owned[k]); bitsLeft != 0; bitsLeft &= bitsLeft - 1) {
+                    const int l = __builtin_ctz(bitsLeft);
+                    sampleRow[l] = blendOver(src[l], sampleRow[l]);
+                }
             }
         }
     }
+}
+
+void shade(std::uint32_t index, const DrawShading& shading, TileState& tile) {
+    if (tile.target.samples > 1)
+        shadeSamples<kMaxSamples>(index, shading, tile);
+    else
+        shadeSamples<1>(index, shading, tile);
 }
 
 }  // namespace

@@ -164,7 +164,7 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.normalMatrix = input.normalMatrix;
     vertexJob.model = input.model;
     vertexJob.uvTransform = input.uvTransform;
-    vertexJob.viewport = makeViewport(width, height, input.depthFormat);
+    vertexJob.viewport = makeViewport(width, height, input.depthFormat, input.samples);
     vertexJob.out = record.vertices.data();
     vertexJob.clip = record.clip.data();
     vertexJob.mask = record.mask.data();
@@ -241,7 +241,7 @@ void Pipeline::flush(const TargetView& target) {
         tile.x1 = std::min(tile.x0 + kTileSize, target.width);
         tile.y1 = std::min(tile.y0 + kTileSize, target.height);
         tile.won.clear();
-        std::fill(std::begin(tile.winner), std::end(tile.winner), kNoWinner);
+        std::fill_n(tile.winner, target.samples * TileState::kPlane, kNoWinner);
         InterpScratch* scratch = interpScratch_.empty() ? nullptr : &interpScratch_[std::size_t(worker)];
         const auto rasterize = [&](const Triangle& t) {
             // The slow path (InterpRaster.h): span-interpolated depth, one pixel at a time.
@@ -288,10 +288,11 @@ void Pipeline::shadePending(TileState& tile) const {
 void Pipeline::forgetWinners(TileState& tile, int x0, int y0, int x1, int y1) {
     x0 = std::max(x0, tile.x0), y0 = std::max(y0, tile.y0);
     x1 = std::min(x1, tile.x1 - 1), y1 = std::min(y1, tile.y1 - 1);
-    for (int y = y0; y <= y1; ++y) {
-        std::uint32_t* row = tile.winner + (y - tile.y0) * kTileSize;
-        std::fill(row + (x0 - tile.x0), row + (x1 - tile.x0 + 1), kNoWinner);
-    }
+    for (int sample = 0; sample < tile.target.samples; ++sample)
+        for (int y = y0; y <= y1; ++y) {
+            std::uint32_t* row = tile.winner + sample * TileState::kPlane + (y - tile.y0) * kTileSize;
+            std::fill(row + (x0 - tile.x0), row + (x1 - tile.x0 + 1), kNoWinner);
+        }
 }
 
 template <class Rasterize>
@@ -304,32 +305,40 @@ void Pipeline::rasterizeAlone(const Triangle& t, const DrawShading& shading, Til
     const TargetView& target = tile.target;
     const bool masked = shading.alphaMode == AlphaMode::Mask;
     const bool ids = t.writesId && target.ids != nullptr;
-    const std::size_t width = std::size_t(x1 - x0 + 1);
-    if (masked) {  // depth and ids as they are, for the pixels the mask discards
-        tile.saved.resize(2 * width * std::size_t(y1 - y0 + 1));
-        std::uint32_t* out = tile.saved.data();
-        for (int y = y0; y <= y1; ++y, out += 2 * width) {
-            const std::size_t at = std::size_t(y) * std::size_t(target.stride) + std::size_t(x0);
-            std::copy_n(target.depth + at, width, out);
-            if (ids) std::copy_n(target.ids + at, width, out + width);
-        }
+    const std::size_t width = std::size_t(x1 - x0 + 1), rows = std::size_t(y1 - y0 + 1);
+    // Where sample `sample`'s row y of the rectangle is in the target and in `saved`.
+    const auto targetAt = [&](int sample, int y) {
+        return std::size_t(sample) * target.sampleStride + std::size_t(y) * std::size_t(target.stride) +
+               std::size_t(x0);
+    };
+    const auto savedAt = [&](int sample, int y) {
+        return 2 * width * (std::size_t(sample) * rows + std::size_t(y - y0));
+    };
+    if (masked) {  // depth and ids as they are, for the samples the mask discards
+        tile.saved.resize(2 * width * rows * std::size_t(target.samples));
+        for (int sample = 0; sample < target.samples; ++sample)
+            for (int y = y0; y <= y1; ++y) {
+                std::uint32_t* out = tile.saved.data() + savedAt(sample, y);
+                std::copy_n(target.depth + targetAt(sample, y), width, out);
+                if (ids) std::copy_n(target.ids + targetAt(sample, y), width, out + width);
+            }
     }
     rasterize(t);
     if (tile.won.empty()) return;
     kernels_.shade(0, shading, tile);
     tile.won.clear();
-    for (int y = y0; y <= y1; ++y) {
-        std::uint32_t* row = tile.winner + (y - tile.y0) * kTileSize + (x0 - tile.x0);
-        const std::size_t at = std::size_t(y) * std::size_t(target.stride) + std::size_t(x0);
-        const std::size_t from = 2 * width * std::size_t(y - y0);
-        for (std::size_t x = 0; x < width; ++x) {
-            if (masked && row[x] == kKilled) {
-                target.depth[at + x] = tile.saved[from + x];
-                if (ids) target.ids[at + x] = tile.saved[from + width + x];
+    for (int sample = 0; sample < target.samples; ++sample)
+        for (int y = y0; y <= y1; ++y) {
+            std::uint32_t* row = tile.winner + sample * TileState::kPlane + (y - tile.y0) * kTileSize + (x0 - tile.x0);
+            const std::size_t at = targetAt(sample, y), from = savedAt(sample, y);
+            for (std::size_t x = 0; x < width; ++x) {
+                if (masked && row[x] == kKilled) {
+                    target.depth[at + x] = tile.saved[from + x];
+                    if (ids) target.ids[at + x] = tile.saved[from + width + x];
+                }
+                row[x] = kNoWinner;
             }
-            row[x] = kNoWinner;
         }
-    }
 }
 
 void Pipeline::discard() {

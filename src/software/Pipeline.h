@@ -42,6 +42,7 @@ struct DrawInput {
     std::uint32_t firstId = 1;
     bool doubleSided = false;
     DepthFormat depthFormat = DepthFormat::D24;  // the target's
+    int samples = 1;                             // the target's (Rasterizer.h, 6.)
 };
 
 class Pipeline {

@@ -280,6 +280,30 @@ inline std::uint8_t floatToUnorm8(float f) {
     return std::uint8_t(std::nearbyint(f * 255.0f));
 }
 
+// A multisampled pixel's colour resolved (Rasterizer.h, 6.), as u_blitter's resolve shader computes
+// it: each channel's texels (x · 1/255) summed in float from sample 0, times 1/count, converted as
+// above. `sample` points at sample 0; the others follow `sampleStride` values apart.
+inline std::uint32_t resolveColor(const std::uint32_t* sample, int count, std::size_t sampleStride) {
+    const DecodeTable& decode = unormDecode();
+    const float scale = 1.0f / float(count);
+    std::uint32_t out = 0;
+    for (int c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (int k = 0; k < count; ++k) sum = sum + decode[(sample[std::size_t(k) * sampleStride] >> (8 * c)) & 255u];
+        out |= std::uint32_t(floatToUnorm8(sum * scale)) << (8 * c);
+    }
+    return out;
+}
+
+// A multisampled D24 target's depth (sample 0) after the resolve blit, which fetches it as a float,
+// float(d) · (1/16777215) as gallivm converts 24-bit unorm, and writes that as a fragment's depth,
+// round_even(z · 16777215) (Rasterizer.h, 5.): not every value survives the round trip. D32F's
+// float is copied as it is.
+inline std::uint32_t resolveDepth24(std::uint32_t d) {
+    const float z = std::fmin(float(d) * float(1.0 / 16777215.0), 1.0f);
+    return std::uint32_t(std::nearbyint(z * 16777215.0f));
+}
+
 inline std::uint32_t packColor(const glm::vec4& c) {
     return std::uint32_t(floatToUnorm8(c.r)) | std::uint32_t(floatToUnorm8(c.g)) << 8 |
            std::uint32_t(floatToUnorm8(c.b)) << 16 | std::uint32_t(floatToUnorm8(c.a)) << 24;

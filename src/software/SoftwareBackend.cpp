@@ -34,12 +34,17 @@ using SwMesh = sw::SoftwareMesh;
 // Same limits as the GL backend on llvmpipe (GL_MAX_RENDERBUFFER_SIZE, GL_MAX_TEXTURE_SIZE).
 constexpr int kMaxSize = 16384;
 
+// A target's planes, each `samples` times (sample s's at s · plane()).
 struct SwTarget {
     int width = 0, height = 0, stride = 0;  // stride: a multiple of 8 (Kernels.h, TargetView)
+    int samples = 1;
     std::vector<std::uint32_t> color, depth, ids;
     DepthFormat depthFormat = DepthFormat::D24;
 
-    sw::TargetView view() { return {color.data(), depth.data(), ids.data(), width, height, stride, depthFormat}; }
+    std::size_t plane() const { return std::size_t(stride) * std::size_t(height); }
+    sw::TargetView view() {
+        return {color.data(), depth.data(), ids.data(), width, height, stride, depthFormat, samples, plane()};
+    }
 };
 
 class SoftwareBackend final : public Backend {
@@ -59,13 +64,14 @@ public:
     }
     const InterpCounters& interpStats() const { return pipeline_.interpStats(); }
     int maxTargetSize() const override { return kMaxSize; }
+    int maxSamples() const override { return raster::kMaxSamples; }
     int maxTextureSize() const override { return kMaxSize; }
 
     // The --interp span engine models a 24-bit depth buffer only.
     bool supportsDepthFormat(DepthFormat format) const override {
         return format == DepthFormat::D24 || pipeline_.interp() == span::Interp::Exact;
     }
-    TargetHandle createTarget(int width, int height, DepthFormat format) override;
+    TargetHandle createTarget(int width, int height, DepthFormat format, int samples) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     void releaseMesh(MeshHandle mesh) override;
@@ -107,15 +113,18 @@ private:
     glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
 };
 
-TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format) {
+TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format, int samples) {
     if (width <= 0 || height <= 0 || width > kMaxSize || height > kMaxSize) return kNoHandle;
-    if (!supportsDepthFormat(format)) return kNoHandle;
+    if (!supportsDepthFormat(format) || samples < 1 || samples > maxSamples()) return kNoHandle;
+    // The --interp span engine models one sample per pixel.
+    if (samples > 1 && pipeline_.interp() != span::Interp::Exact) return kNoHandle;
     SwTarget t;
     t.width = width;
     t.height = height;
     t.depthFormat = format;
     t.stride = (width + 7) & ~7;
-    const std::size_t pixels = std::size_t(t.stride) * std::size_t(height);
+    t.samples = samples > 1 ? raster::kMaxSamples : 1;  // as llvmpipe: 4 for any count it is asked
+    const std::size_t pixels = t.plane() * std::size_t(t.samples);
     try {
         // Contents defined from the start, like the GL backend: transparent black, far depth, id 0.
         t.color.assign(pixels, 0u);
@@ -281,6 +290,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.firstId = params.firstId;
     input.doubleSided = params.doubleSided;
     input.depthFormat = target->depthFormat;
+    input.samples = target->samples;
     pipeline_.draw(*mesh, target->width, target->height, input, ranges);
 }
 
@@ -301,14 +311,16 @@ void SoftwareBackend::clear(TargetHandle target, const Rect& rect, const glm::ve
     const int bands = (r.height + kBand - 1) / kBand;
     const auto fillBand = [&](std::size_t band, int) {
         const int y0 = r.y + int(band) * kBand, y1 = std::min(y0 + kBand, r.y + r.height);
-        for (int y = y0; y < y1; ++y) {
-            const std::size_t row = std::size_t(y) * std::size_t(t->stride) + std::size_t(r.x);
-            std::fill_n(t->color.begin() + std::ptrdiff_t(row), r.width, c);
-            std::fill_n(t->depth.begin() + std::ptrdiff_t(row), r.width, z);
-            std::fill_n(t->ids.begin() + std::ptrdiff_t(row), r.width, 0u);
-        }
+        for (int sample = 0; sample < t->samples; ++sample)
+            for (int y = y0; y < y1; ++y) {
+                const std::size_t row =
+                    std::size_t(sample) * t->plane() + std::size_t(y) * std::size_t(t->stride) + std::size_t(r.x);
+                std::fill_n(t->color.begin() + std::ptrdiff_t(row), r.width, c);
+                std::fill_n(t->depth.begin() + std::ptrdiff_t(row), r.width, z);
+                std::fill_n(t->ids.begin() + std::ptrdiff_t(row), r.width, 0u);
+            }
     };
-    if (std::int64_t(r.width) * r.height >= 256 * 1024)
+    if (std::int64_t(r.width) * r.height * t->samples >= 256 * 1024)
         pipeline_.pool().run(std::size_t(bands), fillBand);
     else
         for (int band = 0; band < bands; ++band) fillBand(std::size_t(band), 0);
@@ -322,9 +334,11 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
     const Rect& r = *region;
     flush();
     const auto rows = [&](const std::vector<std::uint32_t>& a, std::vector<std::uint32_t>& b) {
-        for (int y = r.y; y < r.y + r.height; ++y)
-            std::memcpy(b.data() + std::size_t(y) * dest->stride + r.x,
-                        a.data() + std::size_t(y) * source->stride + r.x, std::size_t(r.width) * sizeof(std::uint32_t));
+        for (int sample = 0; sample < source->samples; ++sample)
+            for (int y = r.y; y < r.y + r.height; ++y)
+                std::memcpy(b.data() + std::size_t(sample) * dest->plane() + std::size_t(y) * dest->stride + r.x,
+                            a.data() + std::size_t(sample) * source->plane() + std::size_t(y) * source->stride + r.x,
+                            std::size_t(r.width) * sizeof(std::uint32_t));
     };
     if (color) rows(source->color, dest->color);
     if (depth) rows(source->depth, dest->depth);
@@ -345,10 +359,21 @@ void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, Planes pla
     out.rgba.resize(out.pixelCount() * 4);
     out.depth.resize(planes.depth ? out.pixelCount() : 0);
     out.ids.resize(planes.ids ? out.pixelCount() : 0);
+    // Depth and ids: sample 0's (the first plane); colour resolved when multisampled (Shading.h).
     for (int y = 0; y < t->height; ++y) {
         const std::size_t from = std::size_t(y) * std::size_t(t->stride), to = std::size_t(y) * std::size_t(t->width);
-        std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
+        if (t->samples == 1) {
+            std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
+        } else {
+            for (int x = 0; x < t->width; ++x) {
+                const std::uint32_t rgba = sw::resolveColor(t->color.data() + from + x, t->samples, t->plane());
+                std::memcpy(out.rgba.data() + (to + std::size_t(x)) * 4, &rgba, 4);
+            }
+        }
         if (planes.depth) std::memcpy(out.depth.data() + to, t->depth.data() + from, std::size_t(t->width) * 4);
+        if (planes.depth && t->samples > 1 && t->depthFormat == DepthFormat::D24)
+            for (int x = 0; x < t->width; ++x)
+                out.depth[to + std::size_t(x)] = sw::resolveDepth24(out.depth[to + std::size_t(x)]);
         if (planes.ids) std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
     }
 }

@@ -22,7 +22,8 @@ public:
     int maxTargetSize() const override { return 64; }
     int maxTextureSize() const override { return 32; }
     bool supportsDepthFormat(DepthFormat) const override { return true; }
-    TargetHandle createTarget(int, int, DepthFormat) override { return TargetHandle{1}; }
+    int maxSamples() const override { return 1; }
+    TargetHandle createTarget(int, int, DepthFormat, int) override { return TargetHandle{1}; }
     void destroyTarget(TargetHandle) override {}
     void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh.id)); }
     void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture.id)); }

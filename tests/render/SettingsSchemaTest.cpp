@@ -163,6 +163,25 @@ TEST(SettingsSchemaTest, EveryConflictIsRefusedWithItsSettingsNamed) {
     s.depthFormat = DepthFormat::D32F;
     ASSERT_TRUE(settingsProblem(s));
     seen.insert({settingsProblem(s)->settings[0], settingsProblem(s)->settings[1]});
+    // More than one sample: not with the span engine, nor with the methods that test pixel centres.
+    s = Settings{};
+    s.samples = 4;
+    s.backend = BackendKind::Software;
+    EXPECT_FALSE(settingsProblem(s));
+    s.interp = DepthInterp::Dda;
+    ASSERT_TRUE(settingsProblem(s));
+    EXPECT_EQ(describe(*settingsProblem(s), s), "samples 4 with interp dda: the span engine models one sample a pixel");
+    seen.insert({settingsProblem(s)->settings[0], settingsProblem(s)->settings[1]});
+    s.interp = DepthInterp::Exact;
+    for (const Cull cull : kCulls) {
+        s.cull = cull;
+        const std::optional<SettingsProblem> problem = settingsProblem(s);
+        ASSERT_EQ(problem.has_value(), traitsOf(cull).occlusion || traitsOf(cull).idPass) << toString(cull);
+        if (problem) seen.insert({problem->settings[0], problem->settings[1]});
+    }
+    s.samples = 1;
+    s.cull = Cull::Occlusion;
+    EXPECT_FALSE(settingsProblem(s));
     // The table's conflicts are exactly those met above, and each names settings of the schema.
     std::set<std::pair<std::string, std::string>> declared;
     for (const SettingsConflict& c : settingsConflicts()) {

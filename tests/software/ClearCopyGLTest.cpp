@@ -77,9 +77,31 @@ TEST_F(ClearCopyGLTest, NewTargetsAreDefined) {
     }
 }
 
+// Multisampled targets read back resolved: cleared ones as GL reads them (the depth through the
+// resolve blit's round trip), in both formats, for the whole target and a part.
+TEST_F(ClearCopyGLTest, MultisampledClearsReadBackAlike) {
+    for (const DepthFormat format : {DepthFormat::D24, DepthFormat::D32F})
+        for (const float z : {1.0f, 0.999f, 0.5f, 0.25f, 1e-7f, 0.0f})
+            for (const bool whole : {true, false}) {
+                Buffers out[2];
+                for (int i = 0; i < 2; ++i) {
+                    const TargetHandle target = backends[i]->createTarget(13, 7, format, 4);
+                    ASSERT_NE(target, kNoHandle);
+                    backends[i]->clear(target, whole ? Rect{0, 0, 13, 7} : Rect{2, 1, 5, 4}, {0.3f, 0.6f, 0.1f, 1}, z);
+                    out[i] = backends[i]->readBack(target);
+                    backends[i]->destroyTarget(target);
+                }
+                const test::Comparison c = test::compareBuffers(out[0], out[1]);
+                EXPECT_TRUE(c.depth == 0 && c.ids == 0 && c.color == 0)
+                    << depthFormatName(format) << ", z " << z << (whole ? ", whole" : ", part") << ": " << c.summary()
+                    << " (GL depth " << out[0].depth[3 * 13 + 4] << ", software " << out[1].depth[3 * 13 + 4] << ")";
+            }
+}
+
 // Random sequences of clears (whole and partial, in and out of bounds), copies between two targets
-// (any subset of planes), and draws; both targets compared after every step.
-void randomSequences(Backend& reference, Backend& software, DepthFormat format) {
+// (any subset of planes), and draws; both targets compared after every step. Multisampled targets
+// (`samples` 4) are compared as read back: resolved.
+void randomSequences(Backend& reference, Backend& software, DepthFormat format, int samples = 1) {
     const std::array<Backend*, 2> backends{&reference, &software};
     const int width = 53, height = 37;
     std::mt19937 rng(9);
@@ -98,8 +120,8 @@ void randomSequences(Backend& reference, Backend& software, DepthFormat format) 
     std::array<std::array<TargetHandle, 2>, 2> targets{};  // [backend][target]
     std::array<MeshHandle, 2> meshes{};
     for (int i = 0; i < 2; ++i) {
-        targets[i] = {backends[i]->createTarget(width, height, format),
-                      backends[i]->createTarget(width, height, format)};
+        targets[i] = {backends[i]->createTarget(width, height, format, samples),
+                      backends[i]->createTarget(width, height, format, samples)};
         meshes[i] = backends[i]->uploadMesh(mesh);
     }
     const auto randomRect = [&] {
@@ -155,10 +177,11 @@ void randomSequences(Backend& reference, Backend& software, DepthFormat format) 
             const Buffers b = software.readBack(targets[1][t]);
             const test::Comparison c = test::compareBuffers(a, b);
             const bool same = c.depth == 0 && c.ids == 0 && c.color == 0 && !c.sizeMismatch;
-            EXPECT_TRUE(same) << depthFormatName(format) << " after step " << step << ", target " << t << ": "
-                              << c.summary();
+            EXPECT_TRUE(same) << depthFormatName(format) << ", " << samples << " samples, after step " << step
+                              << ", target " << t << ": " << c.summary();
             if (!same) {
-                test::saveImages(std::string("ClearCopy-") + depthFormatName(format) + "-step" + std::to_string(step),
+                test::saveImages(std::string("ClearCopy-") + depthFormatName(format) + "-" + std::to_string(samples) +
+                                     "-step" + std::to_string(step),
                                  a, b);
                 return;
             }
@@ -168,6 +191,10 @@ void randomSequences(Backend& reference, Backend& software, DepthFormat format) 
 
 TEST_F(ClearCopyGLTest, RandomSequencesMatch) { randomSequences(*reference, *software, DepthFormat::D24); }
 TEST_F(ClearCopyGLTest, RandomSequencesMatchD32f) { randomSequences(*reference, *software, DepthFormat::D32F); }
+TEST_F(ClearCopyGLTest, RandomSequencesMatchMultisampled) {
+    randomSequences(*reference, *software, DepthFormat::D24, 4);
+    randomSequences(*reference, *software, DepthFormat::D32F, 4);
+}
 
 // A copy between targets of different sizes is refused by contract (assert), a copy onto itself and
 // one with no planes do nothing; a clear of an empty rectangle does nothing.

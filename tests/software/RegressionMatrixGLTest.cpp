@@ -41,6 +41,7 @@ struct MatrixCase {
     Camera camera;
     Tolerance tolerance;
     ToneMap tonemap = ToneMap::None;
+    int samples = 1;  // 4: multisampled, resolved (raster/Rasterizer.h, 6.)
 };
 
 Scene loaded(const std::string& spec) {
@@ -653,6 +654,55 @@ std::vector<MatrixCase> matrix() {
         {"tonemap-aces", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::Aces},
         {"lights", lights, 640, 400, lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f), {}},
         {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
+        // Multisampled (4 samples at llvmpipe's positions), resolved: the colour is the samples' mean,
+        // depth and ids sample 0's.
+        {"msaa-bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}, ToneMap::None, 4},
+        {"msaa-default-61x47", [] { return loaded("builtin:default"); }, 61, 47, {}, {}, ToneMap::None, 4},
+        {"msaa-cubes-800x600", [] { return loaded("builtin:cubes"); }, 800, 600, {}, {}, ToneMap::None, 4},
+        {"msaa-slivers", slivers, 320, 240, lookFrom({0, 0, 8}, {0, 0, 0}, 0.1f, 100.0f), {}, ToneMap::None, 4},
+        {"msaa-huge-triangles-crossing-near",
+         groundPlane,
+         320,
+         240,
+         lookFrom({0, 1, 0}, {0, 0.2f, -10}, 0.05f, 1e5f),
+         {},
+         ToneMap::None,
+         4},
+        {"msaa-pixel-centre-edges", pixelGrid, 64, 48, {}, {}, ToneMap::None, 4},
+        {"msaa-non-finite-vertices",
+         nonFinite,
+         160,
+         120,
+         lookFrom({0, 0, 4}, {0, 0, 0}, 0.1f, 10.0f),
+         {},
+         ToneMap::None,
+         4},
+        {"msaa-near-far-ratio-1e6",
+         depthRange,
+         320,
+         240,
+         lookFrom({0, 0, 0.001f}, {0, 0, -1}, 1e-3f, 1e3f),
+         {},
+         ToneMap::None,
+         4},
+        {"msaa-alpha", alpha, 640, 480, lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::None, 4},
+        {"msaa-maps", maps, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::None, 4},
+        {"msaa-mipmaps",
+         mipmaps,
+         640,
+         400,
+         lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f),
+         {},
+         ToneMap::None,
+         4},
+        {"msaa-lights",
+         lights,
+         640,
+         400,
+         lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f),
+         {},
+         ToneMap::None,
+         4},
     };
 }
 
@@ -672,7 +722,7 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
-        const TargetHandle target = backends[k]->createTarget(c.width, c.height);
+        const TargetHandle target = backends[k]->createTarget(c.width, c.height, DepthFormat::D24, c.samples);
         ASSERT_NE(target, kNoHandle);
         Result<SceneRenderer> renderer = SceneRenderer::create(*backends[k], scene);
         ASSERT_TRUE(renderer) << renderer.error().message;
