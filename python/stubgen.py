@@ -14,8 +14,9 @@ from pathlib import Path
 STUB = Path(__file__).resolve().parent / "frugal" / "_frugal.pyi"
 
 # A keyword argument's type, and a value's in the dict of settings, by the setting's kind.
-KEYWORD = {"switch": "bool", "whole": "int", "pair": "_Pair", "colour": "_Colour"}
-VALUE = {"switch": "bool", "whole": "int", "pair": "tuple[int, int]", "colour": "tuple[float, float, float, float]"}
+KEYWORD = {"switch": "bool", "whole": "int", "pair": "_Pair", "colour": "_Colour", "real": "float"}
+VALUE = {"switch": "bool", "whole": "int", "pair": "tuple[int, int]", "colour": "tuple[float, float, float, float]",
+         "real": "float"}
 
 
 def alias(info):

@@ -171,6 +171,15 @@ inline constexpr std::array<ChoiceInfo, 3> kToneMapInfos{{
     {"aces", "Stephen Hill's fit of the ACES filmic curve"},
 }};
 
+// The default light: a scene without KHR_lights_punctual lights is lit by the directional light of
+// pipeline/Backend.h's Lighting, or by the environment alone.
+enum class DefaultLight : std::uint8_t { On, Off };
+inline constexpr std::array<ChoiceInfo, 2> kDefaultLightInfos{{
+    {"default", "where the scene has no lights of its own, one white directional light from (0.35, 0.8, 0.5) of "
+                "intensity 0.7π, as a white surface facing it reflects 0.7 (default)"},
+    {"none", "no default light: the environment lights the scene, with the scene's own lights where it has any"},
+}};
+
 constexpr const CullTraits& traitsOf(Cull v) { return kCullTraits[std::size_t(v)]; }
 constexpr const OrderTraits& traitsOf(Order v) { return kOrderTraits[std::size_t(v)]; }
 constexpr const HsrTraits& traitsOf(Hsr v) { return kHsrTraits[std::size_t(v)]; }
@@ -182,6 +191,7 @@ constexpr const ChoiceInfo& infoOf(BackendKind v) { return kBackendInfos[std::si
 constexpr const ChoiceInfo& infoOf(DepthInterp v) { return kDepthInterpInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(DepthFormat v) { return kDepthFormatInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(ToneMap v) { return kToneMapInfos[std::size_t(v)]; }
+constexpr const ChoiceInfo& infoOf(DefaultLight v) { return kDefaultLightInfos[std::size_t(v)]; }
 
 // Every value of an enum, in its order: values<Cull>() is {None, Sphere, ...}.
 template <class T>
@@ -193,6 +203,7 @@ constexpr auto values() {
         else if constexpr (std::is_same_v<T, BackendKind>) return kBackendInfos.size();
         else if constexpr (std::is_same_v<T, DepthInterp>) return kDepthInterpInfos.size();
         else if constexpr (std::is_same_v<T, ToneMap>) return kToneMapInfos.size();
+        else if constexpr (std::is_same_v<T, DefaultLight>) return kDefaultLightInfos.size();
         else return kDepthFormatInfos.size();
     }();
     std::array<T, n> out{};
@@ -207,6 +218,7 @@ inline constexpr auto kOrders = values<Order>();
 inline constexpr auto kHsrs = values<Hsr>();
 inline constexpr auto kDepthFormats = values<DepthFormat>();
 inline constexpr auto kToneMaps = values<ToneMap>();
+inline constexpr auto kDefaultLights = values<DefaultLight>();
 
 // The tables hold their enum's values in order, so that traitsOf(v) is v's row.
 static_assert([] {
@@ -271,6 +283,8 @@ struct Settings {
     glm::vec4 background{0.12f, 0.13f, 0.15f, 1.0f};
     ToneMap tonemap = ToneMap::None;  // frugal/Image.h
     int samples = 1;  // multisampling: 1, 2, 4 or 8 samples a pixel (Backend::createTarget)
+    DefaultLight light = DefaultLight::On;  // the directional light where the scene has no lights
+    float environment = 0.3f;               // the uniform white environment's radiance (0: none)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
 
@@ -282,11 +296,12 @@ enum class SettingKind : std::uint8_t {
     Pair,    // two whole numbers, each in [min, max]: "AxB" on the command line, [A, B] in JSON, (A, B) in Python
     Choice,  // one of `choices`, by name
     Colour,  // r,g,b or r,g,b,a, each 0 to 1 (alpha 1 when not given)
+    Real,    // a finite number in [low, high]
 };
 
 // A setting's value as the front ends pass it: Switch bool, Whole long long, Pair two long longs,
-// Choice the name, Colour 3 or 4 numbers.
-using SettingValue = std::variant<bool, long long, std::array<long long, 2>, std::string, std::vector<double>>;
+// Choice the name, Colour 3 or 4 numbers, Real a double.
+using SettingValue = std::variant<bool, long long, std::array<long long, 2>, std::string, std::vector<double>, double>;
 
 struct SettingInfo {
     std::string name;       // "cull-bins": the flag (--cull-bins), the settings file's key; Python's keyword cull_bins
@@ -297,6 +312,7 @@ struct SettingInfo {
     std::string topic;      // the group of flags it is listed under: "image", "culling", "order", ...
     long long min = 0, max = 0;        // Whole and Pair: each number's range
     std::vector<long long> only;       // Whole: when not empty, the values allowed (within the range)
+    double low = 0.0, high = 0.0;      // Real: its range
     std::vector<ChoiceInfo> choices;   // Choice: every value, in the enum's order
     bool flag = true;       // a flag of the commands that render (ids is not: `render --ids FILE` sets it)
     std::function<SettingValue(const Settings&)> get;

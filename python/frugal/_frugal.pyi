@@ -43,6 +43,7 @@ _Order = Literal["submit", "key", "paper", "greedy", "best"]
 _Hsr = Literal["zbuffer", "depthsort", "adaptive", "adaptive-convex"]
 _DepthFormat = Literal["d24", "d32f"]
 _Tonemap = Literal["none", "pbr-neutral", "aces"]
+_Light = Literal["default", "none"]
 # </settings: choices>
 
 # Every setting with its value, as default_settings(), settings() and Renderer.settings give them.
@@ -64,6 +65,8 @@ class _Settings(TypedDict):
     hsr: _Hsr
     depth_format: _DepthFormat
     tonemap: _Tonemap
+    light: _Light
+    environment: float
     samples: int
     background: tuple[float, float, float, float]
     ids: bool
@@ -102,6 +105,8 @@ def settings(
     hsr: _Hsr = ...,
     depth_format: _DepthFormat = ...,
     tonemap: _Tonemap = ...,
+    light: _Light = ...,
+    environment: float = ...,
     samples: int = ...,
     background: _Colour = ...,
     ids: bool = ...,
@@ -477,6 +482,8 @@ class Renderer(_pybind11_object):
         hsr: _Hsr = ...,
         depth_format: _DepthFormat = ...,
         tonemap: _Tonemap = ...,
+        light: _Light = ...,
+        environment: float = ...,
         samples: int = ...,
         background: _Colour = ...,
         ids: bool = ...,

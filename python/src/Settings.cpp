@@ -55,6 +55,9 @@ std::optional<SettingValue> valueOf(const SettingInfo& info, const py::handle& v
                 return c;
             }
             break;
+        case SettingKind::Real:
+            if (py::isinstance<py::float_>(v) || isInt(v)) return v.cast<double>();
+            break;
     }
     return std::nullopt;
 }
@@ -68,7 +71,8 @@ py::object pythonValue(const SettingValue& value) {
                 py::tuple t(v.size());
                 for (std::size_t i = 0; i < v.size(); ++i) t[i] = py::float_(double(float(v[i])));
                 return t;
-            } else return py::cast(v);
+            } else if constexpr (std::is_same_v<V, double>) return py::float_(double(float(v)));
+            else return py::cast(v);
         },
         value);
 }
@@ -108,7 +112,7 @@ Settings settingsFrom(const py::kwargs& kwargs) {
 }
 
 py::list settingsSchema() {
-    const char* const kinds[] = {"switch", "whole", "pair", "choice", "colour"};
+    const char* const kinds[] = {"switch", "whole", "pair", "choice", "colour", "real"};
     const Settings defaults;
     py::list out;
     for (const SettingInfo& info : settingInfos()) {
@@ -124,7 +128,8 @@ py::list settingsSchema() {
         d["choices"] = choices;
         d["range"] = info.kind == SettingKind::Whole || info.kind == SettingKind::Pair
                          ? py::object(py::make_tuple(info.min, info.max))
-                         : py::object(py::none());
+                     : info.kind == SettingKind::Real ? py::object(py::make_tuple(info.low, info.high))
+                                                      : py::object(py::none());
         d["expected"] = expected(info);
         py::list conflicts;
         for (const SettingsConflict& c : settingsConflicts())

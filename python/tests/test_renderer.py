@@ -136,6 +136,29 @@ def test_a_transparent_background_gives_straight_alpha():
             assert (r.render(camera).color[..., 3] == 255).all()
 
 
+def test_the_default_light_and_the_environment_are_keywords():
+    """light= and environment= as --light and --environment: each changes only the lit pixels; no
+    light and no environment leave the cubes black; bad values are refused with the expected form."""
+    import numpy as np
+    scene = frugal.load("builtin:cubes")
+
+    def color(**settings):
+        with frugal.Renderer(scene, size=(64, 48), background=(0, 0, 0), ids=True, **settings) as r:
+            f = r.render()
+            return f.color[..., :3].astype(int), f.ids != 0
+
+    plain, covered = color()
+    assert covered.sum() > 200
+    assert np.array_equal(color(light="default", environment=0.3)[0], plain)
+    assert color(light="none")[0][covered].sum() < plain[covered].sum() * 0.75
+    assert color(environment=1)[0][covered].sum() > plain[covered].sum() * 1.25
+    assert color(light="none", environment=0)[0].max() == 0
+    with pytest.raises(frugal.InputError, match="environment: -1 is not a number from 0 to 1000000"):
+        frugal.Renderer(scene, environment=-1)
+    with pytest.raises(frugal.InputError, match="light: 'sun' is not a light"):
+        frugal.Renderer(scene, light="sun")
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

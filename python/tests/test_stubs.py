@@ -70,7 +70,7 @@ def test_the_stubs_take_every_setting_as_a_keyword_typed_by_its_kind():
     defaults = frugal.default_settings()
     for info in SCHEMA:  # what the module gives has the stubs' kind of value
         value = defaults[info["name"]]
-        kind = {"switch": bool, "whole": int, "pair": tuple, "colour": tuple, "choice": str}[info["kind"]]
+        kind = {"switch": bool, "whole": int, "pair": tuple, "colour": tuple, "choice": str, "real": float}[info["kind"]]
         assert type(value) is kind, f"{info['name']}: {value!r}"
 
 

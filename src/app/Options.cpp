@@ -1,5 +1,7 @@
 #include "app/Options.h"
 
+#include "renderer/Stage.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -78,6 +80,8 @@ FlagGroup renderFlags(RenderOptions& o) {
         setting("background"),
         setting("tonemap"),
         setting("samples"),
+        setting("light"),
+        setting("environment"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),
         flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",
@@ -210,9 +214,9 @@ FrameSetupOf frameSetups(const RenderOptions& options, const Scene& scene, bool 
                                                                     frameTimeOf(options, scene, frame)};
                                               },
                                               s.width, s.height, writeIds, s.depthFormat);
-    return [setups = std::move(setups), tonemap = s.tonemap](int frame) -> Result<FrameSetup> {
+    return [setups = std::move(setups), s](int frame) -> Result<FrameSetup> {
         Result<FrameSetup> setup = setups(frame);
-        if (setup) setup->params.tonemap = tonemap;
+        if (setup) applyShading(s, setup->params);
         return setup;
     };
 }

@@ -193,7 +193,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     Result<FrameSetup> setup = setUpFrame(*scene, camera, seconds, s.width, s.height, s.ids, s.depthFormat,
                                           stillBounds ? &*stillBounds : nullptr);
     if (!setup) return Error{scene->source + ": " + setup.error().message};
-    setup->params.tonemap = s.tonemap;
+    applyShading(s, setup->params);
     frame.stats = FrameStats{};
     FrameStats& stats = frame.stats;
     stats.time = seconds;

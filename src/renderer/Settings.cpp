@@ -40,6 +40,18 @@ SettingInfo whole(std::string name, std::string metavar, std::string topic, std:
     return info;
 }
 
+// A real number in [low, high] (a float member).
+template <class Field>
+SettingInfo real(std::string name, std::string metavar, std::string topic, std::string help, double low, double high,
+                 Field field) {
+    SettingInfo info = entry(std::move(name), SettingKind::Real, std::move(metavar), std::move(topic), std::move(help));
+    info.low = low;
+    info.high = high;
+    info.get = [field](const Settings& s) { return SettingValue(double(field(s))); };
+    info.put = [field](Settings& s, const SettingValue& v) { field(s) = float(std::get<double>(v)); };
+    return info;
+}
+
 // Two whole numbers; `first` and `second` give the members.
 template <class First, class Second>
 SettingInfo pair(std::string name, std::string metavar, std::string noun, std::string topic, std::string help,
@@ -158,6 +170,13 @@ std::vector<SettingInfo> makeTable() {
                        "how linear colour is mapped before its display encoding, as the Khronos glTF Sample Renderer "
                        "maps it (the background is not)",
                        [](auto& s) -> auto& { return s.tonemap; }));
+    t.push_back(choice("light", "L", "a light", kImage, "the light of a scene without lights of its own",
+                       [](auto& s) -> auto& { return s.light; }));
+    t.push_back(real("environment", "L", kImage,
+                     "radiance of the uniform white environment that lights every material, diffusely and "
+                     "specularly, as image-based light (default 0.3: a white matte surface reflects 0.3 of it in "
+                     "any orientation; 0 = none)",
+                     0.0, 1e6, [](auto& s) -> auto& { return s.environment; }));
     SettingInfo samples = whole("samples", "N", kImage,
                                 "samples a pixel (multisampling, resolved to one colour each): 1 (default), 2, 4 "
                                 "or 8, at least as many as the backend has (llvmpipe and the software backend: 4 for "
@@ -278,6 +297,10 @@ std::string check(const SettingInfo& info, const SettingValue& value) {
                             std::all_of(v->begin(), v->end(), [](double x) { return x >= 0.0 && x <= 1.0; });
             return ok ? "" : refused;
         }
+        case SettingKind::Real: {
+            const double* v = std::get_if<double>(&value);
+            return v && std::isfinite(*v) && *v >= info.low && *v <= info.high ? "" : refused;
+        }
     }
     return refused;
 }
@@ -306,6 +329,9 @@ std::optional<SettingValue> fromJson(const SettingInfo& info, const Json& v) {
                 return c;
             }
             break;
+        case SettingKind::Real:
+            if (v.is_number()) return v.get<double>();
+            break;
     }
     return std::nullopt;
 }
@@ -319,6 +345,7 @@ std::string jsonText(const SettingValue& value) {
             else if constexpr (std::is_same_v<V, std::array<long long, 2>>)
                 return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + "]";
             else if constexpr (std::is_same_v<V, std::string>) return Json(v).dump();
+            else if constexpr (std::is_same_v<V, double>) return floatText(v);
             else {
                 std::string out;
                 for (const double x : v) out += (out.empty() ? "[" : ", ") + floatText(x);
@@ -372,6 +399,13 @@ std::string expected(const SettingInfo& info) {
         }
         case SettingKind::Colour:
             return "a colour (r,g,b or r,g,b,a, each 0 to 1)";
+        case SettingKind::Real: {
+            const auto bound = [](double v) {  // 1000000, not 1e+06
+                return v == std::floor(v) && std::fabs(v) < 1e15 ? std::to_string(static_cast<long long>(v))
+                                                                 : floatText(v);
+            };
+            return "a number from " + bound(info.low) + " to " + bound(info.high);
+        }
     }
     return {};
 }
@@ -413,6 +447,9 @@ std::optional<SettingValue> parseSettingText(const SettingInfo& info, std::strin
             }
             return c;
         }
+        case SettingKind::Real:
+            if (double v = 0.0; parseFinite(text, v)) return v;
+            break;
     }
     return std::nullopt;
 }
@@ -427,6 +464,7 @@ std::string settingText(const SettingInfo& info, const SettingValue& value) {
             else if constexpr (std::is_same_v<V, std::array<long long, 2>>)
                 return std::to_string(v[0]) + "x" + std::to_string(v[1]);
             else if constexpr (std::is_same_v<V, std::string>) return v;
+            else if constexpr (std::is_same_v<V, double>) return floatText(v);
             else {
                 std::string out;
                 for (const double x : v) out += (out.empty() ? "" : ",") + floatText(x);

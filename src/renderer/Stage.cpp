@@ -58,6 +58,12 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
     return Stage(std::move(parts));
 }
 
+void applyShading(const Settings& s, FrameParams& params) {
+    params.tonemap = s.tonemap;
+    params.lighting.environment = s.environment;
+    if (s.light == DefaultLight::Off) params.lighting.light = 0.0f;
+}
+
 Result<bool> Stage::upload(const Scene& scene) {
     parts_->renderer.reset();  // released before the next are made (a backend may reuse the names)
     Result<SceneRenderer> uploaded = SceneRenderer::create(*parts_->backend, scene);

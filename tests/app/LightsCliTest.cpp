@@ -10,6 +10,7 @@
 
 #include "CliSupport.h"
 #include "TestSupport.h"
+#include "io/ImageIO.h"
 
 namespace frugal {
 namespace {
@@ -63,6 +64,66 @@ TEST(LightsCliTest, ASpotLightLightsTheFloorAlikeOnBothBackends) {
     EXPECT_NE(info.out.find("not modelled: none"), std::string::npos) << info.out;
     const CliRun dark = runFrugal(dir, {"info", "dark.gltf"});
     EXPECT_NE(dark.out.find("lights: 0 (the default directional light)\n"), std::string::npos) << dark.out;
+}
+
+}  // namespace
+}  // namespace frugal
+
+namespace frugal {
+namespace {
+
+// --light and --environment: without the default light the lit pixels darken and the background
+// stays; a brighter environment brightens them; no light and no environment leaves a scene without
+// emission black; a file's own lights shine with --light none; GL and the software reference agree
+// under each; bad values are one line.
+TEST(LightsCliTest, TheDefaultLightAndTheEnvironmentAreSettings) {
+    const fs::path dir = test::freshDir("LightSettingsCli");
+    const auto render = [&](const std::string& name, const std::string& scene, std::vector<std::string> extra) {
+        std::vector<std::string> args = {"render", scene, "-o",           name + ".png", "--size",
+                                         "120x90", "-q",  "--background", "0,0,0"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliRun run = runFrugal(dir, args);
+        EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
+        Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
+        EXPECT_TRUE(image) << name;
+        return image ? image->pixels8 : std::vector<std::uint8_t>{};
+    };
+    // Sums of the rgb of the pixels that are not background, and how many there are.
+    const auto lit = [](const std::vector<std::uint8_t>& p) {
+        std::pair<std::uint64_t, std::uint64_t> sum{0, 0};
+        for (std::size_t i = 0; i < p.size(); i += 4)
+            if (p[i] || p[i + 1] || p[i + 2]) sum.first += p[i] + p[i + 1] + p[i + 2], ++sum.second;
+        return sum;
+    };
+    const auto plain = lit(render("plain", "builtin:cubes", {}));
+    render("given", "builtin:cubes", {"--light", "default", "--environment", "0.3"});
+    EXPECT_EQ(readAll(dir / "plain.png"), readAll(dir / "given.png")) << "the defaults are today's light";
+    const auto noLight = lit(render("no-light", "builtin:cubes", {"--light", "none"}));
+    const auto bright = lit(render("bright", "builtin:cubes", {"--environment", "1.2"}));
+    EXPECT_GT(plain.second, 1000u);
+    EXPECT_LT(noLight.first, plain.first * 3 / 4);
+    EXPECT_GT(bright.first, plain.first * 5 / 4);
+    EXPECT_EQ(lit(render("dark", "builtin:cubes", {"--light", "none", "--environment", "0"})).second, 0u)
+        << "nothing lights the cubes";
+    // A file's own light still shines without the default light.
+    const fs::path spot = dir / "spot.gltf";
+    test::writeFile(spot, floorUnderSpot(true));
+    const auto spotLit = lit(render("spot", spot.string(), {"--light", "none", "--environment", "0"}));
+    EXPECT_GT(spotLit.second, 100u);
+    for (const std::vector<std::string>& extra : {std::vector<std::string>{"--light", "none"},
+                                                  {"--environment", "2.5"},
+                                                  {"--light", "none", "--environment", "0"}}) {
+        std::vector<std::string> args = {"diff", "builtin:materials", "--size", "120x90", "--tolerance", "1"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliRun diff = runFrugal(dir, args);
+        EXPECT_EQ(diff.status, 0) << test::joined(args) << ": " << diff.out << diff.err;
+    }
+    test::expectOneErrorLine(
+        test::freshDir("LightSettingsCliBad"),
+        {{{"render", "--light", "sun"}, "error: --light: 'sun' is not a light (default, none)"},
+         {{"render", "--environment", "-1"}, "error: --environment: '-1' is not a number from 0 to 1000000"},
+         {{"render", "--environment", "nan"}, "error: --environment: 'nan' is not a number from 0 to 1000000"},
+         {{"render", "--environment", "bright"}, "error: --environment: 'bright' is not a number from 0 to 1000000"}});
 }
 
 }  // namespace

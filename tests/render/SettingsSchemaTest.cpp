@@ -34,6 +34,8 @@ SettingValue otherValue(const SettingInfo& info, const SettingValue& now) {
                                                                                      : info.choices.back().name);
         case SettingKind::Colour:
             return std::vector<double>{0.25, 0.5, 0.75, 0.125};
+        case SettingKind::Real:
+            return std::get<double>(now) < info.high ? std::min(info.high, std::get<double>(now) + 0.5) : info.low;
     }
     return now;
 }
