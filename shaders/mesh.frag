@@ -117,6 +117,31 @@ float ggx(float nl, float nv, float nh, float alpha2) {
     return visibility * (alpha2 / max(kPi * (f * f), 1.0e-30));
 }
 
+#ifdef FRUGAL_LIGHTS
+// Light i's direction l toward it and its intensity e at this pixel (pipeline/Backend.h, FrameLight).
+void lightAt(int i, out vec3 l, out vec3 e) {
+    vec4 at = u_lights[4 * i], axis = u_lights[4 * i + 1], power = u_lights[4 * i + 2];
+    e = power.rgb;
+    l = -axis.xyz;
+    if (at.w > 0.5) {
+        vec3 pointToLight = at.xyz - v_position;
+        l = normalize(pointToLight);
+        float d2 = dot(pointToLight, pointToLight);
+        float fade = 1.0 / d2;
+        if (axis.w > 0.0) {
+            float q = d2 / (axis.w * axis.w);
+            fade = max(min(1.0 - q * q, 1.0), 0.0) / d2;
+        }
+        e = e * fade;
+        if (at.w > 1.5) {
+            float c = -dot(axis.xyz, l), innerCos = u_lights[4 * i + 3].x;
+            float t = (c - power.w) / (innerCos - power.w);
+            e = e * (c > power.w ? (c < innerCos ? t * t : 1.0) : 0.0);
+        }
+    }
+}
+#endif
+
 // The Khronos renderer's getIBLGGXFresnel (specular weight 1): single and multiple scattering.
 float iblFresnel(float f0, float r, float c5, vec2 ab) {
     float fss = (f0 + (max(1.0 - r, f0) - f0) * c5) * ab.x + ab.y;
@@ -172,6 +197,27 @@ void main() {
 #endif
 #ifdef FRUGAL_UNLIT
     vec3 linear = base.rgb;
+#elif defined(FRUGAL_LAMBERT)
+    // The diffuse term alone (FrameParams::shading): the environment's radiance and each light's
+    // E·(n·l)/π on the base colour, then the emission.
+    vec3 n = normalize(v_normal);
+    if (!gl_FrontFacing) n = -n;
+    vec3 irradiance = vec3(u_environment);
+#ifdef FRUGAL_LIGHTS
+    int lightCount = int(u_lights[4 * FRUGAL_LIGHTS].x);
+    for (int i = 0; i < lightCount; ++i) {
+        vec3 l, e;
+        lightAt(i, l, e);
+        irradiance += e * (clampedDot(n, l) / kPi);
+    }
+#else
+    irradiance += vec3(u_light * (clampedDot(n, u_toLight) / kPi));
+#endif
+    vec3 emissive = u_emissive;
+#ifdef FRUGAL_EMISSIVE_MAP
+    emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
+#endif
+    vec3 linear = base.rgb * irradiance + emissive;
 #else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
@@ -267,25 +313,8 @@ void main() {
 #endif
     int lightCount = int(u_lights[4 * FRUGAL_LIGHTS].x);
     for (int i = 0; i < lightCount; ++i) {
-        vec4 at = u_lights[4 * i], axis = u_lights[4 * i + 1], power = u_lights[4 * i + 2];
-        vec3 e = power.rgb;
-        vec3 l = -axis.xyz;
-        if (at.w > 0.5) {
-            vec3 pointToLight = at.xyz - v_position;
-            l = normalize(pointToLight);
-            float d2 = dot(pointToLight, pointToLight);
-            float fade = 1.0 / d2;
-            if (axis.w > 0.0) {
-                float q = d2 / (axis.w * axis.w);
-                fade = max(min(1.0 - q * q, 1.0), 0.0) / d2;
-            }
-            e = e * fade;
-            if (at.w > 1.5) {
-                float c = -dot(axis.xyz, l), innerCos = u_lights[4 * i + 3].x;
-                float t = (c - power.w) / (innerCos - power.w);
-                e = e * (c > power.w ? (c < innerCos ? t * t : 1.0) : 0.0);
-            }
-        }
+        vec3 l, e;
+        lightAt(i, l, e);
         vec3 h = normalize(l + v);
         float nl = clampedDot(n, l), nh = clampedDot(n, h), vh = clampedDot(v, h);
         vec3 radiance = e * nl;

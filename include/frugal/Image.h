@@ -33,6 +33,13 @@ enum class DepthFormat : std::uint8_t { D24, D32F };
 // toward white), Aces, Stephen Hill's fit of the ACES filmic curve (its toneMapACES_Hill).
 enum class ToneMap : std::uint8_t { None, PbrNeutral, Aces };
 
+// How lit materials are shaded: Full, glTF's metallic-roughness model with every map and extension
+// a material uses (the default); Lambert, the fast approximation: base colour (factor, vertex
+// colours, texture) times the diffuse light alone (the environment's radiance plus each light's
+// E·(n·l)/π) plus the emission, without specular terms and without the metallic-roughness,
+// occlusion, normal, specular-glossiness and clear-coat maps. Unlit materials are unlit in both.
+enum class ShadingModel : std::uint8_t { Full, Lambert };
+
 inline const char* depthFormatName(DepthFormat format) { return format == DepthFormat::D32F ? "d32f" : "d24"; }
 // Window z of the far plane: what a target of `format` is cleared to.
 inline float farDepth(DepthFormat format) { return format == DepthFormat::D32F ? 0.0f : 1.0f; }

@@ -180,6 +180,13 @@ inline constexpr std::array<ChoiceInfo, 2> kDefaultLightInfos{{
     {"none", "no default light: the environment lights the scene, with the scene's own lights where it has any"},
 }};
 
+inline constexpr std::array<ChoiceInfo, 2> kShadingModelInfos{{
+    {"full", "glTF's metallic-roughness model as the Khronos glTF Sample Renderer draws it, with every map and "
+             "extension the material uses (default)"},
+    {"lambert", "a fast approximation: base colour times the diffuse light (environment and lights) plus emission; "
+                "no specular, metallic-roughness, occlusion, normal or clear-coat terms"},
+}};
+
 constexpr const CullTraits& traitsOf(Cull v) { return kCullTraits[std::size_t(v)]; }
 constexpr const OrderTraits& traitsOf(Order v) { return kOrderTraits[std::size_t(v)]; }
 constexpr const HsrTraits& traitsOf(Hsr v) { return kHsrTraits[std::size_t(v)]; }
@@ -192,6 +199,7 @@ constexpr const ChoiceInfo& infoOf(DepthInterp v) { return kDepthInterpInfos[std
 constexpr const ChoiceInfo& infoOf(DepthFormat v) { return kDepthFormatInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(ToneMap v) { return kToneMapInfos[std::size_t(v)]; }
 constexpr const ChoiceInfo& infoOf(DefaultLight v) { return kDefaultLightInfos[std::size_t(v)]; }
+constexpr const ChoiceInfo& infoOf(ShadingModel v) { return kShadingModelInfos[std::size_t(v)]; }
 
 // Every value of an enum, in its order: values<Cull>() is {None, Sphere, ...}.
 template <class T>
@@ -204,6 +212,7 @@ constexpr auto values() {
         else if constexpr (std::is_same_v<T, DepthInterp>) return kDepthInterpInfos.size();
         else if constexpr (std::is_same_v<T, ToneMap>) return kToneMapInfos.size();
         else if constexpr (std::is_same_v<T, DefaultLight>) return kDefaultLightInfos.size();
+        else if constexpr (std::is_same_v<T, ShadingModel>) return kShadingModelInfos.size();
         else return kDepthFormatInfos.size();
     }();
     std::array<T, n> out{};
@@ -219,6 +228,7 @@ inline constexpr auto kHsrs = values<Hsr>();
 inline constexpr auto kDepthFormats = values<DepthFormat>();
 inline constexpr auto kToneMaps = values<ToneMap>();
 inline constexpr auto kDefaultLights = values<DefaultLight>();
+inline constexpr auto kShadingModels = values<ShadingModel>();
 
 // The tables hold their enum's values in order, so that traitsOf(v) is v's row.
 static_assert([] {
@@ -285,6 +295,7 @@ struct Settings {
     int samples = 1;  // multisampling: 1, 2, 4 or 8 samples a pixel (Backend::createTarget)
     DefaultLight light = DefaultLight::On;  // the directional light where the scene has no lights
     float environment = 0.3f;               // the uniform white environment's radiance (0: none)
+    ShadingModel shading = ShadingModel::Full;  // frugal/Image.h
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
 

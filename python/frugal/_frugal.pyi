@@ -43,6 +43,7 @@ _Order = Literal["submit", "key", "paper", "greedy", "best"]
 _Hsr = Literal["zbuffer", "depthsort", "adaptive", "adaptive-convex"]
 _DepthFormat = Literal["d24", "d32f"]
 _Tonemap = Literal["none", "pbr-neutral", "aces"]
+_Shading = Literal["full", "lambert"]
 _Light = Literal["default", "none"]
 # </settings: choices>
 
@@ -65,6 +66,7 @@ class _Settings(TypedDict):
     hsr: _Hsr
     depth_format: _DepthFormat
     tonemap: _Tonemap
+    shading: _Shading
     light: _Light
     environment: float
     samples: int
@@ -105,6 +107,7 @@ def settings(
     hsr: _Hsr = ...,
     depth_format: _DepthFormat = ...,
     tonemap: _Tonemap = ...,
+    shading: _Shading = ...,
     light: _Light = ...,
     environment: float = ...,
     samples: int = ...,
@@ -482,6 +485,7 @@ class Renderer(_pybind11_object):
         hsr: _Hsr = ...,
         depth_format: _DepthFormat = ...,
         tonemap: _Tonemap = ...,
+        shading: _Shading = ...,
         light: _Light = ...,
         environment: float = ...,
         samples: int = ...,

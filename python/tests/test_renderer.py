@@ -157,6 +157,12 @@ def test_the_default_light_and_the_environment_are_keywords():
         frugal.Renderer(scene, environment=-1)
     with pytest.raises(frugal.InputError, match="light: 'sun' is not a light"):
         frugal.Renderer(scene, light="sun")
+    # shading="lambert": the diffuse approximation, the same triangles, GL and software alike.
+    lambert, lambert_covered = color(shading="lambert")
+    assert np.array_equal(lambert_covered, covered)
+    assert (lambert != plain).any()
+    with frugal.Renderer(scene, size=(64, 48), background=(0, 0, 0), backend="software", shading="lambert") as r:
+        assert np.abs(r.render().color[..., :3].astype(int) - lambert).max() <= 1
 
 
 def test_close_and_context_manager():

@@ -127,7 +127,8 @@ std::string pairedText(const PairedRatio& p) {
 const char* familyColor(const std::string& family) {
     static const std::map<std::string, const char*> colors{
         {"plain", "#333333"}, {"cull", "#1f77b4"},  {"order", "#ff7f0e"},       {"hsr", "#2ca02c"},
-        {"interp", "#9467bd"}, {"reuse", "#d62728"}, {"combination", "#8c564b"}, {"floor", "#7f7f7f"}};
+        {"interp", "#9467bd"}, {"reuse", "#d62728"}, {"combination", "#8c564b"}, {"floor", "#7f7f7f"},
+        {"shading", "#e377c2"}};
     const auto found = colors.find(family);
     return found == colors.end() ? "#000000" : found->second;
 }

@@ -358,6 +358,11 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
         for (const DepthInterp interp : {DepthInterp::Span, DepthInterp::Dda})
             out.push_back(with(base, std::string("interp ") + toString(interp), "interp",
                                [interp](Settings& s) { s.interp = interp; }));
+    // The shading trades, against the base's full shading: the Lambert approximation, and one sample
+    // a pixel where the base has more.
+    if (base.shading == ShadingModel::Full)
+        out.push_back(with(base, "shading lambert", "shading", [](Settings& s) { s.shading = ShadingModel::Lambert; }));
+    if (base.samples > 1) out.push_back(with(base, "samples 1", "shading", [](Settings& s) { s.samples = 1; }));
     out.push_back(with(base, "cull conservative + order key", "combination", [](Settings& s) {
         s.cull = Cull::Conservative;
         s.order = Order::Key;
@@ -376,6 +381,8 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
             s.reuse = true;
         }));
     }
+    // Those the base's settings rule out (occlusion culling and the oracle with several samples).
+    std::erase_if(out, [](const TradeCandidate& c) { return settingsProblem(c.settings).has_value(); });
     return out;
 }
 

@@ -29,7 +29,7 @@ namespace frugal {
 
 struct TradeCandidate {
     std::string name;    // "plain", "cull conservative", "cull conservative + order key", ...
-    std::string family;  // "plain", "cull", "order", "hsr", "interp", "reuse", "combination", "floor"
+    std::string family;  // "plain", "cull", "order", "hsr", "interp", "reuse", "combination", "floor", "shading"
     Settings settings;
     bool floor = false;  // a lower bound (the oracle), not a method to use
 };
@@ -136,7 +136,8 @@ struct TradeReport {
 
 // The candidates for `base` (size, backend, threads, depth format, background): the plain render,
 // the culling methods (and the oracle as floor), the orders key and greedy, the hidden-surface modes,
-// on the software backend the interpolators, in a sequence reuse, and the useful combinations.
+// on the software backend the interpolators, the shading trades (the Lambert approximation; one
+// sample where the base has more), in a sequence reuse, and the useful combinations.
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software);
 
 // What a candidate drew in one timed render: FrameStats::drawFingerprint and culledFingerprint.

@@ -1,7 +1,5 @@
 #include "app/Options.h"
 
-#include "renderer/Stage.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -80,6 +78,7 @@ FlagGroup renderFlags(RenderOptions& o) {
         setting("background"),
         setting("tonemap"),
         setting("samples"),
+        setting("shading"),
         setting("light"),
         setting("environment"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "

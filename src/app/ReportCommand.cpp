@@ -18,8 +18,9 @@ const char* reportHelp() {
 
 Runs every method that trades accuracy for speed on SCENE (default builtin:default), in one
 process with interleaved timing: the culling methods (the oracle as their floor), the draw orders
-key and greedy, the hidden-surface modes, on the software backend the interpolators, in a sequence
-(--frames) temporal reuse, and combinations. Each is judged against the plain render of the same
+key and greedy, the hidden-surface modes, on the software backend the interpolators, the shading
+trades (--shading lambert; --samples 1 where more are asked for), in a sequence (--frames) temporal
+reuse, and combinations. Each is judged against the plain render of the same
 view or frame: pixels that differ, the worst frame, the visible triangles it lacks (misses), PSNR,
 the worst depth difference. Prints the fastest exact settings (the plain render's colour and
 depth, bit for bit) and the fastest within --budget-px differing pixels a frame, each with the

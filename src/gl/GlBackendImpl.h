@@ -69,8 +69,9 @@ enum Variant : unsigned {
     kClearcoatNormalMapBit = 65536u,
     kToneMapNeutralBit = 131072u,  // FrameParams::tonemap
     kToneMapAcesBit = 262144u,
-    kLightsBit = 524288u,  // the scene's punctual lights (Lighting::lights) instead of the directional light
-    kVariantCount = 1048576u
+    kLightsBit = 524288u,    // the scene's punctual lights (Lighting::lights) instead of the directional light
+    kLambertBit = 1048576u,  // FrameParams::shading Lambert: the diffuse term alone
+    kVariantCount = 2097152u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |

@@ -106,6 +106,10 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (params.unlit)  // light only
         variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit | kSpecularGlossinessBit |
                      kSpecularGlossinessMapBit | kClearcoatBits);
+    if (frame_.shading == ShadingModel::Lambert && !params.unlit)  // the diffuse term: base colour and emission
+        variant = (variant & ~(kMetallicRoughnessBit | kOcclusionBit | kNormalMapBit | kSpecularGlossinessBit |
+                               kSpecularGlossinessMapBit | kClearcoatBit | kClearcoatBits)) |
+                  kLambertBit;
     if (mesh.layout.tangent < 0) variant &= ~(kNormalMapBit | kClearcoatNormalMapBit);  // no basis to read them in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
     if (params.unlit) variant |= kUnlitBit;

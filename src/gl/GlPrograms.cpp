@@ -89,6 +89,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kClearcoatNormalMapBit) defines += "#define FRUGAL_CLEARCOAT_NORMAL_MAP\n";
     if (variant & kToneMapNeutralBit) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
     if (variant & kToneMapAcesBit) defines += "#define FRUGAL_TONEMAP_ACES\n";
+    if (variant & kLambertBit) defines += "#define FRUGAL_LAMBERT\n";
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;

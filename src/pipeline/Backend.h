@@ -142,6 +142,7 @@ struct FrameParams {
     DepthFormat depthFormat = DepthFormat::D24;
     Lighting lighting;
     ToneMap tonemap = ToneMap::None;  // applied to rgb before its encoding (frugal/Image.h, below)
+    ShadingModel shading = ShadingModel::Full;  // frugal/Image.h; Lambert: rgb = base.rgb·(L + Σ E·n·l/π) + emission
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
 };
 

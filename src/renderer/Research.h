@@ -20,7 +20,8 @@
 
 // Stages and backends: a backend with a target and a scene uploaded (Stage); opening a backend by
 // kind and the memory checks; the software backend's --interp counters; GL contexts and entry
-// points for the minimal GL program; the state-change cost measurement.
+// points for the minimal GL program; the state-change cost measurement; the settings that shade a
+// frame put into its parameters (applyShading, Stage.h).
 #include "gl/GlApi.h"
 #include "gl/GlContext.h"
 #include "gl/StateCosts.h"

@@ -170,6 +170,8 @@ std::vector<SettingInfo> makeTable() {
                        "how linear colour is mapped before its display encoding, as the Khronos glTF Sample Renderer "
                        "maps it (the background is not)",
                        [](auto& s) -> auto& { return s.tonemap; }));
+    t.push_back(choice("shading", "MODEL", "a shading model", kImage, "how lit materials are shaded",
+                       [](auto& s) -> auto& { return s.shading; }));
     t.push_back(choice("light", "L", "a light", kImage, "the light of a scene without lights of its own",
                        [](auto& s) -> auto& { return s.light; }));
     t.push_back(real("environment", "L", kImage,

@@ -60,6 +60,7 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
 
 void applyShading(const Settings& s, FrameParams& params) {
     params.tonemap = s.tonemap;
+    params.shading = s.shading;
     params.lighting.environment = s.environment;
     if (s.light == DefaultLight::Off) params.lighting.light = 0.0f;
 }

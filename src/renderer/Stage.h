@@ -16,7 +16,7 @@
 #include "pipeline/SceneRenderer.h"
 
 namespace frugal {
-// The settings that shade a whole frame, put into its parameters: tone mapping, the default light
+// The settings that shade a whole frame, put into its parameters: the shading model, tone mapping, the default light
 // (its intensity 0 with DefaultLight::Off) and the environment's radiance. What every front end
 // that sets up frames from Settings calls (the Renderer, the command line's sequences).
 void applyShading(const Settings& s, FrameParams& params);

@@ -25,7 +25,7 @@ constexpr int kSlotDirty = 1;       // paper's steps: kClear | kCopy, what P_ds 
 
 bool sameFrame(const FrameParams& a, const FrameParams& b) {
     return a.view == b.view && a.projection == b.projection && a.lighting == b.lighting && a.tonemap == b.tonemap &&
-           a.writeIds == b.writeIds;
+           a.shading == b.shading && a.writeIds == b.writeIds;
 }
 
 bool sameRanges(const std::vector<IndexRange>& a, const std::vector<IndexRange>& b) {

@@ -576,31 +576,10 @@ struct Light {
         const F8 coatAlpha2 = (cr * cr) * (cr * cr);
         const F8 ncv = surface.coat ? saturate(dot(nc, v)) : zero;
         F8 coatSpecular[3] = {zero, zero, zero};
-        const Vec3& p = surface.position;
         for (const FrameLight& light : lights) {
-            F8 e[3] = {simd::splat(light.intensity.r), simd::splat(light.intensity.g), simd::splat(light.intensity.b)};
-            const Vec3 axis{simd::splat(light.direction.x), simd::splat(light.direction.y),
-                            simd::splat(light.direction.z)};
-            Vec3 l{simd::neg(axis.x), simd::neg(axis.y), simd::neg(axis.z)};
-            if (light.type != LightType::Directional) {
-                const Vec3 pointToLight{simd::splat(light.position.x) - p.x, simd::splat(light.position.y) - p.y,
-                                        simd::splat(light.position.z) - p.z};
-                l = normalize(pointToLight);
-                const F8 d2 = dot(pointToLight, pointToLight);
-                F8 fade = one / d2;
-                if (light.range > 0.0f) {
-                    const F8 q = d2 / simd::splat(light.range * light.range);
-                    fade = simd::max(simd::min(one - q * q, one), zero) / d2;
-                }
-                for (int c = 0; c < 3; ++c) e[c] = e[c] * fade;
-                if (light.type == LightType::Spot) {
-                    const F8 cosine = simd::neg(dot(axis, l)), outer = simd::splat(light.outerCos);
-                    const F8 t = (cosine - outer) / simd::splat(light.innerCos - light.outerCos);
-                    const F8 inside = simd::selectf(simd::lt(cosine, simd::splat(light.innerCos)), t * t, one);
-                    const F8 cone = simd::selectf(simd::lt(outer, cosine), inside, zero);
-                    for (int c = 0; c < 3; ++c) e[c] = e[c] * cone;
-                }
-            }
+            Vec3 l;
+            F8 e[3];
+            lightAt(light, surface.position, l, e);
             const Vec3 h = normalize({l.x + v.x, l.y + v.y, l.z + v.z});
             const F8 nl = saturate(dot(n, l)), nh = saturate(dot(n, h)), vh = saturate(dot(v, h));
             const F8 lobe = ggx(nl, nv, nh, alpha2);
@@ -628,6 +607,48 @@ struct Light {
             out[c] = surface.coat
                          ? (coated[c] + (lit * (one - k) + coatSpecular[c] * k)) + surface.emission[c] * (one - k)
                          : lit + surface.emission[c];
+        }
+    }
+
+    // ShadingModel::Lambert's rgb (mesh.frag's FRUGAL_LAMBERT): the environment's radiance plus each
+    // light's E·(n·l)/π, on the base colour, plus the emission.
+    void lambert(const F8 base[4], const Vec3& n, const Vec3& position, const F8 emitted[3], F8 out[3]) const {
+        const F8 pi = simd::splat(kPi);
+        F8 irradiance[3] = {environment, environment, environment};
+        for (const FrameLight& light : lights) {
+            Vec3 l;
+            F8 e[3];
+            lightAt(light, position, l, e);
+            const F8 nl = saturate(dot(n, l)) / pi;
+            for (int c = 0; c < 3; ++c) irradiance[c] = irradiance[c] + e[c] * nl;
+        }
+        for (int c = 0; c < 3; ++c) out[c] = base[c] * irradiance[c] + emitted[c];
+    }
+
+    // The direction l toward `light` and its intensity e at world position p, as mesh.frag's lightAt
+    // (for the default directional light: l = toLight, e = its intensity).
+    static void lightAt(const FrameLight& light, const Vec3& p, Vec3& l, F8 e[3]) {
+        const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
+        for (int c = 0; c < 3; ++c) e[c] = simd::splat(light.intensity[c]);
+        const Vec3 axis{simd::splat(light.direction.x), simd::splat(light.direction.y), simd::splat(light.direction.z)};
+        l = {simd::neg(axis.x), simd::neg(axis.y), simd::neg(axis.z)};
+        if (light.type == LightType::Directional) return;
+        const Vec3 pointToLight{simd::splat(light.position.x) - p.x, simd::splat(light.position.y) - p.y,
+                                simd::splat(light.position.z) - p.z};
+        l = normalize(pointToLight);
+        const F8 d2 = dot(pointToLight, pointToLight);
+        F8 fade = one / d2;
+        if (light.range > 0.0f) {
+            const F8 q = d2 / simd::splat(light.range * light.range);
+            fade = simd::max(simd::min(one - q * q, one), zero) / d2;
+        }
+        for (int c = 0; c < 3; ++c) e[c] = e[c] * fade;
+        if (light.type == LightType::Spot) {
+            const F8 cosine = simd::neg(dot(axis, l)), outer = simd::splat(light.outerCos);
+            const F8 t = (cosine - outer) / simd::splat(light.innerCos - light.outerCos);
+            const F8 inside = simd::selectf(simd::lt(cosine, simd::splat(light.innerCos)), t * t, one);
+            const F8 cone = simd::selectf(simd::lt(outer, cosine), inside, zero);
+            for (int c = 0; c < 3; ++c) e[c] = e[c] * cone;
         }
     }
 
@@ -821,7 +842,17 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
             }
 
             F8 linear[3] = {base[0], base[1], base[2]};
-            if (!shading.unlit) {
+            if (shading.lambert && !shading.unlit) {
+                Vec3 n = normalize({value[0], value[1], value[2]});
+                if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
+                F8 emission[3] = {light.emission[0], light.emission[1], light.emission[2]};
+                if (shading.emissive) {
+                    F8 map[4];
+                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, map);
+                    for (int c = 0; c < 3; ++c) emission[c] = emission[c] * map[c];
+                }
+                light.lambert(base, n, {value[9], value[10], value[11]}, emission, linear);
+            } else if (!shading.unlit) {
                 Vec3 n = normalize({value[0], value[1], value[2]});
                 if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
                 Vec3 tangent{}, bitangent{};

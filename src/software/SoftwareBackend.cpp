@@ -259,7 +259,10 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
         return t;
     };
     input.shading.texture = texture(params.texture);
-    if (!params.unlit) {  // the other maps are light (as the GL backend's variants)
+    input.shading.lambert = frame_.shading == ShadingModel::Lambert && !params.unlit;
+    if (input.shading.lambert) {  // the diffuse term: the base colour's texture and the emission's only
+        input.shading.emissive = texture(params.emissiveTexture);
+    } else if (!params.unlit) {  // the other maps are light (as the GL backend's variants)
         input.shading.specularGlossiness = params.specularGlossiness;
         if (params.specularGlossiness)
             input.shading.specularGlossinessMap = texture(params.specularGlossinessTexture);

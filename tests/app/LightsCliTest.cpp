@@ -128,3 +128,41 @@ TEST(LightsCliTest, TheDefaultLightAndTheEnvironmentAreSettings) {
 
 }  // namespace
 }  // namespace frugal
+
+namespace frugal {
+namespace {
+
+// --shading lambert: the diffuse approximation. It changes the lit pixels of a scene of every kind
+// of material (specular highlights and maps gone), leaves unlit pixels and the background alone,
+// and GL and the software reference agree on it.
+TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
+    const fs::path dir = test::freshDir("ShadingCli");
+    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args = {"render", "builtin:materials", "-o", name + ".png", "--size", "160x120", "-q",
+                                         "--ids",  name + "-ids.png"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const CliRun run = runFrugal(dir, args);
+        EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
+        Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
+        EXPECT_TRUE(image) << name;
+        return image ? image->pixels8 : std::vector<std::uint8_t>{};
+    };
+    const std::vector<std::uint8_t> full = render("full", {});
+    render("full-given", {"--shading", "full"});
+    EXPECT_EQ(readAll(dir / "full.png"), readAll(dir / "full-given.png"));
+    const std::vector<std::uint8_t> lambert = render("lambert", {"--shading", "lambert"});
+    ASSERT_EQ(full.size(), lambert.size());
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < full.size(); i += 4) changed += full[i] != lambert[i] || full[i + 1] != lambert[i + 1];
+    EXPECT_GT(changed, full.size() / 4 / 10);
+    EXPECT_EQ(readAll(dir / "full-ids.png"), readAll(dir / "lambert-ids.png")) << "the same triangles";
+    const CliRun diff =
+        runFrugal(dir, {"diff", "builtin:materials", "--size", "160x120", "--shading", "lambert", "--tolerance", "1"});
+    EXPECT_EQ(diff.status, 0) << diff.out << diff.err;
+    test::expectOneErrorLine(test::freshDir("ShadingCliBad"), {{{"render", "--shading", "phong"},
+                                                                "error: --shading: 'phong' is not a shading model "
+                                                                "(full, lambert)"}});
+}
+
+}  // namespace
+}  // namespace frugal

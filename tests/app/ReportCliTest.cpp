@@ -3,26 +3,25 @@
 // render does; the pick is never a no-op (a method whose draws are the plain render's) and always a
 // row whose paired interval lies below 0.97, and every interval is what its timings in report.json
 // give again. No test here depends on which method is fastest: timings decide that.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <frugal/Settings.h>
 
-#include "io/ImageIO.h"
-#include "lab/TradePage.h"
-#include "lab/Trades.h"
-
 #include "CliSupport.h"
 #include "JsonSupport.h"
 #include "TestSupport.h"
+#include "io/ImageIO.h"
+#include "lab/TradePage.h"
+#include "lab/Trades.h"
 #include "lab/Views.h"
 
 namespace frugal {
@@ -86,13 +85,13 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(occurrences(run.out, "% interval ["), 2u) << "each line gives its pick's interval, or the nearest miss's\n"
                                                          << run.out;
     EXPECT_NE(run.out.find("\nfastest within 50 px a frame: "), std::string::npos) << run.out;
-    EXPECT_NE(run.err.find("report: 14 candidates on "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("report: 15 candidates on "), std::string::npos) << run.err;
 
     const nlohmann::json report = test::readJson(dir / "out" / "report.json");
     checkIntervals(report, 4 * 2);
     EXPECT_EQ(report["shots"], 4);
     EXPECT_EQ(report["rows"][0]["name"], "plain");
-    EXPECT_EQ(report["rows"].size(), 14u);
+    EXPECT_EQ(report["rows"].size(), 15u);
     for (const nlohmann::json& r : report["rows"]) {
         EXPECT_EQ(r["exact"], r["differing_px"] == 0 && r["worst_depth"] == 0) << r["name"];
         EXPECT_LE(r["worst_frame_px"].get<std::uint64_t>(), r["differing_px"].get<std::uint64_t>()) << r["name"];
@@ -103,6 +102,10 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_GT(row(report, "cull paper")["differing_px"].get<int>(), 0) << "paper 002's method misses on these views";
     EXPECT_GT(row(report, "cull paper")["misses"].get<int>(), 0);
     EXPECT_EQ(row(report, "plain")["misses"], 0);
+    // The Lambert approximation: the same triangles, other colours.
+    EXPECT_EQ(row(report, "shading lambert")["family"], "shading");
+    EXPECT_GT(row(report, "shading lambert")["differing_px"].get<int>(), 0);
+    EXPECT_EQ(row(report, "shading lambert")["misses"], 0);
 
     // The same views in cull-report, which finds the misses from the oracle's visible set and the
     // submitted list instead of two images: the same triangles missed, the same pixels differing.
@@ -129,7 +132,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(nlohmann::json::parse(readAll(dir / "out" / "settings.json")),
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
     const std::string csv = readAll(dir / "out" / "report.csv");
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 15) << "a header and a line a row";
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 16) << "a header and a line a row";
     EXPECT_NE(csv.find(",misses,x_plain_paired,x_plain_low,x_plain_high,pairs,no_op,pays,same_draws_as\n"), std::string::npos)
         << "the paired columns after the ones pareto.gp reads";
 
@@ -266,6 +269,30 @@ TEST(ReportCliTest, BadInputIsOneLineAndNoFiles) {
     EXPECT_EQ(run.status, 2) << "refused before any work";
     EXPECT_EQ(run.err, "error: -o file: a file, not a folder\n");
     EXPECT_EQ(test::filesIn(dir), std::vector<std::string>{"file"});
+}
+
+}  // namespace
+}  // namespace frugal
+
+namespace frugal {
+namespace {
+
+// With --samples 4 the report weighs one sample a pixel as a shading trade, and leaves out the
+// methods that see pixel centres only (occlusion culling and the oracle are refused with it).
+TEST(ReportCliTest, AMultisampledBaseWeighsOneSampleAndLeavesOutCentreMethods) {
+    const fs::path dir = test::freshDir("ReportSamples");
+    const CliRun run = runFrugal(dir, {"report", "builtin:cubes?count=6", "--views", "2", "--size", "96x72", "--repeat",
+                                       "1", "--samples", "4", "-o", "out", "-q"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json report = test::readJson(dir / "out" / "report.json");
+    std::set<std::string> names;
+    for (const nlohmann::json& r : report["rows"]) names.insert(r["name"].get<std::string>());
+    EXPECT_TRUE(names.count("samples 1")) << report["rows"].dump();
+    EXPECT_TRUE(names.count("shading lambert"));
+    EXPECT_TRUE(names.count("cull conservative"));
+    for (const char* refused : {"cull occlusion", "cull oracle", "cull occlusion + order key"})
+        EXPECT_FALSE(names.count(refused)) << refused;
+    EXPECT_GT(row(report, "samples 1")["differing_px"].get<int>(), 0) << "edges lose their blend";
 }
 
 }  // namespace

@@ -42,6 +42,7 @@ struct MatrixCase {
     Tolerance tolerance;
     ToneMap tonemap = ToneMap::None;
     int samples = 1;  // 4: multisampled, resolved (raster/Rasterizer.h, 6.)
+    ShadingModel shading = ShadingModel::Full;
 };
 
 Scene loaded(const std::string& spec) {
@@ -695,6 +696,43 @@ std::vector<MatrixCase> matrix() {
          {},
          ToneMap::None,
          4},
+        // The Lambert approximation (FrameParams::shading) on every kind of material, maps and lights.
+        {"lambert-materials",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Lambert},
+        {"lambert-maps",
+         maps,
+         640,
+         480,
+         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Lambert},
+        {"lambert-lights",
+         lights,
+         640,
+         400,
+         lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Lambert},
+        {"lambert-alpha",
+         alpha,
+         640,
+         480,
+         lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Lambert},
         {"msaa-lights",
          lights,
          640,
@@ -719,6 +757,7 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     Result<FrameSetup> setup = setUpFrame(scene, c.camera, 0.0, c.width, c.height, true);
     ASSERT_TRUE(setup) << setup.error().message;
     setup->params.tonemap = c.tonemap;
+    setup->params.shading = c.shading;
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
