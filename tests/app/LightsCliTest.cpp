@@ -79,14 +79,9 @@ namespace {
 TEST(LightsCliTest, TheDefaultLightAndTheEnvironmentAreSettings) {
     const fs::path dir = test::freshDir("LightSettingsCli");
     const auto render = [&](const std::string& name, const std::string& scene, std::vector<std::string> extra) {
-        std::vector<std::string> args = {"render", scene, "-o",           name + ".png", "--size",
-                                         "120x90", "-q",  "--background", "0,0,0"};
+        std::vector<std::string> args = {"render", scene, "--size", "120x90", "--background", "0,0,0"};
         args.insert(args.end(), extra.begin(), extra.end());
-        const CliRun run = runFrugal(dir, args);
-        EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
-        Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
-        EXPECT_TRUE(image) << name;
-        return image ? image->pixels8 : std::vector<std::uint8_t>{};
+        return test::renderedPixels(dir, name, args);
     };
     // Sums of the rgb of the pixels that are not background, and how many there are.
     const auto lit = [](const std::vector<std::uint8_t>& p) {
@@ -138,14 +133,10 @@ namespace {
 TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
     const fs::path dir = test::freshDir("ShadingCli");
     const auto render = [&](const std::string& name, std::vector<std::string> extra) {
-        std::vector<std::string> args = {"render", "builtin:materials", "-o", name + ".png", "--size", "160x120", "-q",
+        std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120",
                                          "--ids",  name + "-ids.png"};
         args.insert(args.end(), extra.begin(), extra.end());
-        const CliRun run = runFrugal(dir, args);
-        EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
-        Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
-        EXPECT_TRUE(image) << name;
-        return image ? image->pixels8 : std::vector<std::uint8_t>{};
+        return test::renderedPixels(dir, name, args);
     };
     const std::vector<std::uint8_t> full = render("full", {});
     render("full-given", {"--shading", "full"});

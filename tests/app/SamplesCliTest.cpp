@@ -22,14 +22,7 @@ using test::CliRun;
 using test::readAll;
 using test::runFrugal;
 
-std::vector<std::uint8_t> render(const fs::path& dir, const std::string& name, std::vector<std::string> args) {
-    args.insert(args.end(), {"-o", name + ".png", "-q"});
-    const CliRun run = runFrugal(dir, args);
-    EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
-    Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
-    EXPECT_TRUE(image) << name;
-    return image ? image->pixels8 : std::vector<std::uint8_t>{};
-}
+const auto render = test::renderedPixels;
 
 TEST(SamplesCliTest, FourSamplesSmoothTheEdgesOnly) {
     const fs::path dir = test::freshDir("SamplesCli");

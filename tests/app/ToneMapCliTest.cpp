@@ -23,13 +23,9 @@ using test::runFrugal;
 TEST(ToneMapCliTest, EachOperatorMapsTheLitPixelsOnly) {
     const fs::path dir = test::freshDir("ToneMapCli");
     const auto render = [&](const std::string& name, std::vector<std::string> extra) {
-        std::vector<std::string> args = {"render", "builtin:materials", "-o", name + ".png", "--size", "160x120", "-q"};
+        std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120"};
         args.insert(args.end(), extra.begin(), extra.end());
-        const CliRun run = runFrugal(dir, args);
-        EXPECT_EQ(run.status, 0) << test::joined(args) << ": " << run.err;
-        Result<DecodedImage> image = readPng((dir / (name + ".png")).string());
-        EXPECT_TRUE(image) << name;
-        return image ? image->pixels8 : std::vector<std::uint8_t>{};
+        return test::renderedPixels(dir, name, args);
     };
     const std::vector<std::uint8_t> plain = render("plain", {});
     render("none", {"--tonemap", "none"});
