@@ -12,8 +12,11 @@
 // - Global triangle id = instance.firstId + triangleSource[t]; 0 is the background.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -166,8 +169,20 @@ struct Mesh {
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// KHR_lights_punctual's kinds of light.
+// KHR_lights_punctual's kinds of light, and their names there ("directional", "point", "spot"): what
+// the loader reads, Python's add_light takes and frugal info prints.
 enum class LightType : std::uint8_t { Directional, Point, Spot };
+inline constexpr const char* kLightTypeNames[] = {"directional", "point", "spot"};
+inline const char* lightTypeName(LightType type) { return kLightTypeNames[std::size_t(type)]; }
+// The type named `name`; false when there is none.
+inline bool lightTypeNamed(std::string_view name, LightType& type) {
+    for (std::size_t i = 0; i < std::size(kLightTypeNames); ++i)
+        if (name == kLightTypeNames[i]) {
+            type = LightType(i);
+            return true;
+        }
+    return false;
+}
 
 // A punctual light (KHR_lights_punctual), placed by the nodes that refer to it (Node::light): at the
 // node's origin, shining down the node's −Z (directional and spot lights). In the extension's units:

@@ -124,10 +124,8 @@ int addLight(PyScene& s, const std::string& kind, const py::handle& color, doubl
              double innerCone, double outerCone, const py::handle& transform, const std::string& name) {
     PunctualLight light;
     light.name = name;
-    if (kind == "directional") light.type = LightType::Directional;
-    else if (kind == "point") light.type = LightType::Point;
-    else if (kind == "spot") light.type = LightType::Spot;
-    else throw InputError{"kind: '" + kind + "' is not a kind of light (directional, point, spot)"};
+    if (!lightTypeNamed(kind, light.type))
+        throw InputError{"kind: '" + kind + "' is not a kind of light (directional, point, spot)"};
     light.color = vectorFrom<3>(color, "color");
     light.intensity = float(intensity);
     light.range = float(range);

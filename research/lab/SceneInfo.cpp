@@ -212,11 +212,8 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
     for (const Node& node : scene.nodes) {
         if (node.light < 0) continue;
         const PunctualLight& l = scene.lights[std::size_t(node.light)];
-        const char* type = l.type == LightType::Directional ? "directional"
-                           : l.type == LightType::Point     ? "point"
-                                                            : "spot";
-        out << "  '" << l.name << "' " << type << " on node '" << node.name << "', colour " << fmt(l.color.r) << ","
-            << fmt(l.color.g) << "," << fmt(l.color.b) << " x " << fmt(l.intensity)
+        out << "  '" << l.name << "' " << lightTypeName(l.type) << " on node '" << node.name << "', colour "
+            << fmt(l.color.r) << "," << fmt(l.color.g) << "," << fmt(l.color.b) << " x " << fmt(l.intensity)
             << (l.type == LightType::Directional ? " lx" : " cd");
         if (l.type != LightType::Directional)
             out << ", range " << (l.range > 0.0f ? fmt(l.range) : std::string("unbounded"));

@@ -721,13 +721,7 @@ void Converter::convertLights() {
         const std::string where = cat("extensions.KHR_lights_punctual.lights[", l, "]");
         PunctualLight light;
         light.name = src.name;
-        if (src.type == "directional")
-            light.type = LightType::Directional;
-        else if (src.type == "point")
-            light.type = LightType::Point;
-        else if (src.type == "spot")
-            light.type = LightType::Spot;
-        else
+        if (!lightTypeNamed(src.type, light.type))
             fail(where, ".type: '", oneLine(src.type, 40), "' is not a light type (directional, point, spot)");
         if (!src.color.empty()) {
             if (src.color.size() != 3) fail(where, ".color: ", src.color.size(), " numbers, not 3");
