@@ -296,6 +296,7 @@ struct Settings {
     DefaultLight light = DefaultLight::On;  // the directional light where the scene has no lights
     float environment = 0.3f;               // the uniform white environment's radiance (0: none)
     ShadingModel shading = ShadingModel::Full;  // frugal/Image.h
+    bool mipmaps = true;  // false: every texture sampled from its base level (no mipmaps made)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
 };
 

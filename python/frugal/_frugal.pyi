@@ -67,6 +67,7 @@ class _Settings(TypedDict):
     depth_format: _DepthFormat
     tonemap: _Tonemap
     shading: _Shading
+    no_mipmaps: bool
     light: _Light
     environment: float
     samples: int
@@ -108,6 +109,7 @@ def settings(
     depth_format: _DepthFormat = ...,
     tonemap: _Tonemap = ...,
     shading: _Shading = ...,
+    no_mipmaps: bool = ...,
     light: _Light = ...,
     environment: float = ...,
     samples: int = ...,
@@ -486,6 +488,7 @@ class Renderer(_pybind11_object):
         depth_format: _DepthFormat = ...,
         tonemap: _Tonemap = ...,
         shading: _Shading = ...,
+        no_mipmaps: bool = ...,
         light: _Light = ...,
         environment: float = ...,
         samples: int = ...,

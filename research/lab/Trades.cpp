@@ -339,7 +339,7 @@ std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
     return floor && *floor > 0 ? std::optional<double>(row.medianMs / *floor) : std::nullopt;
 }
 
-std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software) {
+std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
     // Every culling method by its traits: the plain render has none; an id pass is the floor, not a
     // method; a plan made ahead needs a sequence (below).
@@ -358,11 +358,13 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
         for (const DepthInterp interp : {DepthInterp::Span, DepthInterp::Dda})
             out.push_back(with(base, std::string("interp ") + toString(interp), "interp",
                                [interp](Settings& s) { s.interp = interp; }));
-    // The shading trades, against the base's full shading: the Lambert approximation, and one sample
-    // a pixel where the base has more.
+    // The shading trades, against the base's full shading: the Lambert approximation, one sample a
+    // pixel where the base has more, base levels only where the scene has mipmaps.
     if (base.shading == ShadingModel::Full)
         out.push_back(with(base, "shading lambert", "shading", [](Settings& s) { s.shading = ShadingModel::Lambert; }));
     if (base.samples > 1) out.push_back(with(base, "samples 1", "shading", [](Settings& s) { s.samples = 1; }));
+    if (base.mipmaps && mipmapped)
+        out.push_back(with(base, "no mipmaps", "shading", [](Settings& s) { s.mipmaps = false; }));
     out.push_back(with(base, "cull conservative + order key", "combination", [](Settings& s) {
         s.cull = Cull::Conservative;
         s.order = Order::Key;

@@ -137,8 +137,9 @@ struct TradeReport {
 // The candidates for `base` (size, backend, threads, depth format, background): the plain render,
 // the culling methods (and the oracle as floor), the orders key and greedy, the hidden-surface modes,
 // on the software backend the interpolators, the shading trades (the Lambert approximation; one
-// sample where the base has more), in a sequence reuse, and the useful combinations.
-std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software);
+// sample where the base has more; no mipmaps), in a sequence reuse, and the useful combinations.
+// `mipmapped`: the scene has a texture with mipmaps (then "no mipmaps" is weighed too).
+std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped = false);
 
 // What a candidate drew in one timed render: FrameStats::drawFingerprint and culledFingerprint.
 struct DrawRecord {

@@ -79,6 +79,7 @@ FlagGroup renderFlags(RenderOptions& o) {
         setting("tonemap"),
         setting("samples"),
         setting("shading"),
+        setting("no-mipmaps"),
         setting("light"),
         setting("environment"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "

@@ -1,5 +1,6 @@
 // `frugal report`: every method that trades accuracy for speed, on one scene, in one run, with the
 // settings to use (the measurement is lab/Trades.h's).
+#include <algorithm>
 #include <filesystem>
 #include <ostream>
 
@@ -19,7 +20,8 @@ const char* reportHelp() {
 Runs every method that trades accuracy for speed on SCENE (default builtin:default), in one
 process with interleaved timing: the culling methods (the oracle as their floor), the draw orders
 key and greedy, the hidden-surface modes, on the software backend the interpolators, the shading
-trades (--shading lambert; --samples 1 where more are asked for), in a sequence (--frames) temporal
+trades (--shading lambert; --samples 1 where more are asked for; --no-mipmaps where the scene has
+mipmaps), in a sequence (--frames) temporal
 reuse, and combinations. Each is judged against the plain render of the same
 view or frame: pixels that differ, the worst frame, the visible triangles it lacks (misses), PSNR,
 the worst depth difference. Prints the fastest exact settings (the plain render's colour and
@@ -114,8 +116,10 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     settings.repeat = repeat;
     settings.budgetPx = std::uint64_t(budget);
     const Settings base = options.settings;
+    const bool mipmapped = std::any_of(loaded->textures.begin(), loaded->textures.end(),
+                                       [](const Texture& t) { return t.mipmaps != MipFilter::None; });
     const std::vector<TradeCandidate> candidates =
-        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software);
+        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software, mipmapped);
     Result<TradeReport> report = measureTrades(*loaded, candidates, settings, progressTo(err, options.quiet));
     if (!report) return fail(err, report.error());
     out << tradeRecommendationText(*report, settings);

@@ -43,7 +43,7 @@ void SceneRenderer::release() {
     textures_.clear();
 }
 
-Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene) {
+Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene, bool mipmaps) {
     SceneRenderer renderer(backend, scene);
     renderer.meshes_.reserve(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
@@ -75,7 +75,14 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     renderer.textures_.reserve(scene.textures.size());
     for (std::size_t i = 0; i < scene.textures.size(); ++i) {
         const Texture& texture = scene.textures[i];
-        const TextureHandle handle = backend.uploadTexture(texture);
+        TextureHandle handle = kNoHandle;
+        if (mipmaps || texture.mipmaps == MipFilter::None) {
+            handle = backend.uploadTexture(texture);
+        } else {
+            Texture base = texture;
+            base.mipmaps = MipFilter::None;
+            handle = backend.uploadTexture(base);
+        }
         if (handle == kNoHandle)
             return Error{"texture " + std::to_string(i) + quotedName(texture.name) + " (" + std::to_string(texture.width) +
                          "x" + std::to_string(texture.height) + "): " + backend.name() +

@@ -18,7 +18,9 @@ public:
     // Uploads every mesh and texture of `scene`; both must outlive the renderer. A mesh or texture
     // the backend refuses is an error, never a part of the scene left out of every frame:
     // "mesh 2 'name' (N vertices, M triangles): <backend> refused it ..." or the same for a texture.
-    static Result<SceneRenderer> create(Backend& backend, const Scene& scene);
+    // `mipmaps` false: every texture is uploaded without its mipmaps (MipFilter::None), so it is
+    // sampled from its base level.
+    static Result<SceneRenderer> create(Backend& backend, const Scene& scene, bool mipmaps = true);
 
     // Releases what it uploaded (the backend must still be alive).
     ~SceneRenderer();

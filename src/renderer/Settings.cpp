@@ -172,6 +172,10 @@ std::vector<SettingInfo> makeTable() {
                        [](auto& s) -> auto& { return s.tonemap; }));
     t.push_back(choice("shading", "MODEL", "a shading model", kImage, "how lit materials are shaded",
                        [](auto& s) -> auto& { return s.shading; }));
+    t.push_back(toggle("no-mipmaps", kImage,
+                       "sample every texture from its base level, whatever its sampler asks: no mipmaps are made "
+                       "(faster to upload and to sample; minified textures alias)",
+                       [](auto& s) -> auto& { return s.mipmaps; }, true));
     t.push_back(choice("light", "L", "a light", kImage, "the light of a scene without lights of its own",
                        [](auto& s) -> auto& { return s.light; }));
     t.push_back(real("environment", "L", kImage,

@@ -37,6 +37,7 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
     auto parts = std::make_unique<Parts>();
     parts->log = std::move(log);
     parts->backend = std::move(opened);
+    parts->mipmaps = s.mipmaps;
     Backend& backend = *parts->backend;
     if (!backend.supportsDepthFormat(s.depthFormat))
         return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend.name() +
@@ -67,7 +68,7 @@ void applyShading(const Settings& s, FrameParams& params) {
 
 Result<bool> Stage::upload(const Scene& scene) {
     parts_->renderer.reset();  // released before the next are made (a backend may reuse the names)
-    Result<SceneRenderer> uploaded = SceneRenderer::create(*parts_->backend, scene);
+    Result<SceneRenderer> uploaded = SceneRenderer::create(*parts_->backend, scene, parts_->mipmaps);
     if (!uploaded) return Error{scene.source + ": " + uploaded.error().message};
     parts_->renderer.emplace(std::move(*uploaded));
     return true;

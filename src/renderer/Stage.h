@@ -44,7 +44,8 @@ public:
     static Result<std::optional<Stage>> openIfAvailable(const Settings& settings, std::string& unavailable);
 
     // Uploads `scene`, replacing what was uploaded before; the scene must outlive the uploads (the
-    // stage, or the next upload). Error: "<scene.source>: <why the backend refused a mesh>".
+    // stage, or the next upload); its textures without mipmaps when the settings say no-mipmaps.
+    // Error: "<scene.source>: <why the backend refused a mesh>".
     Result<bool> upload(const Scene& scene);
 
     Backend& backend() const { return *parts_->backend; }
@@ -60,6 +61,7 @@ private:
         std::unique_ptr<Backend> backend;
         TargetHandle target = kNoHandle;
         std::optional<SceneRenderer> renderer;
+        bool mipmaps = true;  // Settings::mipmaps: whether uploads make textures' mipmaps
         Parts() = default;
         Parts(const Parts&) = delete;
         Parts& operator=(const Parts&) = delete;
