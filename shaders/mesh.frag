@@ -197,11 +197,16 @@ void main() {
 #endif
 #ifdef FRUGAL_UNLIT
     vec3 linear = base.rgb;
-#elif defined(FRUGAL_LAMBERT)
-    // The diffuse term alone (FrameParams::shading): the environment's radiance and each light's
-    // E·(n·l)/π on the base colour, then the emission.
+#else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
+    vec3 emissive = u_emissive;
+#ifdef FRUGAL_EMISSIVE_MAP
+    emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
+#endif
+#ifdef FRUGAL_LAMBERT
+    // The diffuse term alone (FrameParams::shading): the environment's radiance and each light's
+    // E·(n·l)/π on the base colour, then the emission.
     vec3 irradiance = vec3(u_environment);
 #ifdef FRUGAL_LIGHTS
     int lightCount = int(u_lights[4 * FRUGAL_LIGHTS].x);
@@ -213,14 +218,8 @@ void main() {
 #else
     irradiance += vec3(u_light * (clampedDot(n, u_toLight) / kPi));
 #endif
-    vec3 emissive = u_emissive;
-#ifdef FRUGAL_EMISSIVE_MAP
-    emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
-#endif
     vec3 linear = base.rgb * irradiance + emissive;
 #else
-    vec3 n = normalize(v_normal);
-    if (!gl_FrontFacing) n = -n;
 #ifdef FRUGAL_TANGENTS
     vec3 t = normalize(v_tangent), b = normalize(v_bitangent);
     if (!gl_FrontFacing) {
@@ -351,10 +350,6 @@ void main() {
 #endif
 #endif
 
-    vec3 emissive = u_emissive;
-#ifdef FRUGAL_EMISSIVE_MAP
-    emissive = emissive * texture(u_emissiveMap, v_uv).rgb;
-#endif
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 lit = dielectric;
 #else
@@ -369,6 +364,7 @@ void main() {
     vec3 linear = (environment + (lit * (1.0 - k) + coatSpecular * k)) + emissive * (1.0 - k);
 #else
     vec3 linear = lit + emissive;
+#endif
 #endif
 #endif
 #ifdef FRUGAL_TONEMAP_NEUTRAL

@@ -220,8 +220,14 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     GlTarget* dest = targets_.find(to);
     const std::optional<Rect> region = copyRegion(source, dest, from == to, rect, color || depth || ids);
     if (!region) return;
-    const Rect& r = *region;
     activate();
+    const bool copyIds = ids && (source->idsDirty || dest->idsDirty);  // zeros onto zeros: nothing to copy
+    if (copyIds) dest->idsDirty = dest->idsDirty || source->idsDirty;  // copying zeros keeps them zero
+    blit(*source, *dest, *region, color, depth, copyIds);
+    check("copy");
+}
+
+void GlBackend::blit(GlTarget& source, GlTarget& dest, const Rect& r, bool color, bool depth, bool ids) {
     // Blits obey the scissor test; the rectangle is the blit's own.
     state_.setScissor(false);
     const int x1 = r.x + r.width, y1 = r.y + r.height;
@@ -230,41 +236,29 @@ void GlBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect, bool 
     // only the matching draw buffer enabled. Depth rides along with the first blit.
     GLbitfield depthBit = depth ? GL_DEPTH_BUFFER_BIT : 0;
     if (color) {
-        state_.readFrom(*source, GL_COLOR_ATTACHMENT0);
-        state_.drawInto(*dest, DrawSet::Color);
+        state_.readFrom(source, GL_COLOR_ATTACHMENT0);
+        state_.drawInto(dest, DrawSet::Color);
         gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);
         depthBit = 0;
     }
-    if (ids && (source->idsDirty || dest->idsDirty)) {  // zeros onto zeros: nothing to copy
-        dest->idsDirty = dest->idsDirty || source->idsDirty;  // copying zeros keeps them zero
-        state_.readFrom(*source, GL_COLOR_ATTACHMENT1);
-        state_.drawInto(*dest, DrawSet::Ids);
+    if (ids) {
+        state_.readFrom(source, GL_COLOR_ATTACHMENT1);
+        state_.drawInto(dest, DrawSet::Ids);
         gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, GL_COLOR_BUFFER_BIT | depthBit, GL_NEAREST);
         depthBit = 0;
     }
     if (depthBit) {
-        state_.bindReadFbo(source->fbo);
-        state_.bindDrawFbo(dest->fbo);
+        state_.bindReadFbo(source.fbo);
+        state_.bindDrawFbo(dest.fbo);
         gl_.BlitFramebuffer(r.x, r.y, x1, y1, r.x, r.y, x1, y1, depthBit, GL_NEAREST);
     }
-    check("copy");
 }
 
 GlTarget& GlBackend::resolve(GlTarget& from, Planes planes) {
     GlTarget& to = *targets_.find(from.resolved);
     // glBlitFramebuffer to one sample: the colour's samples averaged, depth's and the integer ids'
-    // sample 0 (llvmpipe's u_blitter). Colour and ids in separate blits, as copy() does.
-    state_.setScissor(false);
-    const int w = from.width, h = from.height;
-    state_.readFrom(from, GL_COLOR_ATTACHMENT0);
-    state_.drawInto(to, DrawSet::Color);
-    gl_.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT | (planes.depth ? GL_DEPTH_BUFFER_BIT : 0),
-                        GL_NEAREST);
-    if (planes.ids) {
-        state_.readFrom(from, GL_COLOR_ATTACHMENT1);
-        state_.drawInto(to, DrawSet::Ids);
-        gl_.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    }
+    // sample 0 (llvmpipe's u_blitter).
+    blit(from, to, Rect{0, 0, from.width, from.height}, true, planes.depth, planes.ids);
     check("resolve");
     return to;
 }

@@ -199,6 +199,9 @@ private:
 
     // --- targets (GlBackend.cpp) --------------------------------------------------------------
     void deleteTarget(GlTarget& t);
+    // Blits the planes asked for of rectangle `r` from `source` into the same place of `dest`: what
+    // copy() and resolve() do.
+    void blit(GlTarget& source, GlTarget& dest, const Rect& r, bool color, bool depth, bool ids);
     // Resolves multisampled `from` into its single-sampled twin, which it returns: colour averaged,
     // depth and ids of sample 0 (Backend::createTarget).
     GlTarget& resolve(GlTarget& from, Planes planes);

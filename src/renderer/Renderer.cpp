@@ -146,11 +146,12 @@ Result<bool> Renderer::Impl::open() {
 // the frame), or through temporal reuse.
 void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats) {
     const Settings& s = settings;
+    const glm::vec4 clear = premultiplied(s.background);
     if (reuse) {
         // A culled list, or the whole scene (the planner's own, faster list).
-        FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, premultiplied(s.background))
-                                : reuse->plan(setup.params, setup.world, premultiplied(s.background));
-        renderer->execute(plan, target, staticTarget, setup.params, setup.world, premultiplied(s.background));
+        FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, clear)
+                                : reuse->plan(setup.params, setup.world, clear);
+        renderer->execute(plan, target, staticTarget, setup.params, setup.world, clear);
         stats.reuse = reuse->stats();
         drawnPlan = std::move(plan);
         drewPlan = true;
@@ -159,14 +160,14 @@ void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, Fr
     drewPlan = false;
     DrawList list = orderFrameDraws(*scene, submitted, s.order, orderCosts->costsUs());
     if (!planner) {
-        renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, premultiplied(s.background), list);
+        renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, clear, list);
         drawnList = std::move(list);
         return;
     }
     HsrStats hsrStats;
     DrawList planned = planner->plan(s.hsr, setup.params, setup.world, list, s.width, s.height, &hsrStats);
     stats.hsr = hsrStats;
-    renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, premultiplied(s.background), planned);
+    renderer->renderFrame(target, s.width, s.height, setup.params, setup.world, clear, planned);
     drawnList = std::move(planned);
 }
 
@@ -187,6 +188,7 @@ void Renderer::Impl::growEnvelope() {
 
 Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame, Renderer::ReadBack readBack) {
     const Settings& s = settings;
+    const glm::vec4 clear = premultiplied(s.background);
     if (moved) growEnvelope();
     if (!stillBounds && scene->animations.empty() && (!camera.eye || !camera.target))
         stillBounds = scene->bounds(0.0);
@@ -213,13 +215,11 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     auto t0 = Clock::now();
     if (traitsOf(s.cull).idPass) {
         // The id pass and the oracle's own index buffers come before the clock starts.
-        Result<Oracle> oracle =
-            makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, premultiplied(s.background));
+        Result<Oracle> oracle = makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, clear);
         if (!oracle) return Error{scene->source + ": " + oracle.error().message};
         stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
         t0 = Clock::now();
-        oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world,
-                                      premultiplied(s.background));
+        oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, clear);
     } else if (culler) {
         const OcclusionTarget cullTarget = occlusionTarget(*backend, s);
         std::optional<DrawList> madeAhead = ahead.take(s.cull, setup->world, setup->view, cullTarget);

@@ -842,88 +842,85 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
             }
 
             F8 linear[3] = {base[0], base[1], base[2]};
-            if (shading.lambert && !shading.unlit) {
+            if (!shading.unlit) {
                 Vec3 n = normalize({value[0], value[1], value[2]});
                 if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
                 F8 emission[3] = {light.emission[0], light.emission[1], light.emission[2]};
                 if (shading.emissive) {
-                    F8 map[4];
-                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, map);
-                    for (int c = 0; c < 3; ++c) emission[c] = emission[c] * map[c];
+                    F8 emitted[4];
+                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, emitted);
+                    for (int c = 0; c < 3; ++c) emission[c] = emission[c] * emitted[c];
                 }
-                light.lambert(base, n, {value[9], value[10], value[11]}, emission, linear);
-            } else if (!shading.unlit) {
-                Vec3 n = normalize({value[0], value[1], value[2]});
-                if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
-                Vec3 tangent{}, bitangent{};
-                if (tangentSpace) {
-                    tangent = normalize({value[12], value[13], value[14]});
-                    bitangent = normalize({value[15], value[16], value[17]});
-                    if (!t.front) {
-                        tangent = {simd::neg(tangent.x), simd::neg(tangent.y), simd::neg(tangent.z)};
-                        bitangent = {simd::neg(bitangent.x), simd::neg(bitangent.y), simd::neg(bitangent.z)};
+                if (shading.lambert) {
+                    light.lambert(base, n, {value[9], value[10], value[11]}, emission, linear);
+                } else {
+                    Vec3 tangent{}, bitangent{};
+                    if (tangentSpace) {
+                        tangent = normalize({value[12], value[13], value[14]});
+                        bitangent = normalize({value[15], value[16], value[17]});
+                        if (!t.front) {
+                            tangent = {simd::neg(tangent.x), simd::neg(tangent.y), simd::neg(tangent.z)};
+                            bitangent = {simd::neg(bitangent.x), simd::neg(bitangent.y), simd::neg(bitangent.z)};
+                        }
                     }
-                }
-                // A normal map's vector: rgb · 2 − 1, x and y · scale, normalised, in the basis.
-                const auto mappedNormal = [&](const SoftwareTexture& map, float scaleFactor, const Vec3& normal) {
-                    F8 stored[4];
-                    sampleLanes(map, s, tt, footprints, lanes, stored);
-                    const F8 two = simd::splat(2.0f), scale = simd::splat(scaleFactor);
-                    const Vec3 m = normalize({(stored[0] * two - one) * scale, (stored[1] * two - one) * scale,
-                                              stored[2] * two - one});
-                    return Vec3{(tangent.x * m.x + bitangent.x * m.y) + normal.x * m.z,
-                                (tangent.y * m.x + bitangent.y * m.y) + normal.y * m.z,
-                                (tangent.z * m.x + bitangent.z * m.y) + normal.z * m.z};
-                };
-                Vec3 coatNormal = n;  // the clear coat's: before the base normal map
-                if (shading.clearcoatNormalMap)
-                    coatNormal = mappedNormal(*shading.clearcoatNormalMap, shading.clearcoatNormalScale, n);
-                if (normalMapped) n = normalize(mappedNormal(*shading.normalMap, shading.normalScale, n));
-                const Vec3 v = normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
-                Light::Surface surface{light.metallicFactor, light.roughnessFactor, nullptr,
-                                       {light.emission[0], light.emission[1], light.emission[2]}};
-                F8 map[4], specular[3];
-                if (shading.specularGlossiness) {
-                    F8 glossiness = simd::splat(shading.glossiness);
-                    for (int c = 0; c < 3; ++c) specular[c] = simd::splat(shading.specular[c]);
-                    if (shading.specularGlossinessMap) {
-                        sampleLanes(*shading.specularGlossinessMap, s, tt, footprints, lanes, map);
-                        for (int c = 0; c < 3; ++c) specular[c] = specular[c] * map[c];
-                        glossiness = glossiness * map[3];
+                    // A normal map's vector: rgb · 2 − 1, x and y · scale, normalised, in the basis.
+                    const auto mappedNormal = [&](const SoftwareTexture& map, float scaleFactor, const Vec3& normal) {
+                        F8 stored[4];
+                        sampleLanes(map, s, tt, footprints, lanes, stored);
+                        const F8 two = simd::splat(2.0f), scale = simd::splat(scaleFactor);
+                        const Vec3 m = normalize(
+                            {(stored[0] * two - one) * scale, (stored[1] * two - one) * scale, stored[2] * two - one});
+                        return Vec3{(tangent.x * m.x + bitangent.x * m.y) + normal.x * m.z,
+                                    (tangent.y * m.x + bitangent.y * m.y) + normal.y * m.z,
+                                    (tangent.z * m.x + bitangent.z * m.y) + normal.z * m.z};
+                    };
+                    Vec3 coatNormal = n;  // the clear coat's: before the base normal map
+                    if (shading.clearcoatNormalMap)
+                        coatNormal = mappedNormal(*shading.clearcoatNormalMap, shading.clearcoatNormalScale, n);
+                    if (normalMapped) n = normalize(mappedNormal(*shading.normalMap, shading.normalScale, n));
+                    const Vec3 v =
+                        normalize({light.eye.x - value[9], light.eye.y - value[10], light.eye.z - value[11]});
+                    Light::Surface surface{
+                        light.metallicFactor, light.roughnessFactor, nullptr, {emission[0], emission[1], emission[2]}};
+                    F8 map[4], specular[3];
+                    if (shading.specularGlossiness) {
+                        F8 glossiness = simd::splat(shading.glossiness);
+                        for (int c = 0; c < 3; ++c) specular[c] = simd::splat(shading.specular[c]);
+                        if (shading.specularGlossinessMap) {
+                            sampleLanes(*shading.specularGlossinessMap, s, tt, footprints, lanes, map);
+                            for (int c = 0; c < 3; ++c) specular[c] = specular[c] * map[c];
+                            glossiness = glossiness * map[3];
+                        }
+                        surface.specular = specular;
+                        surface.roughness = one - glossiness;
                     }
-                    surface.specular = specular;
-                    surface.roughness = one - glossiness;
-                }
-                if (shading.metallicRoughness) {
-                    sampleLanes(*shading.metallicRoughness, s, tt, footprints, lanes, map);
-                    surface.metallic = surface.metallic * map[2];
-                    surface.roughness = surface.roughness * map[1];
-                }
-                F8 occlusion[4];
-                if (shading.occlusion) {
-                    sampleLanes(*shading.occlusion, s, tt, footprints, lanes, occlusion);
-                    surface.occlusion = &occlusion[0];
-                }
-                if (shading.emissive) {
-                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, map);
-                    for (int c = 0; c < 3; ++c) surface.emission[c] = surface.emission[c] * map[c];
-                }
-                F8 coat = simd::splat(shading.clearcoat);
-                if (shading.clearcoat > 0.0f) {
-                    surface.coatRoughness = simd::splat(shading.clearcoatRoughness);
-                    if (shading.clearcoatMap) {
-                        sampleLanes(*shading.clearcoatMap, s, tt, footprints, lanes, map);
-                        coat = coat * map[0];
+                    if (shading.metallicRoughness) {
+                        sampleLanes(*shading.metallicRoughness, s, tt, footprints, lanes, map);
+                        surface.metallic = surface.metallic * map[2];
+                        surface.roughness = surface.roughness * map[1];
                     }
-                    if (shading.clearcoatRoughnessMap) {
-                        sampleLanes(*shading.clearcoatRoughnessMap, s, tt, footprints, lanes, map);
-                        surface.coatRoughness = surface.coatRoughness * map[1];
+                    F8 occlusion[4];
+                    if (shading.occlusion) {
+                        sampleLanes(*shading.occlusion, s, tt, footprints, lanes, occlusion);
+                        surface.occlusion = &occlusion[0];
                     }
-                    surface.coat = &coat;
-                    surface.coatNormal = coatNormal;
+                    F8 coat = simd::splat(shading.clearcoat);
+                    if (shading.clearcoat > 0.0f) {
+                        surface.coatRoughness = simd::splat(shading.clearcoatRoughness);
+                        if (shading.clearcoatMap) {
+                            sampleLanes(*shading.clearcoatMap, s, tt, footprints, lanes, map);
+                            coat = coat * map[0];
+                        }
+                        if (shading.clearcoatRoughnessMap) {
+                            sampleLanes(*shading.clearcoatRoughnessMap, s, tt, footprints, lanes, map);
+                            surface.coatRoughness = surface.coatRoughness * map[1];
+                        }
+                        surface.coat = &coat;
+                        surface.coatNormal = coatNormal;
+                    }
+                    surface.position = {value[9], value[10], value[11]};
+                    light.shade(base, n, v, surface, linear);
                 }
-                surface.position = {value[9], value[10], value[11]};
-                light.shade(base, n, v, surface, linear);
             }
 
             toneMap(shading.tonemap, linear);

@@ -28,8 +28,9 @@
 // Punctual lights (mesh.frag's FRUGAL_LIGHTS, DrawShading::lights): in place of the directional
 // light, each light's l and E per pixel as pipeline/Backend.h writes them (FrameLight), its lobe the
 // directional light's with E per channel, summed in light order into the dielectric and metal terms
-// and the clear coat's (Kernels.inl, Light::shadeLights). A frame without them draws the directional
-// light as the one FrameLight it has: the same operations, E equal in every channel.
+// and the clear coat's (Kernels.inl, Light::shade; each light's l and E from Light::lightAt). A
+// frame without them draws the directional light as the one FrameLight it has: the same operations,
+// E equal in every channel.
 // The maps, each sampled as below at the one uv: metallic · blue, roughness · green; the environment's
 // dielectric and metal terms each · (1 + strength · (red − 1)); emission · rgb; the normal map's
 // m = normalize(((rgb · 2 − 1) · (scale, scale, 1)), n = normalize((t · m.x + b · m.y) + n · m.z)

@@ -42,6 +42,10 @@ struct SwTarget {
     DepthFormat depthFormat = DepthFormat::D24;
 
     std::size_t plane() const { return std::size_t(stride) * std::size_t(height); }
+    // Where pixel (x, y) of sample `sample` is in each plane's vector.
+    std::size_t at(int sample, int x, int y) const {
+        return std::size_t(sample) * plane() + std::size_t(y) * std::size_t(stride) + std::size_t(x);
+    }
     sw::TargetView view() {
         return {color.data(), depth.data(), ids.data(), width, height, stride, depthFormat, samples, plane()};
     }
@@ -316,8 +320,7 @@ void SoftwareBackend::clear(TargetHandle target, const Rect& rect, const glm::ve
         const int y0 = r.y + int(band) * kBand, y1 = std::min(y0 + kBand, r.y + r.height);
         for (int sample = 0; sample < t->samples; ++sample)
             for (int y = y0; y < y1; ++y) {
-                const std::size_t row =
-                    std::size_t(sample) * t->plane() + std::size_t(y) * std::size_t(t->stride) + std::size_t(r.x);
+                const std::size_t row = t->at(sample, r.x, y);
                 std::fill_n(t->color.begin() + std::ptrdiff_t(row), r.width, c);
                 std::fill_n(t->depth.begin() + std::ptrdiff_t(row), r.width, z);
                 std::fill_n(t->ids.begin() + std::ptrdiff_t(row), r.width, 0u);
@@ -339,8 +342,7 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
     const auto rows = [&](const std::vector<std::uint32_t>& a, std::vector<std::uint32_t>& b) {
         for (int sample = 0; sample < source->samples; ++sample)
             for (int y = r.y; y < r.y + r.height; ++y)
-                std::memcpy(b.data() + std::size_t(sample) * dest->plane() + std::size_t(y) * dest->stride + r.x,
-                            a.data() + std::size_t(sample) * source->plane() + std::size_t(y) * source->stride + r.x,
+                std::memcpy(b.data() + dest->at(sample, r.x, y), a.data() + source->at(sample, r.x, y),
                             std::size_t(r.width) * sizeof(std::uint32_t));
     };
     if (color) rows(source->color, dest->color);
@@ -364,7 +366,7 @@ void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, Planes pla
     out.ids.resize(planes.ids ? out.pixelCount() : 0);
     // Depth and ids: sample 0's (the first plane); colour resolved when multisampled (Shading.h).
     for (int y = 0; y < t->height; ++y) {
-        const std::size_t from = std::size_t(y) * std::size_t(t->stride), to = std::size_t(y) * std::size_t(t->width);
+        const std::size_t from = t->at(0, 0, y), to = std::size_t(y) * std::size_t(t->width);
         if (t->samples == 1) {
             std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
         } else {
