@@ -88,6 +88,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     Result<FrameSetup> setup =
         setUpFrame(scene_, reportView.camera, s_.time, s.width, s.height, false, s.depthFormat);
     if (!setup) return Error{"view " + std::to_string(v) + " (" + reportView.viewClass + "): " + setup.error().message};
+    applyShading(s, setup->params);
     setup_.emplace(std::move(*setup));
     const FrameParams& params = setup_->params;
     const std::vector<glm::mat4>& world = setup_->world;

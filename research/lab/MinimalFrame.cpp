@@ -30,7 +30,7 @@ public:
             gl_.DeleteBuffers(1, &m.vbo);
             gl_.DeleteBuffers(1, &m.ibo);
         }
-        gl_.DeleteProgram(program_);
+        for (const Program& p : programs_) gl_.DeleteProgram(p.name);
         gl_.DeleteFramebuffers(1, &fbo_);
         gl_.DeleteRenderbuffers(2, renderbuffers_);
         gl_.DeleteBuffers(2, packBuffers_);  // names of 0 are ignored
@@ -71,11 +71,19 @@ private:
     bool loaded_ = false;
     int width_ = 0, height_ = 0;
     DepthFormat format_ = DepthFormat::D24;
-    GLuint program_ = 0, fbo_ = 0;
+    // The mesh program for each shading model and tone mapping (FrameParams::shading, tonemap),
+    // uniforms by location.
+    struct Program {
+        GLuint name = 0;
+        GLint mvp = -1, normalMatrix = -1, model = -1, factor = -1, metallicRoughness = -1, emissive = -1;
+        GLint eye = -1, toLight = -1, light = -1, environment = -1;
+    };
+    static constexpr int kToneMaps = 3;
+    static int programIndex(ShadingModel shading, ToneMap tonemap) { return int(shading) * kToneMaps + int(tonemap); }
+    Program programs_[2 * kToneMaps];
+    GLuint fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
-    GLint mvp_ = -1, normalMatrix_ = -1, model_ = -1, factor_ = -1, metallicRoughness_ = -1;
-    GLint eye_ = -1, toLight_ = -1, light_ = -1, environment_ = -1;
     std::vector<MeshObjects> meshes_;  // one per scene mesh
     int cullOn_ = -1;
 };
@@ -111,20 +119,27 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
     if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "incomplete framebuffer";
     gl_.Viewport(0, 0, width, height);
 
-    // mesh.vert + mesh.frag without defines: the variant with no texture, colours or ids, which is
-    // the backend's own program for such a frame, so the arithmetic is the same by construction.
-    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", meshPreamble(), &program_); !reason.empty())
-        return reason;
-    gl_.UseProgram(program_);
-    mvp_ = gl_.GetUniformLocation(program_, "u_mvp");
-    normalMatrix_ = gl_.GetUniformLocation(program_, "u_normalMatrix");
-    model_ = gl_.GetUniformLocation(program_, "u_model");
-    factor_ = gl_.GetUniformLocation(program_, "u_baseColorFactor");
-    metallicRoughness_ = gl_.GetUniformLocation(program_, "u_metallicRoughness");
-    eye_ = gl_.GetUniformLocation(program_, "u_eye");
-    toLight_ = gl_.GetUniformLocation(program_, "u_toLight");
-    light_ = gl_.GetUniformLocation(program_, "u_light");
-    environment_ = gl_.GetUniformLocation(program_, "u_environment");
+    // mesh.vert + mesh.frag with only the frame's defines (shading model, tone mapping): the
+    // variant with no texture, colours or ids, which is the backend's own program for such a frame,
+    // so the arithmetic is the same by construction.
+    for (const ShadingModel shading : {ShadingModel::Full, ShadingModel::Lambert})
+        for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces}) {
+            Program& p = programs_[programIndex(shading, tonemap)];
+            if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag",
+                                                    meshPreamble() + frameDefines(shading, tonemap), &p.name);
+                !reason.empty())
+                return reason;
+            p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
+            p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
+            p.model = gl_.GetUniformLocation(p.name, "u_model");
+            p.factor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
+            p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
+            p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
+            p.eye = gl_.GetUniformLocation(p.name, "u_eye");
+            p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
+            p.light = gl_.GetUniformLocation(p.name, "u_light");
+            p.environment = gl_.GetUniformLocation(p.name, "u_environment");
+        }
 
     // The backend's fixed state (GlBackend::initialise), where it differs from GL's defaults.
     gl_.Enable(GL_DEPTH_TEST);
@@ -179,10 +194,12 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     gl_.ClearColor(background.r, background.g, background.b, background.a);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::vec3 eye = eyePosition(frame.view);
-    gl_.Uniform3fv(eye_, 1, glm::value_ptr(eye));
-    gl_.Uniform3fv(toLight_, 1, glm::value_ptr(frame.lighting.toLight));
-    gl_.Uniform1f(light_, frame.lighting.light);
-    gl_.Uniform1f(environment_, frame.lighting.environment);
+    const Program& p = programs_[programIndex(frame.shading, frame.tonemap)];
+    gl_.UseProgram(p.name);
+    gl_.Uniform3fv(p.eye, 1, glm::value_ptr(eye));
+    gl_.Uniform3fv(p.toLight, 1, glm::value_ptr(frame.lighting.toLight));
+    gl_.Uniform1f(p.light, frame.lighting.light);
+    gl_.Uniform1f(p.environment, frame.lighting.environment);
     const glm::mat4 viewProjection = frame.projection * frame.view;
     for (const Instance& instance : scene_->instances) {
         const MeshObjects& m = meshes_[std::size_t(instance.mesh)];
@@ -192,11 +209,12 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
         const glm::mat4& model = world[std::size_t(instance.node)];
         const glm::mat4 mvp = viewProjection * model;
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(model));
-        gl_.UniformMatrix4fv(mvp_, 1, GL_FALSE, glm::value_ptr(mvp));
-        gl_.UniformMatrix3fv(normalMatrix_, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-        gl_.UniformMatrix4fv(model_, 1, GL_FALSE, glm::value_ptr(model));
-        gl_.Uniform4fv(factor_, 1, glm::value_ptr(material.baseColorFactor));
-        gl_.Uniform2f(metallicRoughness_, material.metallicFactor, material.roughnessFactor);
+        gl_.UniformMatrix4fv(p.mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+        gl_.UniformMatrix3fv(p.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        gl_.UniformMatrix4fv(p.model, 1, GL_FALSE, glm::value_ptr(model));
+        gl_.Uniform4fv(p.factor, 1, glm::value_ptr(material.baseColorFactor));
+        gl_.Uniform2f(p.metallicRoughness, material.metallicFactor, material.roughnessFactor);
+        gl_.Uniform3fv(p.emissive, 1, glm::value_ptr(material.emissiveFactor));
         if (cullOn_ != int(!material.doubleSided)) {
             if (material.doubleSided)
                 gl_.Disable(GL_CULL_FACE);
@@ -284,10 +302,14 @@ std::string minimalFrameUnsupported(const Scene& scene) {
         if (material.hasTextures())
             return "material " + std::to_string(mesh.material) + quotedName(material.name) +
                    " has a texture, which the minimal frame does not draw";
-        if (material.specularGlossiness || material.alphaMode != AlphaMode::Opaque || material.clearcoat())
+        if (material.specularGlossiness || material.alphaMode != AlphaMode::Opaque || material.clearcoat() ||
+            material.unlit)
             return "material " + std::to_string(mesh.material) + quotedName(material.name) +
-                   " is specular-glossiness, clear-coated or not opaque, which the minimal frame does not draw";
+                   " is specular-glossiness, clear-coated, unlit or not opaque, which the minimal frame does not draw";
     }
+    if (!scene.lights.empty())
+        return "the scene has " + std::to_string(scene.lights.size()) +
+               (scene.lights.size() == 1 ? " light" : " lights") + ", which the minimal frame does not draw";
     return {};
 }
 

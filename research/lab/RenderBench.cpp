@@ -89,6 +89,7 @@ Result<FrameSetup> frameOf(const RenderBenchSettings& s, const Scene& scene, Dep
     Result<FrameSetup> setup =
         setUpFrame(scene, s.camera, s.time, s.render.width, s.render.height, s.render.ids, format);
     if (!setup) return Error{s.scene + ": " + setup.error().message, setup.error().kind};
+    applyShading(s.render, setup->params);
     return setup;
 }
 
@@ -389,6 +390,8 @@ std::string renderBenchJson(const RenderBench& bench) {
         {"hsr", toString(s.render.hsr)},
         {"draw_order", toString(s.render.order)},
         {"depth_format", depthFormatName(s.render.depthFormat)},
+        {"shading", toString(s.render.shading)},
+        {"tonemap", toString(s.render.tonemap)},
         {"runs", s.runs},
         {"warmup", s.warmup},
         {"threads", s.render.threads > 0 ? nlohmann::json(s.render.threads) : nlohmann::json("default")},

@@ -121,6 +121,7 @@ Result<Buffers> Soak::drawFrame(Stage& stage, TargetHandle target, double time) 
     const Settings& r = s_.render;
     Result<FrameSetup> setup = setUpFrame(scene_, s_.camera, time, r.width, r.height, s_.ids, r.depthFormat);
     if (!setup) return Error{s_.scene + ": " + setup.error().message};
+    applyShading(r, setup->params);
     stage.renderer().renderFrame(target, r.width, r.height, setup->params, setup->world, r.background);
     return stage.backend().readBack(target);
 }
@@ -216,6 +217,7 @@ Result<bool> Soak::framesOn(BackendKind kind, SoakFrames run, SoakReport& report
         const auto draw = [&](double time) -> Result<FrameDigest> {
             Result<FrameSetup> setup = setUpFrame(scene_, s_.camera, time, r.width, r.height, false, r.depthFormat);
             if (!setup) return Error{s_.scene + ": " + setup.error().message};
+            applyShading(r, setup->params);
             frame.render(setup->params, setup->world, r.background);
             const Buffers image = frame.readBack();
             return FrameDigest{imageHash(image), isBlank(image, background_)};

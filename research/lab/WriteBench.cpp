@@ -300,6 +300,7 @@ Result<bool> readBackRun(const std::string& name, const Scene& scene, const Writ
     MinimalFrame& minimal = **made;
     Result<FrameSetup> setup = setUpFrame(scene, Camera::automatic(), 0.0, r.width, r.height, false, r.depthFormat);
     if (!setup) return Error{name + ": " + setup.error().message};
+    applyShading(r, setup->params);
     const auto draw = [&] { minimal.render(setup->params, setup->world, r.background); };
     const std::vector<std::string> variants = {"draw", "readpixels", "pbo", "pbo, a frame late"};
     for (const bool depth : {false, true}) {

@@ -10,9 +10,11 @@
 // stubs, but EGL does not promise that across vendors.
 #pragma once
 
+#include <string>
+
 #include <GL/glcorearb.h>
 
-#include <string>
+#include <frugal/Image.h>
 
 namespace frugal {
 
@@ -135,6 +137,10 @@ std::string compileProgram(const GlApi& gl, const char* vertex, const char* frag
 // The text every variant of the mesh program (mesh.vert, mesh.frag) needs before its own: dfg(), the
 // split-sum table's fit, written from pipeline/Brdf.h. Pass it to compileProgram with the defines.
 std::string meshPreamble();
+
+// The defines of the frame-wide settings every mesh program variant follows: FRUGAL_LAMBERT for
+// the Lambert model, FRUGAL_TONEMAP_NEUTRAL or FRUGAL_TONEMAP_ACES (FrameParams::shading, tonemap).
+std::string frameDefines(ShadingModel shading, ToneMap tonemap);
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

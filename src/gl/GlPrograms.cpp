@@ -61,6 +61,14 @@ std::string meshPreamble() {
     return text;
 }
 
+std::string frameDefines(ShadingModel shading, ToneMap tonemap) {
+    std::string defines;
+    if (tonemap == ToneMap::PbrNeutral) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
+    if (tonemap == ToneMap::Aces) defines += "#define FRUGAL_TONEMAP_ACES\n";
+    if (shading == ShadingModel::Lambert) defines += "#define FRUGAL_LAMBERT\n";
+    return defines;
+}
+
 }  // namespace frugal
 
 namespace frugal::gl {
@@ -87,9 +95,10 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kClearcoatMapBit) defines += "#define FRUGAL_CLEARCOAT_MAP\n";
     if (variant & kClearcoatRoughnessMapBit) defines += "#define FRUGAL_CLEARCOAT_ROUGHNESS_MAP\n";
     if (variant & kClearcoatNormalMapBit) defines += "#define FRUGAL_CLEARCOAT_NORMAL_MAP\n";
-    if (variant & kToneMapNeutralBit) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
-    if (variant & kToneMapAcesBit) defines += "#define FRUGAL_TONEMAP_ACES\n";
-    if (variant & kLambertBit) defines += "#define FRUGAL_LAMBERT\n";
+    defines += frameDefines(variant & kLambertBit ? ShadingModel::Lambert : ShadingModel::Full,
+                            variant & kToneMapNeutralBit ? ToneMap::PbrNeutral
+                            : variant & kToneMapAcesBit  ? ToneMap::Aces
+                                                         : ToneMap::None);
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;

@@ -155,5 +155,16 @@ TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
                                                                 "(full, lambert)"}});
 }
 
+// The research harnesses shade their frames with the settings too: bench render times the frame
+// the settings ask for (its minimal program draws the same variant, tests/gl/MinimalFrameGLTest).
+TEST(LightsCliTest, BenchRenderTimesTheShadingAsked) {
+    const fs::path dir = test::freshDir("ShadingBench");
+    const CliRun run = runFrugal(dir, {"bench", "render", "builtin:cubes", "--size", "32x24", "--backend", "software",
+                                       "--repeat", "2", "--warmup", "0", "--shading", "lambert", "--tonemap", "aces", "-q"});
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("\"shading\": \"lambert\""), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("\"tonemap\": \"aces\""), std::string::npos) << run.out;
+}
+
 }  // namespace
 }  // namespace frugal

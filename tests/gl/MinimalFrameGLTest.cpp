@@ -31,11 +31,14 @@ protected:
     // Renders `spec` at `time` through GlBackend + SceneRenderer and through MinimalFrame, both with
     // a fresh context of the test's kind, and compares colour and depth.
     void expectSamePixels(const std::string& spec, const LoadOptions& load, double time, int width, int height,
-                          const std::string& name) {
+                          const std::string& name, ShadingModel shading = ShadingModel::Full,
+                          ToneMap tonemap = ToneMap::None) {
         Result<Scene> scene = loadScene(spec, load);
         ASSERT_TRUE(scene) << scene.error().message;
         Result<FrameSetup> setup = setUpFrame(*scene, Camera{}, time, width, height, /*writeIds=*/false);
         ASSERT_TRUE(setup) << setup.error().message;
+        setup->params.shading = shading;
+        setup->params.tonemap = tonemap;
 
         Result<std::unique_ptr<GlContext>> context = createContext(GetParam());
         ASSERT_TRUE(context) << context.error().message;
@@ -93,6 +96,14 @@ TEST_P(MinimalFrameGLTest, BuiltinScenesMatchTheBackend) {
     expectSamePixels("builtin:dominoes?polygons=804&floor=0", {}, 0.5, 320, 240, "dominoes");
 }
 
+// The frame's shading model and tone mapping select the minimal program's variant as they select
+// the backend's (the bench times both with the frame's settings).
+TEST_P(MinimalFrameGLTest, ShadingAndToneMappingMatchTheBackend) {
+    expectSamePixels("builtin:cubes", {}, 2.5, 320, 240, "cubes-lambert", ShadingModel::Lambert);
+    expectSamePixels("builtin:cubes", {}, 2.5, 320, 240, "cubes-lambert-aces", ShadingModel::Lambert, ToneMap::Aces);
+    expectSamePixels("builtin:cubes", {}, 2.5, 320, 240, "cubes-neutral", ShadingModel::Full, ToneMap::PbrNeutral);
+}
+
 TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
     Result<Scene> textured = loadScene("builtin:default");
     ASSERT_TRUE(textured) << textured.error().message;
@@ -114,6 +125,12 @@ TEST_P(MinimalFrameGLTest, RefusesWhatItDoesNotDraw) {
     Result<Scene> cubes = loadScene("builtin:cubes");
     ASSERT_TRUE(cubes) << cubes.error().message;
     EXPECT_EQ(minimalFrameUnsupported(*cubes), "");
+    Scene unlit = *cubes;
+    unlit.materials.at(0).unlit = true;
+    EXPECT_NE(minimalFrameUnsupported(unlit).find("unlit"), std::string::npos) << minimalFrameUnsupported(unlit);
+    Scene lit = *cubes;
+    lit.lights.emplace_back();
+    EXPECT_EQ(minimalFrameUnsupported(lit), "the scene has 1 light, which the minimal frame does not draw");
 }
 
 // write-bench's read-back experiment: through pixel buffer objects, in one step or a frame late,
