@@ -28,6 +28,8 @@
 // the coat's GGX specular (roughness factor × the map's green; no Fresnel)·k, the emission
 // emission·(1 − k). FRUGAL_TONEMAP_NEUTRAL and FRUGAL_TONEMAP_ACES map the linear colour before its
 // encoding, as the Khronos renderer's tonemapping.glsl does (FrameParams::tonemap).
+// FRUGAL_NO_ENVIRONMENT_SPECULAR (Lighting::environmentSpecular false): the environment lights the
+// diffuse lobe alone, dielectric = base · L, no metal term, no coat term L·k.
 #version 330 core
 
 in vec3 v_normal;
@@ -263,6 +265,13 @@ void main() {
     float cv = pow5(1.0 - nv);
 
     // The environment: diffuse and specular image-based light of a uniform radiance.
+#ifdef FRUGAL_NO_ENVIRONMENT_SPECULAR
+    // Its diffuse lobe alone (Lighting::environmentSpecular).
+    vec3 dielectric = base.rgb * u_environment;
+#ifndef FRUGAL_SPECULAR_GLOSSINESS
+    vec3 metal = vec3(0.0);
+#endif
+#else
     vec2 ab = dfg(nv, r);
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 fd = iblFresnel(f0, r, cv, ab);
@@ -271,6 +280,7 @@ void main() {
     float fd = iblFresnel(kDielectricF0, r, cv, ab);
     vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + vec3(u_environment * fd);
     vec3 metal = iblFresnel(base.rgb, r, cv, ab) * u_environment;
+#endif
 #endif
 #ifdef FRUGAL_OCCLUSION_MAP
     float occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, v_uv).r - 1.0);
@@ -291,7 +301,11 @@ void main() {
     vec3 environment = dielectric * (1.0 - metallic) + metal * metallic;
     metal = vec3(0.0);
 #endif
+#ifdef FRUGAL_NO_ENVIRONMENT_SPECULAR
+    environment = environment * (1.0 - k);
+#else
     environment = environment * (1.0 - k) + u_environment * k;
+#endif
 #ifdef FRUGAL_OCCLUSION_MAP
     environment = environment * occlusion;
 #endif

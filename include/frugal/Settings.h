@@ -295,6 +295,7 @@ struct Settings {
     int samples = 1;  // multisampling: 1, 2, 4 or 8 samples a pixel (Backend::createTarget)
     DefaultLight light = DefaultLight::On;  // the directional light where the scene has no lights
     float environment = 0.3f;               // the uniform white environment's radiance (0: none)
+    bool environmentSpecular = true;  // false: the environment lights the diffuse lobe alone (no reflection of it)
     ShadingModel shading = ShadingModel::Full;  // frugal/Image.h
     bool mipmaps = true;  // false: every texture sampled from its base level (no mipmaps made)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)

@@ -70,6 +70,7 @@ class _Settings(TypedDict):
     no_mipmaps: bool
     light: _Light
     environment: float
+    no_environment_specular: bool
     samples: int
     background: tuple[float, float, float, float]
     ids: bool
@@ -112,6 +113,7 @@ def settings(
     no_mipmaps: bool = ...,
     light: _Light = ...,
     environment: float = ...,
+    no_environment_specular: bool = ...,
     samples: int = ...,
     background: _Colour = ...,
     ids: bool = ...,
@@ -491,6 +493,7 @@ class Renderer(_pybind11_object):
         no_mipmaps: bool = ...,
         light: _Light = ...,
         environment: float = ...,
+        no_environment_specular: bool = ...,
         samples: int = ...,
         background: _Colour = ...,
         ids: bool = ...,

@@ -163,6 +163,10 @@ def test_the_default_light_and_the_environment_are_keywords():
     assert (lambert != plain).any()
     with frugal.Renderer(scene, size=(64, 48), background=(0, 0, 0), backend="software", shading="lambert") as r:
         assert np.abs(r.render().color[..., :3].astype(int) - lambert).max() <= 1
+    # no_environment_specular=True: the environment's diffuse lobe alone, never brighter.
+    diffuse = color(no_environment_specular=True)[0]
+    assert (diffuse[covered] < plain[covered]).any()
+    assert (diffuse <= plain).all()
 
 
 def test_close_and_context_manager():

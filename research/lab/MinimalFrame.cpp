@@ -71,20 +71,22 @@ private:
     bool loaded_ = false;
     int width_ = 0, height_ = 0;
     DepthFormat format_ = DepthFormat::D24;
-    // The mesh program for each shading model and tone mapping (FrameParams::shading, tonemap),
-    // uniforms by location.
+    // The mesh program for each shading model, tone mapping and environment specular term
+    // (FrameParams::shading, tonemap, Lighting::environmentSpecular), uniforms by location.
     struct Program {
         GLuint name = 0;
         GLint mvp = -1, normalMatrix = -1, model = -1, factor = -1, metallicRoughness = -1, emissive = -1;
         GLint eye = -1, toLight = -1, light = -1, environment = -1;
     };
     static constexpr int kToneMaps = 3;
-    static int programIndex(ShadingModel shading, ToneMap tonemap) { return int(shading) * kToneMaps + int(tonemap); }
-    Program programs_[2 * kToneMaps];
+    static int programIndex(ShadingModel shading, ToneMap tonemap, bool environmentSpecular) {
+        return (int(shading) * kToneMaps + int(tonemap)) * 2 + int(environmentSpecular);
+    }
+    Program programs_[2 * kToneMaps * 2];
     GLuint fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
-    std::vector<MeshObjects> meshes_;  // one per scene mesh
+    std::vector<MeshObjects> meshes_;   // one per scene mesh
     int cullOn_ = -1;
 };
 
@@ -119,27 +121,32 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
     if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "incomplete framebuffer";
     gl_.Viewport(0, 0, width, height);
 
-    // mesh.vert + mesh.frag with only the frame's defines (shading model, tone mapping): the
+    // mesh.vert + mesh.frag with only the frame's defines (shading model, tone mapping, environment
+    // specular term): the
     // variant with no texture, colours or ids, which is the backend's own program for such a frame,
     // so the arithmetic is the same by construction.
     for (const ShadingModel shading : {ShadingModel::Full, ShadingModel::Lambert})
-        for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces}) {
-            Program& p = programs_[programIndex(shading, tonemap)];
-            if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag",
-                                                    meshPreamble() + frameDefines(shading, tonemap), &p.name);
-                !reason.empty())
-                return reason;
-            p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
-            p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
-            p.model = gl_.GetUniformLocation(p.name, "u_model");
-            p.factor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
-            p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
-            p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
-            p.eye = gl_.GetUniformLocation(p.name, "u_eye");
-            p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
-            p.light = gl_.GetUniformLocation(p.name, "u_light");
-            p.environment = gl_.GetUniformLocation(p.name, "u_environment");
-        }
+        for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces})
+            for (const bool environmentSpecular : {false, true}) {
+                Program& p = programs_[programIndex(shading, tonemap, environmentSpecular)];
+                // The backend's variants: Lambert has no environment specular term to leave out.
+                const bool specular = environmentSpecular || shading == ShadingModel::Lambert;
+                if (std::string reason =
+                        compileProgram(gl_, "mesh.vert", "mesh.frag",
+                                       meshPreamble() + frameDefines(shading, tonemap, specular), &p.name);
+                    !reason.empty())
+                    return reason;
+                p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
+                p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
+                p.model = gl_.GetUniformLocation(p.name, "u_model");
+                p.factor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
+                p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
+                p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
+                p.eye = gl_.GetUniformLocation(p.name, "u_eye");
+                p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
+                p.light = gl_.GetUniformLocation(p.name, "u_light");
+                p.environment = gl_.GetUniformLocation(p.name, "u_environment");
+            }
 
     // The backend's fixed state (GlBackend::initialise), where it differs from GL's defaults.
     gl_.Enable(GL_DEPTH_TEST);
@@ -194,7 +201,7 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     gl_.ClearColor(background.r, background.g, background.b, background.a);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::vec3 eye = eyePosition(frame.view);
-    const Program& p = programs_[programIndex(frame.shading, frame.tonemap)];
+    const Program& p = programs_[programIndex(frame.shading, frame.tonemap, frame.lighting.environmentSpecular)];
     gl_.UseProgram(p.name);
     gl_.Uniform3fv(p.eye, 1, glm::value_ptr(eye));
     gl_.Uniform3fv(p.toLight, 1, glm::value_ptr(frame.lighting.toLight));

@@ -1,10 +1,10 @@
 // The yardstick of `frugal-lab bench render`: the same frame as the GL backend draws through
 // SceneRenderer, drawn by the fewest GL calls that give the same pixels, on a context of its own.
-// One program with position and normal only (mesh.vert + mesh.frag with only the frame's shading model and
-// tone mapping as defines), the default light and environment and the material's factors as uniforms, one VAO per mesh,
-// glClear of colour and depth with the FBO's default draw buffer, glDrawElements per instance, culling per material. No
-// ids, no textures, no vertex colours, no state cache beyond culling: whatever the backend spends beyond this is its
-// overhead, and the bench reports frugal ÷ minimal.
+// One program with position and normal only (mesh.vert + mesh.frag with only the frame's shading model,
+// tone mapping and environment specular term as defines), the default light and environment and the material's factors
+// as uniforms, one VAO per mesh, glClear of colour and depth with the FBO's default draw buffer, glDrawElements per
+// instance, culling per material. No ids, no textures, no vertex colours, no state cache beyond culling: whatever the
+// backend spends beyond this is its overhead, and the bench reports frugal ÷ minimal.
 //
 // Vertex arithmetic is the backend's (gl/GlDraw.cpp): mvp = (projection · view) · model and
 // normalMatrix = inverseTranspose(mat3(model)) in float with glm on the CPU; the shaders are the

@@ -358,10 +358,14 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
         for (const DepthInterp interp : {DepthInterp::Span, DepthInterp::Dda})
             out.push_back(with(base, std::string("interp ") + toString(interp), "interp",
                                [interp](Settings& s) { s.interp = interp; }));
-    // The shading trades, against the base's full shading: the Lambert approximation, one sample a
-    // pixel where the base has more, base levels only where the scene has mipmaps.
+    // The shading trades, against the base's full shading: the Lambert approximation, the
+    // environment's diffuse lobe alone, one sample a pixel where the base has more, base levels only
+    // where the scene has mipmaps.
     if (base.shading == ShadingModel::Full)
         out.push_back(with(base, "shading lambert", "shading", [](Settings& s) { s.shading = ShadingModel::Lambert; }));
+    if (base.shading == ShadingModel::Full && base.environmentSpecular && base.environment > 0.0f)
+        out.push_back(
+            with(base, "no environment specular", "shading", [](Settings& s) { s.environmentSpecular = false; }));
     if (base.samples > 1) out.push_back(with(base, "samples 1", "shading", [](Settings& s) { s.samples = 1; }));
     if (base.mipmaps && mipmapped)
         out.push_back(with(base, "no mipmaps", "shading", [](Settings& s) { s.mipmaps = false; }));

@@ -82,6 +82,7 @@ FlagGroup renderFlags(RenderOptions& o) {
         setting("no-mipmaps"),
         setting("light"),
         setting("environment"),
+        setting("no-environment-specular"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),
         flag::on("--file-order", "keep the file's triangle order (default: reordered for the vertex cache)",

@@ -20,15 +20,16 @@ const char* reportHelp() {
 Runs every method that trades accuracy for speed on SCENE (default builtin:default), in one process
 with interleaved timing: the culling methods (the oracle as their floor), the draw orders key and
 greedy, the hidden-surface modes, on the software backend the interpolators, the shading trades
-(--shading lambert; --samples 1 where more are asked for; --no-mipmaps where the scene has
-mipmaps), in a sequence (--frames) temporal reuse, and combinations. Each is judged against the
-plain render of the same view or frame: pixels that differ, the worst frame, the visible triangles
-it lacks (misses), PSNR, the worst depth difference. Prints the fastest exact settings (the plain
-render's colour and depth, bit for bit) and the fastest within --budget-px differing pixels a
-frame, each with the 95 % interval of its time's ratio to the plain render's, paired shot by shot
-and round by round (a bootstrap of a trimmed mean over the shots, fixed seed): a method is picked
-only when that interval lies below 0.97, and never when its draws are the plain render's (a no-op,
-such as an order of a single draw); "plain render" when nothing pays. Writes into DIR:
+(--shading lambert; --no-environment-specular; --samples 1 where more are asked for; --no-mipmaps
+where the scene has mipmaps), in a sequence (--frames) temporal reuse, and combinations. Each is
+judged against the plain render of the same view or frame: pixels that differ, the worst frame, the
+visible triangles it lacks (misses), PSNR, the worst depth difference. Prints the fastest exact
+settings (the plain render's colour and depth, bit for bit) and the fastest within --budget-px
+differing pixels a frame, each with the 95 % interval of its time's ratio to the plain render's,
+paired shot by shot and round by round (a bootstrap of a trimmed mean over the shots, fixed seed): a
+method is picked only when that interval lies below 0.97, and never when its draws are the plain
+render's (a no-op, such as an order of a single draw); "plain render" when nothing pays.
+Writes into DIR:
   index.html      one page that works offline: the recommendation, the chart of time against
                   error (SVG), every method's figures with an error mask beside each one whose
                   colour differs, and the seed papers' published figures beside this run's

@@ -139,8 +139,9 @@ std::string compileProgram(const GlApi& gl, const char* vertex, const char* frag
 std::string meshPreamble();
 
 // The defines of the frame-wide settings every mesh program variant follows: FRUGAL_LAMBERT for
-// the Lambert model, FRUGAL_TONEMAP_NEUTRAL or FRUGAL_TONEMAP_ACES (FrameParams::shading, tonemap).
-std::string frameDefines(ShadingModel shading, ToneMap tonemap);
+// the Lambert model, FRUGAL_TONEMAP_NEUTRAL or FRUGAL_TONEMAP_ACES, FRUGAL_NO_ENVIRONMENT_SPECULAR
+// (FrameParams::shading, tonemap, Lighting::environmentSpecular).
+std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular = true);
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

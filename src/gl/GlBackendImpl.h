@@ -71,7 +71,8 @@ enum Variant : unsigned {
     kToneMapAcesBit = 262144u,
     kLightsBit = 524288u,    // the scene's punctual lights (Lighting::lights) instead of the directional light
     kLambertBit = 1048576u,  // FrameParams::shading Lambert: the diffuse term alone
-    kVariantCount = 2097152u
+    kNoEnvironmentSpecularBit = 2097152u,  // Lighting::environmentSpecular false
+    kVariantCount = 4194304u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |

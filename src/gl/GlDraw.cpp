@@ -118,6 +118,8 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (frame_.tonemap == ToneMap::PbrNeutral) variant |= kToneMapNeutralBit;
     if (frame_.tonemap == ToneMap::Aces) variant |= kToneMapAcesBit;
     if (!params.unlit && !frame_.lighting.lights.empty()) variant |= kLightsBit;
+    if (!params.unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
+        variant |= kNoEnvironmentSpecularBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 

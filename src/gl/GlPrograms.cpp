@@ -61,8 +61,9 @@ std::string meshPreamble() {
     return text;
 }
 
-std::string frameDefines(ShadingModel shading, ToneMap tonemap) {
+std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular) {
     std::string defines;
+    if (!environmentSpecular) defines += "#define FRUGAL_NO_ENVIRONMENT_SPECULAR\n";
     if (tonemap == ToneMap::PbrNeutral) defines += "#define FRUGAL_TONEMAP_NEUTRAL\n";
     if (tonemap == ToneMap::Aces) defines += "#define FRUGAL_TONEMAP_ACES\n";
     if (shading == ShadingModel::Lambert) defines += "#define FRUGAL_LAMBERT\n";
@@ -98,7 +99,8 @@ std::string GlBackend::compileVariant(unsigned variant) {
     defines += frameDefines(variant & kLambertBit ? ShadingModel::Lambert : ShadingModel::Full,
                             variant & kToneMapNeutralBit ? ToneMap::PbrNeutral
                             : variant & kToneMapAcesBit  ? ToneMap::Aces
-                                                         : ToneMap::None);
+                                                         : ToneMap::None,
+                            (variant & kNoEnvironmentSpecularBit) == 0);
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;

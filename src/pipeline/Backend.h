@@ -125,6 +125,9 @@ struct Lighting {
     glm::vec3 toLight = glm::normalize(glm::vec3(0.35f, 0.8f, 0.5f));  // world space, unit
     float light = 0.7f * 3.14159265f;  // the directional light's intensity (white): E above
     float environment = 0.3f;          // the uniform environment's radiance (white): L above
+    // false: the environment's specular term is left out: dielectric = L·base.rgb, metal = 0, and a
+    // clear coat adds no L·k (its light's terms stay). Lambert and unlit shading have none anyway.
+    bool environmentSpecular = true;
     // The scene's punctual lights, at most kMaxLights: when there are any, they light the frame
     // instead of the directional light above (the environment stays).
     std::vector<FrameLight> lights;

@@ -183,6 +183,10 @@ std::vector<SettingInfo> makeTable() {
                      "specularly, as image-based light (default 0.3: a white matte surface reflects 0.3 of it in "
                      "any orientation; 0 = none)",
                      0.0, 1e6, [](auto& s) -> auto& { return s.environment; }));
+    t.push_back(toggle("no-environment-specular", kImage,
+                       "the environment lights each material's diffuse lobe alone: no specular reflection of it "
+                       "(metals then reflect only the lights; faster to shade)",
+                       [](auto& s) -> auto& { return s.environmentSpecular; }, true));
     SettingInfo samples = whole("samples", "N", kImage,
                                 "samples a pixel (multisampling, resolved to one colour each): 1 (default), 2, 4 "
                                 "or 8, at least as many as the backend has (llvmpipe and the software backend: 4 for "

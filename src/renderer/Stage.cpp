@@ -63,6 +63,7 @@ void applyShading(const Settings& s, FrameParams& params) {
     params.tonemap = s.tonemap;
     params.shading = s.shading;
     params.lighting.environment = s.environment;
+    params.lighting.environmentSpecular = s.environmentSpecular;
     if (s.light == DefaultLight::Off) params.lighting.light = 0.0f;
 }
 

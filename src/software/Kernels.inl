@@ -507,6 +507,7 @@ struct Light {
           roughnessFactor(simd::splat(s.roughness)),
           environment(simd::splat(s.environment)),
           occlusionStrength(simd::splat(s.occlusionStrength)),
+          environmentSpecular(s.environmentSpecular),
           emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)},
           lights(s.lights) {}
 
@@ -533,15 +534,19 @@ struct Light {
         const F8 cv = pow5(one - nv);
 
         // The environment.
-        F8 a, b;
-        dfg(nv, r, a, b);
         F8 dielectric[3], metal[3] = {zero, zero, zero};  // (no metal terms with specular-glossiness)
-        if (surface.specular) {
+        if (!environmentSpecular) {
+            for (int c = 0; c < 3; ++c) dielectric[c] = base[c] * environment;  // its diffuse lobe alone
+        } else if (surface.specular) {
+            F8 a, b;
+            dfg(nv, r, a, b);
             for (int c = 0; c < 3; ++c) {
                 const F8 fd = iblFresnel(surface.specular[c], r, cv, a, b);
                 dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
             }
         } else {
+            F8 a, b;
+            dfg(nv, r, a, b);
             const F8 fd = iblFresnel(f0, r, cv, a, b);
             for (int c = 0; c < 3; ++c) {
                 dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
@@ -555,7 +560,7 @@ struct Light {
             const F8 occlusion = surface.occlusion ? one + occlusionStrength * (*surface.occlusion - one) : one;
             for (int c = 0; c < 3; ++c) {
                 coated[c] = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
-                coated[c] = coated[c] * (one - k) + environment * k;
+                coated[c] = environmentSpecular ? coated[c] * (one - k) + environment * k : coated[c] * (one - k);
                 if (surface.occlusion) coated[c] = coated[c] * occlusion;
                 dielectric[c] = metal[c] = zero;
             }
@@ -654,6 +659,7 @@ struct Light {
 
     Vec3 eye;
     F8 metallicFactor, roughnessFactor, environment, occlusionStrength;
+    bool environmentSpecular;
     F8 emission[3];
     std::span<const FrameLight> lights;
 };

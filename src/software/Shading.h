@@ -248,6 +248,7 @@ struct DrawShading {
     }
     glm::vec3 eye{0.0f};  // world space
     float environment = 0.0f;            // Lighting
+    bool environmentSpecular = true;     // Lighting
     std::span<const FrameLight> lights;  // Lighting::lights, or its directional light as the only one
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)

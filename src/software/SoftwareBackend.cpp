@@ -287,6 +287,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.normalScale = params.normalScale;
     input.shading.occlusionStrength = params.occlusionStrength;
     input.shading.environment = frame_.lighting.environment;
+    input.shading.environmentSpecular = frame_.lighting.environmentSpecular;
     input.shading.tonemap = frame_.tonemap;
     input.shading.lights = lightSets_.back();  // beginFrame's: frame_'s own may be replaced before a flush
     input.shading.writeIds = frame_.writeIds;

@@ -155,6 +155,43 @@ TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
                                                                 "(full, lambert)"}});
 }
 
+// --no-environment-specular: the environment lights the diffuse lobe alone. It darkens the lit
+// pixels of every material that reflects it (the metals most), keeps the triangles, agrees between
+// GL and the software reference, and has nothing to leave out without an environment or under
+// the Lambert model.
+TEST(LightsCliTest, NoEnvironmentSpecularKeepsTheDiffuseLobe) {
+    const fs::path dir = test::freshDir("EnvironmentSpecularCli");
+    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120",
+                                         "--ids",  name + "-ids.png"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return test::renderedPixels(dir, name, args);
+    };
+    const std::vector<std::uint8_t> full = render("full", {});
+    const std::vector<std::uint8_t> diffuse = render("diffuse", {"--no-environment-specular"});
+    ASSERT_EQ(full.size(), diffuse.size());
+    std::size_t darker = 0, brighter = 0;
+    for (std::size_t i = 0; i < full.size(); i += 4) {
+        const int before = full[i] + full[i + 1] + full[i + 2], after = diffuse[i] + diffuse[i + 1] + diffuse[i + 2];
+        darker += after < before;
+        brighter += after > before;
+    }
+    EXPECT_GT(darker, full.size() / 4 / 10);
+    EXPECT_EQ(brighter, 0u) << "leaving out light never brightens";
+    EXPECT_EQ(readAll(dir / "full-ids.png"), readAll(dir / "diffuse-ids.png")) << "the same triangles";
+
+    render("lambert", {"--shading", "lambert"});
+    render("lambert-diffuse", {"--shading", "lambert", "--no-environment-specular"});
+    EXPECT_EQ(readAll(dir / "lambert.png"), readAll(dir / "lambert-diffuse.png")) << "Lambert has no such term";
+    render("dark", {"--environment", "0", "--backend", "software"});
+    render("dark-diffuse", {"--environment", "0", "--backend", "software", "--no-environment-specular"});
+    EXPECT_EQ(readAll(dir / "dark.png"), readAll(dir / "dark-diffuse.png")) << "no environment, nothing to leave out";
+
+    const CliRun diff = runFrugal(
+        dir, {"diff", "builtin:materials", "--size", "160x120", "--no-environment-specular", "--tolerance", "1"});
+    EXPECT_EQ(diff.status, 0) << diff.out << diff.err;
+}
+
 // The research harnesses shade their frames with the settings too: bench render times the frame
 // the settings ask for (its minimal program draws the same variant, tests/gl/MinimalFrameGLTest).
 TEST(LightsCliTest, BenchRenderTimesTheShadingAsked) {

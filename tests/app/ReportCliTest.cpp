@@ -85,13 +85,13 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(occurrences(run.out, "% interval ["), 2u) << "each line gives its pick's interval, or the nearest miss's\n"
                                                          << run.out;
     EXPECT_NE(run.out.find("\nfastest within 50 px a frame: "), std::string::npos) << run.out;
-    EXPECT_NE(run.err.find("report: 15 candidates on "), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("report: 16 candidates on "), std::string::npos) << run.err;
 
     const nlohmann::json report = test::readJson(dir / "out" / "report.json");
     checkIntervals(report, 4 * 2);
     EXPECT_EQ(report["shots"], 4);
     EXPECT_EQ(report["rows"][0]["name"], "plain");
-    EXPECT_EQ(report["rows"].size(), 15u);
+    EXPECT_EQ(report["rows"].size(), 16u);
     for (const nlohmann::json& r : report["rows"]) {
         EXPECT_EQ(r["exact"], r["differing_px"] == 0 && r["worst_depth"] == 0) << r["name"];
         EXPECT_LE(r["worst_frame_px"].get<std::uint64_t>(), r["differing_px"].get<std::uint64_t>()) << r["name"];
@@ -106,6 +106,9 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(row(report, "shading lambert")["family"], "shading");
     EXPECT_GT(row(report, "shading lambert")["differing_px"].get<int>(), 0);
     EXPECT_EQ(row(report, "shading lambert")["misses"], 0);
+    EXPECT_EQ(row(report, "no environment specular")["family"], "shading");
+    EXPECT_GT(row(report, "no environment specular")["differing_px"].get<int>(), 0);
+    EXPECT_EQ(row(report, "no environment specular")["misses"], 0);
 
     // The same views in cull-report, which finds the misses from the oracle's visible set and the
     // submitted list instead of two images: the same triangles missed, the same pixels differing.
@@ -132,7 +135,7 @@ TEST(ReportCliTest, ViewsGiveEveryMethodJudgedAndAnExactRecommendation) {
     EXPECT_EQ(nlohmann::json::parse(readAll(dir / "out" / "settings.json")),
               exact == "plain" ? report["rows"][0]["settings"] : row(report, exact)["settings"]);
     const std::string csv = readAll(dir / "out" / "report.csv");
-    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 16) << "a header and a line a row";
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 17) << "a header and a line a row";
     EXPECT_NE(csv.find(",misses,x_plain_paired,x_plain_low,x_plain_high,pairs,no_op,pays,same_draws_as\n"), std::string::npos)
         << "the paired columns after the ones pareto.gp reads";
 

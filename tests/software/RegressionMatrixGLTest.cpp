@@ -43,6 +43,7 @@ struct MatrixCase {
     ToneMap tonemap = ToneMap::None;
     int samples = 1;  // 4: multisampled, resolved (raster/Rasterizer.h, 6.)
     ShadingModel shading = ShadingModel::Full;
+    bool environmentSpecular = true;  // false: the environment's diffuse lobe alone (Lighting)
 };
 
 Scene loaded(const std::string& spec) {
@@ -733,6 +734,48 @@ std::vector<MatrixCase> matrix() {
          ToneMap::None,
          1,
          ShadingModel::Lambert},
+        // The environment's diffuse lobe alone (Lighting::environmentSpecular) on the corners of the
+        // material space, under the maps, on specular-glossiness and on clear coats.
+        {"no-env-specular-materials",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         false},
+        {"no-env-specular-maps",
+         maps,
+         640,
+         480,
+         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         false},
+        {"no-env-specular-specular-glossiness",
+         specularGlossiness,
+         640,
+         480,
+         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         false},
+        {"no-env-specular-clearcoat",
+         clearcoat,
+         640,
+         560,
+         lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         false},
         {"msaa-lights",
          lights,
          640,
@@ -758,6 +801,7 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     ASSERT_TRUE(setup) << setup.error().message;
     setup->params.tonemap = c.tonemap;
     setup->params.shading = c.shading;
+    setup->params.lighting.environmentSpecular = c.environmentSpecular;
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
