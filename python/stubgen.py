@@ -14,9 +14,10 @@ from pathlib import Path
 STUB = Path(__file__).resolve().parent / "frugal" / "_frugal.pyi"
 
 # A keyword argument's type, and a value's in the dict of settings, by the setting's kind.
-KEYWORD = {"switch": "bool", "whole": "int", "pair": "_Pair", "colour": "_Colour", "real": "float"}
+KEYWORD = {"switch": "bool", "whole": "int", "pair": "_Pair", "colour": "_Colour", "real": "float",
+           "text": "str | os.PathLike[str]"}
 VALUE = {"switch": "bool", "whole": "int", "pair": "tuple[int, int]", "colour": "tuple[float, float, float, float]",
-         "real": "float"}
+         "real": "float", "text": "str"}
 
 
 def alias(info):

@@ -30,6 +30,9 @@
 // encoding, as the Khronos renderer's tonemapping.glsl does (FrameParams::tonemap).
 // FRUGAL_NO_ENVIRONMENT_SPECULAR (Lighting::environmentSpecular false): the environment lights the
 // diffuse lobe alone, dielectric = base · L, no metal term, no coat term L·k.
+// FRUGAL_ENVIRONMENT_MAP (Lighting::map): the environment's diffuse L is E(n)/π from the map's
+// spherical harmonics, its specular L the prefiltered map at the reflected view direction (the
+// coat's at its normal and roughness), for the Lambert model the diffuse alone.
 #version 330 core
 
 in vec3 v_normal;
@@ -50,6 +53,12 @@ uniform vec4 u_lights[4 * FRUGAL_LIGHTS + 1];
 #endif
 #ifdef FRUGAL_ALPHA_MASK
 uniform float u_alphaCutoff;
+#endif
+#ifdef FRUGAL_ENVIRONMENT_MAP
+// The environment map (pipeline/Environment.h): E(n)/π's coefficients and the prefiltered levels,
+// read at level roughness · FRUGAL_ENVIRONMENT_MAP (the last level's number).
+uniform vec3 u_environmentSh[9];
+uniform sampler2D u_environmentMap;  // unit 9
 #endif
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
 uniform vec4 u_specularGlossiness;  // rgb the specular colour, a the glossiness
@@ -158,6 +167,36 @@ vec3 iblFresnel(vec3 f0, float r, float c5, vec2 ab) {
     return fss + (ems * fss) * favg / (1.0 - favg * ems);
 }
 
+#ifdef FRUGAL_ENVIRONMENT_MAP
+// The diffuse light E(n)/π from the map's coefficients, at least 0.
+vec3 environmentDiffuse(vec3 n) {
+    vec3 e = u_environmentSh[0] + u_environmentSh[1] * n.y + u_environmentSh[2] * n.z + u_environmentSh[3] * n.x +
+             u_environmentSh[4] * (n.x * n.y) + u_environmentSh[5] * (n.y * n.z) +
+             u_environmentSh[6] * (3.0 * (n.z * n.z) - 1.0) + u_environmentSh[7] * (n.x * n.z) +
+             u_environmentSh[8] * (n.x * n.x - n.y * n.y);
+    return max(e, vec3(0.0));
+}
+// The map's (u, v) of unit direction d: pipeline/Environment.cpp's equirectUv, the same polynomials.
+vec2 equirectUv(vec3 d) {
+    float ax = abs(d.x), az = abs(d.z);
+    float t = min(ax, az) / max(max(ax, az), 1.0e-30);
+    float t2 = t * t;
+    float a = t * (0.99997726 + t2 * (-0.33262347 + t2 * (0.19354346 + t2 * (-0.11643287 + t2 * (0.05265332 + t2 * -0.01172120)))));
+    if (az > ax) a = 1.57079633 - a;
+    if (d.x < 0.0) a = kPi - a;
+    if (d.z < 0.0) a = -a;
+    float ay = min(abs(d.y), 1.0);
+    float c = sqrt(1.0 - ay) * (1.5707288 + ay * (-0.2121144 + ay * (0.0742610 + ay * -0.0187293)));
+    if (d.y < 0.0) c = kPi - c;
+    return vec2(0.5 + a * (0.5 / kPi), c * (1.0 / kPi));
+}
+// The specular light reflected toward v by a surface of normal n and roughness r.
+vec3 environmentSpecular(vec3 n, vec3 v, float r) {
+    vec3 d = normalize(n * (2.0 * dot(n, v)) - v);
+    return textureLod(u_environmentMap, equirectUv(d), r * FRUGAL_ENVIRONMENT_MAP).rgb;
+}
+#endif
+
 #ifdef FRUGAL_TONEMAP_NEUTRAL
 // The Khronos PBR Neutral operator (the Khronos renderer's toneMap_KhronosPbrNeutral).
 vec3 toneMapNeutral(vec3 c) {
@@ -209,7 +248,11 @@ void main() {
 #ifdef FRUGAL_LAMBERT
     // The diffuse term alone (FrameParams::shading): the environment's radiance and each light's
     // E·(n·l)/π on the base colour, then the emission.
+#ifdef FRUGAL_ENVIRONMENT_MAP
+    vec3 irradiance = environmentDiffuse(n);
+#else
     vec3 irradiance = vec3(u_environment);
+#endif
 #ifdef FRUGAL_LIGHTS
     int lightCount = int(u_lights[4 * FRUGAL_LIGHTS].x);
     for (int i = 0; i < lightCount; ++i) {
@@ -264,22 +307,32 @@ void main() {
     float nv = clampedDot(n, v);
     float cv = pow5(1.0 - nv);
 
-    // The environment: diffuse and specular image-based light of a uniform radiance.
+    // The environment: diffuse and specular image-based light of a uniform radiance, or of a map.
+#ifdef FRUGAL_ENVIRONMENT_MAP
+    vec3 diffuseLight = environmentDiffuse(n);
+#else
+    vec3 diffuseLight = vec3(u_environment);
+#endif
 #ifdef FRUGAL_NO_ENVIRONMENT_SPECULAR
     // Its diffuse lobe alone (Lighting::environmentSpecular).
-    vec3 dielectric = base.rgb * u_environment;
+    vec3 dielectric = base.rgb * diffuseLight;
 #ifndef FRUGAL_SPECULAR_GLOSSINESS
     vec3 metal = vec3(0.0);
 #endif
 #else
+#ifdef FRUGAL_ENVIRONMENT_MAP
+    vec3 specularLight = environmentSpecular(n, v, r);
+#else
+    vec3 specularLight = vec3(u_environment);
+#endif
     vec2 ab = dfg(nv, r);
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 fd = iblFresnel(f0, r, cv, ab);
-    vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + u_environment * fd;
+    vec3 dielectric = (base.rgb * diffuseLight) * (1.0 - fd) + specularLight * fd;
 #else
     float fd = iblFresnel(kDielectricF0, r, cv, ab);
-    vec3 dielectric = (base.rgb * u_environment) * (1.0 - fd) + vec3(u_environment * fd);
-    vec3 metal = iblFresnel(base.rgb, r, cv, ab) * u_environment;
+    vec3 dielectric = (base.rgb * diffuseLight) * (1.0 - fd) + specularLight * fd;
+    vec3 metal = iblFresnel(base.rgb, r, cv, ab) * specularLight;
 #endif
 #endif
 #ifdef FRUGAL_OCCLUSION_MAP
@@ -303,6 +356,8 @@ void main() {
 #endif
 #ifdef FRUGAL_NO_ENVIRONMENT_SPECULAR
     environment = environment * (1.0 - k);
+#elif defined(FRUGAL_ENVIRONMENT_MAP)
+    environment = environment * (1.0 - k) + environmentSpecular(nc, v, coatRoughness) * k;
 #else
     environment = environment * (1.0 - k) + u_environment * k;
 #endif

@@ -181,4 +181,78 @@ int addCameraNode(Scene& scene, SceneCamera camera, const glm::vec3& position) {
     return node.camera;
 }
 
+std::string radianceFile(int width, int height, const std::vector<float>& rgb, bool rle) {
+    std::string out =
+        "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+    std::vector<std::uint8_t> scan(std::size_t(width) * 4);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float* p = &rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
+            const float m = std::max(p[0], std::max(p[1], p[2]));
+            std::uint8_t* e = &scan[std::size_t(x) * 4];
+            if (m < 1e-32f) {
+                e[0] = e[1] = e[2] = e[3] = 0;
+                continue;
+            }
+            int exponent = 0;
+            const float mantissa = std::frexp(m, &exponent);
+            const float scale = mantissa * 256.0f / m;
+            for (int c = 0; c < 3; ++c) e[c] = std::uint8_t(std::min(255.0f, std::floor(p[c] * scale)));
+            e[3] = std::uint8_t(exponent + 128);
+        }
+        if (!rle) {
+            out.append(reinterpret_cast<const char*>(scan.data()), scan.size());
+            continue;
+        }
+        out += char(2);
+        out += char(2);
+        out += char(width >> 8);
+        out += char(width & 255);
+        for (int c = 0; c < 4; ++c) {  // runs where 3 or more bytes repeat, literal stretches between
+            int x = 0;
+            while (x < width) {
+                int run = 1;
+                while (x + run < width && run < 127 &&
+                       scan[std::size_t(x + run) * 4 + c] == scan[std::size_t(x) * 4 + c])
+                    ++run;
+                if (run >= 3) {
+                    out += char(128 + run);
+                    out += char(scan[std::size_t(x) * 4 + c]);
+                    x += run;
+                    continue;
+                }
+                int literal = 0;
+                while (x + literal < width && literal < 128) {
+                    const int at = x + literal;
+                    if (at + 2 < width && scan[std::size_t(at) * 4 + c] == scan[std::size_t(at + 1) * 4 + c] &&
+                        scan[std::size_t(at) * 4 + c] == scan[std::size_t(at + 2) * 4 + c])
+                        break;
+                    ++literal;
+                }
+                out += char(literal);
+                for (int i = 0; i < literal; ++i) out += char(scan[std::size_t(x + i) * 4 + c]);
+                x += literal;
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<float> testSky(int width, int height) {
+    std::vector<float> rgb(std::size_t(width) * std::size_t(height) * 3);
+    const glm::vec3 sun = glm::normalize(glm::vec3(0.5f, 0.7f, 0.3f));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const float theta = (float(y) + 0.5f) / float(height) * 3.14159265f;
+            const float phi = ((float(x) + 0.5f) / float(width) - 0.5f) * 2.0f * 3.14159265f;
+            const glm::vec3 d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            glm::vec3 c =
+                d.y > 0.0f ? glm::vec3(0.3f, 0.5f, 1.0f) * (0.4f + 0.6f * d.y) : glm::vec3(0.25f, 0.2f, 0.15f);
+            if (glm::dot(d, sun) > 0.995f) c += glm::vec3(40.0f, 38.0f, 30.0f);
+            for (int k = 0; k < 3; ++k)
+                rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(k)] = c[k];
+        }
+    return rgb;
+}
+
 }  // namespace frugal::test

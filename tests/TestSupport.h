@@ -83,4 +83,12 @@ void addAlpha(Scene& scene);
 // Adds a root node at `position`, looking down -z, that carries `camera`; returns the camera's index.
 int addCameraNode(Scene& scene, SceneCamera camera, const glm::vec3& position);
 
+// A Radiance .hdr file of `width` × `height` linear rgb pixels (rows top first), each written as
+// RGBE (exact for values m · 2^e with m < 256 of 8 bits), its scan lines run-length encoded (the
+// new scheme) or flat.
+std::string radianceFile(int width, int height, const std::vector<float>& rgb, bool rle = true);
+// The sky the environment tests light with: blue above (brighter toward the zenith), brown below,
+// and a small sun of radiance 40 toward (0.5, 0.7, 0.3).
+std::vector<float> testSky(int width, int height);
+
 }  // namespace frugal::test

@@ -118,6 +118,13 @@ public:
         std::uint64_t bytes = 0;  // the maps (barycenter, memory access, facing planes) and the hull's vertices
     };
     std::optional<CullPreparation> cullPreparation() const;
+    // With Settings::environmentMap: the image's size and what reading and prefiltering it took
+    // (once a process: later renderers with the same map share it).
+    struct EnvironmentPreparation {
+        int width = 0, height = 0;
+        double ms = 0;
+    };
+    std::optional<EnvironmentPreparation> environmentPreparation() const;
     // With Order paper, greedy or best: the state costs measured, as refined so far.
     std::optional<StateCosts> stateCosts() const;
     // Bytes of the static pair (with reuse), else 0.

@@ -295,6 +295,7 @@ struct Settings {
     int samples = 1;  // multisampling: 1, 2, 4 or 8 samples a pixel (Backend::createTarget)
     DefaultLight light = DefaultLight::On;  // the directional light where the scene has no lights
     float environment = 0.3f;               // the uniform white environment's radiance (0: none)
+    std::string environmentMap;       // an equirectangular Radiance .hdr file lighting instead ("" = none)
     bool environmentSpecular = true;  // false: the environment lights the diffuse lobe alone (no reflection of it)
     ShadingModel shading = ShadingModel::Full;  // frugal/Image.h
     bool mipmaps = true;  // false: every texture sampled from its base level (no mipmaps made)
@@ -310,10 +311,11 @@ enum class SettingKind : std::uint8_t {
     Choice,  // one of `choices`, by name
     Colour,  // r,g,b or r,g,b,a, each 0 to 1 (alpha 1 when not given)
     Real,    // a finite number in [low, high]
+    Text,    // a string: a file's path ("" = none)
 };
 
 // A setting's value as the front ends pass it: Switch bool, Whole long long, Pair two long longs,
-// Choice the name, Colour 3 or 4 numbers, Real a double.
+// Choice the name, Colour 3 or 4 numbers, Real a double, Text the string.
 using SettingValue = std::variant<bool, long long, std::array<long long, 2>, std::string, std::vector<double>, double>;
 
 struct SettingInfo {

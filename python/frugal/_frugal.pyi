@@ -70,6 +70,7 @@ class _Settings(TypedDict):
     no_mipmaps: bool
     light: _Light
     environment: float
+    environment_map: str
     no_environment_specular: bool
     samples: int
     background: tuple[float, float, float, float]
@@ -113,6 +114,7 @@ def settings(
     no_mipmaps: bool = ...,
     light: _Light = ...,
     environment: float = ...,
+    environment_map: str | os.PathLike[str] = ...,
     no_environment_specular: bool = ...,
     samples: int = ...,
     background: _Colour = ...,
@@ -493,6 +495,7 @@ class Renderer(_pybind11_object):
         no_mipmaps: bool = ...,
         light: _Light = ...,
         environment: float = ...,
+        environment_map: str | os.PathLike[str] = ...,
         no_environment_specular: bool = ...,
         samples: int = ...,
         background: _Colour = ...,

@@ -58,6 +58,10 @@ std::optional<SettingValue> valueOf(const SettingInfo& info, const py::handle& v
         case SettingKind::Real:
             if (py::isinstance<py::float_>(v) || isInt(v)) return v.cast<double>();
             break;
+        case SettingKind::Text:
+            if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+            if (py::hasattr(v, "__fspath__")) return py::str(v.attr("__fspath__")()).cast<std::string>();
+            break;
     }
     return std::nullopt;
 }
@@ -112,7 +116,7 @@ Settings settingsFrom(const py::kwargs& kwargs) {
 }
 
 py::list settingsSchema() {
-    const char* const kinds[] = {"switch", "whole", "pair", "choice", "colour", "real"};
+    const char* const kinds[] = {"switch", "whole", "pair", "choice", "colour", "real", "text"};
     const Settings defaults;
     py::list out;
     for (const SettingInfo& info : settingInfos()) {

@@ -169,6 +169,31 @@ def test_the_default_light_and_the_environment_are_keywords():
     assert (diffuse <= plain).all()
 
 
+def test_an_environment_map_is_a_keyword(tmp_path):
+    """environment_map= as --environment-map (a str or a path): a uniform map of 0.25 draws what
+    environment=0.25 draws, within a level; a file that is not one raises InputError."""
+    import numpy as np
+    # A 16x8 Radiance file of 0.25 everywhere: RGBE (128, 128, 128, exponent -1 + 128), flat.
+    hdr = tmp_path / "uniform.hdr"
+    hdr.write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n" + bytes([128, 128, 128, 127]) * 128)
+    scene = frugal.load("builtin:cubes")
+
+    def color(**settings):
+        with frugal.Renderer(scene, size=(64, 48), **settings) as r:
+            return r.render().color.astype(int)
+
+    uniform = color(environment=0.25)
+    assert np.abs(color(environment_map=hdr) - uniform).max() <= 1
+    assert np.abs(color(environment_map=str(hdr)) - uniform).max() <= 1
+    with frugal.Renderer(scene, size=(8, 8), environment_map=hdr) as r:
+        assert r.settings["environment_map"] == str(hdr)
+    (tmp_path / "text.hdr").write_text("hello")
+    with pytest.raises(frugal.InputError, match="environment-map .*text.hdr: not a Radiance file"):
+        frugal.Renderer(scene, environment_map=tmp_path / "text.hdr")
+    with pytest.raises(frugal.InputError, match="environment_map: 3 is not a path"):
+        frugal.Renderer(scene, environment_map=3)
+
+
 def test_close_and_context_manager():
     scene = frugal.load("builtin:cubes?count=3")
     with frugal.Renderer(scene, size=(32, 24)) as r:

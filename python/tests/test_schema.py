@@ -7,12 +7,14 @@ out of range, and every pair of values of the settings each conflict names."""
 import itertools
 import json
 import subprocess
+from pathlib import Path
 
 import frugal
 import pytest
 
 SCHEMA = {s["name"]: s for s in frugal.settings_schema()}
 SCENE = "builtin:cubes?count=1"
+REPO = Path(__file__).resolve().parents[2]
 
 
 def samples(info):
@@ -27,6 +29,10 @@ def samples(info):
         return sorted({lo, min(hi, lo + 3), hi})
     if kind == "pair":
         return [(lo, min(hi, lo + 1)), (min(hi, 64), min(hi, 48))]
+    if kind == "real":
+        return [lo, min(hi, lo + 0.5)]
+    if kind == "text":  # a file the renderer reads: a tiny Radiance image of the fuzzer's seeds
+        return ["", str(REPO / "tests" / "data" / "fuzz" / "hdr" / "flat.hdr")]
     return [(0.25, 0.5, 0.75), (0.0, 0.0, 0.0, 0.5)]
 
 

@@ -70,7 +70,8 @@ def test_the_stubs_take_every_setting_as_a_keyword_typed_by_its_kind():
     defaults = frugal.default_settings()
     for info in SCHEMA:  # what the module gives has the stubs' kind of value
         value = defaults[info["name"]]
-        kind = {"switch": bool, "whole": int, "pair": tuple, "colour": tuple, "choice": str, "real": float}[info["kind"]]
+        kind = {"switch": bool, "whole": int, "pair": tuple, "colour": tuple, "choice": str, "real": float,
+                "text": str}[info["kind"]]
         assert type(value) is kind, f"{info['name']}: {value!r}"
 
 

@@ -165,6 +165,8 @@ private:
         const std::string label = backend_.name() + " minimal (" + order_ + "): ";
         if (kind && r_.ids) {
             skipped.push_back(label + "--ids: the minimal frame writes no ids, so it would not draw the same frame");
+        } else if (kind && !r_.environmentMap.empty()) {
+            skipped.push_back(label + "--environment-map: the minimal frame draws the uniform environment only");
         } else if (kind) {
             Result<std::unique_ptr<MinimalFrame>> made =
                 createMinimalFrame(*kind, scene_, r_.width, r_.height, r_.depthFormat);

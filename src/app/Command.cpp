@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "app/Cli.h"
+#include "base/Format.h"
 #include "lab/CullMeasure.h"
 #include "lab/SceneInfo.h"
 
@@ -85,6 +86,9 @@ void printRendererStart(const Renderer& renderer, std::ostream& err) {
     if (const std::optional<Renderer::CullPreparation> prep = renderer.cullPreparation())
         err << cullPreparedLine(renderer.scene(), *prep) << "\n";
     err << "backend: " << renderer.backendName() << " (" << renderer.backendRenderer() << ")\n";
+    if (const std::optional<Renderer::EnvironmentPreparation> env = renderer.environmentPreparation())
+        err << "environment-map " << renderer.settings().environmentMap << ": " << env->width << "x" << env->height
+            << ", read and prefiltered in " << fmt(env->ms) << " ms (once a process)\n";
     if (const std::optional<StateCosts> costs = renderer.stateCosts())
         err << stateCostsLine(renderer.settings().order, renderer.backendName(), *costs) << "\n";
 }

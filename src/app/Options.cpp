@@ -82,6 +82,7 @@ FlagGroup renderFlags(RenderOptions& o) {
         setting("no-mipmaps"),
         setting("light"),
         setting("environment"),
+        setting("environment-map"),
         setting("no-environment-specular"),
         flag::on("--cull-backfaces", "draw OBJ files single-sided (OBJ is double-sided by default; glTF follows each "
                  "material's doubleSided)", o.load.objDoubleSided, false),

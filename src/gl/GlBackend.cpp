@@ -59,6 +59,7 @@ GlBackend::~GlBackend() {
     targets_.forEach([this](GlTarget& t) { deleteTarget(t); });
     meshes_.forEach([this](GlMesh& m) { deleteMesh(m); });
     textures_.forEach([this](GLuint& t) { gl_.DeleteTextures(1, &t); });
+    if (environmentTexture_) gl_.DeleteTextures(1, &environmentTexture_);
     for (const auto& [variant, p] : programs_)
         if (p.name) gl_.DeleteProgram(p.name);
     if (streamIbo_) gl_.DeleteBuffers(1, &streamIbo_);

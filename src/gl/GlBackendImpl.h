@@ -72,7 +72,8 @@ enum Variant : unsigned {
     kLightsBit = 524288u,    // the scene's punctual lights (Lighting::lights) instead of the directional light
     kLambertBit = 1048576u,  // FrameParams::shading Lambert: the diffuse term alone
     kNoEnvironmentSpecularBit = 2097152u,  // Lighting::environmentSpecular false
-    kVariantCount = 4194304u
+    kEnvironmentMapBit = 4194304u,         // Lighting::map: the environment from its map
+    kVariantCount = 8388608u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
@@ -106,6 +107,7 @@ struct GlProgram {
     GLint eye = -1, toLight = -1, light = -1, environment = -1, uvTransform = -1, emissive = -1;
     GLint occlusionStrength = -1, normalScale = -1, alphaCutoff = -1, specularGlossiness = -1, clearcoat = -1;
     GLint lights = -1;  // vec4 u_lights[4 · kMaxLights + 1] (mesh.frag)
+    GLint environmentSh = -1;  // vec3 u_environmentSh[9] (EnvironmentMap::sh)
     CachedUniform<glm::mat4> mvpValue, modelValue;
     CachedUniform<glm::mat3> normalMatrixValue, uvTransformValue;
     CachedUniform<glm::vec4> baseColorFactorValue, specularGlossinessValue;
@@ -115,6 +117,7 @@ struct GlProgram {
     CachedUniform<float> lightValue, environmentValue, occlusionStrengthValue, normalScaleValue, alphaCutoffValue;
     CachedUniform<std::uint32_t> firstIdValue;
     CachedUniform<std::array<glm::vec4, 4 * kMaxLights + 1>> lightsValue;
+    CachedUniform<std::array<glm::vec3, 9>> environmentShValue;
 };
 
 // Byte offsets of the attribute sections in a mesh's vertex buffer (positions first, at 0);
@@ -221,6 +224,8 @@ private:
     std::string compileVariant(unsigned variant);
 
     // --- drawing (GlDraw.cpp) -----------------------------------------------------------------
+    // The map's specular levels into environmentTexture_ (made on first use), bound to kEnvironmentUnit.
+    void uploadEnvironment(const EnvironmentMap& map);
     // What draw and drawInstances share: the variant for `params` (| extraBits) compiled and bound,
     // the target, viewport, faces, depth test, texture and lighting set. nullptr: nothing to draw.
     GlProgram* prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits);
@@ -253,6 +258,10 @@ private:
     // frame_.lighting.lights as mesh.frag's u_lights reads them: four vec4 a light (position, type;
     // direction, range; intensity, outer cosine; inner cosine), then the count. Set by beginFrame.
     std::array<glm::vec4, 4 * kMaxLights + 1> lights_{};
+    // The environment map of the frames (Lighting::map) and its texture: the specular levels as the
+    // mip levels of one RGBA32F texture, uploaded when a frame brings another map.
+    std::shared_ptr<const EnvironmentMap> environment_;
+    GLuint environmentTexture_ = 0;
 
     // The streamed index buffer of gathered draws, and its CPU side.
     GLuint streamIbo_ = 0;

@@ -73,6 +73,23 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
         lights_[4 * i + 3] = glm::vec4(l.innerCos, 0.0f, 0.0f, 0.0f);
     }
     lights_[4 * kMaxLights] = glm::vec4(float(count), 0.0f, 0.0f, 0.0f);
+    if (frame.lighting.map && frame.lighting.map != environment_) uploadEnvironment(*frame.lighting.map);
+    environment_ = frame.lighting.map;
+}
+
+void GlBackend::uploadEnvironment(const EnvironmentMap& map) {
+    if (environmentTexture_ == 0) gl_.GenTextures(1, &environmentTexture_);
+    state_.bindTexture(environmentTexture_, kEnvironmentUnit);
+    for (int level = 0; level < EnvironmentMap::kSpecularLevels; ++level) {
+        const EnvironmentMap::Level& l = map.specular[std::size_t(level)];
+        gl_.TexImage2D(GL_TEXTURE_2D, level, GL_RGBA32F, l.width, l.height, 0, GL_RGBA, GL_FLOAT, l.rgba.data());
+    }
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, EnvironmentMap::kSpecularLevels - 1);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, const GlMesh& mesh, unsigned extraBits) {
@@ -118,6 +135,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (frame_.tonemap == ToneMap::PbrNeutral) variant |= kToneMapNeutralBit;
     if (frame_.tonemap == ToneMap::Aces) variant |= kToneMapAcesBit;
     if (!params.unlit && !frame_.lighting.lights.empty()) variant |= kLightsBit;
+    if (!params.unlit && frame_.lighting.map) variant |= kEnvironmentMapBit;
     if (!params.unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
         variant |= kNoEnvironmentSpecularBit;
     GlProgram* p = program(variant);
@@ -142,6 +160,11 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform1f(p->environment, light.environment);
     if ((variant & kLightsBit) && state_.uniformChanged(p->lightsValue, lights_))
         gl_.Uniform4fv(p->lights, GLsizei(lights_.size()), glm::value_ptr(lights_[0]));
+    if (variant & kEnvironmentMapBit) {
+        state_.bindTexture(environmentTexture_, kEnvironmentUnit);
+        if (state_.uniformChanged(p->environmentShValue, environment_->sh))
+            gl_.Uniform3fv(p->environmentSh, 9, glm::value_ptr(environment_->sh[0]));
+    }
     // The material: the same for every instance of a batched draw.
     if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))
         gl_.Uniform4fv(p->baseColorFactor, 1, glm::value_ptr(params.baseColorFactor));

@@ -102,6 +102,8 @@ std::string GlBackend::compileVariant(unsigned variant) {
                                                          : ToneMap::None,
                             (variant & kNoEnvironmentSpecularBit) == 0);
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
+    if (variant & kEnvironmentMapBit)
+        defines += "#define FRUGAL_ENVIRONMENT_MAP " + std::to_string(EnvironmentMap::kSpecularLevels - 1) + ".0\n";
     if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
         p.failed = true;
         return reason;
@@ -124,6 +126,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     p.alphaCutoff = gl_.GetUniformLocation(p.name, "u_alphaCutoff");
     p.specularGlossiness = gl_.GetUniformLocation(p.name, "u_specularGlossiness");
     p.clearcoat = gl_.GetUniformLocation(p.name, "u_clearcoat");
+    p.environmentSh = gl_.GetUniformLocation(p.name, "u_environmentSh");
     // Each map on its own texture unit, in DrawParams' order (absent samplers: location -1, ignored).
     state_.useProgram(p.name);
     const char* samplers[kTextureUnits] = {
@@ -132,6 +135,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
         "u_clearcoatNormalMap"};
     for (int unit = 0; unit < kTextureUnits; ++unit)
         gl_.Uniform1i(gl_.GetUniformLocation(p.name, samplers[unit]), unit);
+    gl_.Uniform1i(gl_.GetUniformLocation(p.name, "u_environmentMap"), kEnvironmentUnit);
     return {};
 }
 

@@ -49,9 +49,10 @@ struct CachedUniform {
 
 // The context state as last set through it. It starts unknown (nothing assumed of a new context)
 // except for the bindings, which start at GL's 0.
-// The texture units a mesh program samples (GlPrograms.cpp): base colour, metallic-roughness,
-// occlusion, emissive, normal.
+// The texture units of a material's maps (GlPrograms.cpp, DrawParams' order), then the environment
+// map's (Lighting::map).
 constexpr int kTextureUnits = 9;
+constexpr int kEnvironmentUnit = kTextureUnits;
 
 class GlStateCache {
 public:
@@ -77,7 +78,7 @@ public:
     // The clip space and depth test of a target's format (the top of GlBackend.cpp).
     void setDepthConvention(DepthFormat format);
     void bindVao(GLuint vao);
-    // Binds `texture` to texture unit `unit` (< kTextureUnits); when it binds, that unit becomes the
+    // Binds `texture` to texture unit `unit` (≤ kEnvironmentUnit); when it binds, that unit becomes the
     // active one (what a glTexParameter after binding a new name needs).
     void bindTexture(GLuint texture, int unit = 0);
     void useProgram(GLuint program);
@@ -109,7 +110,7 @@ private:
 
     const GlApi& gl_;
     GLuint drawFbo_ = 0, readFbo_ = 0, vao_ = 0, program_ = 0;
-    GLuint textures_[kTextureUnits] = {};
+    GLuint textures_[kEnvironmentUnit + 1] = {};
     int activeUnit_ = 0;  // GL's initial GL_TEXTURE0
     int scissorOn_ = -1, cullOn_ = -1, depthTestOn_ = -1, depthFormat_ = -1, blendOn_ = -1;
     bool blendFuncSet_ = false;

@@ -27,6 +27,7 @@
 #include <frugal/Stats.h>
 
 #include "pipeline/Buffers.h"
+#include "pipeline/Environment.h"
 
 namespace frugal {
 
@@ -128,6 +129,11 @@ struct Lighting {
     // false: the environment's specular term is left out: dielectric = L·base.rgb, metal = 0, and a
     // clear coat adds no L·k (its light's terms stay). Lambert and unlit shading have none anyway.
     bool environmentSpecular = true;
+    // An environment map (Environment.h) lighting instead of the uniform environment: the diffuse
+    // light L·base.rgb above becomes E(n)/π·base.rgb from its coefficients, and the specular L its
+    // prefiltered level at the reflected view direction and roughness · 4 (a clear coat's, at the
+    // coat's normal and roughness). Compared by identity: one loaded map, one frame's lighting.
+    std::shared_ptr<const EnvironmentMap> map;
     // The scene's punctual lights, at most kMaxLights: when there are any, they light the frame
     // instead of the directional light above (the environment stays).
     std::vector<FrameLight> lights;

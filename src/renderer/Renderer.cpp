@@ -334,6 +334,12 @@ std::string Renderer::backendName() const { return impl_->backend->name(); }
 std::string Renderer::backendRenderer() const { return impl_->backend->renderer(); }
 const std::vector<std::string>& Renderer::backendLog() const { return impl_->stage->log(); }
 std::optional<Renderer::CullPreparation> Renderer::cullPreparation() const { return impl_->cullPreparation; }
+std::optional<Renderer::EnvironmentPreparation> Renderer::environmentPreparation() const {
+    if (impl_->settings.environmentMap.empty()) return std::nullopt;
+    const Result<std::shared_ptr<const EnvironmentMap>> map = loadEnvironmentMap(impl_->settings.environmentMap);
+    if (!map) return std::nullopt;  // (the renderer opened with it: loaded and kept)
+    return EnvironmentPreparation{(*map)->sourceWidth, (*map)->sourceHeight, (*map)->prefilterMs};
+}
 std::optional<StateCosts> Renderer::stateCosts() const { return impl_->orderCosts->report(); }
 std::uint64_t Renderer::staticPairBytes() const {
     return impl_->reuse

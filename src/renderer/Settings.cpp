@@ -52,6 +52,15 @@ SettingInfo real(std::string name, std::string metavar, std::string topic, std::
     return info;
 }
 
+// A file's path (a std::string member; "" = none).
+template <class Field>
+SettingInfo path(std::string name, std::string metavar, std::string topic, std::string help, Field field) {
+    SettingInfo info = entry(std::move(name), SettingKind::Text, std::move(metavar), std::move(topic), std::move(help));
+    info.get = [field](const Settings& s) { return SettingValue(field(s)); };
+    info.put = [field](Settings& s, const SettingValue& v) { field(s) = std::get<std::string>(v); };
+    return info;
+}
+
 // Two whole numbers; `first` and `second` give the members.
 template <class First, class Second>
 SettingInfo pair(std::string name, std::string metavar, std::string noun, std::string topic, std::string help,
@@ -183,6 +192,11 @@ std::vector<SettingInfo> makeTable() {
                      "specularly, as image-based light (default 0.3: a white matte surface reflects 0.3 of it in "
                      "any orientation; 0 = none)",
                      0.0, 1e6, [](auto& s) -> auto& { return s.environment; }));
+    t.push_back(path("environment-map", "FILE", kImage,
+                     "an equirectangular Radiance .hdr image (+Y its top row) lights every material instead of "
+                     "the uniform environment, diffusely and specularly, prefiltered once when loaded as the "
+                     "Khronos glTF Sample Renderer prefilters its environments",
+                     [](auto& s) -> auto& { return s.environmentMap; }));
     t.push_back(toggle("no-environment-specular", kImage,
                        "the environment lights each material's diffuse lobe alone: no specular reflection of it "
                        "(metals then reflect only the lights; faster to shade)",
@@ -248,6 +262,12 @@ const std::vector<ConflictRule>& conflictRules() {
                         ? "they find what is visible at pixel centres, and a multisampled pixel is seen at 4 samples"
                         : std::string_view();
          }},
+        {{"environment", "environment-map", "another radiance than the default 0.3 with a map"},
+         [](const Settings& s) {
+             return !s.environmentMap.empty() && s.environment != Settings{}.environment
+                        ? "a map gives the environment's radiance itself"
+                        : std::string_view();
+         }},
         {{"interp", "depth-format", "span and dda with d32f"},
          [](const Settings& s) {
              return s.interp != DepthInterp::Exact && s.depthFormat == DepthFormat::D32F
@@ -311,6 +331,10 @@ std::string check(const SettingInfo& info, const SettingValue& value) {
             const double* v = std::get_if<double>(&value);
             return v && std::isfinite(*v) && *v >= info.low && *v <= info.high ? "" : refused;
         }
+        case SettingKind::Text: {
+            const std::string* v = std::get_if<std::string>(&value);
+            return v && v->find('\0') == std::string::npos ? "" : refused;
+        }
     }
     return refused;
 }
@@ -341,6 +365,9 @@ std::optional<SettingValue> fromJson(const SettingInfo& info, const Json& v) {
             break;
         case SettingKind::Real:
             if (v.is_number()) return v.get<double>();
+            break;
+        case SettingKind::Text:
+            if (v.is_string()) return v.get<std::string>();
             break;
     }
     return std::nullopt;
@@ -416,6 +443,8 @@ std::string expected(const SettingInfo& info) {
             };
             return "a number from " + bound(info.low) + " to " + bound(info.high);
         }
+        case SettingKind::Text:
+            return "a path";
     }
     return {};
 }
@@ -460,6 +489,8 @@ std::optional<SettingValue> parseSettingText(const SettingInfo& info, std::strin
         case SettingKind::Real:
             if (double v = 0.0; parseFinite(text, v)) return v;
             break;
+        case SettingKind::Text:
+            return std::string(text);
     }
     return std::nullopt;
 }

@@ -39,6 +39,10 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
     parts->backend = std::move(opened);
     parts->mipmaps = s.mipmaps;
     Backend& backend = *parts->backend;
+    // The environment map, read and prefiltered once a process (applyShading finds it loaded).
+    if (!s.environmentMap.empty())
+        if (Result<std::shared_ptr<const EnvironmentMap>> map = loadEnvironmentMap(s.environmentMap); !map)
+            return Error{map.error().message, ErrorKind::BadInput, true};
     if (!backend.supportsDepthFormat(s.depthFormat))
         return Error{std::string("depth-format ") + toString(s.depthFormat) + ": " + backend.name() +
                          " has no glClipControl (GL 4.5 or ARB_clip_control), which reversed Z needs",
@@ -64,6 +68,10 @@ void applyShading(const Settings& s, FrameParams& params) {
     params.shading = s.shading;
     params.lighting.environment = s.environment;
     params.lighting.environmentSpecular = s.environmentSpecular;
+    params.lighting.map = nullptr;
+    if (!s.environmentMap.empty())  // loaded when the stage was opened (Stage::on refuses a map it cannot load)
+        if (Result<std::shared_ptr<const EnvironmentMap>> map = loadEnvironmentMap(s.environmentMap))
+            params.lighting.map = *map;
     if (s.light == DefaultLight::Off) params.lighting.light = 0.0f;
 }
 

@@ -17,7 +17,8 @@
 
 namespace frugal {
 // The settings that shade a whole frame, put into its parameters: the shading model, tone mapping, the default light
-// (its intensity 0 with DefaultLight::Off) and the environment's radiance. What every front end
+// (its intensity 0 with DefaultLight::Off), the environment's radiance or map (loaded once a process, by the first
+// Stage opened with it) and its specular term. What every front end
 // that sets up frames from Settings calls (the Renderer, the command line's sequences).
 void applyShading(const Settings& s, FrameParams& params);
 }  // namespace frugal

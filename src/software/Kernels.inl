@@ -509,7 +509,53 @@ struct Light {
           occlusionStrength(simd::splat(s.occlusionStrength)),
           environmentSpecular(s.environmentSpecular),
           emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)},
-          lights(s.lights) {}
+          lights(s.lights),
+          map(s.environmentMap) {
+        if (map)
+            for (int i = 0; i < 9; ++i)
+                for (int c = 0; c < 3; ++c) sh[i][c] = simd::splat(map->sh[std::size_t(i)][c]);
+    }
+
+    // The environment map's diffuse light E(n)/π (mesh.frag's environmentDiffuse), at least 0, or
+    // the uniform environment's radiance.
+    void diffuseLight(const Vec3& n, F8 out[3]) const {
+        if (!map) {
+            out[0] = out[1] = out[2] = environment;
+            return;
+        }
+        const F8 zero = simd::splat(0.0f), one = simd::splat(1.0f), three = simd::splat(3.0f);
+        const F8 b[9] = {
+            zero, n.y, n.z, n.x, n.x * n.y, n.y * n.z, three * (n.z * n.z) - one, n.x * n.z, n.x * n.x - n.y * n.y};
+        for (int c = 0; c < 3; ++c) {
+            F8 e = sh[0][c];
+            for (int i = 1; i < 9; ++i) e = e + sh[i][c] * b[i];
+            out[c] = simd::max(e, zero);
+        }
+    }
+
+    // The environment map's specular light toward v from a surface of normal n and roughness r
+    // (mesh.frag's environmentSpecular: the level's texels bilinear, the levels linear, as llvmpipe
+    // filters a float texture), or the uniform environment's radiance.
+    void specularLight(const Vec3& n, const Vec3& v, F8 r, F8 out[3]) const {
+        if (!map) {
+            out[0] = out[1] = out[2] = environment;
+            return;
+        }
+        const F8 twice = simd::splat(2.0f) * dot(n, v);
+        const Vec3 d = normalize({n.x * twice - v.x, n.y * twice - v.y, n.z * twice - v.z});
+        constexpr int kLanes = simd::kLanes;
+        float x[kLanes], y[kLanes], z[kLanes], roughness[kLanes], rgb[3][kLanes];
+        simd::storef(x, d.x);
+        simd::storef(y, d.y);
+        simd::storef(z, d.z);
+        simd::storef(roughness, r);
+        for (int lane = 0; lane < kLanes; ++lane) {
+            const glm::vec3 c = sampleEnvironment(*map, equirectUv({x[lane], y[lane], z[lane]}),
+                                                  roughness[lane] * float(EnvironmentMap::kSpecularLevels - 1));
+            for (int k = 0; k < 3; ++k) rgb[k][lane] = c[k];
+        }
+        for (int k = 0; k < 3; ++k) out[k] = simd::loadf(rgb[k]);
+    }
 
     // What the maps give one pixel (mesh.frag): the material's factors where there is no map.
     struct Surface {
@@ -535,22 +581,26 @@ struct Light {
 
         // The environment.
         F8 dielectric[3], metal[3] = {zero, zero, zero};  // (no metal terms with specular-glossiness)
+        F8 diffuse[3], reflected[3];
+        diffuseLight(n, diffuse);
         if (!environmentSpecular) {
-            for (int c = 0; c < 3; ++c) dielectric[c] = base[c] * environment;  // its diffuse lobe alone
+            for (int c = 0; c < 3; ++c) dielectric[c] = base[c] * diffuse[c];  // its diffuse lobe alone
         } else if (surface.specular) {
+            specularLight(n, v, r, reflected);
             F8 a, b;
             dfg(nv, r, a, b);
             for (int c = 0; c < 3; ++c) {
                 const F8 fd = iblFresnel(surface.specular[c], r, cv, a, b);
-                dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
+                dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
             }
         } else {
+            specularLight(n, v, r, reflected);
             F8 a, b;
             dfg(nv, r, a, b);
             const F8 fd = iblFresnel(f0, r, cv, a, b);
             for (int c = 0; c < 3; ++c) {
-                dielectric[c] = (base[c] * environment) * (one - fd) + environment * fd;
-                metal[c] = iblFresnel(base[c], r, cv, a, b) * environment;
+                dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
+                metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
             }
         }
         // The clear coat over the environment's colour; the light's is then gathered from 0.
@@ -558,9 +608,11 @@ struct Light {
         if (surface.coat) {
             k = *surface.coat * (f0 + (one - f0) * pow5(one - saturate(dot(surface.coatNormal, v))));
             const F8 occlusion = surface.occlusion ? one + occlusionStrength * (*surface.occlusion - one) : one;
+            F8 coatLight[3] = {environment, environment, environment};  // the coat's reflection
+            if (environmentSpecular && map) specularLight(surface.coatNormal, v, surface.coatRoughness, coatLight);
             for (int c = 0; c < 3; ++c) {
                 coated[c] = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
-                coated[c] = environmentSpecular ? coated[c] * (one - k) + environment * k : coated[c] * (one - k);
+                coated[c] = environmentSpecular ? coated[c] * (one - k) + coatLight[c] * k : coated[c] * (one - k);
                 if (surface.occlusion) coated[c] = coated[c] * occlusion;
                 dielectric[c] = metal[c] = zero;
             }
@@ -619,7 +671,8 @@ struct Light {
     // light's E·(n·l)/π, on the base colour, plus the emission.
     void lambert(const F8 base[4], const Vec3& n, const Vec3& position, const F8 emitted[3], F8 out[3]) const {
         const F8 pi = simd::splat(kPi);
-        F8 irradiance[3] = {environment, environment, environment};
+        F8 irradiance[3];
+        diffuseLight(n, irradiance);
         for (const FrameLight& light : lights) {
             Vec3 l;
             F8 e[3];
@@ -662,6 +715,8 @@ struct Light {
     bool environmentSpecular;
     F8 emission[3];
     std::span<const FrameLight> lights;
+    const EnvironmentMap* map;  // DrawShading::environmentMap
+    F8 sh[9][3]{};              // its coefficients, when there is one
 };
 
 // FrameParams::tonemap on a pixel's linear rgb, in mesh.frag's operations (pipeline/Backend.h).

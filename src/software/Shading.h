@@ -249,6 +249,7 @@ struct DrawShading {
     glm::vec3 eye{0.0f};  // world space
     float environment = 0.0f;            // Lighting
     bool environmentSpecular = true;     // Lighting
+    const EnvironmentMap* environmentMap = nullptr;  // Lighting::map
     std::span<const FrameLight> lights;  // Lighting::lights, or its directional light as the only one
     bool writeIds = true;  // read by the rasterizer, which writes ids at the depth test (Kernels.h)
     bool depthTest = true;  // DepthMode::Test; false: no depth read or write (Kernels.h)
@@ -335,6 +336,35 @@ inline std::uint32_t clearDepthQuad(float z, bool fused, DepthFormat format) {
     }
     window = std::fmin(std::fmax(window, 0.0f), 1.0f);
     return std::uint32_t(std::nearbyint(window * 16777215.0f));
+}
+
+// The environment map's specular levels at (u, v) and level `lod`, as llvmpipe filters the GL
+// backend's RGBA32F texture (GL_LINEAR_MIPMAP_LINEAR, u repeated, v clamped to the edge): lod
+// clamped to the levels, the two levels around it each bilinear at x = u·width − 0.5 (and y), then
+// mixed by lod's fraction; every mix a + w·(b − a), in float.
+inline glm::vec3 sampleEnvironment(const EnvironmentMap& map, glm::vec2 uv, float lod) {
+    const auto lerp = [](glm::vec3 a, glm::vec3 b, float w) { return a + (b - a) * w; };
+    const auto bilinear = [&](int level) {
+        const EnvironmentMap::Level& l = map.specular[std::size_t(level)];
+        const float x = uv.x * float(l.width) - 0.5f, y = uv.y * float(l.height) - 0.5f;
+        const float fx = std::floor(x), fy = std::floor(y);
+        const float wx = x - fx, wy = y - fy;
+        const auto texel = [&l](int i, int j) {
+            i = ((i % l.width) + l.width) % l.width;
+            j = std::clamp(j, 0, l.height - 1);
+            const float* t = &l.rgba[(std::size_t(j) * std::size_t(l.width) + std::size_t(i)) * 4];
+            return glm::vec3(t[0], t[1], t[2]);
+        };
+        const int x0 = int(fx), y0 = int(fy);
+        return lerp(lerp(texel(x0, y0), texel(x0 + 1, y0), wx), lerp(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), wx), wy);
+    };
+    const float last = float(EnvironmentMap::kSpecularLevels - 1);
+    lod = std::clamp(lod, 0.0f, last);
+    const float floorLod = std::floor(lod);
+    const int level = int(floorLod);
+    const glm::vec3 lower = bilinear(level);
+    if (level + 1 > int(last)) return lower;
+    return lerp(lower, bilinear(level + 1), lod - floorLod);
 }
 
 }  // namespace frugal::sw

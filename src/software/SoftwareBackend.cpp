@@ -100,6 +100,7 @@ private:
             pipeline_.discard();
         // The pending draws' lights (beginFrame) are read no more; the current frame's stay.
         while (lightSets_.size() > 1) lightSets_.pop_front();
+        while (environments_.size() > 1) environments_.pop_front();
     }
 
     sw::Pipeline pipeline_;
@@ -112,6 +113,7 @@ private:
     // Each frame's punctual lights, kept where a pending draw reads them until it is rasterized (a
     // frame may begin on the same target before the draws of the one before are flushed).
     std::deque<std::vector<FrameLight>> lightSets_;
+    std::deque<std::shared_ptr<const EnvironmentMap>> environments_;  // each frame's map, the same way
     StateChanges changes_;  // draws only (no GL state here)
     glm::mat4 viewProjection_{1.0f};
     glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
@@ -232,6 +234,8 @@ void SoftwareBackend::beginFrame(TargetHandle target, const FrameParams& frame) 
         lights.push_back(directional);
     }
     if (lightSets_.empty() || lightSets_.back() != lights) lightSets_.push_back(std::move(lights));
+    if (environments_.empty() || environments_.back() != frame.lighting.map)
+        environments_.push_back(frame.lighting.map);
     viewProjection_ = frame.projection * frame.view;  // as GlBackend::beginFrame, in float with glm
     eye_ = eyePosition(frame.view);
 }
@@ -288,6 +292,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.occlusionStrength = params.occlusionStrength;
     input.shading.environment = frame_.lighting.environment;
     input.shading.environmentSpecular = frame_.lighting.environmentSpecular;
+    input.shading.environmentMap = params.unlit ? nullptr : environments_.back().get();
     input.shading.tonemap = frame_.tonemap;
     input.shading.lights = lightSets_.back();  // beginFrame's: frame_'s own may be replaced before a flush
     input.shading.writeIds = frame_.writeIds;

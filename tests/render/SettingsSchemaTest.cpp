@@ -36,6 +36,8 @@ SettingValue otherValue(const SettingInfo& info, const SettingValue& now) {
             return std::vector<double>{0.25, 0.5, 0.75, 0.125};
         case SettingKind::Real:
             return std::get<double>(now) < info.high ? std::min(info.high, std::get<double>(now) + 0.5) : info.low;
+        case SettingKind::Text:
+            return std::get<std::string>(now) + "other, with \"quotes\" and spaces.hdr";
     }
     return now;
 }
@@ -184,6 +186,15 @@ TEST(SettingsSchemaTest, EveryConflictIsRefusedWithItsSettingsNamed) {
     s.samples = 1;
     s.cull = Cull::Occlusion;
     EXPECT_FALSE(settingsProblem(s));
+    // A map gives the environment's radiance: the uniform one's may stay at its default only.
+    s = Settings{};
+    s.environmentMap = "sky.hdr";
+    EXPECT_FALSE(settingsProblem(s));
+    s.environment = 1.0f;
+    ASSERT_TRUE(settingsProblem(s));
+    EXPECT_EQ(describe(*settingsProblem(s), s),
+              "environment 1 with environment-map sky.hdr: a map gives the environment's radiance itself");
+    seen.insert({settingsProblem(s)->settings[0], settingsProblem(s)->settings[1]});
     // The table's conflicts are exactly those met above, and each names settings of the schema.
     std::set<std::pair<std::string, std::string>> declared;
     for (const SettingsConflict& c : settingsConflicts()) {

@@ -44,7 +44,15 @@ struct MatrixCase {
     int samples = 1;  // 4: multisampled, resolved (raster/Rasterizer.h, 6.)
     ShadingModel shading = ShadingModel::Full;
     bool environmentSpecular = true;  // false: the environment's diffuse lobe alone (Lighting)
+    bool environmentMap = false;      // lit by test::testSky's map instead of the uniform environment
 };
+
+// The sky of the environment cases, prefiltered once.
+std::shared_ptr<const EnvironmentMap> skyMap() {
+    static const std::shared_ptr<const EnvironmentMap> map =
+        prefilterEnvironment(HdrImage{128, 64, test::testSky(128, 64)}, "test sky", 2);
+    return map;
+}
 
 Scene loaded(const std::string& spec) {
     Result<Scene> scene = loadScene(spec);
@@ -776,6 +784,97 @@ std::vector<MatrixCase> matrix() {
          1,
          ShadingModel::Full,
          false},
+        // An environment map (Lighting::map) on every kind of material, under the maps, on clear coats,
+        // under the Lambert model and with its specular term left out, looked at from below the horizon
+        // too (the sun's reflection on the smooth spheres).
+        {"env-map-materials",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         true,
+         true},
+        {"env-map-materials-below",
+         materials,
+         640,
+         400,
+         lookFrom({0.5f, -3.0f, 5.0f}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         true,
+         true},
+        {"env-map-maps",
+         maps,
+         640,
+         480,
+         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         true,
+         true},
+        {"env-map-specular-glossiness",
+         specularGlossiness,
+         640,
+         480,
+         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         true,
+         true},
+        {"env-map-clearcoat",
+         clearcoat,
+         640,
+         560,
+         lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         true,
+         true},
+        {"env-map-lambert",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Lambert,
+         true,
+         true},
+        {"env-map-no-specular",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::None,
+         1,
+         ShadingModel::Full,
+         false,
+         true},
+        {"env-map-msaa-aces",
+         materials,
+         640,
+         400,
+         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
+         {},
+         ToneMap::Aces,
+         4,
+         ShadingModel::Full,
+         true,
+         true},
         {"msaa-lights",
          lights,
          640,
@@ -802,6 +901,7 @@ TEST_P(RegressionMatrixGLTest, GlMatchesTheSoftwareReference) {
     setup->params.tonemap = c.tonemap;
     setup->params.shading = c.shading;
     setup->params.lighting.environmentSpecular = c.environmentSpecular;
+    if (c.environmentMap) setup->params.lighting.map = skyMap();
     Buffers images[2];
     Backend* backends[2] = {gl.get(), software.get()};
     for (int k = 0; k < 2; ++k) {
