@@ -18,6 +18,7 @@ int runSpanBench(const std::vector<std::string>& args, std::ostream& out, std::o
 int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runShadingBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* benchHelp();
 const char* reuseBenchHelp();
@@ -27,6 +28,7 @@ const char* spanBenchHelp();
 const char* stateSimHelp();
 const char* soakHelp();
 const char* writeBenchHelp();
+const char* shadingBenchHelp();
 
 // frugal-lab: these commands, then frugal's (a batch run by frugal-lab takes reuse-bench jobs too).
 const Program& labProgram();

@@ -17,6 +17,8 @@ const Program& labProgram() {
                        runOrderBench},
                       {"hsr-bench", "[SCENE] [options]", "depth sort and the adaptive z-buffer against the z-buffer",
                        runHsrBench},
+                      {"shading-bench", "[SCENE] [options]", "what each shading term costs on a frame",
+                       runShadingBench},
                       {"span-bench", "[options]", "paper 001's shading engine model: Fig. 11, error tables",
                        runSpanBench},
                       {"write-bench", "[--scene SCENE ...] [opts]",

@@ -108,11 +108,11 @@ const Program& frugalProgram() {
             {"compare", "A.png B.png [options]", "compare an image with a reference (B)", runCompare},
             {"diff", "[SCENE] [options]", "a GL render against the software reference", runDiff},
             {"cull-report", "[SCENE] [options]", "how exact and how fast each culling method is", runCullReport},
-            {"batch", "MANIFEST [--shard I/N] [options]", "the jobs of a manifest, or shard I of N of them; status, merge",
-             runBatch},
+            {"batch", "MANIFEST [--shard I/N] [options]",
+             "the jobs of a manifest, or shard I of N of them; status, merge", runBatch},
         },
-        "\nThe benchmarks and paper reproductions (bench, reuse-bench, order-bench, hsr-bench, span-bench,\n"
-        "write-bench, state-sim, soak) are frugal-lab's: run 'frugal-lab help'.\n"};
+        "\nThe benchmarks and paper reproductions (bench, reuse-bench, order-bench, hsr-bench, shading-bench,\n"
+        "span-bench, write-bench, state-sim, soak) are frugal-lab's: run 'frugal-lab help'.\n"};
     return program;
 }
 
