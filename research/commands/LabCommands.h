@@ -2,11 +2,15 @@
 // ExitCode (app/Cli.h).
 #pragma once
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 #include "app/Cli.h"
+#include "app/Options.h"
+#include "lab/Frames.h"  // FrameSetup
+#include "lab/ReportText.h"
 
 namespace frugal {
 
@@ -29,6 +33,26 @@ const char* stateSimHelp();
 const char* soakHelp();
 const char* writeBenchHelp();
 const char* shadingBenchHelp();
+
+// A one-frame benchmark's command (order-bench, shading-bench): its name and help, what one unit of
+// it is called ("order", "variant"), the report outputs' descriptions (reportFlags), the measurement
+// (the scene, its frame set up from the settings, --repeat, --warmup, the progress lines) and its
+// gnuplot script.
+struct FrameBenchCommand {
+    std::string name;
+    const char* help;
+    std::string unit;
+    std::string jsonShape, csvRows, plot;
+    std::function<Result<BenchTexts>(const Scene&, const FrameSetup&, const RenderOptions&, int repeat, int warmup,
+                                     const std::function<void(const std::string&)>& progress)>
+        measure;
+    std::function<std::string(const std::string& csvPath, const std::string& svgPath, const std::string& scene)>
+        gnuplot;
+};
+// Parses `args` (SCENE, --repeat, --warmup, the render options and report outputs), sets up the
+// frame, measures it and writes the report: the command's exit status.
+int runFrameBench(const FrameBenchCommand& bench, const std::vector<std::string>& args, std::ostream& out,
+                  std::ostream& err);
 
 // frugal-lab: these commands, then frugal's (a batch run by frugal-lab takes reuse-bench jobs too).
 const Program& labProgram();

@@ -13,6 +13,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
+#include "lab/ReportText.h"
 #include "renderer/Research.h"
 
 namespace frugal {
@@ -26,11 +27,9 @@ struct OrderBenchSettings {
     int warmup = 3;   // untimed frames per order first
 };
 
-struct OrderBenchResult {
-    std::string json;  // {"command","scene","size","backends":[{"backend","renderer","state_costs_us","runs","orders"}]}
-    std::string csv;   // one row per backend and order
-    std::string text;  // one line per backend and order, as the command prints it
-};
+// json: {"command","scene","size","backends":[{"backend","renderer","state_costs_us","runs","orders"}]};
+// csv: one row per backend and order; text: one line per backend and order, as the command prints it.
+using OrderBenchResult = BenchTexts;
 
 // Measures `setup`'s frame of `scene` in every order on every backend that opens. `progress`
 // receives "skipped KIND: why" for a backend that does not open and each backend's state-cost line.

@@ -32,3 +32,13 @@ std::string csvNumber(double value);
 std::string gnuplotQuoted(const std::string& text);
 
 }  // namespace frugal::reporttext
+
+namespace frugal {
+
+// What a one-frame benchmark gives its command (order-bench, shading-bench): the report's JSON and
+// CSV, and the lines it prints.
+struct BenchTexts {
+    std::string json, csv, text;
+};
+
+}  // namespace frugal

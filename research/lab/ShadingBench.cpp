@@ -197,7 +197,8 @@ Result<ShadingBenchResult> measureShadingTerms(const Scene& scene, const FrameSe
                         {"max_ms", *hi},
                         {"pixels_differing", differing},
                         {"over_full", over}});
-        csv << v.term << "," << med << "," << *lo << "," << *hi << "," << differing << "," << over << "\n";
+        csv << reporttext::csvField(v.term) << "," << reporttext::csvNumber(med) << "," << reporttext::csvNumber(*lo)
+            << "," << reporttext::csvNumber(*hi) << "," << differing << "," << reporttext::csvNumber(over) << "\n";
         char line[200];
         std::snprintf(line, sizeof line, "%-24s %8.3f ms (%.3f-%.3f)  %5.2fx full  %8zu px differ\n", v.term.c_str(),
                       med, *lo, *hi, over, differing);

@@ -14,6 +14,7 @@
 #include <frugal/Scene.h>
 #include <frugal/Settings.h>
 
+#include "lab/ReportText.h"
 #include "renderer/Research.h"
 
 namespace frugal {
@@ -25,11 +26,9 @@ struct ShadingBenchSettings {
     int warmup = 3;     // untimed frames per variant first
 };
 
-struct ShadingBenchResult {
-    std::string json;  // {"command","scene","size","backend","renderer","runs","rows":[...],"skipped":[...]}
-    std::string csv;   // one row per variant
-    std::string text;  // one line per variant, as the command prints it
-};
+// json: {"command","scene","size","backend","renderer","runs","rows":[...],"skipped":[...]}; csv: one row
+// per variant; text: one line per variant, as the command prints it.
+using ShadingBenchResult = BenchTexts;
 
 // Times `setup`'s frame of `scene` (its parameters before applyShading) as `settings` draw it and
 // in every variant that applies to the scene; a variant that does not ("no blending" where nothing
