@@ -127,16 +127,22 @@ TEST(LightsCliTest, TheDefaultLightAndTheEnvironmentAreSettings) {
 namespace frugal {
 namespace {
 
+// builtin:materials at 160x120 with `extra`, into DIR/NAME.png and its ids into DIR/NAME-ids.png:
+// the colour's bytes.
+std::vector<std::uint8_t> renderMaterials(const fs::path& dir, const std::string& name,
+                                          const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120", "--ids", name + "-ids.png"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return test::renderedPixels(dir, name, args);
+}
+
 // --shading lambert: the diffuse approximation. It changes the lit pixels of a scene of every kind
 // of material (specular highlights and maps gone), leaves unlit pixels and the background alone,
 // and GL and the software reference agree on it.
 TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
     const fs::path dir = test::freshDir("ShadingCli");
-    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
-        std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120",
-                                         "--ids",  name + "-ids.png"};
-        args.insert(args.end(), extra.begin(), extra.end());
-        return test::renderedPixels(dir, name, args);
+    const auto render = [&dir](const std::string& name, const std::vector<std::string>& extra) {
+        return renderMaterials(dir, name, extra);
     };
     const std::vector<std::uint8_t> full = render("full", {});
     render("full-given", {"--shading", "full"});
@@ -161,11 +167,8 @@ TEST(LightsCliTest, LambertShadingIsTheDiffuseTermAlone) {
 // the Lambert model.
 TEST(LightsCliTest, NoEnvironmentSpecularKeepsTheDiffuseLobe) {
     const fs::path dir = test::freshDir("EnvironmentSpecularCli");
-    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
-        std::vector<std::string> args = {"render", "builtin:materials", "--size", "160x120",
-                                         "--ids",  name + "-ids.png"};
-        args.insert(args.end(), extra.begin(), extra.end());
-        return test::renderedPixels(dir, name, args);
+    const auto render = [&dir](const std::string& name, const std::vector<std::string>& extra) {
+        return renderMaterials(dir, name, extra);
     };
     const std::vector<std::uint8_t> full = render("full", {});
     const std::vector<std::uint8_t> diffuse = render("diffuse", {"--no-environment-specular"});
