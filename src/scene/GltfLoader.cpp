@@ -40,6 +40,7 @@
 #include "scene/GltfSchema.h"
 #include "scene/GltfStructure.h"
 #include "scene/ImageCheck.h"
+#include "scene/LightCheck.h"
 #include "scene/Load.h"
 #include "scene/LoadSupport.h"
 #include "scene/MeshBuild.h"
@@ -723,29 +724,38 @@ void Converter::convertLights() {
         light.name = src.name;
         if (!lightTypeNamed(src.type, light.type))
             fail(where, ".type: '", oneLine(src.type, 40), "' is not a light type (directional, point, spot)");
+        // The file's numbers as floats (beyond a float's range: infinite, and refused), checked by
+        // the one rule (LightCheck.h) and named with the file's own values.
+        const auto asFloat = [](double v) {
+            if (std::isnan(v) || std::fabs(v) <= 3.4e38) return float(v);
+            return v > 0.0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+        };
         if (!src.color.empty()) {
             if (src.color.size() != 3) fail(where, ".color: ", src.color.size(), " numbers, not 3");
-            for (int c = 0; c < 3; ++c) {
-                const double v = src.color[std::size_t(c)];
-                if (!(v >= 0.0 && v <= 3.4e38))
-                    fail(where, ".color[", c, "]: ", v, " is not a colour value (0 or more)");
-                light.color[c] = float(v);
-            }
+            for (int c = 0; c < 3; ++c) light.color[c] = asFloat(src.color[std::size_t(c)]);
         }
-        if (!(src.intensity >= 0.0 && src.intensity <= 3.4e38))
-            fail(where, ".intensity: ", src.intensity, " is not an intensity (0 or more)");
-        light.intensity = float(src.intensity);
-        if (!(src.range >= 0.0 && src.range <= 3.4e38)) fail(where, ".range: ", src.range, " is not a range (above 0)");
-        light.range = float(src.range);  // read for point and spot lights only (frameLights)
+        light.intensity = asFloat(src.intensity);
+        light.range = asFloat(src.range);  // read for point and spot lights only (frameLights)
         if (light.type == LightType::Spot) {
-            const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
-            constexpr double kHalfPi = 1.5707963267948966;
-            if (!(outer > 0.0 && outer <= kHalfPi))
-                fail(where, ".spot.outerConeAngle: ", outer, " is not in (0, pi/2]");
-            if (!(inner >= 0.0 && inner < outer))
-                fail(where, ".spot.innerConeAngle: ", inner, " is not in [0, outerConeAngle ", outer, ")");
-            light.innerConeAngle = float(inner);
-            light.outerConeAngle = float(outer);
+            light.innerConeAngle = asFloat(src.spot.innerConeAngle);
+            light.outerConeAngle = asFloat(src.spot.outerConeAngle);
+        }
+        if (const std::optional<LightProblem> problem = lightProblem(light)) {
+            const double outer = src.spot.outerConeAngle;
+            switch (problem->value) {
+                case LightValue::Color:
+                    fail(where, ".color[", problem->channel, "]: ", src.color[std::size_t(problem->channel)],
+                         " is not a colour value (0 or more)");
+                case LightValue::Intensity:
+                    fail(where, ".intensity: ", src.intensity, " is not an intensity (0 or more)");
+                case LightValue::Range:
+                    fail(where, ".range: ", src.range, " is not a range (above 0)");
+                case LightValue::OuterCone:
+                    fail(where, ".spot.outerConeAngle: ", outer, " is not in (0, pi/2]");
+                case LightValue::InnerCone:
+                    fail(where, ".spot.innerConeAngle: ", src.spot.innerConeAngle, " is not in [0, outerConeAngle ",
+                         outer, ")");
+            }
         }
         scene_.lights.push_back(std::move(light));
     }

@@ -7,6 +7,7 @@
 
 #include "base/Format.h"
 #include "scene/ImageCheck.h"
+#include "scene/LightCheck.h"
 #include "scene/MeshBuild.h"
 
 namespace frugal {
@@ -151,19 +152,21 @@ Result<int> Scene::addLight(PunctualLight light, const glm::mat4& transform, std
     const std::string what = "light" + quotedName(light.name);
     if (int(light.type) > int(LightType::Spot))
         return bad(what + ": type " + std::to_string(int(light.type)) + " is not directional, point or spot");
-    for (int c = 0; c < 3; ++c)
-        if (!(light.color[c] >= 0.0f && std::isfinite(light.color[c])))
-            return bad(what + ": colour " + fmt(double(light.color[c])) + " is not finite and at least 0");
-    if (!(light.intensity >= 0.0f && std::isfinite(light.intensity)))
-        return bad(what + ": intensity " + fmt(double(light.intensity)) + " is not finite and at least 0");
-    if (!(light.range >= 0.0f && std::isfinite(light.range)))
-        return bad(what + ": range " + fmt(double(light.range)) + " is not finite and at least 0 (0 = unbounded)");
-    if (light.type == LightType::Spot) {
-        if (!(light.outerConeAngle > 0.0f && light.outerConeAngle <= 1.57079637f))
-            return bad(what + ": outer cone angle " + fmt(double(light.outerConeAngle)) + " is not in (0, pi/2]");
-        if (!(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle))
-            return bad(what + ": inner cone angle " + fmt(double(light.innerConeAngle)) +
-                       " is not in [0, the outer angle " + fmt(double(light.outerConeAngle)) + ")");
+    if (const std::optional<LightProblem> problem = lightProblem(light)) {
+        const auto value = [](float v) { return fmt(double(v)); };
+        switch (problem->value) {
+            case LightValue::Color:
+                return bad(what + ": colour " + value(light.color[problem->channel]) + " is not finite and at least 0");
+            case LightValue::Intensity:
+                return bad(what + ": intensity " + value(light.intensity) + " is not finite and at least 0");
+            case LightValue::Range:
+                return bad(what + ": range " + value(light.range) + " is not finite and at least 0 (0 = unbounded)");
+            case LightValue::OuterCone:
+                return bad(what + ": outer cone angle " + value(light.outerConeAngle) + " is not in (0, pi/2]");
+            case LightValue::InnerCone:
+                return bad(what + ": inner cone angle " + value(light.innerConeAngle) +
+                           " is not in [0, the outer angle " + value(light.outerConeAngle) + ")");
+        }
     }
     if (const std::string problem = matrixProblem(transform); !problem.empty())
         return bad(what + ": transform: " + problem);
