@@ -258,8 +258,8 @@ private:
     // frame_.lighting.lights as mesh.frag's u_lights reads them: four vec4 a light (position, type;
     // direction, range; intensity, outer cosine; inner cosine), then the count. Set by beginFrame.
     std::array<glm::vec4, 4 * kMaxLights + 1> lights_{};
-    // The environment map of the frames (Lighting::map) and its texture: the specular levels as the
-    // mip levels of one RGBA32F texture, uploaded when a frame brings another map.
+    // The environment map uploaded last (Lighting::map) and its texture: the specular levels as the
+    // mip levels of one RGBA32F texture, uploaded again only when a frame brings another map.
     std::shared_ptr<const EnvironmentMap> environment_;
     GLuint environmentTexture_ = 0;
 

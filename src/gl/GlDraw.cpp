@@ -73,8 +73,10 @@ void GlBackend::beginFrame(TargetHandle target, const FrameParams& frame) {
         lights_[4 * i + 3] = glm::vec4(l.innerCos, 0.0f, 0.0f, 0.0f);
     }
     lights_[4 * kMaxLights] = glm::vec4(float(count), 0.0f, 0.0f, 0.0f);
-    if (frame.lighting.map && frame.lighting.map != environment_) uploadEnvironment(*frame.lighting.map);
-    environment_ = frame.lighting.map;
+    if (frame.lighting.map && frame.lighting.map != environment_) {  // kept across frames without a map
+        uploadEnvironment(*frame.lighting.map);
+        environment_ = frame.lighting.map;
+    }
 }
 
 void GlBackend::uploadEnvironment(const EnvironmentMap& map) {
@@ -162,8 +164,9 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform4fv(p->lights, GLsizei(lights_.size()), glm::value_ptr(lights_[0]));
     if (variant & kEnvironmentMapBit) {
         state_.bindTexture(environmentTexture_, kEnvironmentUnit);
-        if (state_.uniformChanged(p->environmentShValue, environment_->sh))
-            gl_.Uniform3fv(p->environmentSh, 9, glm::value_ptr(environment_->sh[0]));
+        const std::array<glm::vec3, 9>& sh = frame_.lighting.map->sh;  // environment_'s (beginFrame)
+        if (state_.uniformChanged(p->environmentShValue, sh))
+            gl_.Uniform3fv(p->environmentSh, 9, glm::value_ptr(sh[0]));
     }
     // The material: the same for every instance of a batched draw.
     if (state_.uniformChanged(p->baseColorFactorValue, params.baseColorFactor))

@@ -7,8 +7,10 @@
 #endif
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -26,6 +28,7 @@ namespace {
 
 constexpr float kPi = 3.14159265f;
 constexpr long long kMaxPixels = 1LL << 26;  // 8192 × 8192
+constexpr float kMaxRadiance = 1e30f;        // what prefiltering takes of a texel (resample)
 
 // The header's next line (without its '\n'), or false at the end of the bytes.
 bool headerLine(std::span<const std::uint8_t> bytes, std::size_t& at, std::string& line) {
@@ -55,17 +58,12 @@ Result<HdrImage> decodeRadianceHdr(std::span<const std::uint8_t> bytes, const st
     std::size_t at = 0;
     std::string line;
     if (!headerLine(bytes, at, line) || line.rfind("#?", 0) != 0) return bad("not a Radiance file (no #? signature)");
-    bool format = false;
-    while (true) {
+    while (true) {  // a file without FORMAT is RGBE
         if (!headerLine(bytes, at, line)) return bad("the header ends before the image's size");
         if (line.empty()) break;
-        if (line.rfind("FORMAT=", 0) == 0) {
-            if (line != "FORMAT=32-bit_rle_rgbe")
-                return bad("format '" + line.substr(7) + "' is not 32-bit_rle_rgbe (XYZE is not read)");
-            format = true;
-        }
+        if (line.rfind("FORMAT=", 0) == 0 && line != "FORMAT=32-bit_rle_rgbe")
+            return bad("format '" + oneLine(line.substr(7), 40) + "' is not 32-bit_rle_rgbe (XYZE is not read)");
     }
-    (void)format;  // a file without FORMAT is RGBE by default
     if (!headerLine(bytes, at, line)) return bad("no resolution line");
     char ySign = 0, xSign = 0, yAxis = 0, xAxis = 0;
     long long height = 0, width = 0;
@@ -74,11 +72,12 @@ Result<HdrImage> decodeRadianceHdr(std::span<const std::uint8_t> bytes, const st
         if (std::sscanf(line.c_str(), "%c%c %lld %c%c %lld%c", &ySign, &yAxis, &height, &xSign, &xAxis, &width,
                         &tail) != 6 ||
             yAxis != 'Y' || xAxis != 'X')
-            return bad("resolution '" + line + "' is not '-Y H +X W'");
+            return bad("resolution '" + oneLine(line, 40) + "' is not '-Y H +X W'");
     }
     if (ySign != '-' || xSign != '+')
-        return bad("resolution '" + line + "': only top-to-bottom, left-to-right images (-Y H +X W) are read");
-    if (width < 1 || height < 1 || width * height > kMaxPixels)
+        return bad("resolution '" + oneLine(line, 40) +
+                   "': only top-to-bottom, left-to-right images (-Y H +X W) are read");
+    if (width < 1 || height < 1 || width > kMaxPixels || height > kMaxPixels || width * height > kMaxPixels)
         return bad("size " + std::to_string(width) + "x" + std::to_string(height) + " is not 1 to " +
                    std::to_string(kMaxPixels) + " pixels");
 
@@ -198,14 +197,14 @@ glm::vec3 direction(float u, float v) {
 }
 
 // `image` resampled to width × height: each texel the mean of the source texels whose centres fall
-// in it, or the bilinear sample at its centre where none does.
+// in it, or the bilinear sample at its centre where none does. A value that is not finite or below
+// 0 counts as 0, and one above kMaxRadiance as that (RGBE reaches 1.7e38: sums of such overflow).
 Plane resample(const HdrImage& image, int width, int height) {
     Plane source{image.width, image.height, {}};
     source.texels.resize(std::size_t(image.width) * std::size_t(image.height));
     for (std::size_t i = 0; i < source.texels.size(); ++i) {
         glm::vec3 c(image.rgb[i * 3], image.rgb[i * 3 + 1], image.rgb[i * 3 + 2]);
-        for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(c[k]) || c[k] < 0.0f) c[k] = 0.0f;
+        for (int k = 0; k < 3; ++k) c[k] = std::isfinite(c[k]) ? std::clamp(c[k], 0.0f, kMaxRadiance) : 0.0f;
         source.texels[i] = c;
     }
     Plane out{width, height, std::vector<glm::vec3>(std::size_t(width) * std::size_t(height))};

@@ -2,6 +2,7 @@
 // the shaders share, and what prefiltering must give (a uniform map stays uniform; the diffuse
 // light follows the bright side; rougher levels are smoother).
 #include <cmath>
+#include <limits>
 #include <random>
 #include <span>
 #include <string>
@@ -48,13 +49,21 @@ TEST(EnvironmentTest, ReadsFlatAndRunLengthEncodedScanLines) {
     for (const float v : uniform->rgb) ASSERT_EQ(v, 0.25f);
 }
 
-// The fuzzer's seeds (scripts/fuzz) are files it reads: a flat and a run-length encoded one.
-TEST(EnvironmentTest, TheFuzzSeedsAreRead) {
+// The fuzzer's files (scripts/fuzz): its seeds, a flat and a run-length encoded image, are read;
+// its findings are refused on one line that names the file (a header line with a carriage return,
+// a size beyond 64 bits).
+TEST(EnvironmentTest, TheFuzzFilesAreReadOrRefusedOnOneLine) {
+    const std::filesystem::path dir = std::filesystem::path(FRUGAL_TEST_DATA_DIR) / "fuzz" / "hdr";
     for (const char* name : {"flat.hdr", "rle.hdr"}) {
-        const std::string bytes = test::readAll(std::filesystem::path(FRUGAL_TEST_DATA_DIR) / "fuzz" / "hdr" / name);
-        const Result<HdrImage> image = decodeRadianceHdr(bytesOf(bytes), name);
+        const Result<HdrImage> image = decodeRadianceHdr(bytesOf(test::readAll(dir / name)), name);
         ASSERT_TRUE(image) << image.error().message;
         EXPECT_EQ(image->height, 2) << name;
+    }
+    for (const char* name : {"resolution-with-carriage-return.hdr", "size-beyond-64-bits.hdr"}) {
+        const Result<HdrImage> image = decodeRadianceHdr(bytesOf(test::readAll(dir / name)), name);
+        ASSERT_FALSE(image) << name;
+        EXPECT_EQ(image.error().message.rfind(std::string(name) + ": ", 0), 0u) << image.error().message;
+        EXPECT_EQ(image.error().message.find_first_of("\r\n"), std::string::npos) << image.error().message;
     }
 }
 
@@ -163,6 +172,20 @@ TEST(EnvironmentTest, PrefilteringFollowsTheLightAndSmoothsWithRoughness) {
         EXPECT_LT(peak, previous) << level.width;
         previous = peak;
     }
+}
+
+// The largest RGBE values (1.7e38), infinities, NaNs and negative values prefilter to finite
+// levels and coefficients.
+TEST(EnvironmentTest, ExtremeValuesPrefilterToFiniteLight) {
+    HdrImage image{16, 8, std::vector<float>(16 * 8 * 3, 1.7e38f)};
+    image.rgb[0] = std::numeric_limits<float>::infinity();
+    image.rgb[4] = std::numeric_limits<float>::quiet_NaN();
+    image.rgb[8] = -5.0f;
+    const std::shared_ptr<const EnvironmentMap> map = prefilterEnvironment(image, "extreme", 1);
+    for (const glm::vec3& c : map->sh)
+        for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(c[k]));
+    for (const EnvironmentMap::Level& level : map->specular)
+        for (const float v : level.rgba) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << level.width;
 }
 
 TEST(EnvironmentTest, LoadsOnceAndSaysWhyNot) {
