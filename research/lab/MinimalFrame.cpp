@@ -79,8 +79,11 @@ private:
         GLint eye = -1, toLight = -1, light = -1, environment = -1;
     };
     static constexpr int kToneMaps = 3;
+    // Lambert has no environment specular term to leave out: one program serves it either way (the
+    // backend's variants are the same), and the slots of Lambert without the term stay empty.
     static int programIndex(ShadingModel shading, ToneMap tonemap, bool environmentSpecular) {
-        return (int(shading) * kToneMaps + int(tonemap)) * 2 + int(environmentSpecular);
+        return (int(shading) * kToneMaps + int(tonemap)) * 2 +
+               int(environmentSpecular || shading == ShadingModel::Lambert);
     }
     Program programs_[2 * kToneMaps * 2];
     GLuint fbo_ = 0;
@@ -122,15 +125,14 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
     gl_.Viewport(0, 0, width, height);
 
     // mesh.vert + mesh.frag with only the frame's defines (shading model, tone mapping, environment
-    // specular term): the
-    // variant with no texture, colours or ids, which is the backend's own program for such a frame,
-    // so the arithmetic is the same by construction.
+    // specular term): the variant with no texture, colours or ids, which is the backend's own
+    // program for such a frame, so the arithmetic is the same by construction.
     for (const ShadingModel shading : {ShadingModel::Full, ShadingModel::Lambert})
         for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces})
             for (const bool environmentSpecular : {false, true}) {
                 Program& p = programs_[programIndex(shading, tonemap, environmentSpecular)];
-                // The backend's variants: Lambert has no environment specular term to leave out.
-                const bool specular = environmentSpecular || shading == ShadingModel::Lambert;
+                if (p.name != 0) continue;  // Lambert's one program, made already
+                const bool specular = environmentSpecular || shading == ShadingModel::Lambert;  // as programIndex
                 if (std::string reason =
                         compileProgram(gl_, "mesh.vert", "mesh.frag",
                                        meshPreamble() + frameDefines(shading, tonemap, specular), &p.name);

@@ -141,7 +141,7 @@ std::string meshPreamble();
 // The defines of the frame-wide settings every mesh program variant follows: FRUGAL_LAMBERT for
 // the Lambert model, FRUGAL_TONEMAP_NEUTRAL or FRUGAL_TONEMAP_ACES, FRUGAL_NO_ENVIRONMENT_SPECULAR
 // (FrameParams::shading, tonemap, Lighting::environmentSpecular).
-std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular = true);
+std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular);
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

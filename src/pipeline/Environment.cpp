@@ -332,11 +332,11 @@ Result<std::shared_ptr<const EnvironmentMap>> loadEnvironmentMap(const std::stri
     const std::lock_guard<std::mutex> lock(mutex);
     if (const auto it = loaded.find(path); it != loaded.end()) return it->second;
     const std::string name = "environment-map " + path;
+    const auto start = std::chrono::steady_clock::now();
     std::ifstream in(path, std::ios::binary);
     if (!in) return Error{name + ": cannot open it (" + std::strerror(errno) + ")"};
     const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) return Error{name + ": cannot read it"};
-    const auto start = std::chrono::steady_clock::now();
     Result<HdrImage> image = decodeRadianceHdr(bytes, name);
     if (!image) return image.error();
     std::shared_ptr<EnvironmentMap> map = prefilterEnvironment(*image, path);

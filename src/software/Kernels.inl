@@ -585,22 +585,21 @@ struct Light {
         diffuseLight(n, diffuse);
         if (!environmentSpecular) {
             for (int c = 0; c < 3; ++c) dielectric[c] = base[c] * diffuse[c];  // its diffuse lobe alone
-        } else if (surface.specular) {
-            specularLight(n, v, r, reflected);
-            F8 a, b;
-            dfg(nv, r, a, b);
-            for (int c = 0; c < 3; ++c) {
-                const F8 fd = iblFresnel(surface.specular[c], r, cv, a, b);
-                dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
-            }
         } else {
             specularLight(n, v, r, reflected);
             F8 a, b;
             dfg(nv, r, a, b);
-            const F8 fd = iblFresnel(f0, r, cv, a, b);
-            for (int c = 0; c < 3; ++c) {
-                dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
-                metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
+            if (surface.specular) {
+                for (int c = 0; c < 3; ++c) {
+                    const F8 fd = iblFresnel(surface.specular[c], r, cv, a, b);
+                    dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
+                }
+            } else {
+                const F8 fd = iblFresnel(f0, r, cv, a, b);
+                for (int c = 0; c < 3; ++c) {
+                    dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
+                    metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
+                }
             }
         }
         // The clear coat over the environment's colour; the light's is then gathered from 0.
@@ -608,8 +607,8 @@ struct Light {
         if (surface.coat) {
             k = *surface.coat * (f0 + (one - f0) * pow5(one - saturate(dot(surface.coatNormal, v))));
             const F8 occlusion = surface.occlusion ? one + occlusionStrength * (*surface.occlusion - one) : one;
-            F8 coatLight[3] = {environment, environment, environment};  // the coat's reflection
-            if (environmentSpecular && map) specularLight(surface.coatNormal, v, surface.coatRoughness, coatLight);
+            F8 coatLight[3] = {zero, zero, zero};  // the coat's reflection of the environment
+            if (environmentSpecular) specularLight(surface.coatNormal, v, surface.coatRoughness, coatLight);
             for (int c = 0; c < 3; ++c) {
                 coated[c] = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
                 coated[c] = environmentSpecular ? coated[c] * (one - k) + coatLight[c] * k : coated[c] * (one - k);
