@@ -33,6 +33,8 @@
 // FRUGAL_ENVIRONMENT_MAP (Lighting::map): the environment's diffuse L is E(n)/π from the map's
 // spherical harmonics, its specular L the prefiltered map at the reflected view direction (the
 // coat's at its normal and roughness), for the Lambert model the diffuse alone.
+// FRUGAL_LINEAR_OUTPUT (a float target, ColorFormat::Rgba32F): the linear colour is written as it is,
+// unencoded and unclamped, a blended draw's alpha clamped to [0, 1] as an 8-bit target would.
 #version 330 core
 
 in vec3 v_normal;
@@ -441,7 +443,11 @@ void main() {
 #elif defined(FRUGAL_TONEMAP_ACES)
     linear = toneMapAces(linear);
 #endif
-#ifdef FRUGAL_ALPHA_BLEND
+#if defined(FRUGAL_LINEAR_OUTPUT) && defined(FRUGAL_ALPHA_BLEND)
+    o_color = vec4(linear, clamp(base.a, 0.0, 1.0));  // a float target clamps nothing
+#elif defined(FRUGAL_LINEAR_OUTPUT)
+    o_color = vec4(linear, 1.0);
+#elif defined(FRUGAL_ALPHA_BLEND)
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), base.a);
 #else
     o_color = vec4(pow(linear, vec3(1.0 / 2.2)), 1.0);

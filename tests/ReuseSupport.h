@@ -3,6 +3,7 @@
 // in tests/gl), so it needs nothing but the reuse, report and render modules.
 #pragma once
 
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <sstream>
@@ -66,17 +67,19 @@ using FrameInspector = std::function<void(int frame, const Buffers& reuse, const
 // Renders frames 0..frames-1 (frame(i) describes frame i; it may change `scene`'s materials) on
 // `backend` both ways and compares each pair. `scene` must stay alive and unmoved throughout.
 // `wholeScene`: plan through TemporalReuse's whole-scene overload (the frames must draw fullDrawList).
+// `color`: the targets' colour format (Rgba32F: linear colour, compared bit for bit as well).
 inline SequenceResult runSequence(Backend& backend, const Scene& scene, int width, int height, int frames,
                                   const std::function<SequenceFrame(int)>& frame, const ReuseOptions& options = {},
-                                  const FrameInspector& inspect = {}, bool wholeScene = false) {
+                                  const FrameInspector& inspect = {}, bool wholeScene = false,
+                                  ColorFormat color = ColorFormat::Rgba8) {
     SequenceResult result;
     Result<SceneRenderer> made = SceneRenderer::create(backend, scene);
     EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error().message);
     if (!made) return result;
     SceneRenderer& renderer = *made;
-    const TargetHandle full = backend.createTarget(width, height);
-    const TargetHandle render = backend.createTarget(width, height);
-    const TargetHandle stat = backend.createTarget(width, height);
+    const TargetHandle full = backend.createTarget(width, height, DepthFormat::D24, 1, color);
+    const TargetHandle render = backend.createTarget(width, height, DepthFormat::D24, 1, color);
+    const TargetHandle stat = backend.createTarget(width, height, DepthFormat::D24, 1, color);
     EXPECT_TRUE(full != kNoHandle && render != kNoHandle && stat != kNoHandle);
     TemporalReuse reuse(scene, width, height, options);
     for (int i = 0; i < frames; ++i) {
@@ -93,6 +96,10 @@ inline SequenceResult runSequence(Backend& backend, const Scene& scene, int widt
         result.ties += match.ties;
         EXPECT_EQ(match.errors(), 0u) << "frame " << i << " (" << toString(reuse.stats().mode) << ", "
                                       << reuse.stats().reason << "): " << match.errors() << " pixels differ in depth";
+        EXPECT_EQ(a.linear.size(), color == ColorFormat::Rgba32F ? a.pixelCount() * 4 : 0u);
+        EXPECT_TRUE(a.linear.size() == b.linear.size() &&
+                    std::memcmp(a.linear.data(), b.linear.data(), a.linear.size() * sizeof(float)) == 0)
+            << "frame " << i << ": the linear colour differs";
         if (inspect) inspect(i, a, b, reuse.stats());
     }
     backend.destroyTarget(full);

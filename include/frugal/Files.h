@@ -6,7 +6,10 @@
 //           (depth_format, depth_znear, depth_zfar, depth_projection, depth_encoding); or PFM, the
 //           window z as float32, exact (d32f: reversed, 1 near, 0 far);
 //   ids:    8-bit RGBA PNG whose bytes are the 32-bit id, little-endian (R = bits 0-7); 0 is the
-//           background.
+//           background;
+//   linear colour (Settings::linear): PFM ("PF": rgb as float32, exact, alpha left out), or 16-bit
+//           RGBA PNG, each channel clamped to [0, 1] and rounded to 65535 steps, with a gAMA chunk of
+//           1.0 (the values are linear light).
 // Errors (ErrorKind::Io): "<path>: <why>", e.g. "out.png: write failed after 4096 of 9120 bytes:
 // File too large", with nothing left behind.
 #pragma once
@@ -41,13 +44,16 @@ Result<bool> writePng(const std::string& path, const ColorImage& image, int leve
 Result<bool> writePng(const std::string& path, const DepthImage& image, int level = kDefaultPngLevel);
 Result<bool> writePfm(const std::string& path, const DepthImage& image);
 Result<bool> writePng(const std::string& path, const IdImage& image, int level = kDefaultPngLevel);
+Result<bool> writePfm(const std::string& path, const LinearImage& image);
+Result<bool> writePng(const std::string& path, const LinearImage& image, int level = kDefaultPngLevel);
 
 // A frame's files as `frugal render` writes them, as one set: each to a temporary name, then all
 // renamed together (a set is never half renamed, and on an error none of it is left). An empty path
-// is not written; depth is PFM when its path ends in .pfm (any case), else the 16-bit PNG. Error for
-// ids asked of a frame without them: "ids <path>: the frame has no ids (Settings::ids)" (BadInput).
+// is not written; depth and linear colour are PFM when their path ends in .pfm (any case), else
+// 16-bit PNG. Error for ids asked of a frame without them: "ids <path>: the frame has no ids
+// (Settings::ids)", and the like for linear colour (Settings::linear) (BadInput).
 struct FramePaths {
-    std::string color, depth, ids;
+    std::string color, depth, ids, linear;
 };
 struct Frame;
 Result<bool> writeFrame(const FramePaths& paths, const Frame& frame, int pngLevel = kDefaultPngLevel);

@@ -1,4 +1,5 @@
-// Images a frame is read back as: colour (RGBA8), depth (24-bit or 32-bit float, DepthFormat) and
+// Images a frame is read back as: colour (RGBA8, and with Settings::linear the linear colour as
+// float32 too), depth (24-bit or 32-bit float, DepthFormat) and
 // triangle ids (32-bit, 0 = background; frugal/Scene.h says how ids are formed).
 //
 // Rows: row 0 is the bottom row (GL's window origin, bottom-left), as the backends read them back;
@@ -56,6 +57,27 @@ struct ColorImage {
     int width = 0, height = 0;
     std::vector<std::uint8_t> rgba;  // 4 bytes a pixel, R first; rows bottom-up
 };
+
+// A frame's colour in linear light (Settings::linear): what the shading computes after tone mapping
+// and before the display encoding, unclamped (a bright highlight keeps its value above 1), drawn into
+// a float target (RGBA32F), blended there in linear light. Alpha is 1 where an opaque surface is, a
+// blended surface's alpha over what is below, the background's as cleared.
+struct LinearImage {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // 4 floats a pixel, R first; rows bottom-up
+};
+
+// A render target's colour format: Rgba8 holds the display encoding (8 bits a channel), Rgba32F the
+// linear colour (LinearImage).
+enum class ColorFormat : std::uint8_t { Rgba8, Rgba32F };
+
+// The display encoding of linear value x as an 8-bit level: x^(1/2.2) (the power in double, rounded
+// to float) clamped to [0, 1] and rounded to the nearest of 255 steps; NaN and x ≤ 0 give 0. What
+// the software reference writes into an 8-bit target, and how the colour image of a linear frame is
+// made from its LinearImage, the same for every backend.
+std::uint8_t displayLevel(float x);
+// Alpha's level: clamp(a, 0, 1) · 255 rounded to nearest (NaN gives 0).
+std::uint8_t alphaLevel(float a);
 
 struct DepthImage {
     int width = 0, height = 0;

@@ -33,9 +33,10 @@
 namespace frugal {
 
 // One frame: the images (rows bottom-up: frugal/Image.h) and what it cost. `ids` is empty unless
-// Settings::ids.
+// Settings::ids, `linear` unless Settings::linear.
 struct Frame {
     ColorImage color;
+    LinearImage linear;
     DepthImage depth;
     IdImage ids;
     FrameStats stats;

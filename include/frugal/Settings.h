@@ -300,6 +300,9 @@ struct Settings {
     ShadingModel shading = ShadingModel::Full;  // frugal/Image.h
     bool mipmaps = true;  // false: every texture sampled from its base level (no mipmaps made)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
+    // Draw the colour in linear light into a float target as well (Frame::linear, frugal/Image.h):
+    // Frame::color is then its display encoding. Blended surfaces mix in linear light.
+    bool linear = false;
 };
 
 // ---- The schema -----------------------------------------------------------------------------------

@@ -58,20 +58,25 @@ int pngLevelFrom(const py::object& level) {
                      std::to_string(kMaxPngLevel) + " or 'auto'"};
 }
 
-// The files of Frame.write and Writer.write; an ids file asked of a frame without ids is refused.
-FramePaths framePaths(const PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
-                      const std::optional<std::filesystem::path>& depthPath,
-                      const std::optional<std::filesystem::path>& idsPath) {
+using OptionalPath = std::optional<std::filesystem::path>;
+
+// The files of Frame.write and Writer.write; an ids (linear) file asked of a frame without ids
+// (linear colour) is refused, and a linear file not named .pfm or .png.
+FramePaths framePaths(const PyFrame& f, const OptionalPath& colorPath, const OptionalPath& depthPath,
+                      const OptionalPath& idsPath, const OptionalPath& linearPath) {
     if (idsPath && f.frame.ids.ids.empty())
         throw InputError{"ids: the frame has no ids (make the renderer with ids=True)"};
-    const auto text = [](const std::optional<std::filesystem::path>& p) { return p ? p->string() : std::string(); };
-    return {text(colorPath), text(depthPath), text(idsPath)};
+    if (linearPath && f.frame.linear.rgba.empty())
+        throw InputError{"linear: the frame has no linear colour (make the renderer with linear=True)"};
+    const auto text = [](const OptionalPath& p) { return p ? p->string() : std::string(); };
+    if (linearPath && !hasExtension(text(linearPath), ".pfm") && !hasExtension(text(linearPath), ".png"))
+        throw InputError{"linear " + text(linearPath) + ": name it .pfm (float32) or .png (16-bit)"};
+    return {text(colorPath), text(depthPath), text(idsPath), text(linearPath)};
 }
 
-void writeFiles(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
-                const std::optional<std::filesystem::path>& depthPath, const std::optional<std::filesystem::path>& idsPath,
-                const py::object& pngLevel) {
-    const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath);
+void writeFiles(PyFrame& f, const OptionalPath& colorPath, const OptionalPath& depthPath, const OptionalPath& idsPath,
+                const OptionalPath& linearPath, const py::object& pngLevel) {
+    const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath, linearPath);
     const int level = pngLevelFrom(pngLevel);
     py::gil_scoped_release unlocked;
     take(writeFrame(paths, f.frame, level));
@@ -98,11 +103,10 @@ struct PyWriter {
         return *writer;
     }
 
-    void write(PyFrame& f, const std::optional<std::filesystem::path>& colorPath,
-               const std::optional<std::filesystem::path>& depthPath,
-               const std::optional<std::filesystem::path>& idsPath) {
+    void write(PyFrame& f, const OptionalPath& colorPath, const OptionalPath& depthPath, const OptionalPath& idsPath,
+               const OptionalPath& linearPath) {
         FrameWriter& w = live();
-        const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath);
+        const FramePaths paths = framePaths(f, colorPath, depthPath, idsPath, linearPath);
         py::gil_scoped_release unlocked;
         Frame copy = std::move(spare);
         copy.color.width = f.frame.color.width;
@@ -115,6 +119,9 @@ struct PyWriter {
         copy.ids.width = f.frame.ids.width;
         copy.ids.height = f.frame.ids.height;
         copy.ids.ids.assign(f.frame.ids.ids.begin(), f.frame.ids.ids.end());
+        copy.linear.width = f.frame.linear.width;
+        copy.linear.height = f.frame.linear.height;
+        copy.linear.rgba.assign(f.frame.linear.rgba.begin(), f.frame.linear.rgba.end());
         Result<bool> queued = w.write(paths, copy);
         spare = std::move(copy);  // what came back: a written frame's memory, or nothing
         take(std::move(queued));
@@ -225,6 +232,16 @@ void bindFrame(py::module_& m) {
             },
             "(H, W) uint32 triangle ids, 0 = background (a view); None unless the renderer has ids=True.")
         .def_property_readonly(
+            "linear",
+            [](py::object self) -> py::object {
+                const LinearImage& l = self.cast<PyFrame&>().frame.linear;
+                if (l.rgba.empty()) return py::none();
+                return topFirstView(l.rgba.data(), l.width, l.height, 4, self);
+            },
+            "(H, W, 4) float32 RGBA in linear light, top row first (a view): the colour after tone mapping\n"
+            "and before the display encoding, unclamped; None unless the renderer has linear=True (then\n"
+            "`color` is its display encoding).")
+        .def_property_readonly(
             "stats",
             [](PyFrame& f) {
                 if (!f.stats) f.stats = frameStatsObject(f.frame.stats, f.settings);
@@ -237,9 +254,10 @@ void bindFrame(py::module_& m) {
             "frugal.View: the camera as resolved for this frame (the render JSON's 'camera') and its 4x4\n"
             "matrices.")
         .def("write", &writeFiles, py::kw_only(), py::arg("color") = py::none(), py::arg("depth") = py::none(),
-             py::arg("ids") = py::none(), py::arg("png_level") = "auto",
+             py::arg("ids") = py::none(), py::arg("linear") = py::none(), py::arg("png_level") = "auto",
              "Writes the images as frugal render does, as one set (all of them or, on an error, none):\n"
-             "colour PNG, depth (.png 16-bit or .pfm float32), ids PNG; png_level as frugal.Writer's.");
+             "colour PNG, depth (.png 16-bit or .pfm float32), ids PNG, linear colour (.pfm float32 rgb or\n"
+             ".png 16-bit, clamped); png_level as frugal.Writer's.");
 }
 
 void bindRenderer(py::module_& m) {
@@ -299,8 +317,9 @@ void bindRenderer(py::module_& m) {
         .def(py::init<int, int, const py::object&>(), py::kw_only(), py::arg("threads") = 0, py::arg("queue") = 0,
              py::arg("png_level") = "auto")
         .def("write", &PyWriter::write, py::arg("frame"), py::kw_only(), py::arg("color") = py::none(),
-             py::arg("depth") = py::none(), py::arg("ids") = py::none(),
-             "Queues the frame's files: colour PNG, depth (.png 16-bit or .pfm float32), ids PNG.")
+             py::arg("depth") = py::none(), py::arg("ids") = py::none(), py::arg("linear") = py::none(),
+             "Queues the frame's files: colour PNG, depth (.png 16-bit or .pfm float32), ids PNG, linear\n"
+             "colour (.pfm or .png).")
         .def("finish", &PyWriter::finish, "Waits until every frame given is written; raises the first error.")
         .def("close", [](PyWriter& w) { w.close(true); },
              "finish(), then frees the threads; later calls raise InputError.")

@@ -66,3 +66,34 @@ def test_an_exception_in_the_block_is_not_replaced(tmp_path):
         with frugal.Writer() as writer:
             writer.write(frame, color=tmp_path / "missing" / "c.png")
             1 / 0
+
+
+def test_linear_colour_as_float32_and_its_files(tmp_path, cli):
+    """linear=True: Frame.linear is the (H, W, 4) float32 colour in linear light, color its display
+    encoding (on the software reference the 8-bit render's bytes); write(linear=...) writes what
+    frugal render --linear writes, byte for byte."""
+    spec = "builtin:materials"
+    plain = frugal.Renderer(frugal.load(spec), size=(96, 64), backend="software").render()
+    assert plain.linear is None
+    renderer = frugal.Renderer(frugal.load(spec), size=(96, 64), backend="software", linear=True)
+    frame = renderer.render()
+    assert frame.linear.dtype == np.float32 and frame.linear.shape == (64, 96, 4)
+    np.testing.assert_array_equal(frame.color, plain.color)
+    lit = frame.linear[..., :3]
+    assert lit.max() > 0.5
+    # The display encoding, checked against numpy's: within a level (rounding at the halfway points).
+    encoded = np.rint(np.clip(lit, 0, 1) ** (1 / 2.2) * 255)
+    assert np.abs(encoded - frame.color[..., :3]).max() <= 1
+    frame.write(linear=tmp_path / "p.pfm")
+    with frugal.Writer() as writer:
+        writer.write(frame, linear=tmp_path / "w.png")
+    run_cli(cli, "render", spec, "-q", "--size", "96x64", "--backend", "software", "-o", tmp_path / "c.png",
+            "--linear", tmp_path / "c.pfm")
+    run_cli(cli, "render", spec, "-q", "--size", "96x64", "--backend", "software", "-o", tmp_path / "c2.png",
+            "--linear", tmp_path / "c.png16.png")
+    assert filecmp.cmp(tmp_path / "p.pfm", tmp_path / "c.pfm", shallow=False)
+    assert filecmp.cmp(tmp_path / "w.png", tmp_path / "c.png16.png", shallow=False)
+    with pytest.raises(frugal.InputError, match="linear: the frame has no linear colour"):
+        plain.write(linear=tmp_path / "x.pfm")
+    with pytest.raises(frugal.InputError, match=r"linear .*x\.exr: name it \.pfm \(float32\) or \.png \(16-bit\)"):
+        frame.write(linear=tmp_path / "x.exr")

@@ -212,8 +212,8 @@ Result<bool> sequence(const std::string& name, const Scene& scene, const WriteBe
             char number[16];
             std::snprintf(number, sizeof number, "_%04d", frame);
             const std::string stem = (dir / (variant + number)).string();
-            return planes.all ? FramePaths{stem + ".png", stem + "-depth.png", stem + "-ids.png"}
-                              : FramePaths{stem + ".png", "", ""};
+            return planes.all ? FramePaths{stem + ".png", stem + "-depth.png", stem + "-ids.png", ""}
+                              : FramePaths{stem + ".png", "", "", ""};
         };
         const std::vector<std::string> variants = {"render", "async",    "async level 1",
                                                    "sync",   "baseline", "one-frame async"};

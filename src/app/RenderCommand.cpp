@@ -28,7 +28,7 @@ namespace {
 
 struct Outputs {
     std::string color = "frame.png";
-    std::string depth, ids, json;
+    std::string depth, ids, linear, json;
     std::string settings;  // --save-settings
     int pngLevel = kDefaultPngLevel;
 };
@@ -65,8 +65,8 @@ struct RenderRequest {
 };
 
 // --settings FILE (frugal/Settings.h): its values are where the flags start from, so a flag given
-// beside it wins wherever it stands; its keys count as given. "ids" is left out: ids are drawn when
-// --ids names a file.
+// beside it wins wherever it stands; its keys count as given. "ids" and "linear" are left out: they
+// are drawn when --ids and --linear name a file.
 Result<bool> applySettingsFile(const std::vector<std::string>& args, RenderOptions& o) {
     const auto given = std::find(args.begin(), args.end(), "--settings");
     if (given == args.end() || std::next(given) == args.end()) return true;  // the flag reports a missing value
@@ -86,8 +86,11 @@ void checkRender(const RenderRequest& r, ArgCursor& cursor) {
         cursor.fail("--depth " + o.depth + ": name it .png (16-bit) or .pfm (float32)");
     else if (!o.ids.empty() && !hasExtension(o.ids, ".png"))
         cursor.fail("--ids " + o.ids + ": the id image is written as PNG; name it .png");
+    else if (!o.linear.empty() && !hasExtension(o.linear, ".pfm") && !hasExtension(o.linear, ".png"))
+        cursor.fail("--linear " + o.linear + ": name it .pfm (float32) or .png (16-bit)");
     else if (r.options.frames)
-        for (const auto& [flag, path] : {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}})
+        for (const auto& [flag, path] :
+             {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}, {"--linear", o.linear}})
             if (!path.empty()) {
                 const std::string problem = checkPattern(flag, path);
                 if (!problem.empty()) cursor.fail(problem);
@@ -139,6 +142,10 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
                        "reversed, 1 near, 0 far)", files.depth),
             flag::text("--ids", "FILE", "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
                        "byte); 0 = background", files.ids),
+            flag::text("--linear", "FILE", "the colour in linear light, drawn into a float target (after tone "
+                       "mapping, before the display encoding; blended surfaces mix in linear light, and the -o image "
+                       "is then its display encoding): .pfm = float32 rgb, unclamped, exact; .png = 16-bit RGBA, "
+                       "clamped to [0, 1], gAMA 1.0", files.linear),
             pngLevelFlag(files.pngLevel),
             flag::text("--json", "FILE", "metadata: scene counts, camera (the planes drawn with and the given ones, the "
                        "aspect ratios, the depth format), backend, GL renderer, per-frame timings (render_ms, readback_ms; "
@@ -158,13 +165,14 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
     command.finish = [&r](ArgCursor& cursor) { checkRender(r, cursor); };
     std::optional<int> status = parseCommandLine(command, args, out, err);
     o.settings.ids = !files.ids.empty();
+    o.settings.linear = !files.linear.empty();
     return status;
 }
 
 // The frame's files (FrameWriter writes them as one set).
 FramePaths framePaths(const Outputs& o, int index, bool sequence) {
     const auto path = [&](const std::string& given) { return given.empty() ? given : framePath(given, index, sequence); };
-    return {path(o.color), path(o.depth), path(o.ids)};
+    return {path(o.color), path(o.depth), path(o.ids), path(o.linear)};
 }
 
 // "frame 3 (4/10): 8.2 ms (conservative: 31000 of 69666 triangles) -> out_0003.png".

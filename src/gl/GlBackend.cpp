@@ -3,7 +3,7 @@
 // construction, the choice of context, targets, clears, copies and read-back.
 //
 // Targets: one FBO each with three renderbuffers (renderbuffers, not textures: a target is only
-// drawn, cleared, blitted and read, never sampled): RGBA8 colour on attachment 0, R32UI triangle ids
+// drawn, cleared, blitted and read, never sampled): RGBA8 (or RGBA32F) colour on attachment 0, R32UI triangle ids
 // on attachment 1, DEPTH_COMPONENT24 or DEPTH_COMPONENT32F depth. A new target is cleared to
 // transparent black, far depth and id 0, so its contents are defined in both backends.
 //
@@ -119,7 +119,7 @@ std::string GlBackend::initialise() {
     return {};
 }
 
-TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format, int samples) {
+TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format, int samples, ColorFormat color) {
     // Sizes outside what GL can attach or view are refused, not clamped: the caller reports them.
     if (width <= 0 || height <= 0 || width > maxTargetSize_ || height > maxTargetSize_) return kNoHandle;
     if (!supportsDepthFormat(format) || samples < 1 || samples > maxSamples_) return kNoHandle;
@@ -136,8 +136,10 @@ TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format, 
     t.ids = renderbuffers[1];
     t.depth = renderbuffers[2];
     t.depthFormat = format;
+    t.colorFormat = color;
     const GLenum formats[3] = {
-        GL_RGBA8, GL_R32UI, format == DepthFormat::D32F ? GLenum(GL_DEPTH_COMPONENT32F) : GLenum(GL_DEPTH_COMPONENT24)};
+        color == ColorFormat::Rgba32F ? GLenum(GL_RGBA32F) : GLenum(GL_RGBA8), GL_R32UI,
+        format == DepthFormat::D32F ? GLenum(GL_DEPTH_COMPONENT32F) : GLenum(GL_DEPTH_COMPONENT24)};
     for (int i = 0; i < 3; ++i) {
         gl_.BindRenderbuffer(GL_RENDERBUFFER, renderbuffers[i]);
         if (samples > 1)  // at least `samples`, as the driver chooses (the same count for each)
@@ -163,7 +165,7 @@ TargetHandle GlBackend::createTarget(int width, int height, DepthFormat format, 
         return kNoHandle;
     }
     if (t.samples > 1) {  // the single-sampled target readBack resolves into
-        t.resolved = createTarget(width, height, format, 1);
+        t.resolved = createTarget(width, height, format, 1, color);
         if (t.resolved == kNoHandle) {
             deleteTarget(t);
             return kNoHandle;
@@ -275,12 +277,17 @@ void GlBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
     if (t->samples > 1) t = &resolve(*t, planes);
     out.width = t->width;
     out.height = t->height;
+    const bool linear = t->colorFormat == ColorFormat::Rgba32F;
     out.rgba.resize(out.pixelCount() * 4);
+    out.linear.resize(linear ? out.pixelCount() * 4 : 0);
     out.ids.resize(planes.ids ? out.pixelCount() : 0);
     out.depth.resize(planes.depth ? out.pixelCount() : 0);
     // Rows come bottom-up (window origin bottom-left), as Buffers wants. Pack alignment is 1.
     state_.readFrom(*t, GL_COLOR_ATTACHMENT0);
-    gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+    if (linear)
+        gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_FLOAT, out.linear.data());
+    else
+        gl_.ReadPixels(0, 0, t->width, t->height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
     if (planes.ids) {
         state_.readFrom(*t, GL_COLOR_ATTACHMENT1);
         gl_.ReadPixels(0, 0, t->width, t->height, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
@@ -296,6 +303,7 @@ void GlBackend::readBackInto(TargetHandle target, Buffers& out, Planes planes) {
         for (std::uint32_t& d : out.depth) d >>= 8;
     }
     check("readBack");
+    if (linear) encodeLinear(out);
 }
 
 }  // namespace frugal::gl

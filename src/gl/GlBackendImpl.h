@@ -41,6 +41,7 @@ struct GlTarget : CachedFramebuffer {
     int samples = 1;  // as GL made the renderbuffers
     GLuint color = 0, ids = 0, depth = 0;
     DepthFormat depthFormat = DepthFormat::D24;
+    ColorFormat colorFormat = ColorFormat::Rgba8;  // Rgba32F: GL_RGBA32F, drawn by the linear variants
     // A multisampled target's single-sampled twin, which readBack resolves into.
     TargetHandle resolved = kNoHandle;
     // false: every id is known to be 0 (the top of GlBackend.cpp). True until the first clear, as
@@ -73,7 +74,8 @@ enum Variant : unsigned {
     kLambertBit = 1048576u,  // FrameParams::shading Lambert: the diffuse term alone
     kNoEnvironmentSpecularBit = 2097152u,  // Lighting::environmentSpecular false
     kEnvironmentMapBit = 4194304u,         // Lighting::map: the environment from its map
-    kVariantCount = 8388608u
+    kLinearBit = 8388608u,                 // a Rgba32F target: the linear colour, unencoded
+    kVariantCount = 16777216u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
@@ -158,7 +160,7 @@ public:
     bool supportsDepthFormat(DepthFormat format) const override {
         return format == DepthFormat::D24 || gl_.ClipControl != nullptr;
     }
-    TargetHandle createTarget(int width, int height, DepthFormat format, int samples) override;
+    TargetHandle createTarget(int width, int height, DepthFormat format, int samples, ColorFormat color) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     TextureHandle uploadTexture(const Texture& texture) override;

@@ -140,6 +140,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (!params.unlit && frame_.lighting.map) variant |= kEnvironmentMapBit;
     if (!params.unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
         variant |= kNoEnvironmentSpecularBit;
+    if (target.colorFormat == ColorFormat::Rgba32F) variant |= kLinearBit;
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 

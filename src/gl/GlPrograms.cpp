@@ -101,6 +101,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
                             : variant & kToneMapAcesBit  ? ToneMap::Aces
                                                          : ToneMap::None,
                             (variant & kNoEnvironmentSpecularBit) == 0);
+    if (variant & kLinearBit) defines += "#define FRUGAL_LINEAR_OUTPUT\n";
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (variant & kEnvironmentMapBit)
         defines += "#define FRUGAL_ENVIRONMENT_MAP " + std::to_string(EnvironmentMap::kSpecularLevels - 1) + ".0\n";

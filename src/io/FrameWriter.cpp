@@ -37,12 +37,12 @@ double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-enum class Plane : std::uint8_t { Color, Depth, Ids };
+enum class Plane : std::uint8_t { Color, Depth, Ids, Linear };
 
 struct Job {
     std::size_t index = 0;
     Frame frame;
-    std::vector<std::pair<std::string, Plane>> files;  // in writeFrame's order: colour, depth, ids
+    std::vector<std::pair<std::string, Plane>> files;  // in writeFrame's order: colour, depth, ids, linear
     std::vector<std::optional<Result<Content>>> encoded;
     int remaining = 0;   // files not yet encoded
     bool ready = false;  // every file encoded
@@ -64,6 +64,13 @@ Result<Content> encodeFile(const std::string& path, Plane plane, const Frame& fr
             return encodeDepthPng(frame.depth, PngOptions::atLevel(level));
         case Plane::Ids:
             return encodeIdPng(frame.ids, PngOptions::atLevel(level));
+        case Plane::Linear:
+            if (hasExtension(path, ".pfm")) {
+                Result<Bytes> pfm = encodeLinearPfm(frame.linear);
+                if (!pfm) return pfm.error();
+                return Content(std::move(*pfm));
+            }
+            return encodeLinearPng(frame.linear, PngOptions::atLevel(level));
     }
     return Error{"unreachable"};
 }
@@ -74,6 +81,8 @@ std::optional<Error> missingImage(const FramePaths& paths, const Frame& frame) {
         return Error{"ids " + paths.ids + ": the frame has no ids (Settings::ids)"};
     if (!paths.depth.empty() && frame.depth.values.empty())
         return Error{"depth " + paths.depth + ": the frame has no depth (rendered with ReadBack{.depth = false})"};
+    if (!paths.linear.empty() && frame.linear.rgba.empty())
+        return Error{"linear " + paths.linear + ": the frame has no linear colour (Settings::linear)"};
     return std::nullopt;
 }
 
@@ -231,8 +240,10 @@ Result<bool> FrameWriter::write(const FramePaths& paths, Frame& frame) {
     if (std::optional<Error> missing = missingImage(paths, frame)) return *missing;
     Impl& w = *impl_;
     auto job = std::make_unique<Job>();
-    for (const auto& [path, plane] :
-         {std::pair{&paths.color, Plane::Color}, {&paths.depth, Plane::Depth}, {&paths.ids, Plane::Ids}})
+    for (const auto& [path, plane] : {std::pair{&paths.color, Plane::Color},
+                                      {&paths.depth, Plane::Depth},
+                                      {&paths.ids, Plane::Ids},
+                                      {&paths.linear, Plane::Linear}})
         if (!path->empty()) job->files.emplace_back(*path, plane);
     job->encoded.resize(job->files.size());
     job->remaining = int(job->files.size());
@@ -286,6 +297,7 @@ Result<bool> writeFrame(const FramePaths& paths, const Frame& frame, int pngLeve
     if (!paths.color.empty()) files.add(paths.color, encodeFile(paths.color, Plane::Color, frame, pngLevel));
     if (!paths.depth.empty()) files.add(paths.depth, encodeFile(paths.depth, Plane::Depth, frame, pngLevel));
     if (!paths.ids.empty()) files.add(paths.ids, encodeFile(paths.ids, Plane::Ids, frame, pngLevel));
+    if (!paths.linear.empty()) files.add(paths.linear, encodeFile(paths.linear, Plane::Linear, frame, pngLevel));
     return files.commit();
 }
 

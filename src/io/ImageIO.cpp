@@ -168,9 +168,10 @@ Result<bool> compressRows(std::span<const std::uint8_t> rows, std::size_t pixelB
     return true;
 }
 
+// `gamma`: a gAMA chunk's value (100000 = 1.0: linear light) when not 0.
 template <class RowOf>
-Result<Bytes> encodeRows(int width, int height, int channels, int bitDepth, PngFilter filter,
-                         const PngOptions& options, const PngText& text, RowOf rowOf) {
+Result<Bytes> encodeRows(int width, int height, int channels, int bitDepth, PngFilter filter, const PngOptions& options,
+                         const PngText& text, RowOf rowOf, std::uint32_t gamma = 0) {
     const int level = options.level;
     if (channels < 1 || channels > 4) return Error{"PNG encoder: channels must be 1 to 4, got " + std::to_string(channels)};
     if (bitDepth != 8 && bitDepth != 16) return Error{"PNG encoder: bit depth must be 8 or 16, got " + std::to_string(bitDepth)};
@@ -210,6 +211,11 @@ Result<Bytes> encodeRows(int width, int height, int channels, int bitDepth, PngF
     header[11] = 0;  // adaptive filtering (a filter type per row)
     header[12] = 0;  // no interlace
     chunk(out, "IHDR", header, sizeof header);
+    if (gamma != 0) {
+        std::uint8_t value[4];
+        put32(value, gamma);
+        chunk(out, "gAMA", value, sizeof value);
+    }
     for (const auto& [keyword, value] : text) {
         Bytes data(keyword.begin(), keyword.end());
         data.push_back(0);
@@ -327,6 +333,39 @@ Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat f
     return out;
 }
 
+// A linear colour image: PFM "PF" (three float32 channels, alpha left out), rows bottom-up as stored.
+Bytes linearPfm(int width, int height, const float* rgba) {
+    const std::string header = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    Bytes out(header.begin(), header.end());
+    const std::size_t start = out.size();
+    out.resize(start + pixels * 12);
+    for (std::size_t i = 0; i < pixels; ++i) std::memcpy(out.data() + start + i * 12, rgba + i * 4, 12);
+    return out;
+}
+
+// The same as 16-bit RGBA PNG: each channel clamped to [0, 1] and rounded to 65535 steps, with a
+// gAMA chunk of 1.0 so that a viewer knows the values are linear.
+Result<Bytes> linearPng(int width, int height, const float* rgba, const PngOptions& given) {
+    const PngOptions options = resolved(Plane::Color, given);
+    const PngText text = {{"color_encoding", "linear light, each channel clamped to [0, 1] in 65535 steps"}};
+    return encodeRows(
+        width, height, 4, 16, *options.filter, options, text,
+        [&](int y, std::uint8_t* scratch) {
+            const float* in = rgba + std::size_t(width) * 4 * std::size_t(height - 1 - y);
+            for (std::size_t i = 0; i < std::size_t(width) * 4; ++i) {
+                const float v = in[i];
+                const auto level = std::uint16_t(!(v > 0.0f) ? 0.0
+                                                 : v >= 1.0f ? 65535.0
+                                                             : std::nearbyint(double(v) * 65535.0));
+                scratch[2 * i] = std::uint8_t(level >> 8);
+                scratch[2 * i + 1] = std::uint8_t(level & 0xFF);
+            }
+            return static_cast<const std::uint8_t*>(scratch);
+        },
+        100000u);
+}
+
 Result<Bytes> idPng(int width, int height, const std::uint32_t* ids, const PngOptions& given) {
     const PngOptions options = resolved(Plane::Ids, given);
     return encodeRows(width, height, 4, 8, *options.filter, options, {}, [&](int y, std::uint8_t* scratch) {
@@ -393,6 +432,17 @@ Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options) {
     return idPng(image.width, image.height, image.ids.data(), options);
 }
 
+Result<Bytes> encodeLinearPfm(const LinearImage& image) {
+    if (std::optional<Error> problem = sizeProblem("linear colour", image.width, image.height, image.rgba.size(), 4))
+        return Error{"PFM encoder: " + problem->message.substr(std::string("PNG encoder: ").size())};
+    return linearPfm(image.width, image.height, image.rgba.data());
+}
+Result<Bytes> encodeLinearPng(const LinearImage& image, const PngOptions& options) {
+    if (std::optional<Error> problem = sizeProblem("linear colour", image.width, image.height, image.rgba.size(), 4))
+        return *problem;
+    return linearPng(image.width, image.height, image.rgba.data(), options);
+}
+
 bool hasExtension(const std::string& path, const std::string& extension) {
     std::string e = std::filesystem::path(path).extension().string();
     for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -409,6 +459,14 @@ Result<bool> writePfm(const std::string& path, const DepthImage& image) {
     Result<Bytes> pfm = encodeDepthPfm(image);
     if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.error()));
     return writeFileAtomic(path, std::move(*pfm));
+}
+Result<bool> writePfm(const std::string& path, const LinearImage& image) {
+    Result<Bytes> pfm = encodeLinearPfm(image);
+    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.error()));
+    return writeFileAtomic(path, std::move(*pfm));
+}
+Result<bool> writePng(const std::string& path, const LinearImage& image, int level) {
+    return writeFileAtomic(path, encodeLinearPng(image, PngOptions::atLevel(level)));
 }
 Result<bool> writePng(const std::string& path, const IdImage& image, int level) {
     return writeFileAtomic(path, encodeIdPng(image, PngOptions::atLevel(level)));

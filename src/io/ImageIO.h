@@ -84,6 +84,10 @@ Result<Bytes> encodeColorPng(const ColorImage& image, const PngOptions& options 
 Result<Bytes> encodeDepthPng(const DepthImage& image, const PngOptions& options = {});
 Result<Bytes> encodeDepthPfm(const DepthImage& image);  // an error when its values do not fill it
 Result<Bytes> encodeIdPng(const IdImage& image, const PngOptions& options = {});
+// A linear colour image (Settings::linear): PFM "PF", its rgb as float32, exact (alpha left out); or
+// 16-bit RGBA PNG, each channel clamped to [0, 1] and rounded to 65535 steps, with gAMA 1.0.
+Result<Bytes> encodeLinearPfm(const LinearImage& image);
+Result<Bytes> encodeLinearPng(const LinearImage& image, const PngOptions& options = {});
 
 // A file's bytes held outside memory while a long run writes them piece by piece (the frames of a
 // render JSON): an anonymous file in the folder of `near` (O_TMPFILE: no name, gone when the process

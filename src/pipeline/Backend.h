@@ -2,14 +2,15 @@
 // filament backend). Implemented by the GL backend (src/gl/) and the software reference
 // (src/software/). Plans made by cull/ and reuse/ are executed through this interface only.
 //
-// Render target: colour RGBA8 + depth (24-bit, or 32-bit float with reversed Z: DepthFormat,
-// frugal/Image.h) + triangle id R32UI, same formats in every backend. Depth test "nearer passes"
-// (GL_LESS for D24, GL_GREATER for D32F; or none: DepthMode), depth range [0,1], colour blended only
-// by draws of AlphaMode::Blend (DrawParams; the blend the Khronos renderer sets: GL_SRC_ALPHA,
-// GL_ONE_MINUS_SRC_ALPHA for rgb, GL_ONE, GL_ONE_MINUS_SRC_ALPHA for alpha; ids are never blended). Draws
-// are executed in call order, and within a draw call the ranges in the order given, the triangles of
-// a range in index-buffer order: that is the documented order in which depth ties resolve (the first
-// triangle drawn keeps the pixel).
+// Render target: colour RGBA8 (or RGBA32F for linear colour: createTarget) + depth (24-bit, or
+// 32-bit float with reversed Z: DepthFormat, frugal/Image.h) + triangle id R32UI, same formats in
+// every backend. Depth test "nearer passes" (GL_LESS for D24, GL_GREATER for D32F; or none:
+// DepthMode), depth range [0,1], colour blended only by draws of AlphaMode::Blend (DrawParams; the
+// blend the Khronos renderer sets: GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA for rgb, GL_ONE,
+// GL_ONE_MINUS_SRC_ALPHA for alpha; ids are never blended). Draws are executed in call order, and
+// within a draw call the ranges in the order given, the triangles of a range in index-buffer order:
+// that is the documented order in which depth ties resolve (the first triangle drawn keeps the
+// pixel).
 #pragma once
 
 #include <cassert>
@@ -101,8 +102,9 @@ struct IndexRange {
 //     rgb = clamp(O·c, 0, 1), I and O the Khronos renderer's ACESInputMat and ACESOutputMat.
 // The colour written is rgb^(1/2.2), the display encoding of the Khronos glTF Sample Renderer, and a
 // unencoded; the 8-bit target clamps to [0,1] and rounds to nearest (a blended draw mixes these
-// encoded bytes, as the Khronos renderer's canvas does). The clear colour (the
-// background) is written as given, not encoded. With the default light a white rough dielectric
+// encoded bytes, as the Khronos renderer's canvas does). A float target (ColorFormat::Rgba32F)
+// is written rgb itself, unclamped, and a blended draw's alpha clamped to [0, 1]; it blends in
+// linear light. The clear colour (the background) is written as given, not encoded. With the default light a white rough dielectric
 // facing the light and the viewer is about 1.0 of diffuse light (0.3 + 0.7) less the 4 % the
 // surface reflects, plus that reflection.
 // A scene's punctual light where a frame sees it (Scene::lights, placed by its node at the frame's
@@ -252,8 +254,11 @@ public:
     // many samples, as GL chooses (llvmpipe, and the software backend after it, has 4): colour,
     // depth and ids are kept per sample, copy() copies every sample, and readBack resolves: the
     // samples' mean colour, sample 0's depth and id (raster/Rasterizer.h, 6.).
-    virtual TargetHandle createTarget(int width, int height, DepthFormat format = DepthFormat::D24,
-                                      int samples = 1) = 0;
+    // `color` Rgba32F makes a float colour plane (frugal/Image.h, LinearImage): draws write the
+    // linear colour there (after tone mapping, unencoded, unclamped), blend in float, and readBack
+    // fills Buffers::linear and, from it, Buffers::rgba (encodeLinear).
+    virtual TargetHandle createTarget(int width, int height, DepthFormat format = DepthFormat::D24, int samples = 1,
+                                      ColorFormat color = ColorFormat::Rgba8) = 0;
     virtual void destroyTarget(TargetHandle target) = 0;
 
     virtual MeshHandle uploadMesh(const Mesh& mesh) = 0;
@@ -308,8 +313,9 @@ public:
 inline std::string describe(const Backend& backend) { return backend.name() + " (" + backend.renderer() + ")"; }
 
 // copy()'s contract as every backend checks it, on its own target records (width, height,
-// depthFormat, samples): both targets exist (asserted), they are two, of one size, depth format and
-// sample count (asserted); the region is `rect` clipped to them. Nothing when there is nothing to copy.
+// depthFormat, samples, colorFormat): both targets exist (asserted), they are two, of one size, depth
+// format, sample count and colour format (asserted); the region is `rect` clipped to them. Nothing
+// when there is nothing to copy.
 template <class Target>
 std::optional<Rect> copyRegion(const Target* source, const Target* dest, bool sameTarget, const Rect& rect,
                                bool anyPlane) {
@@ -318,6 +324,8 @@ std::optional<Rect> copyRegion(const Target* source, const Target* dest, bool sa
     assert(source->width == dest->width && source->height == dest->height && "copy: targets differ in size");
     assert(source->depthFormat == dest->depthFormat && "copy: targets differ in depth format");
     assert(source->samples == dest->samples && "copy: targets differ in samples");
+    assert(source->colorFormat == dest->colorFormat && "copy: targets differ in colour format");
+    if (source->colorFormat != dest->colorFormat) return std::nullopt;
     const Rect r = clipRect(clipRect(rect, source->width, source->height), dest->width, dest->height);
     if (r.empty() || !anyPlane) return std::nullopt;
     return r;

@@ -30,6 +30,9 @@ struct Buffers {
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba;  // 4 bytes a pixel
+    // A Rgba32F target's colour (LinearImage: 4 floats a pixel); `rgba` is then its display
+    // encoding (encodeLinear). Empty for an 8-bit target.
+    std::vector<float> linear;
     // D24: the 24-bit values. D32F: the floats' bits; window z is never negative, so these order as
     // the floats do and their difference counts the floats between two values (ULPs).
     std::vector<std::uint32_t> depth;
@@ -40,5 +43,8 @@ struct Buffers {
     // Window z of pixel i, in [0, 1].
     float windowDepth(std::size_t i) const { return frugal::windowDepth(depthFormat, depth[i]); }
 };
+
+// Fills out.rgba from out.linear: displayLevel for rgb, alphaLevel for alpha (frugal/Image.h).
+void encodeLinear(Buffers& out);
 
 }  // namespace frugal

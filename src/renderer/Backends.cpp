@@ -127,16 +127,16 @@ std::optional<std::string> memoryProblem(std::uint64_t bytes) {
     return "more than the " + gigabytes(left->bytes) + " left (" + left->under + ")";
 }
 
-std::optional<std::string> frameMemoryProblem(int width, int height, int samples) {
+std::optional<std::string> frameMemoryProblem(int width, int height, int samples, bool linear) {
     // A multisampled target holds its planes per sample, and a resolved copy besides.
     const std::uint64_t perPixel =
-        kFrameBytesPerPixel + std::uint64_t(samples > 1 ? samples : 0) * kTargetBytesPerPixel;
+        frameBytesPerPixel(linear) + std::uint64_t(samples > 1 ? samples : 0) * targetBytesPerPixel(linear);
     const std::uint64_t needed = std::uint64_t(width) * std::uint64_t(height) * perPixel;
     const std::optional<std::string> problem = memoryProblem(needed);
     if (!problem) return std::nullopt;
     return "needs about " + gigabytes(needed) + " (" + std::to_string(perPixel) + " bytes a pixel: target" +
            (samples > 1 ? " of " + std::to_string(samples) + " samples" : std::string()) +
-           ", read-back, PNG encoding), " + *problem;
+           (linear ? " with float colour" : "") + ", read-back, PNG encoding), " + *problem;
 }
 
 std::string outOfMemoryMessage() {

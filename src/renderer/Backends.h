@@ -35,6 +35,14 @@ Result<std::unique_ptr<Backend>> openBackend(BackendKind kind, std::vector<std::
 // just under the 36 bytes a pixel (docs/gl/README.md, "Outside the GL backend").
 inline constexpr std::uint64_t kTargetBytesPerPixel = 12;  // a target alone: colour, depth, ids
 inline constexpr std::uint64_t kFrameBytesPerPixel = 36;
+// A linear frame (Settings::linear) adds 12 to its target (RGBA32F colour) and 28 more to the frame:
+// the float read-back (16) and a PFM's rows (12).
+inline constexpr std::uint64_t targetBytesPerPixel(bool linear) { return kTargetBytesPerPixel + (linear ? 12 : 0); }
+inline constexpr std::uint64_t frameBytesPerPixel(bool linear) { return kFrameBytesPerPixel + (linear ? 40 : 0); }
+// The colour format a target of `settings` has.
+inline ColorFormat colorFormat(const Settings& settings) {
+    return settings.linear ? ColorFormat::Rgba32F : ColorFormat::Rgba8;
+}
 
 // What this process may still take: the least of the address space left under `ulimit -v`
 // (RLIMIT_AS less VmSize), the data left under `ulimit -d` (RLIMIT_DATA less VmData), the
@@ -56,6 +64,6 @@ std::optional<std::string> memoryProblem(std::uint64_t bytes);
 // Why a frame of width×height does not fit: "needs about 9.7 GB (36 bytes a pixel: target,
 // read-back, PNG encoding), more than the 3.2 GB left (ulimit -v)"; nothing when it fits or nothing
 // is known.
-std::optional<std::string> frameMemoryProblem(int width, int height, int samples = 1);
+std::optional<std::string> frameMemoryProblem(int width, int height, int samples = 1, bool linear = false);
 
 }  // namespace frugal

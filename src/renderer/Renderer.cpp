@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -35,6 +36,25 @@ std::string sizeText(const Settings& s) { return std::to_string(s.width) + "x" +
 // between 0 and 1 (rounded, at most 255), 0 where a is 0. With an opaque background (the default)
 // every pixel has alpha 1 and neither step changes a byte.
 glm::vec4 premultiplied(const glm::vec4& c) { return {c.r * c.a, c.g * c.a, c.b * c.a, c.a}; }
+
+// What a frame's target is cleared to: the background, premultiplied. The background is a display
+// colour, written into an 8-bit target as it is; a linear target (Settings::linear) gets its linear
+// value rgb^2.2, whose display encoding gives the same bytes back.
+glm::vec4 clearColor(const Settings& s) {
+    glm::vec4 c = s.background;
+    if (s.linear)
+        for (int i = 0; i < 3; ++i) c[i] = c[i] > 0.0f ? float(std::pow(double(c[i]), 2.2)) : 0.0f;
+    return premultiplied(c);
+}
+
+// A linear frame's colour (Settings::linear) the same way, in float, before its display encoding.
+void unpremultiply(std::vector<float>& rgba) {
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        const float a = rgba[i + 3];
+        if (a >= 1.0f) continue;
+        for (int c = 0; c < 3; ++c) rgba[i + std::size_t(c)] = a > 0.0f ? rgba[i + std::size_t(c)] / a : 0.0f;
+    }
+}
 
 void unpremultiply(std::vector<std::uint8_t>& rgba) {
     for (std::size_t i = 0; i + 3 < rgba.size(); i += 4) {
@@ -124,14 +144,16 @@ Result<bool> Renderer::Impl::open() {
         // and what a frame still allocates after its target (the read-back and the PNG encoding): the
         // first frame comes after it.
         const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
-        const std::uint64_t pairBytes = kTargetBytesPerPixel * std::uint64_t(s.samples > 1 ? s.samples + 1 : 1);
-        const std::uint64_t needed = pixels * pairBytes + pixels * (kFrameBytesPerPixel - kTargetBytesPerPixel);
+        const std::uint64_t pairBytes =
+            targetBytesPerPixel(s.linear) * std::uint64_t(s.samples > 1 ? s.samples + 1 : 1);
+        const std::uint64_t needed =
+            pixels * pairBytes + pixels * (frameBytesPerPixel(s.linear) - targetBytesPerPixel(s.linear));
         if (const std::optional<std::string> problem = memoryProblem(needed))
             return Error{"reuse: " + sizeText(s) + " needs about " + gigabytes(needed) + " more (a static pair of " +
                              std::to_string(pairBytes) +
                              " bytes a pixel, then the frame's read-back and PNG encoding), " + *problem,
                          ErrorKind::OutOfMemory, true};
-        staticTarget = backend->createTarget(s.width, s.height, s.depthFormat, s.samples);
+        staticTarget = backend->createTarget(s.width, s.height, s.depthFormat, s.samples, colorFormat(s));
         if (staticTarget == kNoHandle)
             return Error{"reuse: " + backend->name() + " could not create the static pair (" + sizeText(s) + ", " +
                              std::to_string(pixels * pairBytes) + " bytes)",
@@ -146,7 +168,7 @@ Result<bool> Renderer::Impl::open() {
 // the frame), or through temporal reuse.
 void Renderer::Impl::draw(const FrameSetup& setup, const DrawList& submitted, FrameStats& stats) {
     const Settings& s = settings;
-    const glm::vec4 clear = premultiplied(s.background);
+    const glm::vec4 clear = clearColor(s);
     if (reuse) {
         // A culled list, or the whole scene (the planner's own, faster list).
         FramePlan plan = culler ? reuse->plan(setup.params, setup.world, submitted, clear)
@@ -188,7 +210,7 @@ void Renderer::Impl::growEnvelope() {
 
 Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame& frame, Renderer::ReadBack readBack) {
     const Settings& s = settings;
-    const glm::vec4 clear = premultiplied(s.background);
+    const glm::vec4 clear = clearColor(s);
     if (moved) growEnvelope();
     if (!stillBounds && scene->animations.empty() && (!camera.eye || !camera.target))
         stillBounds = scene->bounds(0.0);
@@ -258,6 +280,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
     // The frame's own vectors, read into and given back (their memory used again).
     Buffers buffers;
     buffers.rgba = std::move(frame.color.rgba);
+    buffers.linear = std::move(frame.linear.rgba);
     buffers.depth = std::move(frame.depth.values);
     buffers.ids = std::move(frame.ids.ids);
     backend->readBackInto(target, buffers, {.depth = readBack.depth, .ids = s.ids});
@@ -281,12 +304,18 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         }
     ++framesDone;
 
-    if (s.background.a < 1.0f) unpremultiply(buffers.rgba);  // only a translucent background leaves a < 1
+    if (s.background.a < 1.0f && s.linear) {  // only a translucent background leaves a < 1
+        unpremultiply(buffers.linear);
+        encodeLinear(buffers);
+    } else if (s.background.a < 1.0f) {
+        unpremultiply(buffers.rgba);
+    }
     const View& view = setup->view;
     frame.color = ColorImage{buffers.width, buffers.height, std::move(buffers.rgba)};
     frame.depth = DepthImage{buffers.width, buffers.height, std::move(buffers.depth), buffers.depthFormat,
                              view.znear,    view.zfar,      view.perspective};
     frame.ids = s.ids ? IdImage{buffers.width, buffers.height, std::move(buffers.ids)} : IdImage{};
+    frame.linear = s.linear ? LinearImage{buffers.width, buffers.height, std::move(buffers.linear)} : LinearImage{};
     frame.view = view;
     return true;
 }
@@ -342,9 +371,9 @@ std::optional<Renderer::EnvironmentPreparation> Renderer::environmentPreparation
 }
 std::optional<StateCosts> Renderer::stateCosts() const { return impl_->orderCosts->report(); }
 std::uint64_t Renderer::staticPairBytes() const {
-    return impl_->reuse
-               ? std::uint64_t(impl_->settings.width) * std::uint64_t(impl_->settings.height) * kTargetBytesPerPixel
-               : 0;
+    return impl_->reuse ? std::uint64_t(impl_->settings.width) * std::uint64_t(impl_->settings.height) *
+                              targetBytesPerPixel(impl_->settings.linear)
+                        : 0;
 }
 std::uint64_t Renderer::extraBytes() const {
     return staticPairBytes() + (impl_->cullPreparation ? impl_->cullPreparation->bytes : 0) +

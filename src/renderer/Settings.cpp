@@ -223,6 +223,14 @@ std::vector<SettingInfo> makeTable() {
                              [](auto& s) -> auto& { return s.ids; });
     ids.flag = false;  // `render --ids FILE` draws them
     t.push_back(std::move(ids));
+    SettingInfo linear = toggle(
+        "linear", kOutputs,
+        "draw the colour in linear light into a float target (after tone mapping, before the display "
+        "encoding, unclamped; blended surfaces mix in linear light): the frame holds it as float32, and its "
+        "colour image is its display encoding",
+        [](auto& s) -> auto& { return s.linear; });
+    linear.flag = false;  // `render --linear FILE` draws it
+    t.push_back(std::move(linear));
     return t;
 }
 

@@ -49,13 +49,13 @@ Result<Stage> Stage::on(std::unique_ptr<Backend> opened, const Settings& s, std:
                      ErrorKind::BackendUnavailable, true};
     // A size the backend takes but this process's memory does not hold: refused before any of it is made.
     if (std::max(s.width, s.height) <= backend.maxTargetSize())
-        if (const std::optional<std::string> problem = frameMemoryProblem(s.width, s.height, s.samples))
+        if (const std::optional<std::string> problem = frameMemoryProblem(s.width, s.height, s.samples, s.linear))
             return Error{"size " + size + ": " + *problem, ErrorKind::OutOfMemory, true};
     if (s.samples > backend.maxSamples())
         return Error{"samples " + std::to_string(s.samples) + ": " + backend.name() + " has at most " +
                          std::to_string(backend.maxSamples()) + " samples a pixel",
                      ErrorKind::BadInput, true};
-    parts->target = backend.createTarget(s.width, s.height, s.depthFormat, s.samples);
+    parts->target = backend.createTarget(s.width, s.height, s.depthFormat, s.samples, colorFormat(s));
     if (parts->target == kNoHandle)
         return Error{"size " + size + ": " + backend.name() + " cannot create a target that large (at most " +
                          std::to_string(backend.maxTargetSize()) + " pixels a side)",

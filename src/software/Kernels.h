@@ -40,13 +40,14 @@ struct VertexJob {
 // eight-pixel span never reaches into the next row). A multisampled target holds each plane once
 // per sample, `sampleStride` values apart (Rasterizer.h, 6.).
 struct TargetView {
-    std::uint32_t* color = nullptr;  // RGBA8, R in the low byte
+    std::uint32_t* color = nullptr;  // RGBA8, R in the low byte; nullptr for a linear target
     std::uint32_t* depth = nullptr;  // 24-bit values, or D32F's float bits
     std::uint32_t* ids = nullptr;
     int width = 0, height = 0, stride = 0;
     DepthFormat depthFormat = DepthFormat::D24;
     int samples = 1;
     std::size_t sampleStride = 0;
+    float* linear = nullptr;  // RGBA32F (ColorFormat) instead of `color`: 4 floats a pixel (pixel i at 4·i)
 };
 
 inline constexpr std::uint32_t kNoWinner = 0xFFFFFFFFu;
@@ -80,7 +81,7 @@ struct Kernels {
     void (*raster)(const Triangle& triangle, TileState& tile);
     // Shades the pixels of the tile that `tile.won[index]` still owns. For a masked draw it marks
     // the pixels it discards kKilled in `tile.winner` (and writes no colour there); for a blended
-    // one it blends over the target's colour (blendOver).
+    // one it blends over the target's colour (blendOver; on a linear target blendLinear).
     void (*shade)(std::uint32_t index, const DrawShading& shading, TileState& tile);
 };
 

@@ -984,6 +984,26 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
             }
 
             toneMap(shading.tonemap, linear);
+            if (tile.target.linear != nullptr) {  // a float target: the linear colour as it is
+                const F8 alpha = shading.alphaMode == AlphaMode::Blend ? simd::min(simd::max(base[3], zero), one) : one;
+                float rgba[4][8];
+                for (int c = 0; c < 3; ++c) simd::storef(rgba[c], linear[c]);
+                simd::storef(rgba[3], alpha);
+                float* const row = tile.target.linear + (std::size_t(y) * stride + std::size_t(bx)) * 4;
+                for (int k = 0; k < samples; ++k) {
+                    float* const sampleRow = row + std::size_t(k) * tile.target.sampleStride * 4;
+                    for (unsigned bitsLeft = simd::laneBits(owned[k]); bitsLeft != 0; bitsLeft &= bitsLeft - 1) {
+                        const int l = __builtin_ctz(bitsLeft);
+                        const float src[4] = {rgba[0][l], rgba[1][l], rgba[2][l], rgba[3][l]};
+                        float* const pixel = sampleRow + std::size_t(l) * 4;
+                        if (shading.alphaMode == AlphaMode::Blend)
+                            blendLinear(src, pixel);
+                        else
+                            std::memcpy(pixel, src, sizeof src);
+                    }
+                }
+                continue;
+            }
             // Colour: linear rgb encoded lane by lane (ColorEncoding); alpha converted as it is.
             std::uint32_t rgb[8] = {};
             for (int c = 0; c < 3; ++c) {

@@ -108,6 +108,7 @@
 #include <frugal/Scene.h>
 
 #include "pipeline/Backend.h"
+#include "pipeline/ColorEncoding.h"
 
 namespace frugal::sw {
 
@@ -164,50 +165,6 @@ struct SoftwareTexture {
     Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
     bool aos = true;  // both axes repeat or clamp-to-edge, not sRGB: llvmpipe's AoS 8-bit path
     const DecodeTable* rgb = &unormDecode();  // how R, G and B are decoded (alpha: unormDecode)
-};
-
-// rgb^(1/2.2) as an 8-bit value, for a linear colour channel: the power in double rounded to float,
-// then clamped and converted as floatToUnorm8 below. Exact for every float (NaN and v ≤ 0 give 0):
-// thresholds[b] is the least float whose byte is b or more, found once by bisection over float
-// bits, and a table indexed by a value's upper 16 bits gives the byte at the start of its bucket,
-// which one comparison corrects (no bucket spans more than one threshold).
-class ColorEncoding {
-public:
-    static std::uint8_t encode(float v) {
-        static const ColorEncoding encoding;
-        return encoding.byte(v);
-    }
-    // The same, computed directly (slow): what encode() must equal, and what the tests compare.
-    static std::uint8_t exact(float v) {
-        if (!(v > 0.0f)) return 0;
-        const float p = float(std::pow(double(v), double(1.0f / 2.2f)));
-        if (p >= 1.0f) return 255;
-        return std::uint8_t(std::nearbyint(p * 255.0f));
-    }
-
-private:
-    ColorEncoding() {
-        thresholds_[0] = 0.0f;
-        for (int b = 1; b < 256; ++b) {
-            std::uint32_t lo = 0, hi = 0x3F800000u;  // exact(+0) = 0 < b <= exact(1.0f) = 255
-            while (hi - lo > 1) {
-                const std::uint32_t mid = lo + (hi - lo) / 2;
-                (exact(std::bit_cast<float>(mid)) >= b ? hi : lo) = mid;
-            }
-            thresholds_[std::size_t(b)] = std::bit_cast<float>(hi);
-        }
-        for (std::uint32_t bucket = 0; bucket < buckets_.size(); ++bucket)
-            buckets_[bucket] = exact(std::bit_cast<float>(bucket << 16));
-    }
-    std::uint8_t byte(float v) const {
-        if (!(v > 0.0f)) return 0;
-        if (v >= 1.0f) return 255;
-        std::uint8_t b = buckets_[std::bit_cast<std::uint32_t>(v) >> 16];
-        if (b < 255 && v >= thresholds_[std::size_t(b) + 1]) ++b;
-        return b;
-    }
-    std::array<float, 256> thresholds_{};
-    std::array<std::uint8_t, 0x3F80 + 1> buckets_{};  // the positive floats below 1.0, by upper bits
 };
 
 // What the shading of one draw needs besides the pixels.
@@ -277,6 +234,14 @@ inline std::uint32_t blendOver(std::uint32_t src, std::uint32_t dst) {
     return out;
 }
 
+// The same blend on a float (linear) target, as llvmpipe blends float colour: rgb = dst + a·(src − dst)
+// (its lerp for this pair of factors), alpha = a + dst.a·(1 − a); `dst` is updated in place.
+inline void blendLinear(const float src[4], float dst[4]) {
+    const float a = src[3];
+    for (int c = 0; c < 3; ++c) dst[c] = dst[c] + a * (src[c] - dst[c]);
+    dst[3] = a + dst[3] * (1.0f - a);
+}
+
 // float → unorm8 as llvmpipe converts colour (see above).
 inline std::uint8_t floatToUnorm8(float f) {
     if (!(f > 0.0f)) return 0;  // also NaN, as float_to_ubyte
@@ -297,6 +262,18 @@ inline std::uint32_t resolveColor(const std::uint32_t* sample, int count, std::s
         out |= std::uint32_t(floatToUnorm8(sum * scale)) << (8 * c);
     }
     return out;
+}
+
+// A multisampled linear pixel's colour resolved: each channel's samples summed in float from sample
+// 0, times 1/count, into out[4]. `sample` points at sample 0's four floats; the others follow
+// `sampleStride` pixels apart.
+inline void resolveLinear(const float* sample, int count, std::size_t sampleStride, float out[4]) {
+    const float scale = 1.0f / float(count);
+    for (int c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (int k = 0; k < count; ++k) sum = sum + sample[std::size_t(k) * sampleStride * 4 + std::size_t(c)];
+        out[c] = sum * scale;
+    }
 }
 
 // A multisampled D24 target's depth (sample 0) after the resolve blit, which fetches it as a float,

@@ -38,8 +38,10 @@ constexpr int kMaxSize = 16384;
 struct SwTarget {
     int width = 0, height = 0, stride = 0;  // stride: a multiple of 8 (Kernels.h, TargetView)
     int samples = 1;
-    std::vector<std::uint32_t> color, depth, ids;
+    std::vector<std::uint32_t> color, depth, ids;  // color: RGBA8 targets only
+    std::vector<float> linear;                     // Rgba32F targets: 4 floats a pixel
     DepthFormat depthFormat = DepthFormat::D24;
+    ColorFormat colorFormat = ColorFormat::Rgba8;
 
     std::size_t plane() const { return std::size_t(stride) * std::size_t(height); }
     // Where pixel (x, y) of sample `sample` is in each plane's vector.
@@ -47,7 +49,16 @@ struct SwTarget {
         return std::size_t(sample) * plane() + std::size_t(y) * std::size_t(stride) + std::size_t(x);
     }
     sw::TargetView view() {
-        return {color.data(), depth.data(), ids.data(), width, height, stride, depthFormat, samples, plane()};
+        return {color.empty() ? nullptr : color.data(),
+                depth.data(),
+                ids.data(),
+                width,
+                height,
+                stride,
+                depthFormat,
+                samples,
+                plane(),
+                linear.empty() ? nullptr : linear.data()};
     }
 };
 
@@ -75,7 +86,7 @@ public:
     bool supportsDepthFormat(DepthFormat format) const override {
         return format == DepthFormat::D24 || pipeline_.interp() == span::Interp::Exact;
     }
-    TargetHandle createTarget(int width, int height, DepthFormat format, int samples) override;
+    TargetHandle createTarget(int width, int height, DepthFormat format, int samples, ColorFormat color) override;
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     void releaseMesh(MeshHandle mesh) override;
@@ -119,7 +130,7 @@ private:
     glm::vec3 eye_{0.0f};  // eyePosition(frame_.view)
 };
 
-TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format, int samples) {
+TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat format, int samples, ColorFormat color) {
     if (width <= 0 || height <= 0 || width > kMaxSize || height > kMaxSize) return kNoHandle;
     if (!supportsDepthFormat(format) || samples < 1 || samples > maxSamples()) return kNoHandle;
     // The --interp span engine models one sample per pixel.
@@ -133,7 +144,11 @@ TargetHandle SoftwareBackend::createTarget(int width, int height, DepthFormat fo
     const std::size_t pixels = t.plane() * std::size_t(t.samples);
     try {
         // Contents defined from the start, like the GL backend: transparent black, far depth, id 0.
-        t.color.assign(pixels, 0u);
+        t.colorFormat = color;
+        if (color == ColorFormat::Rgba32F)
+            t.linear.assign(pixels * 4, 0.0f);
+        else
+            t.color.assign(pixels, 0u);
         t.depth.assign(pixels, sw::clearDepthWhole(farDepth(format), format));
         t.ids.assign(pixels, 0u);
     } catch (const std::bad_alloc&) {
@@ -327,7 +342,11 @@ void SoftwareBackend::clear(TargetHandle target, const Rect& rect, const glm::ve
         for (int sample = 0; sample < t->samples; ++sample)
             for (int y = y0; y < y1; ++y) {
                 const std::size_t row = t->at(sample, r.x, y);
-                std::fill_n(t->color.begin() + std::ptrdiff_t(row), r.width, c);
+                if (t->linear.empty())
+                    std::fill_n(t->color.begin() + std::ptrdiff_t(row), r.width, c);
+                else
+                    for (int x = 0; x < r.width; ++x)  // as given: a float target keeps any value
+                        std::memcpy(t->linear.data() + (row + std::size_t(x)) * 4, &color[0], 4 * sizeof(float));
                 std::fill_n(t->depth.begin() + std::ptrdiff_t(row), r.width, z);
                 std::fill_n(t->ids.begin() + std::ptrdiff_t(row), r.width, 0u);
             }
@@ -351,7 +370,14 @@ void SoftwareBackend::copy(TargetHandle from, TargetHandle to, const Rect& rect,
                 std::memcpy(b.data() + dest->at(sample, r.x, y), a.data() + source->at(sample, r.x, y),
                             std::size_t(r.width) * sizeof(std::uint32_t));
     };
-    if (color) rows(source->color, dest->color);
+    if (color && !source->linear.empty())
+        for (int sample = 0; sample < source->samples; ++sample)
+            for (int y = r.y; y < r.y + r.height; ++y)
+                std::memcpy(dest->linear.data() + dest->at(sample, r.x, y) * 4,
+                            source->linear.data() + source->at(sample, r.x, y) * 4,
+                            std::size_t(r.width) * 4 * sizeof(float));
+    else if (color)
+        rows(source->color, dest->color);
     if (depth) rows(source->depth, dest->depth);
     if (ids) rows(source->ids, dest->ids);
 }
@@ -367,13 +393,22 @@ void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, Planes pla
     out.width = t->width;
     out.height = t->height;
     out.depthFormat = t->depthFormat;
+    const bool linear = !t->linear.empty();
     out.rgba.resize(out.pixelCount() * 4);
+    out.linear.resize(linear ? out.pixelCount() * 4 : 0);
     out.depth.resize(planes.depth ? out.pixelCount() : 0);
     out.ids.resize(planes.ids ? out.pixelCount() : 0);
     // Depth and ids: sample 0's (the first plane); colour resolved when multisampled (Shading.h).
     for (int y = 0; y < t->height; ++y) {
         const std::size_t from = t->at(0, 0, y), to = std::size_t(y) * std::size_t(t->width);
-        if (t->samples == 1) {
+        if (linear && t->samples == 1) {
+            std::memcpy(out.linear.data() + to * 4, t->linear.data() + from * 4,
+                        std::size_t(t->width) * 4 * sizeof(float));
+        } else if (linear) {
+            for (int x = 0; x < t->width; ++x)
+                sw::resolveLinear(t->linear.data() + (from + std::size_t(x)) * 4, t->samples, t->plane(),
+                                  out.linear.data() + (to + std::size_t(x)) * 4);
+        } else if (t->samples == 1) {
             std::memcpy(out.rgba.data() + to * 4, t->color.data() + from, std::size_t(t->width) * 4);
         } else {
             for (int x = 0; x < t->width; ++x) {
@@ -387,6 +422,7 @@ void SoftwareBackend::readBackInto(TargetHandle target, Buffers& out, Planes pla
                 out.depth[to + std::size_t(x)] = sw::resolveDepth24(out.depth[to + std::size_t(x)]);
         if (planes.ids) std::memcpy(out.ids.data() + to, t->ids.data() + from, std::size_t(t->width) * 4);
     }
+    if (linear) encodeLinear(out);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ Frame numbered(int n, bool ids = true) {
 
 FramePaths pathsOf(const std::filesystem::path& dir, int n) {
     const std::string stem = (dir / ("f" + std::to_string(n))).string();
-    return {stem + ".png", stem + "-depth.png", stem + "-ids.png"};
+    return {stem + ".png", stem + "-depth.png", stem + "-ids.png", ""};
 }
 
 TEST(FrameWriterTest, WritesEveryFrameInOrderAndHandsMemoryBack) {
@@ -70,11 +70,11 @@ TEST(FrameWriterTest, WritesEveryFrameInOrderAndHandsMemoryBack) {
 TEST(FrameWriterTest, TheFileIsWhatWriteFrameWrites) {
     const auto dir = test::freshDir("FrameWriterSame");
     const Frame frame = numbered(5);
-    ASSERT_TRUE(writeFrame({(dir / "a.png").string(), (dir / "a.pfm").string(), ""}, frame, 1));
+    ASSERT_TRUE(writeFrame({(dir / "a.png").string(), (dir / "a.pfm").string(), "", ""}, frame, 1));
     Result<FrameWriter> writer = FrameWriter::create({.threads = 1, .queue = 1, .pngLevel = 1});
     ASSERT_TRUE(writer);
     Frame copy = frame;
-    ASSERT_TRUE(writer->write({(dir / "b.png").string(), (dir / "b.pfm").string(), ""}, copy));
+    ASSERT_TRUE(writer->write({(dir / "b.png").string(), (dir / "b.pfm").string(), "", ""}, copy));
     ASSERT_TRUE(writer->finish());
     EXPECT_EQ(test::readAll(dir / "a.png"), test::readAll(dir / "b.png"));
     EXPECT_EQ(test::readAll(dir / "a.pfm"), test::readAll(dir / "b.pfm"));
@@ -150,7 +150,7 @@ TEST(FrameWriterTest, AnImageTheFrameDoesNotHoldIsOneLineAndNoFile) {
     ASSERT_FALSE(queued);
     EXPECT_EQ(queued.error().message,
               "depth " + pathsOf(dir, 0).depth + ": the frame has no depth (rendered with ReadBack{.depth = false})");
-    const Result<bool> direct = writeFrame({"", (dir / "d.pfm").string(), ""}, frame);
+    const Result<bool> direct = writeFrame({"", (dir / "d.pfm").string(), "", ""}, frame);
     ASSERT_FALSE(direct);
     EXPECT_EQ(direct.error().message, "depth " + (dir / "d.pfm").string() +
                                   ": the frame has no depth (rendered with ReadBack{.depth = false})");

@@ -68,6 +68,44 @@ TEST(ImageIOTest, DepthPngHoldsTheTop16BitsAndPfmTheExactValue) {
     EXPECT_FLOAT_EQ(last, float(double(b.depth[5]) / kDepthMax));
 }
 
+// Linear colour: PFM "PF" holds rgb exactly, bottom row first, alpha left out (values above 1 and
+// below 0 kept); the 16-bit PNG clamps each channel to [0, 1], keeps alpha, says gAMA 1.0.
+TEST(ImageIOTest, LinearPfmIsExactAndThePngSixteenBitsClamped) {
+    LinearImage image{2,
+                      2,
+                      {0.25f, 2.5f, -1.0f, 1.0f, 0.5f, 0.0f, 1.0f, 0.5f,  //
+                       1e-7f, 0.75f, 1.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f}};
+    Result<Bytes> pfm = encodeLinearPfm(image);
+    ASSERT_TRUE(pfm) << pfm.error().message;
+    const std::string header = "PF\n2 2\n-1.0\n";
+    ASSERT_EQ(pfm->size(), header.size() + 4 * 12);
+    EXPECT_EQ(std::string(pfm->begin(), pfm->begin() + long(header.size())), header);
+    for (std::size_t pixel = 0; pixel < 4; ++pixel)
+        for (std::size_t c = 0; c < 3; ++c) {
+            float value = 0;
+            std::memcpy(&value, &(*pfm)[header.size() + (pixel * 3 + c) * 4], 4);
+            EXPECT_EQ(value, image.rgba[pixel * 4 + c]) << pixel << " " << c;
+        }
+
+    const std::string path = (test::freshDir("ImageIOTestLinear") / "l.png").string();
+    ASSERT_TRUE(writePng(path, image));
+    const std::optional<std::string> bytes = readFile(path);
+    ASSERT_TRUE(bytes);
+    EXPECT_NE(bytes->find(std::string("gAMA\x00\x01\x86\xa0", 8)), std::string::npos) << "gAMA 100000";
+    Result<DecodedImage> decoded = readPng(path);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    EXPECT_EQ(decoded->bitDepth, 16);
+    EXPECT_EQ(decoded->channels, 4);
+    // File row 0 is the image's top row (its row 1).
+    const std::vector<std::uint16_t> expected = {0,     49151, 65535, 0,     65535, 65535, 65535, 65535,
+                                                 16384, 65535, 0,     65535, 32768, 0,     65535, 32768};
+    EXPECT_EQ(decoded->pixels16, expected);
+
+    LinearImage wrong{3, 2, std::vector<float>(20)};
+    EXPECT_FALSE(encodeLinearPfm(wrong));
+    EXPECT_FALSE(encodeLinearPng(wrong));
+}
+
 TEST(ImageIOTest, IdPngBytesAreTheLittleEndianId) {
     const Buffers b = gradient(4, 3);
     const std::string path = (test::freshDir("ImageIOTestIds") / "i.png").string();
@@ -103,7 +141,7 @@ TEST(ImageIOTest, WriteFrameWritesTheSetOrNothing) {
     frame.depth.height = b.height;
     frame.depth.values = b.depth;
     const std::string color = (dir / "c.png").string(), depth = (dir / "d.PFM").string();
-    ASSERT_TRUE(writeFrame({color, depth, ""}, frame));
+    ASSERT_TRUE(writeFrame({color, depth, "", ""}, frame));
     const Result<Bytes> png = encodeColorPng(frame.color);
     ASSERT_TRUE(png);
     EXPECT_EQ(test::readAll(color), std::string(png->begin(), png->end()));
@@ -112,10 +150,10 @@ TEST(ImageIOTest, WriteFrameWritesTheSetOrNothing) {
     EXPECT_EQ(test::readAll(depth), std::string(pfm->begin(), pfm->end()));
 
     const std::string other = (dir / "other.png").string(), ids = (dir / "i.png").string();
-    Result<bool> noIds = writeFrame({other, "", ids}, frame);
+    Result<bool> noIds = writeFrame({other, "", ids, ""}, frame);
     ASSERT_FALSE(noIds);
     EXPECT_EQ(noIds.error().message, "ids " + ids + ": the frame has no ids (Settings::ids)");
-    Result<bool> failed = writeFrame({other, (dir / "missing-folder" / "d.png").string(), ""}, frame);
+    Result<bool> failed = writeFrame({other, (dir / "missing-folder" / "d.png").string(), "", ""}, frame);
     ASSERT_FALSE(failed);
     EXPECT_FALSE(std::filesystem::exists(other)) << "a set is written whole or not at all";
 }

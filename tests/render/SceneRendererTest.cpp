@@ -23,7 +23,7 @@ public:
     int maxTextureSize() const override { return 32; }
     bool supportsDepthFormat(DepthFormat) const override { return true; }
     int maxSamples() const override { return 1; }
-    TargetHandle createTarget(int, int, DepthFormat, int) override { return TargetHandle{1}; }
+    TargetHandle createTarget(int, int, DepthFormat, int, ColorFormat) override { return TargetHandle{1}; }
     void destroyTarget(TargetHandle) override {}
     void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh.id)); }
     void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture.id)); }

@@ -76,6 +76,20 @@ TEST(ReuseSequence, BlendedAndMaskedSurfacesMatchTheFullRender) {
             EXPECT_GE(r.stats[i].instances.sd + r.stats[i].instances.dd, blended) << "frame " << i << ": " << r.describe();
 }
 
+// The same in linear colour (a float target): blended surfaces mix in float, and the static pair's
+// copies and the redrawn parts still give the full render's floats, bit for bit.
+TEST(ReuseSequence, BlendedAndMaskedSurfacesInLinearColourMatchTheFullRender) {
+    Scene scene = loadOrFail("builtin:dominoes?polygons=804&static=0.5544");
+    test::addAlpha(scene);
+    auto backend = makeSoftwareBackend();
+    for (bool fallback : {true, false}) {
+        const SequenceResult r = runSequence(*backend, scene, 200, 150, 20, animated(scene, {}, 200, 150),
+                                             reuseOptions(16, 16, fallback), {}, false, ColorFormat::Rgba32F);
+        EXPECT_EQ(r.errors, 0u) << r.describe();
+        EXPECT_EQ(r.modes().find('U') != std::string::npos, true) << r.describe();
+    }
+}
+
 TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {
     const Scene scene = loadOrFail("builtin:cubes");
     // Every cube spins: from the second frame on, everything is dynamic.
