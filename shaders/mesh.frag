@@ -33,6 +33,8 @@
 // FRUGAL_ENVIRONMENT_MAP (Lighting::map): the environment's diffuse L is E(n)/π from the map's
 // spherical harmonics, its specular L the prefiltered map at the reflected view direction (the
 // coat's at its normal and roughness), for the Lambert model the diffuse alone.
+// FRUGAL_DIELECTRIC and FRUGAL_METAL (a metallic factor of exactly 0 or 1 and no metallic-roughness
+// map): the dielectric or the metal side alone, the other's terms left out (metalMix).
 // FRUGAL_LINEAR_OUTPUT (a float target, ColorFormat::Rgba32F): the linear colour is written as it is,
 // unencoded and unclamped, a blended draw's alpha clamped to [0, 1] as an 8-bit target would.
 #version 330 core
@@ -227,6 +229,19 @@ vec3 toneMapAces(vec3 c) {
 }
 #endif
 
+// mix(dielectric, metal, metallic), written out; with FRUGAL_DIELECTRIC (metallic exactly 0) the
+// dielectric, with FRUGAL_METAL (exactly 1) the metal, as that sum gives them: the other side's
+// terms are then never read, and the compiler leaves them out.
+vec3 metalMix(vec3 dielectric, vec3 metal, float metallic) {
+#if defined(FRUGAL_DIELECTRIC)
+    return dielectric;
+#elif defined(FRUGAL_METAL)
+    return metal;
+#else
+    return dielectric * (1.0 - metallic) + metal * metallic;
+#endif
+}
+
 void main() {
     vec4 base = u_baseColorFactor;
 #ifdef FRUGAL_COLORS
@@ -353,7 +368,7 @@ void main() {
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 environment = dielectric;
 #else
-    vec3 environment = dielectric * (1.0 - metallic) + metal * metallic;
+    vec3 environment = metalMix(dielectric, metal, metallic);
     metal = vec3(0.0);
 #endif
 #ifdef FRUGAL_NO_ENVIRONMENT_SPECULAR
@@ -424,7 +439,7 @@ void main() {
 #ifdef FRUGAL_SPECULAR_GLOSSINESS
     vec3 lit = dielectric;
 #else
-    vec3 lit = dielectric * (1.0 - metallic) + metal * metallic;
+    vec3 lit = metalMix(dielectric, metal, metallic);
 #endif
 #ifdef FRUGAL_CLEARCOAT
 #ifndef FRUGAL_LIGHTS

@@ -71,8 +71,9 @@ private:
     bool loaded_ = false;
     int width_ = 0, height_ = 0;
     DepthFormat format_ = DepthFormat::D24;
-    // The mesh program for each shading model, tone mapping and environment specular term
-    // (FrameParams::shading, tonemap, Lighting::environmentSpecular), uniforms by location.
+    // The mesh program for each shading model, tone mapping, environment specular term and side of
+    // the metal mix (FrameParams::shading, tonemap, Lighting::environmentSpecular, MetalMix), uniforms
+    // by location; made when first drawn with.
     struct Program {
         GLuint name = 0;
         GLint mvp = -1, normalMatrix = -1, model = -1, factor = -1, metallicRoughness = -1, emissive = -1;
@@ -81,11 +82,16 @@ private:
     static constexpr int kToneMaps = 3;
     // Lambert has no environment specular term to leave out: one program serves it either way (the
     // backend's variants are the same), and the slots of Lambert without the term stay empty.
-    static int programIndex(ShadingModel shading, ToneMap tonemap, bool environmentSpecular) {
-        return (int(shading) * kToneMaps + int(tonemap)) * 2 +
-               int(environmentSpecular || shading == ShadingModel::Lambert);
+    // Lambert has no metal mix either.
+    static int programIndex(ShadingModel shading, ToneMap tonemap, bool environmentSpecular, MetalMix mix) {
+        const bool lambert = shading == ShadingModel::Lambert;
+        return ((int(shading) * kToneMaps + int(tonemap)) * 2 + int(environmentSpecular || lambert)) * 3 +
+               (lambert ? 0 : int(mix));
     }
-    Program programs_[2 * kToneMaps * 2];
+    // The program of a frame and a material's mix, compiled on first use; nullptr if it does not compile.
+    const Program* program(const FrameParams& frame, MetalMix mix);
+    Program programs_[2 * kToneMaps * 2 * 3];
+    std::string programError_;
     GLuint fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
@@ -123,32 +129,6 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
     gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers_[1]);
     if (gl_.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return "incomplete framebuffer";
     gl_.Viewport(0, 0, width, height);
-
-    // mesh.vert + mesh.frag with only the frame's defines (shading model, tone mapping, environment
-    // specular term): the variant with no texture, colours or ids, which is the backend's own
-    // program for such a frame, so the arithmetic is the same by construction.
-    for (const ShadingModel shading : {ShadingModel::Full, ShadingModel::Lambert})
-        for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces})
-            for (const bool environmentSpecular : {false, true}) {
-                Program& p = programs_[programIndex(shading, tonemap, environmentSpecular)];
-                if (p.name != 0) continue;  // Lambert's one program, made already
-                const bool specular = environmentSpecular || shading == ShadingModel::Lambert;  // as programIndex
-                if (std::string reason =
-                        compileProgram(gl_, "mesh.vert", "mesh.frag",
-                                       meshPreamble() + frameDefines(shading, tonemap, specular), &p.name);
-                    !reason.empty())
-                    return reason;
-                p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
-                p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
-                p.model = gl_.GetUniformLocation(p.name, "u_model");
-                p.factor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
-                p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
-                p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
-                p.eye = gl_.GetUniformLocation(p.name, "u_eye");
-                p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
-                p.light = gl_.GetUniformLocation(p.name, "u_light");
-                p.environment = gl_.GetUniformLocation(p.name, "u_environment");
-            }
 
     // The backend's fixed state (GlBackend::initialise), where it differs from GL's defaults.
     gl_.Enable(GL_DEPTH_TEST);
@@ -192,6 +172,11 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
             gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(positions));
         }
     }
+    // The default frame's programs for the scene's materials, so that a program that does not
+    // compile is said here (the others are made when a frame first needs them).
+    for (const Material& material : scene_->materials)
+        if (program(FrameParams{}, metalMixOf(material.metallicFactor, false, false)) == nullptr) return programError_;
+    if (program(FrameParams{}, metalMixOf(Material{}.metallicFactor, false, false)) == nullptr) return programError_;
     const GLenum error = gl_.GetError();
     if (error != GL_NO_ERROR) return glErrorName(error) + " while setting up the minimal frame";
     return {};
@@ -203,18 +188,26 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     gl_.ClearColor(background.r, background.g, background.b, background.a);
     gl_.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::vec3 eye = eyePosition(frame.view);
-    const Program& p = programs_[programIndex(frame.shading, frame.tonemap, frame.lighting.environmentSpecular)];
-    gl_.UseProgram(p.name);
-    gl_.Uniform3fv(p.eye, 1, glm::value_ptr(eye));
-    gl_.Uniform3fv(p.toLight, 1, glm::value_ptr(frame.lighting.toLight));
-    gl_.Uniform1f(p.light, frame.lighting.light);
-    gl_.Uniform1f(p.environment, frame.lighting.environment);
     const glm::mat4 viewProjection = frame.projection * frame.view;
+    const Program* current = nullptr;
     for (const Instance& instance : scene_->instances) {
         const MeshObjects& m = meshes_[std::size_t(instance.mesh)];
         if (m.indices == 0) continue;
         const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
         const Material& material = mesh.material >= 0 ? scene_->materials[std::size_t(mesh.material)] : kDefault;
+        // The program of the material's side of the metal mix (as the backend's variant); the frame's
+        // uniforms set when it is first used in the frame.
+        const Program* made = program(frame, metalMixOf(material.metallicFactor, false, false));
+        if (made == nullptr) return;
+        const Program& p = *made;
+        if (made != current) {
+            gl_.UseProgram(p.name);
+            gl_.Uniform3fv(p.eye, 1, glm::value_ptr(eye));
+            gl_.Uniform3fv(p.toLight, 1, glm::value_ptr(frame.lighting.toLight));
+            gl_.Uniform1f(p.light, frame.lighting.light);
+            gl_.Uniform1f(p.environment, frame.lighting.environment);
+            current = made;
+        }
         const glm::mat4& model = world[std::size_t(instance.node)];
         const glm::mat4 mvp = viewProjection * model;
         const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(model));
@@ -237,6 +230,34 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
         gl_.BindVertexArray(m.vao);
         gl_.DrawElements(GL_TRIANGLES, m.indices, GL_UNSIGNED_INT, nullptr);
     }
+}
+
+const Minimal::Program* Minimal::program(const FrameParams& frame, MetalMix mix) {
+    const bool environmentSpecular = frame.lighting.environmentSpecular;
+    Program& p = programs_[programIndex(frame.shading, frame.tonemap, environmentSpecular, mix)];
+    if (p.name != 0) return &p;
+    // mesh.vert + mesh.frag with only the frame's defines and the mix's: the variant with no
+    // texture, colours or ids, which is the backend's own program for such a frame, so the
+    // arithmetic is the same by construction.
+    const bool lambert = frame.shading == ShadingModel::Lambert;
+    const std::string defines = meshPreamble() +
+                                frameDefines(frame.shading, frame.tonemap, environmentSpecular || lambert) +
+                                (lambert ? std::string() : metalMixDefine(mix));
+    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
+        programError_ = reason;
+        return nullptr;
+    }
+    p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
+    p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
+    p.model = gl_.GetUniformLocation(p.name, "u_model");
+    p.factor = gl_.GetUniformLocation(p.name, "u_baseColorFactor");
+    p.metallicRoughness = gl_.GetUniformLocation(p.name, "u_metallicRoughness");
+    p.emissive = gl_.GetUniformLocation(p.name, "u_emissive");
+    p.eye = gl_.GetUniformLocation(p.name, "u_eye");
+    p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
+    p.light = gl_.GetUniformLocation(p.name, "u_light");
+    p.environment = gl_.GetUniformLocation(p.name, "u_environment");
+    return &p;
 }
 
 void Minimal::sizeBuffers(Buffers& out, bool depth) const {

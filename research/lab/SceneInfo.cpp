@@ -105,6 +105,11 @@ void printShading(const Scene& scene, std::ostream& out) {
         std::string terms = m.unlit                ? "unlit"
                             : m.specularGlossiness ? "specular-glossiness BRDF"
                                                    : "metallic-roughness BRDF";
+        if (!m.unlit) {  // one side of the metal mix alone (pipeline/Backend.h, MetalMix)
+            const MetalMix mix = metalMixOf(m.metallicFactor, m.metallicRoughnessTexture >= 0, m.specularGlossiness);
+            if (mix == MetalMix::Dielectric) terms += ", dielectric only";
+            if (mix == MetalMix::Metal) terms += ", metal only";
+        }
         if (m.baseColorTexture >= 0) terms += ", base colour map";
         if (!mesh.colors.empty()) terms += ", vertex colours";
         if (!m.unlit) {

@@ -16,6 +16,8 @@
 
 #include <frugal/Image.h>
 
+#include "pipeline/Backend.h"
+
 namespace frugal {
 
 class GlContext;
@@ -142,6 +144,9 @@ std::string meshPreamble();
 // the Lambert model, FRUGAL_TONEMAP_NEUTRAL or FRUGAL_TONEMAP_ACES, FRUGAL_NO_ENVIRONMENT_SPECULAR
 // (FrameParams::shading, tonemap, Lighting::environmentSpecular).
 std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular);
+// FRUGAL_DIELECTRIC or FRUGAL_METAL for a material that needs one side of the metal mix alone
+// (pipeline/Backend.h, MetalMix); nothing for Both.
+std::string metalMixDefine(MetalMix mix);
 
 // The frugal context this thread made current last (GlContext.cpp), kept so that contexts of
 // different platforms can take turns on one thread. Measured on Mesa 22 + libglvnd: after

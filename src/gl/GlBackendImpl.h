@@ -75,7 +75,9 @@ enum Variant : unsigned {
     kNoEnvironmentSpecularBit = 2097152u,  // Lighting::environmentSpecular false
     kEnvironmentMapBit = 4194304u,         // Lighting::map: the environment from its map
     kLinearBit = 8388608u,                 // a Rgba32F target: the linear colour, unencoded
-    kVariantCount = 16777216u
+    kDielectricBit = 16777216u,            // metallic exactly 0, no map: the metal terms left out
+    kMetalBit = 33554432u,                 // metallic exactly 1, no map: the dielectric terms left out
+    kVariantCount = 67108864u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |

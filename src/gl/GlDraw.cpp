@@ -141,6 +141,12 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     if (!params.unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
         variant |= kNoEnvironmentSpecularBit;
     if (target.colorFormat == ColorFormat::Rgba32F) variant |= kLinearBit;
+    if (!params.unlit && !(variant & kLambertBit)) {  // one side of the metal mix alone (Backend.h)
+        const MetalMix mix = metalMixOf(params.metallic, (variant & kMetallicRoughnessBit) != 0,
+                                        (variant & kSpecularGlossinessBit) != 0);
+        if (mix == MetalMix::Dielectric) variant |= kDielectricBit;
+        if (mix == MetalMix::Metal) variant |= kMetalBit;
+    }
     GlProgram* p = program(variant);
     if (p == nullptr) return nullptr;
 

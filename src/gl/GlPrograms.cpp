@@ -61,6 +61,12 @@ std::string meshPreamble() {
     return text;
 }
 
+std::string metalMixDefine(MetalMix mix) {
+    return mix == MetalMix::Dielectric ? "#define FRUGAL_DIELECTRIC\n"
+           : mix == MetalMix::Metal    ? "#define FRUGAL_METAL\n"
+                                       : "";
+}
+
 std::string frameDefines(ShadingModel shading, ToneMap tonemap, bool environmentSpecular) {
     std::string defines;
     if (!environmentSpecular) defines += "#define FRUGAL_NO_ENVIRONMENT_SPECULAR\n";
@@ -102,6 +108,9 @@ std::string GlBackend::compileVariant(unsigned variant) {
                                                          : ToneMap::None,
                             (variant & kNoEnvironmentSpecularBit) == 0);
     if (variant & kLinearBit) defines += "#define FRUGAL_LINEAR_OUTPUT\n";
+    defines += metalMixDefine(variant & kDielectricBit ? MetalMix::Dielectric
+                              : variant & kMetalBit    ? MetalMix::Metal
+                                                       : MetalMix::Both);
     if (variant & kLightsBit) defines += "#define FRUGAL_LIGHTS " + std::to_string(kMaxLights) + "\n";
     if (variant & kEnvironmentMapBit)
         defines += "#define FRUGAL_ENVIRONMENT_MAP " + std::to_string(EnvironmentMap::kSpecularLevels - 1) + ".0\n";

@@ -157,6 +157,16 @@ struct FrameParams {
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
 };
 
+// Which side of rgb = mix(dielectric, metal, m) a material needs: with a metallic factor of exactly
+// 0 or 1 and nothing to vary it (no metallic-roughness map; not specular-glossiness, which has no
+// metal side) one side's weight is 0, so the other alone is that sum (Dielectric, Metal) and the
+// first side's terms are not computed: the same pixels for less work (mesh.frag's metalMix).
+enum class MetalMix : std::uint8_t { Both, Dielectric, Metal };
+inline MetalMix metalMixOf(float metallic, bool metallicRoughnessMap, bool specularGlossiness) {
+    if (metallicRoughnessMap || specularGlossiness) return MetalMix::Both;
+    return metallic == 0.0f ? MetalMix::Dielectric : metallic == 1.0f ? MetalMix::Metal : MetalMix::Both;
+}
+
 // How a draw uses the depth buffer.
 //   Test: the z-buffer: a fragment passes when it is nearer than the stored depth (less for D24,
 //         greater for D32F), and writes it.

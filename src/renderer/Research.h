@@ -11,7 +11,8 @@
 #include "base/Stats.h"
 
 // Scenes and frames: loading with options; the transforms and View of one frame (setUpFrame); camera
-// resolution; the backend interface and plans as data; SceneRenderer, which draws plans.
+// resolution; the backend interface and plans as data (and which side of the metal mix a material
+// needs, for frugal info); SceneRenderer, which draws plans.
 #include "pipeline/Backend.h"
 #include "pipeline/Camera.h"
 #include "pipeline/Frame.h"

@@ -567,7 +567,16 @@ struct Light {
         F8 coatRoughness{};
         Vec3 coatNormal{};
         Vec3 position{};  // world space: where the punctual lights are seen from
+        // Which side of the mix the material needs (Backend.h): the metal terms are not computed
+        // for a dielectric (the dielectric's are, as mesh.frag leaves them to its compiler).
+        MetalMix mix = MetalMix::Both;
     };
+    // mix(dielectric, metal, metallic) as mesh.frag's metalMix writes it.
+    static F8 metalMix(F8 dielectric, F8 metal, F8 metallic, MetalMix mix) {
+        if (mix == MetalMix::Dielectric) return dielectric;
+        if (mix == MetalMix::Metal) return metal;
+        return dielectric * (simd::splat(1.0f) - metallic) + metal * metallic;
+    }
 
     // Linear rgb of base colour `base` at a pixel with normal n and view direction v (both unit).
     void shade(const F8 base[4], const Vec3& n, const Vec3& v, const Surface& surface, F8 out[3]) const {
@@ -598,7 +607,7 @@ struct Light {
                 const F8 fd = iblFresnel(f0, r, cv, a, b);
                 for (int c = 0; c < 3; ++c) {
                     dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
-                    metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
+                    if (surface.mix != MetalMix::Dielectric) metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
                 }
             }
         }
@@ -610,7 +619,7 @@ struct Light {
             F8 coatLight[3] = {zero, zero, zero};  // the coat's reflection of the environment
             if (environmentSpecular) specularLight(surface.coatNormal, v, surface.coatRoughness, coatLight);
             for (int c = 0; c < 3; ++c) {
-                coated[c] = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
+                coated[c] = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic, surface.mix);
                 coated[c] = environmentSpecular ? coated[c] * (one - k) + coatLight[c] * k : coated[c] * (one - k);
                 if (surface.occlusion) coated[c] = coated[c] * occlusion;
                 dielectric[c] = metal[c] = zero;
@@ -649,7 +658,8 @@ struct Light {
                 } else {
                     const F8 fl = f0 + (one - f0) * ch;
                     dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-                    metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
+                    if (surface.mix != MetalMix::Dielectric)
+                        metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
                 }
             }
             if (surface.coat) {
@@ -659,7 +669,7 @@ struct Light {
             }
         }
         for (int c = 0; c < 3; ++c) {
-            const F8 lit = surface.specular ? dielectric[c] : dielectric[c] * (one - metallic) + metal[c] * metallic;
+            const F8 lit = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic, surface.mix);
             out[c] = surface.coat
                          ? (coated[c] + (lit * (one - k) + coatSpecular[c] * k)) + surface.emission[c] * (one - k)
                          : lit + surface.emission[c];
@@ -954,6 +964,8 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
                         surface.specular = specular;
                         surface.roughness = one - glossiness;
                     }
+                    surface.mix =
+                        metalMixOf(shading.metallic, shading.metallicRoughness != nullptr, shading.specularGlossiness);
                     if (shading.metallicRoughness) {
                         sampleLanes(*shading.metallicRoughness, s, tt, footprints, lanes, map);
                         surface.metallic = surface.metallic * map[2];

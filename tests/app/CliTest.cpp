@@ -134,7 +134,8 @@ TEST(CliTest, InfoNamesWhatIsNotModelled) {
     EXPECT_NE(run.out.find("animations: 28"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("not modelled: none"), std::string::npos) << run.out;
     // The shading its meshes ask for: each distinct variant, with how many meshes use it.
-    EXPECT_NE(run.out.find("shading: 1 variant\n  metallic-roughness BRDF: "), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("shading: 1 variant\n  metallic-roughness BRDF, dielectric only: "), std::string::npos)
+        << run.out;
 }
 
 TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
@@ -143,14 +144,21 @@ TEST(CliTest, InfoListsEachShadingVariantWithItsMaps) {
     if (!fs::exists(file)) FRUGAL_SKIP_IF_MISSING(file << " (assimp-testmodels)");
     const CliRun run = runFrugal(dir, {"info", file.string()});
     ASSERT_EQ(run.status, 0) << run.err;
-    for (const char* line : {"shading: 11 variants\n", "  metallic-roughness BRDF, emissive map: 9 meshes\n",
-                             "  metallic-roughness BRDF, normal map (tangents generated): 4 meshes\n",
-                             "  metallic-roughness BRDF, base colour map, blended (drawn last, far to near): 1 mesh\n",
-                             "  metallic-roughness BRDF, clear coat, clear-coat roughness map: 1 mesh\n",
-                             "  metallic-roughness BRDF, normal map, clear coat, clear-coat normal map (tangents "
-                             "generated): 1 mesh\n"})
+    for (const char* line :
+         {"shading: 11 variants\n", "  metallic-roughness BRDF, dielectric only, emissive map: 9 meshes\n",
+          "  metallic-roughness BRDF, dielectric only, normal map (tangents generated): 4 meshes\n",
+          "  metallic-roughness BRDF, dielectric only, base colour map, blended (drawn last, far to near): 1 mesh\n",
+          "  metallic-roughness BRDF, dielectric only, clear coat, clear-coat roughness map: 1 mesh\n",
+          "  metallic-roughness BRDF, dielectric only, normal map, clear coat, clear-coat normal map "
+          "(tangents generated): 1 mesh\n",
+          "  metallic-roughness BRDF, metallic-roughness map: 1 mesh\n"})
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " in\n" << run.out;
     EXPECT_NE(run.out.find("512x512, linear filter, mipmaps blended, linear data\n"), std::string::npos) << run.out;
+    // glTF's default material is a metal (metallic 1): drawn without the dielectric's terms.
+    const fs::path metal = fs::path(FRUGAL_ASSIMP_GLTF2_DIR) / "cameras" / "Cameras.gltf";
+    const CliRun metalInfo = runFrugal(dir, {"info", metal.string()});
+    ASSERT_EQ(metalInfo.status, 0) << metalInfo.err;
+    EXPECT_NE(metalInfo.out.find("  metallic-roughness BRDF, metal only: "), std::string::npos) << metalInfo.out;
     EXPECT_NE(run.out.find("single-sided, clear coat 1 of roughness 0.03, clear-coat normal map 5 at 1\n"),
               std::string::npos)
         << run.out;
