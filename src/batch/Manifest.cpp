@@ -354,11 +354,11 @@ private:
         return "";
     }
     std::string outputs(const Json& v) {
-        static const std::vector<std::string> kinds{"color", "depth", "ids", "json"};
-        if (!v.is_array() || v.empty()) return "expected a list of color, depth, ids, json";
+        static const std::vector<std::string> kinds{"color", "depth", "ids", "linear", "json"};
+        if (!v.is_array() || v.empty()) return "expected a list of color, depth, ids, linear, json";
         for (const Json& o : v) {
             if (!o.is_string() || std::find(kinds.begin(), kinds.end(), o.get<std::string>()) == kinds.end())
-                return quoted(o) + " is not an output (color, depth, ids, json)";
+                return quoted(o) + " is not an output (color, depth, ids, linear, json)";
             if (std::find(job_.outputs.begin(), job_.outputs.end(), o.get<std::string>()) != job_.outputs.end())
                 return quoted(o) + " is listed twice";
             job_.outputs.push_back(o.get<std::string>());
@@ -514,6 +514,7 @@ std::vector<std::string> commandLine(const Job& job, const std::string& out) {
             if (o == "color") line.insert(line.end(), {"-o", dir + "color.png"});
             if (o == "depth") line.insert(line.end(), {"--depth", dir + "depth.png"});
             if (o == "ids") line.insert(line.end(), {"--ids", dir + "ids.png"});
+            if (o == "linear") line.insert(line.end(), {"--linear", dir + "linear.pfm"});
             if (o == "json") line.insert(line.end(), {"--json", dir + "render.json"});
         }
         break;

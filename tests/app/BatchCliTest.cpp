@@ -42,7 +42,8 @@ void writeManifest(const fs::path& dir) {
   "defaults": {"size": "64x48"},
   "jobs": [
     {"id": "cubes", "scene": "builtin:cubes", "frames": "0:3", "outputs": ["color", "depth", "ids", "json"]},
-    {"id": "culled", "scene": "builtin:cubes?count=6", "settings": {"cull": "conservative", "order": "key"}},
+    {"id": "culled", "scene": "builtin:cubes?count=6", "settings": {"cull": "conservative", "order": "key"},
+     "outputs": ["color", "linear"]},
     {"id": "dominoes", "scene": "builtin:dominoes", "frames": "0:5", "camera_path": "path.json",
      "settings": {"reuse": true}},
     {"id": "cull", "command": "cull-report", "scene": "builtin:cubes", "views": 3, "repeat": 1},
@@ -62,8 +63,9 @@ TEST(BatchCliTest, AResearchJobNeedsFrugalLab) {
     writeManifest(dir);
     const CliRun refused = runFrugal(dir, {"batch", "m.json", "--out", "out", "-q"});
     EXPECT_EQ(refused.status, 1);
-    EXPECT_EQ(refused.err, "error: manifest m.json line 10: job 4 'reuse': command: 'reuse-bench' is not a command of "
-                           "frugal (a research command: run this manifest with frugal-lab batch)\n");
+    EXPECT_EQ(refused.err,
+              "error: manifest m.json line 11: job 4 'reuse': command: 'reuse-bench' is not a command of "
+              "frugal (a research command: run this manifest with frugal-lab batch)\n");
     EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
@@ -99,8 +101,9 @@ TEST(BatchCliTest, ShardsRunEachJobOnceAndMergeToWhatOneProcessGives) {
     EXPECT_TRUE(fs::exists(dir / "four" / "merged-reuse-bench.csv"));
     // The images themselves, byte for byte.
     for (const char* file : {"cubes/color_0003.png", "cubes/depth_0000.png", "cubes/ids_0002.png", "culled/color.png",
-                             "dominoes/color_0005.png", "job-6/color.png"})
+                             "culled/linear.pfm", "dominoes/color_0005.png", "job-6/color.png"})
         EXPECT_EQ(readAll(dir / "one" / file), readAll(dir / "four" / file)) << file;
+    EXPECT_GT(fs::file_size(dir / "four" / "culled" / "linear.pfm"), 64u * 48u * 12u) << "a PFM of the linear colour";
     const nlohmann::json merged = test::readJson(dir / "one" / "merged.json");
     ASSERT_EQ(merged["jobs"].size(), 7u);
     EXPECT_EQ(merged["jobs"][3]["id"], "cull") << "manifest order";

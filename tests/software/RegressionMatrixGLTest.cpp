@@ -656,7 +656,7 @@ Camera lookFrom(glm::vec3 eye, glm::vec3 target, float znear, float zfar) {
 
 std::vector<MatrixCase> matrix() {
     const std::string bunny = FRUGAL_BUNNY_OBJ;
-    return {
+    std::vector<MatrixCase> cases = {
         {"default-800x600", [] { return loaded("builtin:default"); }, 800, 600, {}, {}},
         {"default-1920x1080", [] { return loaded("builtin:default"); }, 1920, 1080, {}, {}},
         {"default-61x47", [] { return loaded("builtin:default"); }, 61, 47, {}, {}},
@@ -909,92 +909,28 @@ std::vector<MatrixCase> matrix() {
          {},
          ToneMap::None,
          4},
-        // Linear colour in a float target: the same pixels, blended and resolved in float.
-        {"linear-materials",
-         materials,
-         640,
-         400,
-         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::None,
-         1,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
-        {"linear-alpha",
-         alpha,
-         640,
-         480,
-         lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::None,
-         1,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
-        {"linear-msaa-alpha",
-         alpha,
-         640,
-         480,
-         lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::None,
-         4,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
-        {"linear-maps",
-         maps,
-         640,
-         480,
-         lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::None,
-         1,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
-        {"linear-tonemap-aces",
-         bright,
-         640,
-         400,
-         lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::Aces,
-         1,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
-        {"linear-env-map-clearcoat",
-         clearcoat,
-         640,
-         560,
-         lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f),
-         {},
-         ToneMap::None,
-         1,
-         ShadingModel::Full,
-         true,
-         true,
-         true},
-        {"linear-msaa-lights",
-         lights,
-         640,
-         400,
-         lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f),
-         {},
-         ToneMap::None,
-         4,
-         ShadingModel::Full,
-         true,
-         false,
-         true},
     };
+    // Linear colour in a float target: the same pixels, blended and resolved in float.
+    const auto linear = [](std::string name, std::function<Scene()> scene, int width, int height, Camera camera,
+                           ToneMap tonemap = ToneMap::None, int samples = 1, bool environmentMap = false) {
+        MatrixCase c{std::move(name), std::move(scene), width, height, camera, {}, tonemap, samples};
+        c.environmentMap = environmentMap;
+        c.linear = true;
+        return c;
+    };
+    const Camera front = lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f);
+    const Camera alphaView = lookFrom({0.3f, 0.2f, 5.5f}, {0, 0, 0}, 0.5f, 20.0f);
+    const Camera lightsView = lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f);
+    for (const MatrixCase& c :
+         {linear("linear-materials", materials, 640, 400, front), linear("linear-alpha", alpha, 640, 480, alphaView),
+          linear("linear-msaa-alpha", alpha, 640, 480, alphaView, ToneMap::None, 4),
+          linear("linear-maps", maps, 640, 480, lookFrom({0.3f, 0.4f, 5}, {0, 0, 0}, 0.5f, 20.0f)),
+          linear("linear-tonemap-aces", bright, 640, 400, front, ToneMap::Aces),
+          linear("linear-env-map-clearcoat", clearcoat, 640, 560, lookFrom({0.3f, 0.4f, 6}, {0, 0, 0}, 0.5f, 20.0f),
+                 ToneMap::None, 1, true),
+          linear("linear-msaa-lights", lights, 640, 400, lightsView, ToneMap::None, 4)})
+        cases.push_back(c);
+    return cases;
 }
 
 class RegressionMatrixGLTest : public ::testing::TestWithParam<MatrixCase> {};
