@@ -124,6 +124,9 @@ std::optional<std::string> readFile(const std::string& path);
 // Whether `path` ends in `extension` (".pfm"), in any case: how writeFrame tells a PFM depth file
 // from a PNG one.
 bool hasExtension(const std::string& path, const std::string& extension);
+// Why `path` cannot name a linear colour file (FramePaths::linear): "name it .pfm (float32) or .png
+// (16-bit)"; "" when it ends in either. The command line and Python refuse such a name up front.
+std::string linearPathProblem(const std::string& path);
 
 // Several files that appear together or not at all (a report's JSON, CSV and script; a frame's
 // images). commit() writes each to a temporary name in its folder, created exclusively, and only

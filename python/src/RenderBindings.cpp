@@ -69,8 +69,8 @@ FramePaths framePaths(const PyFrame& f, const OptionalPath& colorPath, const Opt
     if (linearPath && f.frame.linear.rgba.empty())
         throw InputError{"linear: the frame has no linear colour (make the renderer with linear=True)"};
     const auto text = [](const OptionalPath& p) { return p ? p->string() : std::string(); };
-    if (linearPath && !hasExtension(text(linearPath), ".pfm") && !hasExtension(text(linearPath), ".png"))
-        throw InputError{"linear " + text(linearPath) + ": name it .pfm (float32) or .png (16-bit)"};
+    if (linearPath && !linearPathProblem(text(linearPath)).empty())
+        throw InputError{"linear " + text(linearPath) + ": " + linearPathProblem(text(linearPath))};
     return {text(colorPath), text(depthPath), text(idsPath), text(linearPath)};
 }
 

@@ -73,7 +73,7 @@ private:
     DepthFormat format_ = DepthFormat::D24;
     // The mesh program for each shading model, tone mapping, environment specular term and side of
     // the metal mix (FrameParams::shading, tonemap, Lighting::environmentSpecular, MetalMix), uniforms
-    // by location; made when first drawn with.
+    // by location; made by initialise for the sides the scene's materials need.
     struct Program {
         GLuint name = 0;
         GLint mvp = -1, normalMatrix = -1, model = -1, factor = -1, metallicRoughness = -1, emissive = -1;
@@ -88,10 +88,11 @@ private:
         return ((int(shading) * kToneMaps + int(tonemap)) * 2 + int(environmentSpecular || lambert)) * 3 +
                (lambert ? 0 : int(mix));
     }
-    // The program of a frame and a material's mix, compiled on first use; nullptr if it does not compile.
-    const Program* program(const FrameParams& frame, MetalMix mix);
+    // The side of the metal mix a material's program has (as the backend's variant: no maps here).
+    static MetalMix mixOf(const Material& material) { return metalMixOf(material.metallicFactor, false, false); }
+    // Compiles the program of one slot unless it is made: "" or why it did not compile.
+    std::string compile(ShadingModel shading, ToneMap tonemap, bool environmentSpecular, MetalMix mix);
     Program programs_[2 * kToneMaps * 2 * 3];
-    std::string programError_;
     GLuint fbo_ = 0;
     GLuint renderbuffers_[2] = {0, 0};  // colour, depth
     GLuint packBuffers_[2] = {0, 0};    // read-back slots: colour then depth, 8 bytes a pixel; made when first used
@@ -172,11 +173,19 @@ std::string Minimal::initialise(int width, int height, DepthFormat format) {
             gl_.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(positions));
         }
     }
-    // The default frame's programs for the scene's materials, so that a program that does not
-    // compile is said here (the others are made when a frame first needs them).
-    for (const Material& material : scene_->materials)
-        if (program(FrameParams{}, metalMixOf(material.metallicFactor, false, false)) == nullptr) return programError_;
-    if (program(FrameParams{}, metalMixOf(Material{}.metallicFactor, false, false)) == nullptr) return programError_;
+    // Every frame's programs for the sides of the metal mix the drawn materials need.
+    bool needed[3] = {false, false, false};
+    for (const Instance& instance : scene_->instances) {
+        const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
+        needed[int(mixOf(mesh.material >= 0 ? scene_->materials[std::size_t(mesh.material)] : Material{}))] = true;
+    }
+    for (const ShadingModel shading : {ShadingModel::Full, ShadingModel::Lambert})
+        for (const ToneMap tonemap : {ToneMap::None, ToneMap::PbrNeutral, ToneMap::Aces})
+            for (const bool environmentSpecular : {false, true})
+                for (const MetalMix mix : {MetalMix::Both, MetalMix::Dielectric, MetalMix::Metal})
+                    if (needed[int(mix)])
+                        if (std::string reason = compile(shading, tonemap, environmentSpecular, mix); !reason.empty())
+                            return reason;
     const GLenum error = gl_.GetError();
     if (error != GL_NO_ERROR) return glErrorName(error) + " while setting up the minimal frame";
     return {};
@@ -195,18 +204,17 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
         if (m.indices == 0) continue;
         const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
         const Material& material = mesh.material >= 0 ? scene_->materials[std::size_t(mesh.material)] : kDefault;
-        // The program of the material's side of the metal mix (as the backend's variant); the frame's
-        // uniforms set when it is first used in the frame.
-        const Program* made = program(frame, metalMixOf(material.metallicFactor, false, false));
-        if (made == nullptr) return;
-        const Program& p = *made;
-        if (made != current) {
+        // The program of the material's side of the metal mix; the frame's uniforms set when it is
+        // first used in the frame.
+        const Program& p =
+            programs_[programIndex(frame.shading, frame.tonemap, frame.lighting.environmentSpecular, mixOf(material))];
+        if (&p != current) {
             gl_.UseProgram(p.name);
             gl_.Uniform3fv(p.eye, 1, glm::value_ptr(eye));
             gl_.Uniform3fv(p.toLight, 1, glm::value_ptr(frame.lighting.toLight));
             gl_.Uniform1f(p.light, frame.lighting.light);
             gl_.Uniform1f(p.environment, frame.lighting.environment);
-            current = made;
+            current = &p;
         }
         const glm::mat4& model = world[std::size_t(instance.node)];
         const glm::mat4 mvp = viewProjection * model;
@@ -232,21 +240,17 @@ void Minimal::render(const FrameParams& frame, const std::vector<glm::mat4>& wor
     }
 }
 
-const Minimal::Program* Minimal::program(const FrameParams& frame, MetalMix mix) {
-    const bool environmentSpecular = frame.lighting.environmentSpecular;
-    Program& p = programs_[programIndex(frame.shading, frame.tonemap, environmentSpecular, mix)];
-    if (p.name != 0) return &p;
+std::string Minimal::compile(ShadingModel shading, ToneMap tonemap, bool environmentSpecular, MetalMix mix) {
+    Program& p = programs_[programIndex(shading, tonemap, environmentSpecular, mix)];
+    if (p.name != 0) return {};  // Lambert's, made already for another slot of the same program
     // mesh.vert + mesh.frag with only the frame's defines and the mix's: the variant with no
     // texture, colours or ids, which is the backend's own program for such a frame, so the
     // arithmetic is the same by construction.
-    const bool lambert = frame.shading == ShadingModel::Lambert;
-    const std::string defines = meshPreamble() +
-                                frameDefines(frame.shading, frame.tonemap, environmentSpecular || lambert) +
+    const bool lambert = shading == ShadingModel::Lambert;
+    const std::string defines = meshPreamble() + frameDefines(shading, tonemap, environmentSpecular || lambert) +
                                 (lambert ? std::string() : metalMixDefine(mix));
-    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty()) {
-        programError_ = reason;
-        return nullptr;
-    }
+    if (std::string reason = compileProgram(gl_, "mesh.vert", "mesh.frag", defines, &p.name); !reason.empty())
+        return reason;
     p.mvp = gl_.GetUniformLocation(p.name, "u_mvp");
     p.normalMatrix = gl_.GetUniformLocation(p.name, "u_normalMatrix");
     p.model = gl_.GetUniformLocation(p.name, "u_model");
@@ -257,7 +261,7 @@ const Minimal::Program* Minimal::program(const FrameParams& frame, MetalMix mix)
     p.toLight = gl_.GetUniformLocation(p.name, "u_toLight");
     p.light = gl_.GetUniformLocation(p.name, "u_light");
     p.environment = gl_.GetUniformLocation(p.name, "u_environment");
-    return &p;
+    return {};
 }
 
 void Minimal::sizeBuffers(Buffers& out, bool depth) const {

@@ -86,8 +86,8 @@ void checkRender(const RenderRequest& r, ArgCursor& cursor) {
         cursor.fail("--depth " + o.depth + ": name it .png (16-bit) or .pfm (float32)");
     else if (!o.ids.empty() && !hasExtension(o.ids, ".png"))
         cursor.fail("--ids " + o.ids + ": the id image is written as PNG; name it .png");
-    else if (!o.linear.empty() && !hasExtension(o.linear, ".pfm") && !hasExtension(o.linear, ".png"))
-        cursor.fail("--linear " + o.linear + ": name it .pfm (float32) or .png (16-bit)");
+    else if (!o.linear.empty() && !linearPathProblem(o.linear).empty())
+        cursor.fail("--linear " + o.linear + ": " + linearPathProblem(o.linear));
     else if (r.options.frames)
         for (const auto& [flag, path] :
              {std::pair{"-o", o.color}, {"--depth", o.depth}, {"--ids", o.ids}, {"--linear", o.linear}})

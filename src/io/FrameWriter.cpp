@@ -51,25 +51,28 @@ struct Job {
     double encodeMs = 0.0, writeMs = 0.0;
 };
 
+// The files `paths` names, in writeFrame's order: colour, depth, ids, linear (empty paths left out).
+std::vector<std::pair<std::string, Plane>> filesOf(const FramePaths& paths) {
+    std::vector<std::pair<std::string, Plane>> files;
+    for (const auto& [path, plane] : {std::pair{&paths.color, Plane::Color},
+                                      {&paths.depth, Plane::Depth},
+                                      {&paths.ids, Plane::Ids},
+                                      {&paths.linear, Plane::Linear}})
+        if (!path->empty()) files.emplace_back(*path, plane);
+    return files;
+}
+
 Result<Content> encodeFile(const std::string& path, Plane plane, const Frame& frame, int level) {
     switch (plane) {
         case Plane::Color:
             return encodeColorPng(frame.color, PngOptions::atLevel(level));
         case Plane::Depth:
-            if (hasExtension(path, ".pfm")) {
-                Result<Bytes> pfm = encodeDepthPfm(frame.depth);
-                if (!pfm) return pfm.error();
-                return Content(std::move(*pfm));
-            }
+            if (hasExtension(path, ".pfm")) return encodeDepthPfm(frame.depth);
             return encodeDepthPng(frame.depth, PngOptions::atLevel(level));
         case Plane::Ids:
             return encodeIdPng(frame.ids, PngOptions::atLevel(level));
         case Plane::Linear:
-            if (hasExtension(path, ".pfm")) {
-                Result<Bytes> pfm = encodeLinearPfm(frame.linear);
-                if (!pfm) return pfm.error();
-                return Content(std::move(*pfm));
-            }
+            if (hasExtension(path, ".pfm")) return encodeLinearPfm(frame.linear);
             return encodeLinearPng(frame.linear, PngOptions::atLevel(level));
     }
     return Error{"unreachable"};
@@ -240,11 +243,7 @@ Result<bool> FrameWriter::write(const FramePaths& paths, Frame& frame) {
     if (std::optional<Error> missing = missingImage(paths, frame)) return *missing;
     Impl& w = *impl_;
     auto job = std::make_unique<Job>();
-    for (const auto& [path, plane] : {std::pair{&paths.color, Plane::Color},
-                                      {&paths.depth, Plane::Depth},
-                                      {&paths.ids, Plane::Ids},
-                                      {&paths.linear, Plane::Linear}})
-        if (!path->empty()) job->files.emplace_back(*path, plane);
+    job->files = filesOf(paths);
     job->encoded.resize(job->files.size());
     job->remaining = int(job->files.size());
 
@@ -294,10 +293,7 @@ std::vector<FrameWriter::Written> FrameWriter::takeWritten() {
 Result<bool> writeFrame(const FramePaths& paths, const Frame& frame, int pngLevel) {
     if (std::optional<Error> missing = missingImage(paths, frame)) return *missing;
     OutputSet files;
-    if (!paths.color.empty()) files.add(paths.color, encodeFile(paths.color, Plane::Color, frame, pngLevel));
-    if (!paths.depth.empty()) files.add(paths.depth, encodeFile(paths.depth, Plane::Depth, frame, pngLevel));
-    if (!paths.ids.empty()) files.add(paths.ids, encodeFile(paths.ids, Plane::Ids, frame, pngLevel));
-    if (!paths.linear.empty()) files.add(paths.linear, encodeFile(paths.linear, Plane::Linear, frame, pngLevel));
+    for (const auto& [path, plane] : filesOf(paths)) files.add(path, encodeFile(path, plane, frame, pngLevel));
     return files.commit();
 }
 

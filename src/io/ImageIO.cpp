@@ -318,30 +318,30 @@ Result<Bytes> depthPng(int width, int height, const std::uint32_t* values, Depth
     });
 }
 
-Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat format) {
-    // PFM stores rows bottom-up already, little-endian when the scale is negative.
-    const std::string header = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+// PFM: "Pf" (one channel) or "PF" (rgb), float32, little-endian (scale −1), rows bottom-up as PFM
+// stores them already; value(i, c) is channel c of pixel i.
+template <class Value>
+Bytes pfm(int width, int height, int channels, Value value) {
+    const std::string header = std::string(channels == 1 ? "Pf\n" : "PF\n") + std::to_string(width) + " " +
+                               std::to_string(height) + "\n-1.0\n";
+    const std::size_t pixels = std::size_t(width) * std::size_t(height), values = std::size_t(channels);
     Bytes out(header.begin(), header.end());
-    out.reserve(out.size() + pixels * 4);
-    for (std::size_t i = 0; i < pixels; ++i) {
-        const float z = windowDepth(format, values[i]);
-        std::uint8_t bytes[4];
-        std::memcpy(bytes, &z, 4);
-        out.insert(out.end(), bytes, bytes + 4);
-    }
+    const std::size_t start = out.size();
+    out.resize(start + pixels * values * 4);
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (std::size_t c = 0; c < values; ++c) {
+            const float v = value(i, c);
+            std::memcpy(out.data() + start + (i * values + c) * 4, &v, 4);
+        }
     return out;
 }
 
-// A linear colour image: PFM "PF" (three float32 channels, alpha left out), rows bottom-up as stored.
+// Depth as window z; linear colour as its rgb (alpha left out).
+Bytes depthPfm(int width, int height, const std::uint32_t* values, DepthFormat format) {
+    return pfm(width, height, 1, [&](std::size_t i, std::size_t) { return windowDepth(format, values[i]); });
+}
 Bytes linearPfm(int width, int height, const float* rgba) {
-    const std::string header = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
-    const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    Bytes out(header.begin(), header.end());
-    const std::size_t start = out.size();
-    out.resize(start + pixels * 12);
-    for (std::size_t i = 0; i < pixels; ++i) std::memcpy(out.data() + start + i * 12, rgba + i * 4, 12);
-    return out;
+    return pfm(width, height, 3, [&](std::size_t i, std::size_t c) { return rgba[i * 4 + c]; });
 }
 
 // The same as 16-bit RGBA PNG: each channel clamped to [0, 1] and rounded to 65535 steps, with a
@@ -449,6 +449,11 @@ bool hasExtension(const std::string& path, const std::string& extension) {
     return e == extension;
 }
 
+std::string linearPathProblem(const std::string& path) {
+    if (hasExtension(path, ".pfm") || hasExtension(path, ".png")) return {};
+    return "name it .pfm (float32) or .png (16-bit)";
+}
+
 Result<bool> writePng(const std::string& path, const ColorImage& image, int level) {
     return writeFileAtomic(path, encodeColorPng(image, PngOptions::atLevel(level)));
 }
@@ -456,14 +461,10 @@ Result<bool> writePng(const std::string& path, const DepthImage& image, int leve
     return writeFileAtomic(path, encodeDepthPng(image, PngOptions::atLevel(level)));
 }
 Result<bool> writePfm(const std::string& path, const DepthImage& image) {
-    Result<Bytes> pfm = encodeDepthPfm(image);
-    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.error()));
-    return writeFileAtomic(path, std::move(*pfm));
+    return writeFileAtomic(path, Result<Content>(encodeDepthPfm(image)));
 }
 Result<bool> writePfm(const std::string& path, const LinearImage& image) {
-    Result<Bytes> pfm = encodeLinearPfm(image);
-    if (!pfm) return writeFileAtomic(path, Result<Content>(pfm.error()));
-    return writeFileAtomic(path, std::move(*pfm));
+    return writeFileAtomic(path, Result<Content>(encodeLinearPfm(image)));
 }
 Result<bool> writePng(const std::string& path, const LinearImage& image, int level) {
     return writeFileAtomic(path, encodeLinearPng(image, PngOptions::atLevel(level)));

@@ -508,6 +508,7 @@ struct Light {
           environment(simd::splat(s.environment)),
           occlusionStrength(simd::splat(s.occlusionStrength)),
           environmentSpecular(s.environmentSpecular),
+          mix(metalMixOf(s.metallic, s.metallicRoughness != nullptr, s.specularGlossiness)),
           emission{simd::splat(s.emission.r), simd::splat(s.emission.g), simd::splat(s.emission.b)},
           lights(s.lights),
           map(s.environmentMap) {
@@ -567,12 +568,9 @@ struct Light {
         F8 coatRoughness{};
         Vec3 coatNormal{};
         Vec3 position{};  // world space: where the punctual lights are seen from
-        // Which side of the mix the material needs (Backend.h): the metal terms are not computed
-        // for a dielectric (the dielectric's are, as mesh.frag leaves them to its compiler).
-        MetalMix mix = MetalMix::Both;
     };
     // mix(dielectric, metal, metallic) as mesh.frag's metalMix writes it.
-    static F8 metalMix(F8 dielectric, F8 metal, F8 metallic, MetalMix mix) {
+    F8 metalMix(F8 dielectric, F8 metal, F8 metallic) const {
         if (mix == MetalMix::Dielectric) return dielectric;
         if (mix == MetalMix::Metal) return metal;
         return dielectric * (simd::splat(1.0f) - metallic) + metal * metallic;
@@ -607,7 +605,7 @@ struct Light {
                 const F8 fd = iblFresnel(f0, r, cv, a, b);
                 for (int c = 0; c < 3; ++c) {
                     dielectric[c] = (base[c] * diffuse[c]) * (one - fd) + reflected[c] * fd;
-                    if (surface.mix != MetalMix::Dielectric) metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
+                    if (mix != MetalMix::Dielectric) metal[c] = iblFresnel(base[c], r, cv, a, b) * reflected[c];
                 }
             }
         }
@@ -619,7 +617,7 @@ struct Light {
             F8 coatLight[3] = {zero, zero, zero};  // the coat's reflection of the environment
             if (environmentSpecular) specularLight(surface.coatNormal, v, surface.coatRoughness, coatLight);
             for (int c = 0; c < 3; ++c) {
-                coated[c] = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic, surface.mix);
+                coated[c] = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic);
                 coated[c] = environmentSpecular ? coated[c] * (one - k) + coatLight[c] * k : coated[c] * (one - k);
                 if (surface.occlusion) coated[c] = coated[c] * occlusion;
                 dielectric[c] = metal[c] = zero;
@@ -658,8 +656,7 @@ struct Light {
                 } else {
                     const F8 fl = f0 + (one - f0) * ch;
                     dielectric[c] = dielectric[c] + ((base[c] * (radiance / pi)) * (one - fl) + specular * fl);
-                    if (surface.mix != MetalMix::Dielectric)
-                        metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
+                    if (mix != MetalMix::Dielectric) metal[c] = metal[c] + (base[c] + (one - base[c]) * ch) * specular;
                 }
             }
             if (surface.coat) {
@@ -669,7 +666,7 @@ struct Light {
             }
         }
         for (int c = 0; c < 3; ++c) {
-            const F8 lit = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic, surface.mix);
+            const F8 lit = surface.specular ? dielectric[c] : metalMix(dielectric[c], metal[c], metallic);
             out[c] = surface.coat
                          ? (coated[c] + (lit * (one - k) + coatSpecular[c] * k)) + surface.emission[c] * (one - k)
                          : lit + surface.emission[c];
@@ -722,6 +719,9 @@ struct Light {
     Vec3 eye;
     F8 metallicFactor, roughnessFactor, environment, occlusionStrength;
     bool environmentSpecular;
+    // The draw's side of the metal mix (Backend.h): the metal terms are not computed for a
+    // dielectric (the dielectric's are, as mesh.frag leaves them to its compiler).
+    MetalMix mix;
     F8 emission[3];
     std::span<const FrameLight> lights;
     const EnvironmentMap* map;  // DrawShading::environmentMap
@@ -964,8 +964,6 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
                         surface.specular = specular;
                         surface.roughness = one - glossiness;
                     }
-                    surface.mix =
-                        metalMixOf(shading.metallic, shading.metallicRoughness != nullptr, shading.specularGlossiness);
                     if (shading.metallicRoughness) {
                         sampleLanes(*shading.metallicRoughness, s, tt, footprints, lanes, map);
                         surface.metallic = surface.metallic * map[2];
