@@ -60,8 +60,8 @@ struct ColorImage {
 
 // A frame's colour in linear light (Settings::linear): what the shading computes after tone mapping
 // and before the display encoding, unclamped (a bright highlight keeps its value above 1), drawn into
-// a float target (RGBA32F), blended there in linear light. Alpha is 1 where an opaque surface is, a
-// blended surface's alpha over what is below, the background's as cleared.
+// a float target (RGBA32F), blended and multisample-resolved there in linear light. Alpha is 1 where
+// an opaque surface is, a blended surface's alpha over what is below, the background's as cleared.
 struct LinearImage {
     int width = 0, height = 0;
     std::vector<float> rgba;  // 4 floats a pixel, R first; rows bottom-up

@@ -301,7 +301,8 @@ struct Settings {
     bool mipmaps = true;  // false: every texture sampled from its base level (no mipmaps made)
     bool ids = false;  // draw triangle ids too (an id pass; Frame::ids stays empty without)
     // Draw the colour in linear light into a float target as well (Frame::linear, frugal/Image.h):
-    // Frame::color is then its display encoding. Blended surfaces mix in linear light.
+    // Frame::color is then its display encoding. Blended surfaces and multisampled edges mix in
+    // linear light.
     bool linear = false;
 };
 

@@ -129,34 +129,53 @@ std::optional<int> parseRender(const std::vector<std::string>& args, RenderReque
     std::vector<Flag> reuse = topicFlags(o, "reuse");
     reuse.push_back(cameraPathFlag(o));
     command.flags = {
-        {"settings file", {
-            flag::text("--settings", "FILE", "start from a settings file: a JSON object of the options below by "
-                       "name, e.g. {\"cull\": \"conservative\", \"reuse\": true} (docs/cli.md, 'Settings "
-                       "files'); flags given beside it win", settingsFile),
-        }},
-        {"outputs (each written to a temporary file and renamed, never left half-written)", {
-            flag::text("-o, --output", "FILE", "colour PNG (default frame.png). With --frames, FILE may hold a printf "
-                       "number such as out_%04d.png; otherwise _%04d is put before the extension", files.color),
-            flag::text("--depth", "FILE", "depth: .png = 16-bit grey, 0 near, 65535 far (d24: the top 16 of its 24 "
-                       "bits), with the format and planes in its text chunks; .pfm = float32 window z, exact (d32f: "
-                       "reversed, 1 near, 0 far)", files.depth),
-            flag::text("--ids", "FILE", "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
-                       "byte); 0 = background", files.ids),
-            flag::text("--linear", "FILE", "the colour in linear light, drawn into a float target (after tone "
-                       "mapping, before the display encoding; blended surfaces mix in linear light, and the -o image "
-                       "is then its display encoding): .pfm = float32 rgb, unclamped, exact; .png = 16-bit RGBA, "
-                       "clamped to [0, 1], gAMA 1.0", files.linear),
-            pngLevelFlag(files.pngLevel),
-            flag::text("--json", "FILE", "metadata: scene counts, camera (the planes drawn with and the given ones, the "
-                       "aspect ratios, the depth format), backend, GL renderer, per-frame timings (render_ms, readback_ms; "
-                       "write_ms: encoding and writing the frame's files on the writer's threads, encode_ms of it; with --cull: "
-                       "per-frame tos, pvs and cull_ms too), and per frame the state changes the backend issued, by "
-                       "kind (\"state_changes\": draws, programs, meshes, textures, toggles, uniforms; software: draws "
-                       "only)", files.json),
-            flag::text("--save-settings", "FILE", "write the settings this render uses as a settings file (the form "
-                       "--settings reads), before the first frame", files.settings),
-        }},
-        {"culling (only the triangles that may be visible are submitted; src/cull/Culling.h)", topicFlags(o, "culling")},
+        {"settings file",
+         {
+             flag::text("--settings", "FILE",
+                        "start from a settings file: a JSON object of the options below by "
+                        "name, e.g. {\"cull\": \"conservative\", \"reuse\": true} (docs/cli.md, 'Settings "
+                        "files'); flags given beside it win",
+                        settingsFile),
+         }},
+        {"outputs (each written to a temporary file and renamed, never left half-written)",
+         {
+             flag::text("-o, --output", "FILE",
+                        "colour PNG (default frame.png). With --frames, FILE may hold a printf "
+                        "number such as out_%04d.png; otherwise _%04d is put before the extension",
+                        files.color),
+             flag::text("--depth", "FILE",
+                        "depth: .png = 16-bit grey, 0 near, 65535 far (d24: the top 16 of its 24 "
+                        "bits), with the format and planes in its text chunks; .pfm = float32 window z, exact (d32f: "
+                        "reversed, 1 near, 0 far)",
+                        files.depth),
+             flag::text("--ids", "FILE",
+                        "triangle ids: PNG whose RGBA bytes are the 32-bit id, little-endian (R = low "
+                        "byte); 0 = background",
+                        files.ids),
+             flag::text("--linear", "FILE",
+                        "the colour in linear light, drawn into a float target (after tone "
+                        "mapping, before the display encoding; blended surfaces and multisampled edges mix in linear "
+                        "light, and the -o image is then its display encoding): .pfm = float32 rgb, unclamped, exact; "
+                        ".png = 16-bit RGBA, clamped to [0, 1], gAMA 1.0",
+                        files.linear),
+             pngLevelFlag(files.pngLevel),
+             flag::text(
+                 "--json", "FILE",
+                 "metadata: scene counts, camera (the planes drawn with and the given ones, the "
+                 "aspect ratios, the depth format), backend, GL renderer, per-frame timings (render_ms, readback_ms; "
+                 "write_ms: encoding and writing the frame's files on the writer's threads, encode_ms of it; with "
+                 "--cull: "
+                 "per-frame tos, pvs and cull_ms too), and per frame the state changes the backend issued, by "
+                 "kind (\"state_changes\": draws, programs, meshes, textures, toggles, uniforms; software: draws "
+                 "only)",
+                 files.json),
+             flag::text("--save-settings", "FILE",
+                        "write the settings this render uses as a settings file (the form "
+                        "--settings reads), before the first frame",
+                        files.settings),
+         }},
+        {"culling (only the triangles that may be visible are submitted; src/cull/Culling.h)",
+         topicFlags(o, "culling")},
         {"draw order (costly state changes made rare; src/order/)", topicFlags(o, "order")},
         {"temporal reuse (with a still camera only what changed is redrawn; src/reuse/Reuse.h)", reuse},
         {"hidden-surface removal (paper 003; src/hsr/Plan.h)", topicFlags(o, "hsr")},

@@ -226,7 +226,8 @@ std::vector<SettingInfo> makeTable() {
     SettingInfo linear = toggle(
         "linear", kOutputs,
         "draw the colour in linear light into a float target (after tone mapping, before the display "
-        "encoding, unclamped; blended surfaces mix in linear light): the frame holds it as float32, and its "
+        "encoding, unclamped; blended surfaces and multisampled edges mix in linear light): the frame holds it as "
+        "float32, and its "
         "colour image is its display encoding",
         [](auto& s) -> auto& { return s.linear; });
     linear.flag = false;  // `render --linear FILE` draws it
