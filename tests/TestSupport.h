@@ -1,7 +1,9 @@
 // Helpers shared by the test suites.
 #pragma once
 
+#include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,20 @@ void writeFile(const std::filesystem::path& path, const std::string& text);
 std::string readAll(const std::filesystem::path& path);
 // The names of the entries of `dir`, sorted.
 std::vector<std::string> filesIn(const std::filesystem::path& dir);
+
+// Values as the bytes a glTF buffer holds them in (little-endian host, like glTF).
+template <class T>
+std::string bytesOf(const T* values, std::size_t count) {
+    std::string out(count * sizeof(T), '\0');
+    if (count > 0) std::memcpy(out.data(), values, out.size());
+    return out;
+}
+template <class T>
+std::string bytesOf(std::initializer_list<T> values) { return bytesOf(values.begin(), values.size()); }
+template <class T>
+std::string bytesOf(const std::vector<T>& values) { return bytesOf(values.data(), values.size()); }
+// `bytes` in base64 with padding, as a data URI holds them.
+std::string base64(const std::string& bytes);
 
 // `text` split at line breaks (no empty last line for a final break).
 std::vector<std::string> lines(const std::string& text);

@@ -275,6 +275,15 @@ struct Bounds {
     float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
 };
 
+// Compressed geometry a loader decoded, one entry a method (KHR_draco_mesh_compression: primitives;
+// EXT_meshopt_compression: bufferViews): how many, the bytes read and written, and the time taken.
+struct Decompression {
+    std::string method;
+    std::size_t items = 0;
+    std::size_t compressedBytes = 0, decodedBytes = 0;
+    double seconds = 0.0;
+};
+
 struct Scene {
     std::string source;  // file path or builtin name
     std::vector<Mesh> meshes;
@@ -289,6 +298,8 @@ struct Scene {
     // Features in the file that frugal does not model, by name ("skins", "morph targets",
     // "KHR_materials_clearcoat", ...). Reported by `frugal info` and as a warning on render.
     std::vector<std::string> unsupported;
+    // What the loader decompressed (empty for an uncompressed file). Reported by `frugal info`.
+    std::vector<Decompression> decompressed;
     // Non-fatal problems found while loading (dropped triangles, ...), one line each.
     std::vector<std::string> warnings;
     // Frames per second the scene's animation is meant to be sampled at (builtins set it).

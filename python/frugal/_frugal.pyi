@@ -144,6 +144,13 @@ class _Instance(TypedDict):
     first_id: int
     triangles: int
 
+class _Decompression(TypedDict):
+    method: str
+    items: int
+    compressed_bytes: int
+    decoded_bytes: int
+    seconds: float
+
 class _Material(TypedDict):
     name: str
     color: tuple[float, float, float, float]
@@ -235,6 +242,8 @@ class Scene(_pybind11_object):
     def warnings(self) -> list[str]: ...
     @property
     def unsupported(self) -> list[str]: ...
+    @property
+    def decompressed(self) -> list[_Decompression]: ...
 
 def load(spec: _Path, *, cull_backfaces: bool = ..., file_order: bool = ...) -> Scene: ...
 

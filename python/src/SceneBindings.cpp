@@ -374,6 +374,18 @@ void bindScene(py::module_& m) {
              "Node `node`'s 4x4 world matrix at `time` (animations sampled, parents applied).")
         .def_property_readonly("warnings", [](PyScene& s) { return s.scene.warnings; })
         .def_property_readonly("unsupported", [](PyScene& s) { return s.scene.unsupported; })
+        .def_property_readonly(
+            "decompressed",
+            [](PyScene& s) {
+                py::list out;
+                for (const Decompression& d : s.scene.decompressed)
+                    out.append(py::dict(py::arg("method") = d.method, py::arg("items") = d.items,
+                                        py::arg("compressed_bytes") = d.compressedBytes,
+                                        py::arg("decoded_bytes") = d.decodedBytes, py::arg("seconds") = d.seconds));
+                return out;
+            },
+            "What the loader decoded (KHR_draco_mesh_compression: primitives; EXT_meshopt_compression:\n"
+            "bufferViews), one dict a method: method, items, compressed_bytes, decoded_bytes, seconds.")
         .def(
             "bounds",
             [](PyScene& s, double time) {

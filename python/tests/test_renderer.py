@@ -242,3 +242,17 @@ def test_a_settings_file_is_where_the_keyword_arguments_start(tmp_path, cli):
         frugal.Renderer(scene, settings=path)
     with pytest.raises(frugal.IoError, match="cannot read the file"):
         frugal.Renderer(scene, settings=tmp_path / "none.json")
+
+
+def test_a_compressed_file_says_what_was_decoded():
+    """A Draco-compressed file loads (libdraco is linked into the module, not needed at run time)
+    and says what the loader decoded; an uncompressed one decodes nothing."""
+    from pathlib import Path
+    seeds = Path(__file__).resolve().parents[2] / "tests" / "data" / "compressed"
+    scene = frugal.load(seeds / "quads-draco.gltf")
+    assert scene.triangle_count == 2
+    [entry] = scene.decompressed
+    assert entry["method"] == "KHR_draco_mesh_compression"
+    assert entry["items"] == 1 and entry["decoded_bytes"] == 72 and entry["seconds"] >= 0
+    assert frugal.Renderer(scene, size=(32, 24)).render().color[..., 3].any()
+    assert frugal.load("builtin:cubes?count=2").decompressed == []

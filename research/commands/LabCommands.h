@@ -23,6 +23,7 @@ int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::os
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runShadingBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runCompress(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* benchHelp();
 const char* reuseBenchHelp();
@@ -33,6 +34,7 @@ const char* stateSimHelp();
 const char* soakHelp();
 const char* writeBenchHelp();
 const char* shadingBenchHelp();
+const char* compressHelp();
 
 // A one-frame benchmark's command (order-bench, shading-bench): its name and help, what one unit of
 // it is called ("order", "variant"), the report outputs' descriptions (reportFlags), the measurement

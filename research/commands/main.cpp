@@ -25,6 +25,8 @@ const Program& labProgram() {
                        "PNG levels and filters: time against size; sequence wall time", runWriteBench},
                       {"state-sim", "[options]", "paper 004's draw orders on random state sets: Tables 6, 7",
                        runStateSim},
+                      {"compress", "IN.gltf OUT.gltf (--draco | --meshopt)",
+                       "a compressed copy of a glTF file, to test and time the decoders", runCompress},
                       {"soak", "[SCENE] [options]", "100,000 frames and 1,000 create/destroy cycles: memory, images",
                        runSoak},
                   },

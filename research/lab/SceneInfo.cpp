@@ -235,6 +235,12 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
     if (b.empty()) out << "bounds: empty\n";
     else out << "bounds: min " << fmt(b.min.x) << "," << fmt(b.min.y) << "," << fmt(b.min.z) << " max " << fmt(b.max.x) << ","
              << fmt(b.max.y) << "," << fmt(b.max.z) << " (radius " << fmt(b.radius()) << ")\n";
+    for (const Decompression& d : scene.decompressed)
+        out << "compressed: " << d.method << ", " << d.items
+            << (d.method == "EXT_meshopt_compression" ? (d.items == 1 ? " bufferView" : " bufferViews")
+                                                      : (d.items == 1 ? " primitive" : " primitives"))
+            << ", " << d.compressedBytes << " bytes decoded to " << d.decodedBytes << " in " << fmt(d.seconds * 1e3)
+            << " ms\n";
     out << "not modelled: ";
     if (scene.unsupported.empty()) out << "none\n";
     else {

@@ -6,6 +6,12 @@ std::string plural(std::size_t n, const char* singular, const char* pluralForm) 
     return cat(n, " ", n == 1 ? singular : pluralForm);
 }
 
+const Json& member(const Json& object, const char* key) {
+    static const Json kNull;
+    const auto it = object.find(key);
+    return it == object.end() ? kNull : *it;
+}
+
 std::string describe(const Json& v) {
     switch (v.type()) {
         case Json::value_t::null:

@@ -22,6 +22,9 @@ using load::Failure;
 
 std::string plural(std::size_t n, const char* singular, const char* pluralForm);
 
+// Member `key` of a JSON object, or null when it has none.
+const Json& member(const Json& object, const char* key);
+
 // A value as messages quote it: null, true, string "...", an object, an array, or the number.
 std::string describe(const Json& v);
 

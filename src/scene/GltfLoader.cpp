@@ -7,9 +7,11 @@
 //   1. the container (GltfContainer.h): file readable, GLB header and chunks, JSON syntax and
 //      nesting depth;
 //   2. the raw JSON against the glTF 2.0 schema (GltfSchema.h);
-//   3. the structure, still on the JSON (GltfStructure.h): indices, node forest, buffers, cameras;
-//   4. here, the data, while it is read from tinygltf's model: bufferView and accessor ranges, index
-//      values, animation key times and counts.
+//   3. the structure, still on the JSON (GltfStructure.h): indices, node forest, buffers, cameras,
+//      and the compression extensions' objects (GltfCompression.h);
+//   4. here, the data, while it is read from tinygltf's model: compressed geometry decoded first
+//      (decompress: the model then reads as an uncompressed file), then bufferView and accessor
+//      ranges, index values, animation key times and counts.
 // A fatal problem becomes Error{"<path>: <what, where, with the numbers>"} on one line; no exception
 // leaves loadGltf (GltfCheck.h says how). NaN/Inf positions are not fatal: finalizeMesh drops their
 // triangles.
@@ -20,6 +22,7 @@
 // no instances.
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +39,7 @@
 #include <tiny_gltf.h>
 
 #include "scene/GltfCheck.h"
+#include "scene/GltfCompression.h"
 #include "scene/GltfContainer.h"
 #include "scene/GltfSchema.h"
 #include "scene/GltfStructure.h"
@@ -280,8 +284,10 @@ struct MaterialMaps {
 class Converter {
 public:
     Converter(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
-              std::vector<std::string> extensions)
-        : model_(model), path_(path), options_(options), extensions_(std::move(extensions)) {}
+              std::vector<std::string> extensions, std::vector<Decompression> decompressed)
+        : model_(model), path_(path), options_(options), extensions_(std::move(extensions)) {
+        scene_.decompressed = std::move(decompressed);
+    }
 
     Scene run();
 
@@ -312,7 +318,6 @@ private:
             fail(where, ": the meshes need more than ", kMaxSceneElements, " vertices and indices, frugal's limit");
     }
 
-    void checkBufferViews() const;
     std::vector<int> chooseRoots() const;
     Node convertNode(int index) const;
     void convertNodes();
@@ -343,10 +348,10 @@ private:
     std::vector<std::uint32_t> readIndices(int accessor, const std::string& use) const;
 };
 
-void Converter::checkBufferViews() const {
-    for (std::size_t i = 0; i < model_.bufferViews.size(); ++i) {
-        const tinygltf::BufferView& view = model_.bufferViews[i];
-        const std::size_t bufferSize = model_.buffers[std::size_t(view.buffer)].data.size();
+void checkBufferViews(const tinygltf::Model& model) {
+    for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
+        const tinygltf::BufferView& view = model.bufferViews[i];
+        const std::size_t bufferSize = model.buffers[std::size_t(view.buffer)].data.size();
         std::size_t end = 0;
         if (view.byteLength == 0) fail("bufferViews[", i, "].byteLength: must be at least 1");
         if (addOverflows(view.byteOffset, view.byteLength, end) || end > bufferSize)
@@ -1224,13 +1229,14 @@ Scene Converter::run() {
     // per material: mapsOf); KHR_materials_emissive_strength scales Material::emissiveFactor;
     // KHR_materials_pbrSpecularGlossiness is Material::specularGlossiness (specularGlossinessOf);
     // KHR_materials_clearcoat, Material::clearcoatFactor and the rest (clearcoatOf); KHR_lights_punctual,
-    // Scene::lights and Node::light (convertLights).
+    // Scene::lights and Node::light (convertLights); KHR_draco_mesh_compression and
+    // EXT_meshopt_compression are decoded before the conversion (decompress).
     for (const std::string& name : extensions_)
         if (name != "KHR_mesh_quantization" && name != "KHR_materials_unlit" && name != "KHR_texture_transform" &&
             name != "KHR_materials_emissive_strength" && name != "KHR_materials_pbrSpecularGlossiness" &&
-            name != "KHR_materials_clearcoat" && name != "KHR_lights_punctual")
+            name != "KHR_materials_clearcoat" && name != "KHR_lights_punctual" &&
+            name != "KHR_draco_mesh_compression" && name != "EXT_meshopt_compression")
             report(oneLine(name, 80));
-    checkBufferViews();
     convertNodes();
     convertMaterials();
     untextureMeshesWithoutUvs();
@@ -1238,6 +1244,102 @@ Scene Converter::run() {
     if (!model_.skins.empty()) report("skins");
     scene_.buildInstances();
     return std::move(scene_);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Compressed geometry (GltfCompression.h), decoded into tinygltf's model before anything reads it.
+
+template <class T>
+std::size_t append(std::vector<T>& list, T item) {
+    list.push_back(std::move(item));
+    return list.size() - 1;
+}
+
+// A new buffer holding `bytes`, and a bufferView of all of it; returns the view.
+int addView(tinygltf::Model& model, std::vector<unsigned char> bytes) {
+    tinygltf::BufferView view;
+    view.byteLength = bytes.size();
+    tinygltf::Buffer buffer;
+    buffer.data = std::move(bytes);
+    view.buffer = int(append(model.buffers, std::move(buffer)));
+    return int(append(model.bufferViews, std::move(view)));
+}
+
+// Every meshopt bufferView reads its decoded bytes (its own new buffer: the fallback buffer it
+// names has no data); every Draco primitive reads new accessors of its decoded attributes and
+// indices, as TRIANGLES (a Draco mesh decodes to triangles, strip or not). bufferViews are checked
+// between the two, so that a Draco stream is read only from a range that exists.
+std::vector<Decompression> decompress(tinygltf::Model& model, const Compression& compression) {
+    using Clock = std::chrono::steady_clock;
+    std::vector<Decompression> out;
+    if (!compression.meshopt.empty()) {
+        Decompression entry{"EXT_meshopt_compression", compression.meshopt.size(), 0, 0, 0.0};
+        const Clock::time_point start = Clock::now();
+        for (const MeshoptView& compressed : compression.meshopt) {
+            const std::string where = cat("bufferViews[", compressed.view, "]");
+            const std::vector<unsigned char>& source = model.buffers[compressed.buffer].data;
+            if (compressed.byteOffset + compressed.byteLength > source.size())
+                fail(where, ".extensions.EXT_meshopt_compression: byteOffset ", compressed.byteOffset, " + byteLength ",
+                     compressed.byteLength, " is beyond the end of buffer ", compressed.buffer, " (", source.size(),
+                     " bytes)");
+            std::vector<unsigned char> decoded = decodeMeshopt(
+                compressed, std::span(source).subspan(compressed.byteOffset, compressed.byteLength), where);
+            entry.compressedBytes += compressed.byteLength;
+            entry.decodedBytes += decoded.size();
+            tinygltf::Buffer buffer;
+            buffer.data = std::move(decoded);
+            tinygltf::BufferView& view = model.bufferViews[compressed.view];
+            view.buffer = int(append(model.buffers, std::move(buffer)));
+            view.byteOffset = 0;
+        }
+        entry.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        out.push_back(entry);
+    }
+    checkBufferViews(model);
+    if (compression.draco.empty()) return out;
+
+    Decompression entry{"KHR_draco_mesh_compression", compression.draco.size(), 0, 0, 0.0};
+    const Clock::time_point start = Clock::now();
+    for (const DracoPrimitive& draco : compression.draco) {
+        tinygltf::Primitive& primitive = model.meshes[draco.mesh].primitives[draco.primitive];
+        const std::string where = cat("mesh ", draco.mesh, " primitive ", draco.primitive);
+        std::vector<DracoRequest> requests;
+        for (const DracoPrimitive::Attribute& attribute : draco.attributes) {
+            const tinygltf::Accessor& accessor = model.accessors[std::size_t(primitive.attributes.at(attribute.name))];
+            const int components = tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type));
+            if (components < 1 || components > 4)
+                fail("accessor ", primitive.attributes.at(attribute.name), " (", attribute.name, " of ", where,
+                     "): type ", typeName(accessor.type), ", a Draco attribute is a scalar or a vector");
+            requests.push_back({attribute.uniqueId, accessor.componentType, components, attribute.name});
+        }
+        const tinygltf::BufferView& view = model.bufferViews[draco.bufferView];
+        const std::span<const unsigned char> stream(
+            model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset, view.byteLength);
+        entry.compressedBytes += stream.size();
+        DracoDecoded decoded = decodeDraco(stream, requests, where);
+        for (std::size_t a = 0; a < requests.size(); ++a) {
+            tinygltf::Accessor accessor = model.accessors[std::size_t(primitive.attributes.at(requests[a].name))];
+            accessor.count = decoded.points;
+            accessor.byteOffset = 0;
+            accessor.sparse = {};
+            entry.decodedBytes += decoded.data[a].size();
+            accessor.bufferView = addView(model, std::move(decoded.data[a]));
+            primitive.attributes[requests[a].name] = int(append(model.accessors, std::move(accessor)));
+        }
+        tinygltf::Accessor indices;
+        indices.type = TINYGLTF_TYPE_SCALAR;
+        indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        indices.count = decoded.indices.size();
+        std::vector<unsigned char> bytes(decoded.indices.size() * sizeof(std::uint32_t));
+        std::memcpy(bytes.data(), decoded.indices.data(), bytes.size());
+        entry.decodedBytes += bytes.size();
+        indices.bufferView = addView(model, std::move(bytes));
+        primitive.indices = int(append(model.accessors, std::move(indices)));
+        primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    }
+    entry.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    out.push_back(entry);
+    return out;
 }
 
 bool decodeDataUri(const std::string& uri, std::vector<unsigned char>& bytes) {
@@ -1257,15 +1359,29 @@ Scene loadGltfOrThrow(std::string_view file, const std::string& path, const Load
     const Json root = parseJson(jsonText);
     checkSchema(root);
     checkStructure(root);
+    const Compression compression = findCompression(root, binary);
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    checkBuffers(root, dir, binary ? &glb : nullptr, &decodeDataUri);
+    checkBuffers(root, dir, binary ? &glb : nullptr, &decodeDataUri, compression.fallbackBuffers);
     std::vector<std::string> extensions = usedExtensions(root);
 
-    const std::string repacked = binary && !glb.canonical ? canonicalGlb(glb) : std::string();
-    const std::string_view forTinygltf = binary && !glb.canonical ? std::string_view(repacked) : file;
+    // tinygltf reads the file as it is, unless it is compressed (it could not: forTinygltf) or a
+    // .glb tinygltf cannot take as it is (canonicalGlb).
+    std::string rewritten;
+    if (compression.any()) {
+        rewritten = forTinygltf(root, compression).dump(-1, ' ', false, Json::error_handler_t::replace);
+        if (binary) {
+            GlbParts parts = glb;
+            parts.json = rewritten;
+            rewritten = canonicalGlb(parts);
+        }
+    } else if (binary && !glb.canonical) {
+        rewritten = canonicalGlb(glb);
+    }
+    const std::string_view input = rewritten.empty() ? file : std::string_view(rewritten);
     const std::string baseDir = dir.empty() ? std::string(".") : dir.string();
-    const tinygltf::Model model = runTinygltf(forTinygltf, binary, baseDir);
-    return Converter(model, path, options, std::move(extensions)).run();
+    tinygltf::Model model = runTinygltf(input, binary, baseDir);
+    std::vector<Decompression> decompressed = decompress(model, compression);
+    return Converter(model, path, options, std::move(extensions), std::move(decompressed)).run();
 }
 
 }  // namespace

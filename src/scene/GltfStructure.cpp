@@ -9,12 +9,6 @@ namespace frugal::gltf {
 
 namespace {
 
-const Json& member(const Json& object, const char* key) {
-    static const Json kNull;
-    const auto it = object.find(key);
-    return it == object.end() ? kNull : *it;
-}
-
 struct Collection {
     const char* singular;
     const char* pluralForm;
@@ -80,35 +74,20 @@ void checkAsset(const Json& asset) {
     }
 }
 
-// KHR_draco_mesh_compression leaves the uncompressed accessors without a bufferView when the
-// extension is required; frugal cannot decode Draco, so such a primitive has no data to draw.
-void checkDraco(const Json& accessors, const Json& primitive, std::size_t mesh, std::size_t p) {
-    if (!member(member(primitive, "extensions"), "KHR_draco_mesh_compression").is_object()) return;
-    auto plain = [&](const Json& index) {
-        const Json& accessor = accessors[index.get<std::size_t>()];
-        return accessor.contains("bufferView") || accessor.contains("sparse");
-    };
-    bool ok = !primitive.contains("indices") || plain(primitive["indices"]);
-    for (const auto& [name, index] : primitive["attributes"].items()) ok = ok && plain(index);
-    if (!ok)
-        fail("mesh ", mesh, " primitive ", p,
-             ": compressed with KHR_draco_mesh_compression, which frugal cannot "
-             "decode, and has no uncompressed fallback");
-}
-
 void checkMeshReferences(const Json& root, const Collections& n) {
     const Json& accessors = member(root, "accessors");
-    forEach(root, "meshes", "", [&](const Json& mesh, std::size_t m, const std::string& meshWhere) {
-        forEach(mesh, "primitives", meshWhere, [&](const Json& primitive, std::size_t p, const std::string& where) {
+    forEach(root, "meshes", "", [&](const Json& mesh, std::size_t, const std::string& meshWhere) {
+        forEach(mesh, "primitives", meshWhere, [&](const Json& primitive, std::size_t, const std::string& where) {
             checkIndexMapValues(primitive["attributes"], n.accessors, child(where, "attributes"));
             checkIndex(primitive, "indices", n.accessors, where);
             checkIndex(primitive, "material", n.materials, where);
             forEach(primitive, "targets", where, [&](const Json& target, std::size_t, const std::string& targetWhere) {
                 checkIndexMapValues(target, n.accessors, targetWhere);
             });
-            checkDraco(accessors, primitive, m, p);
-            // tinygltf rejects index accessors without a bufferView (all-zero or sparse-only).
-            if (primitive.contains("indices") &&
+            // tinygltf rejects index accessors without a bufferView (all-zero or sparse-only); a
+            // Draco primitive's indices are decoded from its stream (GltfCompression.h).
+            const bool draco = member(member(primitive, "extensions"), "KHR_draco_mesh_compression").is_object();
+            if (primitive.contains("indices") && !draco &&
                 !accessors[primitive["indices"].get<std::size_t>()].contains("bufferView"))
                 fail(child(where, "indices"), ": accessor ", primitive["indices"].get<std::size_t>(),
                      " has no bufferView, which frugal does not support for indices");
@@ -302,9 +281,10 @@ void checkStructure(const Json& root) {
     checkCameras(root);
 }
 
-void checkBuffers(const Json& root, const std::filesystem::path& dir, const GlbParts* glb,
-                  DataUriDecoder decodeDataUri) {
+void checkBuffers(const Json& root, const std::filesystem::path& dir, const GlbParts* glb, DataUriDecoder decodeDataUri,
+                  const std::vector<std::size_t>& placeholders) {
     forEach(root, "buffers", "", [&](const Json& buffer, std::size_t i, const std::string& where) {
+        if (std::find(placeholders.begin(), placeholders.end(), i) != placeholders.end()) return;
         const std::uint64_t byteLength = buffer["byteLength"].get<std::uint64_t>();
         if (byteLength == 0) fail(child(where, "byteLength"), ": must be at least 1");
         if (!buffer.contains("uri")) {

@@ -17,7 +17,7 @@
 
 namespace frugal::gltf {
 
-// References, the node forest, scenes listing only roots, cameras, KHR_draco fallbacks.
+// References, the node forest, scenes listing only roots, cameras.
 void checkStructure(const Json& root);
 
 // Decodes a "data:" URI into bytes; false when it cannot. Passed in so that tinygltf's decoder,
@@ -27,8 +27,10 @@ using DataUriDecoder = bool (*)(const std::string& uri, std::vector<unsigned cha
 // Every buffer present with exactly its byteLength: a data URI, a file next to the .gltf (`dir`),
 // or buffer 0 of a .glb (`glb`, null for a .gltf) in the BIN chunk. Checked before tinygltf runs,
 // for messages that say which buffer and by how much; tinygltf then finds every buffer whole.
-void checkBuffers(const Json& root, const std::filesystem::path& dir, const GlbParts* glb,
-                  DataUriDecoder decodeDataUri);
+// `placeholders` are left out: EXT_meshopt_compression's buffers without data
+// (Compression::fallbackBuffers, GltfCompression.h), which the loader fills by decoding.
+void checkBuffers(const Json& root, const std::filesystem::path& dir, const GlbParts* glb, DataUriDecoder decodeDataUri,
+                  const std::vector<std::size_t>& placeholders);
 
 // Extension names the file declares ("extensionsUsed", "extensionsRequired") or uses anywhere
 // outside "extras", each once, in order of first appearance.

@@ -162,10 +162,10 @@ TEST(GltfCheckTest, BuffersAreMeasuredWithTheDecoderPassedIn) {
     const DataUriDecoder refuses = [](const std::string&, std::vector<unsigned char>&) { return false; };
     const Json dataUri =
         withAsset(R"("buffers": [{"byteLength": 4, "uri": "data:application/octet-stream;base64,AAAA"}])");
-    EXPECT_EQ(failureOf([&] { checkBuffers(dataUri, ".", nullptr, threeBytes); }),
+    EXPECT_EQ(failureOf([&] { checkBuffers(dataUri, ".", nullptr, threeBytes, {}); }),
               "buffers[0].uri: the data URI holds 3 bytes, byteLength says 4");
     EXPECT_EQ(calls, 1);
-    EXPECT_EQ(failureOf([&] { checkBuffers(dataUri, ".", nullptr, refuses); }),
+    EXPECT_EQ(failureOf([&] { checkBuffers(dataUri, ".", nullptr, refuses, {}); }),
               "buffers[0].uri: cannot decode the data URI (frugal reads base64 application/octet-stream or "
               "application/gltf-buffer)");
 
@@ -173,16 +173,16 @@ TEST(GltfCheckTest, BuffersAreMeasuredWithTheDecoderPassedIn) {
     const Json bin = withAsset(R"("buffers": [{"byteLength": 8}])");
     GlbParts parts;
     parts.json = "{}  ";
-    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", nullptr, refuses); }),
+    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", nullptr, refuses, {}); }),
               "buffers[0]: no uri (only buffer 0 of a .glb may use the BIN chunk)");
-    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses); }),
+    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses, {}); }),
               "buffers[0]: no uri and the .glb has no BIN chunk");
     parts.bin = "abcd";
     parts.hasBin = true;
-    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses); }),
+    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses, {}); }),
               "buffers[0]: byteLength 8 exceeds the GLB BIN chunk (4 bytes)");
     parts.bin = "abcdefgh";
-    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses); }), "(accepted)");
+    EXPECT_EQ(failureOf([&] { checkBuffers(bin, ".", &parts, refuses, {}); }), "(accepted)");
     EXPECT_EQ(calls, 1);
 }
 
