@@ -9,6 +9,8 @@
 
 #include <sys/wait.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace frugal::test {
 
 std::string base64(const std::string& bytes) {
@@ -268,6 +270,69 @@ std::vector<float> testSky(int width, int height) {
                 rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(k)] = c[k];
         }
     return rgb;
+}
+
+Scene morphingScene(std::vector<float> still) {
+    Scene scene;
+    scene.source = "morphing test scene";
+    Material single;
+    single.baseColorFactor = {0.9f, 0.6f, 0.3f, 1.0f};
+    single.metallicFactor = 0.0f;
+    single.roughnessFactor = 0.5f;
+    Material both = single;
+    both.baseColorFactor = {0.3f, 0.7f, 0.9f, 1.0f};
+    both.doubleSided = true;
+    scene.materials = {single, both};
+    // A UV sphere of radius 1.
+    Mesh sphere;
+    const int rings = 16, segments = 24;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j <= segments; ++j) {
+            const float theta = 3.14159265f * float(i) / float(rings), phi = 6.2831853f * float(j) / float(segments);
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            sphere.positions.push_back(n);
+            sphere.normals.push_back(n);
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const std::uint32_t a = std::uint32_t(i * (segments + 1) + j), b = a + std::uint32_t(segments + 1);
+            sphere.indices.insert(sphere.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+        }
+    sphere.material = 0;
+    Mesh morphing = sphere;
+    morphing.material = 1;
+    MorphTarget inflate, wave;
+    for (std::size_t v = 0; v < sphere.positions.size(); ++v) {
+        const glm::vec3 p = sphere.positions[v];
+        inflate.positions.push_back(0.4f * p * (0.5f + 0.5f * p.y));
+        inflate.normals.push_back(glm::vec3(0.0f, 0.3f * p.y, 0.0f));
+        wave.positions.push_back(glm::vec3(0.6f * std::sin(3.0f * p.y), 0.0f, 0.2f * std::cos(2.0f * p.x)));
+    }
+    morphing.targets = {inflate, wave};
+    EXPECT_TRUE(scene.addMesh(sphere));
+    EXPECT_TRUE(scene.addMesh(morphing));
+    const auto at = [](float x, float y, float z, float s) {
+        return glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(x, y, z)), glm::vec3(s));
+    };
+    const Result<int> animated = scene.addInstance(1, at(0.0f, 0.0f, 0.0f, 0.5f), "animated");
+    const Result<int> fixed = scene.addInstance(1, at(2.2f, 0.5f, -1.0f, 0.4f), "still");
+    EXPECT_TRUE(animated && fixed);
+    if (fixed) scene.nodes[std::size_t(*fixed)].weights = std::move(still);
+    for (const glm::vec3& c :
+         {glm::vec3(-2.0f, 0.0f, -2.0f), glm::vec3(0.3f, -0.2f, -3.0f), glm::vec3(1.5f, -1.0f, 1.0f)})
+        EXPECT_TRUE(scene.addInstance(0, at(c.x, c.y, c.z, 0.6f)));
+    if (animated) {
+        AnimChannel channel;
+        channel.node = *animated;
+        channel.path = AnimPath::Weights;
+        channel.interpolation = Interp::Linear;
+        channel.times = {0.0f, 1.0f, 2.0f, 3.0f, 4.0f};
+        channel.weights = {0.0f, 0.0f, -1.0f, 10.0f, 1.0f, -1.0f, 10.0f, 0.5f, 0.3f, 0.3f};
+        channel.weightCount = 2;
+        scene.animations.push_back(Animation{"weights", {channel}});
+    }
+    scene.buildInstances();
+    return scene;
 }
 
 }  // namespace frugal::test

@@ -92,6 +92,13 @@ Mesh looseTriangles(const std::vector<glm::vec3>& positions);
 // A scene with one root node drawing `mesh` with `material` (the mesh gets material 0).
 Scene oneMeshScene(Mesh mesh, const Material& material = {});
 
+// A scene with morph targets and large deformations: a sphere of 2 targets (an inflation with its
+// normals, and a wave that moves vertices sideways by up to 0.6) drawn by an animated node whose
+// weights run through (0, 0), (−1, 10), (1, −1), (10, 0.5) and (0.3, 0.3) (not summing to 1) over
+// 4 s, linearly, and by a node of its own fixed weights `still`; beside them three static spheres,
+// single- and double-sided. Built in memory (buildInstances called).
+Scene morphingScene(std::vector<float> still = {0.5f, -0.5f});
+
 // Gives a third of the scene's meshes a blended material and a third a masked one (each a copy of
 // its material), with vertex alphas that vary across every mesh (from its positions): masked
 // triangles get holes at the cutoff of 0.5, blended ones a range of coverage. For checking that a

@@ -151,6 +151,14 @@ inline bool Material::hasTextures() const {
     return false;
 }
 
+// A morph target (glTF's primitive.targets): displacements added to a mesh's vertices, times the
+// target's weight. Each array empty or one value a vertex.
+struct MorphTarget {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec3> tangents;  // xyz of the tangent (its w, the handedness, is not displaced)
+};
+
 struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
@@ -165,8 +173,15 @@ struct Mesh {
     std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
     std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file
     int material = -1;                          // -1 = default material (white, single-sided)
+    // Morph targets and their default weights (glTF's mesh.weights; one per target, 0 where the file
+    // gives none). A drawn vertex is position + Σ weightᵢ · targetᵢ.position, its normal the same sum
+    // normalised, its tangent's xyz likewise (posedMesh): weights come from the node, else these, and
+    // an animation's "weights" channel replaces them (Scene::morphWeights).
+    std::vector<MorphTarget> targets;
+    std::vector<float> weights;
 
     std::size_t triangleCount() const { return indices.size() / 3; }
+    bool morphs() const { return !targets.empty(); }
 };
 
 // KHR_lights_punctual's kinds of light, and their names there ("directional", "point", "spot"): what
@@ -220,6 +235,8 @@ struct Node {
     std::vector<int> meshes;  // indices into Scene::meshes (a glTF mesh's primitives)
     int camera = -1;
     int light = -1;  // index into Scene::lights
+    // glTF's node.weights: the morph weights of the node's meshes (empty: the meshes' own).
+    std::vector<float> weights;
 };
 
 // One drawn mesh: a (node, mesh) pair. Instances are numbered in a stable order (node order, then
@@ -247,7 +264,7 @@ struct SceneCamera {
     }
 };
 
-enum class AnimPath : std::uint8_t { Translation, Rotation, Scale };
+enum class AnimPath : std::uint8_t { Translation, Rotation, Scale, Weights };
 enum class Interp : std::uint8_t { Step, Linear, CubicSpline };
 
 struct AnimChannel {
@@ -256,6 +273,10 @@ struct AnimChannel {
     Interp interpolation = Interp::Linear;
     std::vector<float> times;       // strictly increasing, finite
     std::vector<glm::vec4> values;  // xyz (T, S) or xyzw quaternion (R); ×3 for CubicSpline (in, value, out)
+    // Weights: the node's morph weights, `weightCount` a key (×3 for CubicSpline, in, value, out
+    // as above); `values` is empty.
+    std::vector<float> weights;
+    int weightCount = 0;
 };
 
 struct Animation {
@@ -317,6 +338,10 @@ struct Scene {
     double duration() const;            // last key time of any animation, 0 if static
     // World matrix of every node at `time` seconds (animations sampled, hierarchy applied).
     std::vector<glm::mat4> worldTransforms(double time) const;
+    // Morph weights of every node at `time` (empty for a node whose meshes have no targets): its
+    // "weights" channel sampled, else the node's own, else its first morphing mesh's.
+    std::vector<std::vector<float>> morphWeights(double time) const;
+    bool morphs() const;  // does a drawn mesh have morph targets?
     Bounds bounds(double time) const;
     // The envelope as defined above, computed from the meshes, nodes and animations.
     Bounds computeEnvelope() const;
@@ -330,7 +355,8 @@ struct Scene {
     // exist, its factors be finite, emissive at least 0, metallic and roughness in [0, 1], the alpha
     // cutoff finite and at least 0. A mesh:
     // indices 3 a triangle, each below the vertex count; normals, colours and uvs empty or one a
-    // vertex; every value finite; material -1 (the default) or one that exists. It
+    // vertex; every value finite; material -1 (the default) or one that exists; each morph target's
+    // displacements empty or one a vertex, its weights empty (all 0) or one a target. It
     // is finished as the loaders finish theirs (triangleSource filled, missing normals computed,
     // and with `optimizeOrder` triangles reordered for the vertex cache, ids kept), so a mesh
     // added here draws exactly as the same mesh read from a glTF file.
@@ -356,6 +382,15 @@ struct Scene {
 glm::vec4 sampleChannel(const AnimChannel& channel, double time);
 
 glm::mat4 localMatrix(const Node& node);
+
+// `weights` of a Weights channel at `time`, `channel.weightCount` of them, sampled as sampleChannel
+// samples the other paths (step, linear, or the cubic Hermite spline).
+std::vector<float> sampleWeights(const AnimChannel& channel, double time);
+
+// `mesh` posed by morph weights `weights` (one per target; missing ones count 0): positions,
+// normals (normalised; a zero sum keeps the base normal) and tangents displaced, in float, the
+// targets summed in order. What both backends draw, so they draw the same vertices.
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights);
 
 struct LoadOptions {
     bool optimizeOrder = true;   // reorder triangles for the vertex cache (meshoptimizer)

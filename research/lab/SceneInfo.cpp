@@ -231,6 +231,14 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
     for (const Animation& a : scene.animations) channels += a.channels.size();
     out << "animations: " << scene.animations.size() << " (" << channels << " channels, " << fmt(scene.duration())
         << " s at " << fmt(scene.fps) << " fps)\n";
+    std::size_t morphing = 0, targets = 0, weightChannels = 0;
+    for (const Mesh& m : scene.meshes) morphing += m.morphs(), targets += m.targets.size();
+    for (const Animation& a : scene.animations)
+        for (const AnimChannel& c : a.channels) weightChannels += c.path == AnimPath::Weights;
+    if (morphing > 0)
+        out << "morph targets: " << targets << " on " << morphing << (morphing == 1 ? " mesh" : " meshes")
+            << ", weights animated by " << weightChannels << (weightChannels == 1 ? " channel" : " channels")
+            << " (posed on the CPU; culling draws them whole)\n";
     const Bounds b = scene.bounds(0.0);
     if (b.empty()) out << "bounds: empty\n";
     else out << "bounds: min " << fmt(b.min.x) << "," << fmt(b.min.y) << "," << fmt(b.min.z) << " max " << fmt(b.max.x) << ","

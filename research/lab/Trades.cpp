@@ -339,7 +339,8 @@ std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
     return floor && *floor > 0 ? std::optional<double>(row.medianMs / *floor) : std::nullopt;
 }
 
-std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped) {
+std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped,
+                                            bool morphs) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
     // Every culling method by its traits: the plain render has none; an id pass is the floor, not a
     // method; a plan made ahead needs a sequence (below).
@@ -353,7 +354,8 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
     for (const Order order : {Order::Key, Order::Greedy})
         out.push_back(with(base, std::string("order ") + toString(order), "order", [order](Settings& s) { s.order = order; }));
     for (const Hsr hsr : {Hsr::DepthSort, Hsr::Adaptive})
-        out.push_back(with(base, std::string("hsr ") + toString(hsr), "hsr", [hsr](Settings& s) { s.hsr = hsr; }));
+        if (!morphs)
+            out.push_back(with(base, std::string("hsr ") + toString(hsr), "hsr", [hsr](Settings& s) { s.hsr = hsr; }));
     if (software && base.depthFormat == DepthFormat::D24)
         for (const DepthInterp interp : {DepthInterp::Span, DepthInterp::Dda})
             out.push_back(with(base, std::string("interp ") + toString(interp), "interp",

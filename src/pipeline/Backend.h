@@ -155,6 +155,8 @@ struct FrameParams {
     ToneMap tonemap = ToneMap::None;  // applied to rgb before its encoding (frugal/Image.h, below)
     ShadingModel shading = ShadingModel::Full;  // frugal/Image.h; Lambert: rgb = base.rgb·(L + Σ E·n·l/π) + emission
     bool writeIds = true;  // false: the id attachment is left as cleared (faster on llvmpipe)
+    // Scene time of the frame: SceneRenderer poses morphing meshes at it (Scene::morphWeights).
+    double time = 0.0;
 };
 
 // Which side of rgb = mix(dielectric, metal, m) a material needs: with a metallic factor of exactly

@@ -26,6 +26,7 @@ Result<FrameSetup> setUpFrame(const Scene& scene, const Camera& camera, double t
     setup.params.projection = view->projection;
     setup.params.depthFormat = view->depthFormat;
     setup.params.writeIds = writeIds;
+    setup.params.time = time;
     setup.params.lighting.lights = frameLights(scene, setup.world);
     return setup;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 #include <utility>
 
@@ -17,7 +18,9 @@ SceneRenderer::~SceneRenderer() { release(); }
 
 SceneRenderer::SceneRenderer(SceneRenderer&& other) noexcept
     : backend_(other.backend_), scene_(other.scene_), full_(std::move(other.full_)),
-      meshes_(std::exchange(other.meshes_, {})), textures_(std::exchange(other.textures_, {})),
+      meshes_(std::exchange(other.meshes_, {})), posedSlot_(std::move(other.posedSlot_)),
+      posed_(std::exchange(other.posed_, {})), posedWeights_(std::move(other.posedWeights_)),
+      textures_(std::exchange(other.textures_, {})),
       cullAllBackFaces_(other.cullAllBackFaces_), batching_(other.batching_),
       centroids_(std::move(other.centroids_)) {}
 
@@ -28,6 +31,9 @@ SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
         scene_ = other.scene_;
         full_ = std::move(other.full_);
         meshes_ = std::exchange(other.meshes_, {});
+        posedSlot_ = std::move(other.posedSlot_);
+        posed_ = std::exchange(other.posed_, {});
+        posedWeights_ = std::move(other.posedWeights_);
         textures_ = std::exchange(other.textures_, {});
         cullAllBackFaces_ = other.cullAllBackFaces_;
         batching_ = other.batching_;
@@ -38,27 +44,56 @@ SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
 
 void SceneRenderer::release() {
     for (MeshHandle mesh : meshes_) backend_->releaseMesh(mesh);
+    for (MeshHandle mesh : posed_)
+        if (mesh != kNoHandle) backend_->releaseMesh(mesh);
     for (TextureHandle texture : textures_) backend_->releaseTexture(texture);
     meshes_.clear();
+    posed_.clear();
     textures_.clear();
+}
+
+MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
+    // A normal map (the surface's or its coat's) needs tangents: a mesh without them is uploaded
+    // with generated ones.
+    const bool needsTangents = mesh.tangents.empty() && mesh.material >= 0 &&
+                               std::size_t(mesh.material) < scene_->materials.size() &&
+                               scene_->materials[std::size_t(mesh.material)].tangentSpace();
+    if (!needsTangents) return backend_->uploadMesh(mesh);
+    Mesh withTangents = mesh;
+    generateTangents(withTangents);
+    return backend_->uploadMesh(withTangents);
+}
+
+void SceneRenderer::pose(double time) {
+    if (posed_.empty()) return;
+    const std::vector<std::vector<float>> weights = scene_->morphWeights(time);
+    for (std::size_t i = 0; i < posedSlot_.size(); ++i) {
+        const int slot = posedSlot_[i];
+        if (slot < 0) continue;
+        const Instance& instance = scene_->instances[i];
+        const std::vector<float>& w = weights[std::size_t(instance.node)];
+        if (posed_[std::size_t(slot)] != kNoHandle && posedWeights_[std::size_t(slot)] == w) continue;
+        const MeshHandle handle = upload(posedMesh(scene_->meshes[std::size_t(instance.mesh)], w));
+        if (handle == kNoHandle) throw std::bad_alloc();
+        if (posed_[std::size_t(slot)] != kNoHandle) backend_->releaseMesh(posed_[std::size_t(slot)]);
+        posed_[std::size_t(slot)] = handle;
+        posedWeights_[std::size_t(slot)] = w;
+    }
 }
 
 Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene, bool mipmaps) {
     SceneRenderer renderer(backend, scene);
     renderer.meshes_.reserve(scene.meshes.size());
+    renderer.posedSlot_.assign(scene.instances.size(), -1);
+    for (std::size_t i = 0; i < scene.instances.size(); ++i)
+        if (scene.meshes[std::size_t(scene.instances[i].mesh)].morphs()) {
+            renderer.posedSlot_[i] = int(renderer.posed_.size());
+            renderer.posed_.push_back(kNoHandle);
+            renderer.posedWeights_.emplace_back();
+        }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
-        // A normal map (the surface's or its coat's) needs tangents: a mesh without them is
-        // uploaded with generated ones.
-        Mesh withTangents;
-        const bool needsTangents = mesh.tangents.empty() && mesh.material >= 0 &&
-                                   std::size_t(mesh.material) < scene.materials.size() &&
-                                   scene.materials[std::size_t(mesh.material)].tangentSpace();
-        if (needsTangents) {
-            withTangents = mesh;
-            generateTangents(withTangents);
-        }
-        const MeshHandle handle = backend.uploadMesh(needsTangents ? withTangents : mesh);
+        const MeshHandle handle = renderer.upload(mesh);
         if (handle == kNoHandle)
             return Error{"mesh " + std::to_string(i) + quotedName(mesh.name) + " (" + std::to_string(mesh.positions.size()) +
                          " vertices, " + std::to_string(mesh.triangleCount()) + " triangles): " + backend.name() +
@@ -89,6 +124,11 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
                          " refused it (its limit is " + std::to_string(backend.maxTextureSize()) +
                          " pixels a side; or out of memory)"};
         renderer.textures_.push_back(handle);
+    }
+    try {
+        renderer.pose(0.0);  // so that a draw before the first frame finds every posed mesh
+    } catch (const std::bad_alloc&) {
+        return Error{"a morphing mesh posed at time 0: " + backend.name() + " could not store it (out of memory)"};
     }
     return renderer;
 }
@@ -123,7 +163,8 @@ void SceneRenderer::drawSequence(std::span<const DrawCommand* const> list, const
         const Mesh& mesh = scene_->meshes[instance.mesh];
         const Material& material = mesh.material >= 0 ? scene_->materials[mesh.material] : kDefault;
         DrawParams params;
-        params.mesh = meshes_[instance.mesh];
+        const int slot = posedSlot_[std::size_t(command.instance)];
+        params.mesh = slot >= 0 ? posed_[std::size_t(slot)] : meshes_[instance.mesh];
         params.model = world[instance.node];
         params.baseColorFactor = material.baseColorFactor;
         params.metallic = material.metallicFactor;
@@ -162,7 +203,8 @@ void SceneRenderer::drawSequence(std::span<const DrawCommand* const> list, const
     // the same in each. Drawing them as instances keeps the order, so the pixels are the same.
     const auto batchable = [&](const DrawCommand& a, const DrawCommand& b) {
         return a.ranges.size() == 1 && b.ranges.size() == 1 && a.ranges[0] == b.ranges[0] && a.depth == b.depth &&
-               scene_->instances[a.instance].mesh == scene_->instances[b.instance].mesh;
+               scene_->instances[a.instance].mesh == scene_->instances[b.instance].mesh &&
+               posedSlot_[std::size_t(a.instance)] < 0;
     };
     for (std::size_t i = 0; i < list.size();) {
         const DrawCommand& command = *list[i];
@@ -195,6 +237,7 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
 
 void SceneRenderer::renderFrame(TargetHandle target, int width, int height, const FrameParams& frame,
                                 const std::vector<glm::mat4>& world, const glm::vec4& background, const DrawList& list) {
+    pose(frame.time);
     backend_->clear(target, Rect{0, 0, width, height}, background, farDepth(frame.depthFormat));
     backend_->beginFrame(target, frame);
     draw(list, world, frame.view);
@@ -202,6 +245,7 @@ void SceneRenderer::renderFrame(TargetHandle target, int width, int height, cons
 
 void SceneRenderer::execute(const FramePlan& plan, TargetHandle target, TargetHandle staticTarget,
                             const FrameParams& frame, const std::vector<glm::mat4>& world, const glm::vec4& background) {
+    pose(frame.time);
     const auto handle = [&](PlanTarget which) { return which == PlanTarget::Render ? target : staticTarget; };
     TargetHandle drawing = kNoHandle;  // the target of the frame begun last
     for (const PlanStep& step : plan) {

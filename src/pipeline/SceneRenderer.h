@@ -29,6 +29,13 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+    // Poses the morphing meshes (Mesh::targets) at scene time `time`: each instance of one is drawn
+    // from a mesh of its own, posed on the CPU (posedMesh) by its node's weights and uploaded again
+    // when they change, so both backends draw the same vertices. renderFrame and execute pose at
+    // their frame's time; nothing to do in a scene without morph targets. An upload the backend
+    // refuses throws std::bad_alloc (a frame cannot be drawn without it).
+    void pose(double time);
+
     // Draws `list` with the node transforms `world` into the current frame (Backend::beginFrame
     // must have been called), seen through `view`. Materials follow the instance's mesh. Commands
     // of blended materials (AlphaMode::Blend) are drawn after all the others, far to near by the
@@ -65,11 +72,18 @@ private:
     SceneRenderer(Backend& backend, const Scene& scene);
     void drawSequence(std::span<const DrawCommand* const> sequence, const std::vector<glm::mat4>& world);
     void release();
+    // `mesh` as the backend draws it (with generated tangents when its material needs them).
+    MeshHandle upload(const Mesh& mesh) const;
 
     Backend* backend_;
     const Scene* scene_;
     DrawList full_;
     std::vector<MeshHandle> meshes_;
+    // Morphing instances: per instance its slot in posed_ (-1: drawn from meshes_), and per slot the
+    // uploaded posed mesh and the weights it was posed with.
+    std::vector<int> posedSlot_;
+    std::vector<MeshHandle> posed_;
+    std::vector<std::vector<float>> posedWeights_;
     std::vector<TextureHandle> textures_;
     bool cullAllBackFaces_ = false;
     bool batching_ = true;

@@ -113,6 +113,12 @@ Result<bool> Renderer::Impl::open() {
     // Values out of their range, and settings that may not go together (frugal/Settings.h).
     if (const std::optional<SettingsProblem> problem = settingsProblem(s))
         return Error{describe(*problem, s), ErrorKind::BadInput, true};
+    // The hidden-surface modes plan from the meshes' shapes, which morph targets change.
+    if (traitsOf(s.hsr).plans && scene->morphs())
+        return Error{std::string("hsr ") + toString(s.hsr) + ": '" + scene->source +
+                         "' has morph targets, and the hidden-surface modes need meshes of a fixed shape (zbuffer "
+                         "draws it)",
+                     ErrorKind::BadInput, true};
     const CullTraits& cull = traitsOf(s.cull);
     if (cull.prepares) {
         MapParams bins{s.cullBinsTheta, s.cullBinsPhi};

@@ -55,6 +55,8 @@ TemporalReuse::TemporalReuse(const Scene& scene, int width, int height, ReuseOpt
     }
     extents_.assign(groups, reuse::Box{});
     instanceBoxes_.assign(records_.size(), reuse::Box{});
+    weights_.resize(records_.size());
+    posed_.resize(records_.size());
 }
 
 std::uint32_t TemporalReuse::groupSize(int instance) const {
@@ -71,7 +73,8 @@ void TemporalReuse::computeExtents(int instance, const glm::mat4& viewProjection
     if (!record.drawn) return;
     const Instance& inst = scene_->instances[instance];
     const Mesh& mesh = scene_->meshes[inst.mesh];
-    builder_.project(viewProjection * world[inst.node], mesh.positions);
+    builder_.project(viewProjection * world[inst.node],
+                     posed_[std::size_t(instance)].empty() ? mesh.positions : posed_[std::size_t(instance)]);
     const std::uint32_t size = groupSize(instance);
     const std::uint32_t triangles = std::uint32_t(mesh.triangleCount());
     const std::uint32_t* index = mesh.indices.data();
@@ -133,6 +136,7 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
     lastFrame_ = frame;
     lastBackground_ = background;
 
+    if (scene_->morphs()) frameWeights_ = scene_->morphWeights(frame.time);
     Changes changes;
     if (!classify(list, world, first, wholeAgain, changes)) {
         // Not a list reuse can split into static and dynamic instances: draw it as it is, and
@@ -206,6 +210,16 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
         bool changed = !first && (std::memcmp(&model, &models_[i], sizeof model) != 0 ||
                                   materialChanged_[std::size_t(info.material + 1)] != 0);
         if (changed || first) models_[i] = model;
+        // The morph weights, value for value (a NaN weight is never equal: dynamic every frame).
+        const Mesh& mesh = scene_->meshes[std::size_t(scene_->instances[i].mesh)];
+        if (mesh.morphs()) {
+            const std::vector<float>& now = frameWeights_[std::size_t(info.node)];
+            if (first || now != weights_[i]) {
+                changed = changed || !first;
+                weights_[i] = now;
+                posed_[i] = posedMesh(mesh, now).positions;
+            }
+        }
         // The drawn ranges: the whole mesh again (the common case), or compared once normalised.
         const DrawCommand* command = byInstance[i];
         const bool same = !first && command && record.drawn && (wholeAgain || sameRanges(command->ranges, record.ranges));

@@ -324,6 +324,8 @@ private:
     void convertMesh(int index);
     void convertPrimitive(int meshIndex, int primitiveIndex);
     void readAttributes(const tinygltf::Primitive& primitive, const std::string& where, Mesh& mesh);
+    void readTargets(const tinygltf::Primitive& primitive, const tinygltf::Mesh& gltfMesh, const std::string& where,
+                     Mesh& mesh);
     std::vector<std::uint32_t> readVertexList(const tinygltf::Primitive& primitive, const std::string& where,
                                               std::size_t vertexCount);
     void convertMaterials();
@@ -644,6 +646,8 @@ Node Converter::convertNode(int index) const {
     Node node;
     node.name = src.name;
     node.children = src.children;
+    for (std::size_t k = 0; k < src.weights.size(); ++k)
+        node.weights.push_back(toFloat(src.weights[k], cat(where, ".weights[", k, "]")));
     if (!src.matrix.empty()) {
         node.hasMatrix = true;
         for (int k = 0; k < 16; ++k)
@@ -879,6 +883,44 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
     }
 }
 
+// The primitive's morph targets (POSITION, NORMAL and TANGENT displacements, one a vertex; normals
+// and tangents kept where the mesh keeps its own) and the mesh's default weights. A displacement
+// that is not finite counts 0 (warned once).
+void Converter::readTargets(const tinygltf::Primitive& primitive, const tinygltf::Mesh& gltfMesh,
+                            const std::string& where, Mesh& mesh) {
+    static constexpr int kVec3[] = {TINYGLTF_TYPE_VEC3};
+    const std::size_t vertices = mesh.positions.size();
+    bool repaired = false;
+    for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
+        MorphTarget target;
+        for (const auto& [name, index] : primitive.targets[t]) {
+            std::vector<glm::vec3>* into = name == "POSITION"                            ? &target.positions
+                                           : name == "NORMAL" && !mesh.normals.empty()   ? &target.normals
+                                           : name == "TANGENT" && !mesh.tangents.empty() ? &target.tangents
+                                                                                         : nullptr;
+            if (!into) continue;
+            const std::string use = cat(name, " of ", where, " target ", t);
+            if (model_.accessors[std::size_t(index)].count != vertices)
+                fail("accessor ", index, " (", use, "): ", model_.accessors[std::size_t(index)].count,
+                     " elements, POSITION has ", vertices);
+            *into = toVectors<glm::vec3>(readFloats(index, use, kVec3));
+            for (glm::vec3& d : *into)
+                if (!(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z))) {
+                    d = glm::vec3(0.0f);
+                    repaired = true;
+                }
+        }
+        mesh.targets.push_back(std::move(target));
+    }
+    if (repaired) warn(cat(where, ": morph target displacements that are not finite count 0"));
+    if (mesh.targets.empty()) return;
+    if (!gltfMesh.weights.empty() && gltfMesh.weights.size() != mesh.targets.size())
+        fail(where, ": the mesh has ", gltfMesh.weights.size(), " weights for ", mesh.targets.size(), " morph targets");
+    mesh.weights.assign(mesh.targets.size(), 0.0f);
+    for (std::size_t t = 0; t < gltfMesh.weights.size(); ++t)
+        mesh.weights[t] = toFloat(gltfMesh.weights[t], cat(where, ": weight ", t));
+}
+
 // The primitive's vertex list: its indices, checked against the vertex count, or 0..n-1.
 std::vector<std::uint32_t> Converter::readVertexList(const tinygltf::Primitive& primitive, const std::string& where,
                                                      std::size_t vertexCount) {
@@ -906,7 +948,6 @@ void Converter::convertPrimitive(int meshIndex, int primitiveIndex) {
         report(cat("primitive mode ", modeName(mode)));
         return;
     }
-    if (!primitive.targets.empty()) report("morph targets");
     if (attributeAccessor(primitive, "POSITION") < 0) {
         warn(cat(where, ": no POSITION attribute, not drawn"));
         return;
@@ -918,6 +959,7 @@ void Converter::convertPrimitive(int meshIndex, int primitiveIndex) {
     mesh.material = primitive.material;
     if (primitive.material >= 0) materialUsed_[std::size_t(primitive.material)] = true;
     readAttributes(primitive, where, mesh);
+    readTargets(primitive, gltfMesh, where, mesh);
     mesh.indices = triangulate(readVertexList(primitive, where, mesh.positions.size()), mode, where);
 
     const MeshBuildStats stats = finalizeMesh(mesh, options_.optimizeOrder);
@@ -1172,11 +1214,8 @@ void Converter::convertAnimations() {
         animation.name = src.name;
         for (int c = 0; c < int(src.channels.size()); ++c) {
             const tinygltf::AnimationChannel& channel = src.channels[std::size_t(c)];
-            if (channel.target_path == "weights") {
-                report("morph target animation");
-                continue;
-            }
             if (channel.target_node < 0) continue;  // glTF: a channel without a node is ignored
+            const bool weights = channel.target_path == "weights";
             const int s = channel.sampler;
             const tinygltf::AnimationSampler& sampler = src.samplers[std::size_t(s)];
             const std::string where = cat("animation ", a, " sampler ", s);
@@ -1184,6 +1223,7 @@ void Converter::convertAnimations() {
             out.node = channel.target_node;
             out.path = channel.target_path == "translation" ? AnimPath::Translation
                        : channel.target_path == "rotation"  ? AnimPath::Rotation
+                       : weights                            ? AnimPath::Weights
                                                             : AnimPath::Scale;
             out.interpolation = sampler.interpolation == "STEP"          ? Interp::Step
                                 : sampler.interpolation == "CUBICSPLINE" ? Interp::CubicSpline
@@ -1198,6 +1238,29 @@ void Converter::convertAnimations() {
             const bool cubic = out.interpolation == Interp::CubicSpline;
             if (cubic && out.times.size() < 2)
                 fail(where, ": CUBICSPLINE needs at least 2 keys, got ", out.times.size());
+            if (weights) {
+                // As many weights a key as the node's mesh has targets.
+                const int meshIndex = model_.nodes[std::size_t(out.node)].mesh;
+                const std::size_t targets = meshIndex < 0 || model_.meshes[std::size_t(meshIndex)].primitives.empty()
+                                                ? 0
+                                                : model_.meshes[std::size_t(meshIndex)].primitives[0].targets.size();
+                if (targets == 0) {
+                    warn(cat(where, ": animates the morph weights of node ", out.node,
+                             ", whose mesh has no morph targets: ignored"));
+                    continue;
+                }
+                static constexpr int kScalar1[] = {TINYGLTF_TYPE_SCALAR};
+                out.weights = readFloats(sampler.output, "output of " + where, kScalar1);
+                out.weightCount = int(targets);
+                const std::size_t expected = out.times.size() * (cubic ? 3 : 1) * targets;
+                if (out.weights.size() != expected)
+                    fail(where, ": output has ", out.weights.size(), " weights, expected ", expected, " (", targets,
+                         " targets x ", out.times.size(), " keys", cubic ? " x 3, CUBICSPLINE)" : ")");
+                for (std::size_t k = 0; k < out.weights.size(); ++k)
+                    if (!std::isfinite(out.weights[k])) fail(where, ": output value ", k, " is not finite");
+                animation.channels.push_back(std::move(out));
+                continue;
+            }
             const bool rotation = out.path == AnimPath::Rotation;
             int components = 0;
             const std::span<const int> outputTypes =

@@ -98,11 +98,106 @@ glm::vec4 sampleChannel(const AnimChannel& channel, double time) {
     return value(k0);
 }
 
+std::vector<float> sampleWeights(const AnimChannel& channel, double time) {
+    const std::size_t count = std::size_t(std::max(channel.weightCount, 0));
+    const std::vector<float>& times = channel.times;
+    const bool cubic = channel.interpolation == Interp::CubicSpline;
+    const std::size_t stride = cubic ? 3 : 1;
+    // Element i of key k's value (cubic: of its in-tangent -1, value 0, out-tangent +1).
+    auto at = [&](std::size_t key, std::size_t i, int part = 0) {
+        return channel.weights[(key * stride + (cubic ? std::size_t(1 + part) : 0)) * count + i];
+    };
+    std::vector<float> out(count, 0.0f);
+    if (times.empty() || channel.weights.size() < times.size() * stride * count) return out;
+    const float when = float(time);
+    std::size_t held = times.size();  // a key whose value holds, if any
+    if (!(when > times.front()) || times.size() == 1)
+        held = 0;
+    else if (when >= times.back())
+        held = times.size() - 1;
+    if (held < times.size()) {
+        for (std::size_t i = 0; i < count; ++i) out[i] = at(held, i);
+        return out;
+    }
+    const std::size_t k1 = std::size_t(std::upper_bound(times.begin(), times.end(), when) - times.begin());
+    const std::size_t k0 = k1 - 1;
+    const double dt = double(times[k1]) - double(times[k0]);
+    const float t = float((double(when) - double(times[k0])) / dt);
+    const float t2 = t * t, t3 = t2 * t;
+    for (std::size_t i = 0; i < count; ++i) {
+        switch (channel.interpolation) {
+            case Interp::Step:
+                out[i] = at(k0, i);
+                break;
+            case Interp::Linear:
+                out[i] = at(k0, i) == at(k1, i) ? at(k0, i) : glm::mix(at(k0, i), at(k1, i), t);
+                break;
+            case Interp::CubicSpline: {
+                const float m0 = at(k0, i, 1) * float(dt), m1 = at(k1, i, -1) * float(dt);
+                out[i] = (2 * t3 - 3 * t2 + 1) * at(k0, i) + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * at(k1, i) +
+                         (t3 - t2) * m1;
+                break;
+            }
+        }
+    }
+    return out;
+}
+
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights) {
+    Mesh out = mesh;
+    out.targets.clear();
+    const std::size_t n = mesh.positions.size();
+    bool normals = false;
+    for (std::size_t t = 0; t < mesh.targets.size() && t < weights.size(); ++t) {
+        const float w = weights[t];
+        const MorphTarget& target = mesh.targets[t];
+        if (w == 0.0f) continue;
+        for (std::size_t v = 0; v < n && v < target.positions.size(); ++v) out.positions[v] += w * target.positions[v];
+        for (std::size_t v = 0; v < out.normals.size() && v < target.normals.size(); ++v) {
+            out.normals[v] += w * target.normals[v];
+            normals = true;
+        }
+        for (std::size_t v = 0; v < out.tangents.size() && v < target.tangents.size(); ++v)
+            out.tangents[v] += glm::vec4(w * target.tangents[v], 0.0f);
+    }
+    if (normals)
+        for (std::size_t v = 0; v < out.normals.size(); ++v) {
+            const float length = glm::length(out.normals[v]);
+            out.normals[v] = length > 0.0f && std::isfinite(length) ? out.normals[v] / length : mesh.normals[v];
+        }
+    return out;
+}
+
+bool Scene::morphs() const {
+    for (const Instance& instance : instances)
+        if (meshes[std::size_t(instance.mesh)].morphs()) return true;
+    return false;
+}
+
+std::vector<std::vector<float>> Scene::morphWeights(double time) const {
+    std::vector<std::vector<float>> out(nodes.size());
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+        for (int m : nodes[n].meshes)
+            if (meshes[std::size_t(m)].morphs()) {
+                const Mesh& mesh = meshes[std::size_t(m)];
+                out[n] = !nodes[n].weights.empty() ? nodes[n].weights
+                         : !mesh.weights.empty()   ? mesh.weights
+                                                   : std::vector<float>(mesh.targets.size(), 0.0f);
+                break;
+            }
+    for (const Animation& animation : animations)
+        for (const AnimChannel& channel : animation.channels)
+            if (channel.path == AnimPath::Weights && channel.node >= 0 && channel.node < int(nodes.size()) &&
+                !out[std::size_t(channel.node)].empty())
+                out[std::size_t(channel.node)] = sampleWeights(channel, time);
+    return out;
+}
+
 std::vector<glm::mat4> Scene::worldTransforms(double time) const {
     std::vector<Node> posed = nodes;
     for (const Animation& animation : animations) {
         for (const AnimChannel& channel : animation.channels) {
-            if (channel.node < 0 || channel.node >= int(posed.size())) continue;
+            if (channel.node < 0 || channel.node >= int(posed.size()) || channel.path == AnimPath::Weights) continue;
             Node& node = posed[channel.node];
             const glm::vec4 v = sampleChannel(channel, time);
             // glTF animates only TRS nodes; the loaders reject an animated node that has a matrix.
@@ -110,6 +205,7 @@ std::vector<glm::mat4> Scene::worldTransforms(double time) const {
             case AnimPath::Translation: node.translation = glm::vec3(v); break;
             case AnimPath::Rotation: node.rotation = toQuat(v); break;
             case AnimPath::Scale: node.scale = glm::vec3(v); break;
+            case AnimPath::Weights: break;
             }
         }
     }
@@ -132,9 +228,13 @@ std::vector<glm::mat4> Scene::worldTransforms(double time) const {
 
 Bounds Scene::bounds(double time) const {
     const std::vector<glm::mat4> world = worldTransforms(time);
+    const std::vector<std::vector<float>> weights = morphs() ? morphWeights(time) : std::vector<std::vector<float>>{};
     Bounds bounds;
     for (const Instance& instance : instances) {
-        const Mesh& mesh = meshes[instance.mesh];
+        Mesh posed;
+        const bool morphing = meshes[instance.mesh].morphs();
+        if (morphing) posed = posedMesh(meshes[instance.mesh], weights[std::size_t(instance.node)]);
+        const Mesh& mesh = morphing ? posed : meshes[instance.mesh];
         const glm::mat4& m = world[instance.node];
         // Only vertices that triangles use count (dropped triangles may leave unused vertices).
         for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
@@ -230,6 +330,62 @@ Box sweep(const Node& node, const NodeMotion& motion, const Box& content) {
 
 }  // namespace
 
+namespace {
+
+struct Range {
+    double low = 0.0, high = 0.0;
+    void add(double v) {
+        low = std::min(low, v);
+        high = std::max(high, v);
+    }
+};
+
+// Per mesh, per target: the weights it can take over every node that draws it and every time
+// (0 included; a cubic channel's Hermite pieces within their control points, as addChannelValues).
+std::vector<std::vector<Range>> morphWeightRanges(const Scene& scene) {
+    std::vector<std::vector<Range>> out(scene.meshes.size());
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        out[m].resize(scene.meshes[m].targets.size());
+        for (std::size_t t = 0; t < out[m].size() && t < scene.meshes[m].weights.size(); ++t)
+            out[m][t].add(scene.meshes[m].weights[t]);
+    }
+    const auto addToNode = [&](int node, const std::vector<float>& values, std::size_t count) {
+        if (count == 0) return;
+        for (int m : scene.nodes[std::size_t(node)].meshes)
+            for (std::size_t i = 0; i < values.size(); ++i)
+                if (i % count < out[std::size_t(m)].size()) out[std::size_t(m)][i % count].add(values[i]);
+    };
+    for (int n = 0; n < int(scene.nodes.size()); ++n)
+        addToNode(n, scene.nodes[std::size_t(n)].weights, scene.nodes[std::size_t(n)].weights.size());
+    for (const Animation& animation : scene.animations)
+        for (const AnimChannel& channel : animation.channels) {
+            if (channel.path != AnimPath::Weights || channel.node < 0 || channel.node >= int(scene.nodes.size()))
+                continue;
+            const std::size_t count = std::size_t(std::max(channel.weightCount, 0));
+            if (channel.interpolation != Interp::CubicSpline) {
+                addToNode(channel.node, channel.weights, count);
+                continue;
+            }
+            // Values, and each piece's inner control points p0 + m0/3 and p1 − m1/3.
+            const std::size_t keys = channel.times.size();
+            for (int m : scene.nodes[std::size_t(channel.node)].meshes)
+                for (std::size_t k = 0; k < keys && (3 * k + 3) * count <= channel.weights.size(); ++k)
+                    for (std::size_t i = 0; i < count && i < out[std::size_t(m)].size(); ++i) {
+                        const double p = channel.weights[(3 * k + 1) * count + i];
+                        out[std::size_t(m)][i].add(p);
+                        if (k + 1 < keys && (3 * k + 6) * count <= channel.weights.size()) {
+                            const double dt = double(channel.times[k + 1]) - double(channel.times[k]);
+                            out[std::size_t(m)][i].add(p + channel.weights[(3 * k + 2) * count + i] * dt / 3.0);
+                            out[std::size_t(m)][i].add(channel.weights[(3 * k + 4) * count + i] -
+                                                       channel.weights[(3 * k + 3) * count + i] * dt / 3.0);
+                        }
+                    }
+        }
+    return out;
+}
+
+}  // namespace
+
 Bounds Scene::computeEnvelope() const {
     const std::size_t n = nodes.size();
     std::vector<NodeMotion> motion(n);
@@ -257,11 +413,26 @@ Bounds Scene::computeEnvelope() const {
         }
 
     // A non-finite vertex draws nothing (its triangles' clip distances are not finite): left out.
+    // A morphing vertex moves within the box of its position plus each target's displacement times
+    // every weight the target can take (morphWeightRanges).
+    const std::vector<std::vector<Range>> ranges = morphWeightRanges(*this);
     std::vector<Box> meshBoxes(meshes.size());
     for (std::size_t m = 0; m < meshes.size(); ++m)
         for (std::uint32_t index : meshes[m].indices) {
             const glm::vec3& p = meshes[m].positions[index];
-            if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) meshBoxes[m].add(glm::dvec3(p));
+            if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) continue;
+            glm::dvec3 low(p), high(p);
+            for (std::size_t t = 0; t < meshes[m].targets.size() && t < ranges[m].size(); ++t) {
+                if (index >= meshes[m].targets[t].positions.size()) continue;
+                const glm::dvec3 d(meshes[m].targets[t].positions[index]);
+                const glm::dvec3 a = d * ranges[m][t].low, b = d * ranges[m][t].high;
+                low += glm::min(a, b);
+                high += glm::max(a, b);
+            }
+            // The posed position is a float sum, rounded at each step: a margin of a few of its ulps.
+            const glm::dvec3 slack = meshes[m].morphs() ? (glm::abs(low) + glm::abs(high)) * 1e-6 : glm::dvec3(0.0);
+            meshBoxes[m].add(low - slack);
+            meshBoxes[m].add(high + slack);
         }
 
     // Parents before children (loaders reject cycles), then each node's content, children first.

@@ -72,6 +72,22 @@ std::string meshProblem(const Mesh& mesh, std::size_t materials) {
     if (mesh.material < -1 || mesh.material >= int(materials))
         return "material " + std::to_string(mesh.material) + " does not exist (the scene has " +
                std::to_string(materials) + ")";
+    for (std::size_t t = 0; t < mesh.targets.size(); ++t) {
+        const MorphTarget& target = mesh.targets[t];
+        const std::string which = "morph target " + std::to_string(t) + " ";
+        for (const std::string& problem :
+             {count("position displacements", target.positions.size()),
+              count("normal displacements", target.normals.size()),
+              count("tangent displacements", target.tangents.size()), firstNotFinite("position", target.positions),
+              firstNotFinite("normal", target.normals), firstNotFinite("tangent", target.tangents)})
+            if (!problem.empty()) return which + problem;
+    }
+    if (!mesh.weights.empty() && mesh.weights.size() != mesh.targets.size())
+        return std::to_string(mesh.weights.size()) + " morph weights for " + std::to_string(mesh.targets.size()) +
+               " targets";
+    for (std::size_t w = 0; w < mesh.weights.size(); ++w)
+        if (!std::isfinite(mesh.weights[w]))
+            return "morph weight " + std::to_string(w) + " is " + fmt(double(mesh.weights[w])) + ", not finite";
     if (!mesh.triangleSource.empty() && mesh.triangleSource.size() != mesh.triangleCount())
         return std::to_string(mesh.triangleSource.size()) + " triangle sources for " +
                std::to_string(mesh.triangleCount()) + " triangles";
@@ -133,6 +149,7 @@ Result<int> Scene::addMesh(Mesh mesh, bool optimizeOrder) {
     if (const std::string problem = meshProblem(mesh, materials.size()); !problem.empty())
         return bad("mesh" + quotedName(mesh.name) + ": " + problem);
     finalizeMesh(mesh, optimizeOrder);  // nothing to drop: every position is finite
+    if (mesh.weights.empty()) mesh.weights.assign(mesh.targets.size(), 0.0f);
     meshes.push_back(std::move(mesh));
     return int(meshes.size()) - 1;
 }

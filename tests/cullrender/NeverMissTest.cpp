@@ -144,6 +144,19 @@ TEST(NeverMissTest, DefaultDominoesOverTime) {
     expectSomethingSeen(views);
 }
 
+// Morph targets: a morphing instance is drawn whole by every method (its map is of its rest pose)
+// and is no occluder; the others are culled as always. Over weights from (−1, 10) to (10, 0.5).
+TEST(NeverMissTest, MorphingSceneOverTime) {
+    CullBench bench(test::morphingScene(), 160, 120);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    Tallies tallies;
+    for (double time : {0.0, 0.5, 1.0, 1.7, 2.0, 2.6, 3.0, 3.5, 4.0})
+        tallies.add(test::checkFrame(bench, {}, "morphing, t = " + std::to_string(time), time));
+    Tallies views = test::checkReportViews(bench, 6, "morphing", 1.0);
+    expectSomethingSeen(tallies);
+    expectSomethingSeen(views);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Property: random meshes, random instances (mirrored, non-uniformly scaled, single- and
 // double-sided) and random views, cameras inside the bounding sphere included.

@@ -248,13 +248,16 @@ TEST(CameraTest, TheEnvelopeHoldsAnAnimatedSceneAtEveryTime) {
     scene.nodes.push_back(child);
     Animation animation;
     AnimChannel spin{
-        0, AnimPath::Rotation, Interp::Linear, {0, 1, 2}, {{0, 0, 0, 1}, {0, 0.7071f, 0, 0.7071f}, {0, 1, 0, 0}}};
+        0, AnimPath::Rotation, Interp::Linear, {0, 1, 2}, {{0, 0, 0, 1}, {0, 0.7071f, 0, 0.7071f}, {0, 1, 0, 0}}, {},
+        0};
     AnimChannel move{1,
                      AnimPath::Translation,
                      Interp::CubicSpline,
                      {0, 2},
-                     {{0, 0, 0, 0}, {3, 0, 0, 0}, {0, 20, 0, 0}, {0, -20, 0, 0}, {3, 2, 0, 0}, {0, 0, 0, 0}}};
-    AnimChannel grow{1, AnimPath::Scale, Interp::Step, {0, 1}, {{1, 1, 1, 0}, {2, 0.5f, 1, 0}}};
+                     {{0, 0, 0, 0}, {3, 0, 0, 0}, {0, 20, 0, 0}, {0, -20, 0, 0}, {3, 2, 0, 0}, {0, 0, 0, 0}},
+                     {},
+                     0};
+    AnimChannel grow{1, AnimPath::Scale, Interp::Step, {0, 1}, {{1, 1, 1, 0}, {2, 0.5f, 1, 0}}, {}, 0};
     animation.channels = {spin, move, grow};
     scene.animations.push_back(animation);
     scene.buildInstances();

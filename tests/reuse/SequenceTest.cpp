@@ -90,6 +90,15 @@ TEST(ReuseSequence, BlendedAndMaskedSurfacesInLinearColourMatchTheFullRender) {
     }
 }
 
+// A morphing instance is dynamic in the frames its weights change, and its extents are of its posed
+// positions: the still spheres are reused around it, and every frame is the full render's.
+TEST(ReuseSequence, MorphTargetsMatchTheFullRender) {
+    const Scene scene = test::morphingScene();
+    const std::vector<SequenceResult> results = expectExactEveryWay(scene, 200, 150, 40, animated(scene, {}, 200, 150));
+    const std::string modes = results[2].modes();  // no fallback: the reuse path on every frame it can take
+    EXPECT_NE(modes.find('U'), std::string::npos) << results[2].describe();
+}
+
 TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {
     const Scene scene = loadOrFail("builtin:cubes");
     // Every cube spins: from the second frame on, everything is dynamic.

@@ -690,6 +690,24 @@ std::vector<MatrixCase> matrix() {
         {"tonemap-aces", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::Aces},
         {"lights", lights, 640, 400, lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f), {}},
         {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
+        // Morph targets posed on the CPU, drawn alike by both: weights of −1 and 10, and weights
+        // that do not sum to 1.
+        {"morph-minus1-and-10",
+         [] {
+             return test::morphingScene({-1.0f, 10.0f});
+         },
+         480,
+         360,
+         lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f),
+         {}},
+        {"morph-not-summing-to-1",
+         [] {
+             return test::morphingScene({0.3f, 0.3f});
+         },
+         480,
+         360,
+         lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f),
+         {}},
         // Multisampled (4 samples at llvmpipe's positions), resolved: the colour is the samples' mean,
         // depth and ids sample 0's.
         {"msaa-bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}, ToneMap::None, 4},

@@ -1,0 +1,155 @@
+// Morph targets (frugal/Scene.h): weights sampled as any channel is (step, linear, cubic spline),
+// the node's over the mesh's, the pose they make (posedMesh), the envelope that holds every pose,
+// the checks of a mesh built in memory, and AnimatedMorphCube read from its file.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <frugal/Scene.h>
+
+#include "TestSupport.h"
+
+namespace frugal {
+namespace {
+
+AnimChannel twoWeights(Interp interpolation, std::vector<float> times, std::vector<float> weights) {
+    AnimChannel channel;
+    channel.node = 0;
+    channel.path = AnimPath::Weights;
+    channel.interpolation = interpolation;
+    channel.times = std::move(times);
+    channel.weights = std::move(weights);
+    channel.weightCount = 2;
+    return channel;
+}
+
+TEST(Morph, WeightsAreSampledStepLinearAndCubic) {
+    const AnimChannel linear = twoWeights(Interp::Linear, {1.0f, 3.0f}, {0.0f, 10.0f, 1.0f, -1.0f});
+    EXPECT_EQ(sampleWeights(linear, 0.0), (std::vector<float>{0.0f, 10.0f}));  // before the first key
+    EXPECT_EQ(sampleWeights(linear, 2.0), (std::vector<float>{0.5f, 4.5f}));
+    EXPECT_EQ(sampleWeights(linear, 9.0), (std::vector<float>{1.0f, -1.0f}));  // after the last
+    const AnimChannel step = twoWeights(Interp::Step, {1.0f, 3.0f}, {0.0f, 10.0f, 1.0f, -1.0f});
+    EXPECT_EQ(sampleWeights(step, 2.9), (std::vector<float>{0.0f, 10.0f}));
+    EXPECT_EQ(sampleWeights(step, 3.0), (std::vector<float>{1.0f, -1.0f}));
+    // Cubic: (in, value, out) a key, two weights each; zero tangents give smoothstep between keys.
+    const AnimChannel cubic =
+        twoWeights(Interp::CubicSpline, {0.0f, 2.0f}, {0, 0, 0.0f, 4.0f, 0, 0, 0, 0, 1.0f, 0.0f, 0, 0});
+    const std::vector<float> half = sampleWeights(cubic, 1.0);
+    EXPECT_FLOAT_EQ(half[0], 0.5f);
+    EXPECT_FLOAT_EQ(half[1], 2.0f);
+    const std::vector<float> quarter = sampleWeights(cubic, 0.5);
+    EXPECT_FLOAT_EQ(quarter[0], 3 * 0.0625f - 2 * 0.015625f);  // 3t² − 2t³ at t = 1/4
+}
+
+TEST(Morph, APoseAddsEachTargetTimesItsWeight) {
+    Mesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    mesh.indices = {0, 1, 2};
+    MorphTarget a, b;
+    a.positions = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    a.normals = {{1, 0, 0}, {0, 0, 0}, {0, 0, -1}};
+    b.positions = {{1, 0, 0}, {0, 0, 0}, {0, 2, 0}};
+    mesh.targets = {a, b};
+    const Mesh posed = posedMesh(mesh, {-1.0f, 10.0f});
+    EXPECT_EQ(posed.positions[0], glm::vec3(10, 0, -1));
+    EXPECT_EQ(posed.positions[1], glm::vec3(1, 0, -1));
+    EXPECT_EQ(posed.positions[2], glm::vec3(0, 21, -1));
+    EXPECT_FLOAT_EQ(glm::length(posed.normals[0]), 1.0f);  // (-1, 0, 1), normalised
+    EXPECT_EQ(posed.normals[1], glm::vec3(0, 0, 1));
+    EXPECT_EQ(posed.normals[2], glm::vec3(0, 0, 1));  // (0, 0, 2) normalised
+    EXPECT_TRUE(posed.targets.empty());
+    EXPECT_EQ(posedMesh(mesh, {}).positions, mesh.positions);  // missing weights count 0
+}
+
+TEST(Morph, TheNodesWeightsOverrideTheMeshsAndAChannelBoth) {
+    Scene scene = test::morphingScene({0.5f, -0.5f});
+    const std::vector<std::vector<float>> at0 = scene.morphWeights(0.0), at1 = scene.morphWeights(1.0);
+    int animated = -1, still = -1;
+    for (int n = 0; n < int(scene.nodes.size()); ++n) {
+        if (scene.nodes[std::size_t(n)].name == "animated") animated = n;
+        if (scene.nodes[std::size_t(n)].name == "still") still = n;
+    }
+    ASSERT_GE(animated, 0);
+    ASSERT_GE(still, 0);
+    EXPECT_EQ(at0[std::size_t(still)], (std::vector<float>{0.5f, -0.5f}));
+    EXPECT_EQ(at1[std::size_t(still)], (std::vector<float>{0.5f, -0.5f}));
+    EXPECT_EQ(at0[std::size_t(animated)], (std::vector<float>{0.0f, 0.0f}));
+    EXPECT_EQ(at1[std::size_t(animated)], (std::vector<float>{-1.0f, 10.0f}));
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        if (scene.nodes[n].meshes == std::vector<int>{0}) {
+            EXPECT_TRUE(at1[n].empty());  // a static sphere: no weights
+        }
+    }
+    EXPECT_TRUE(scene.morphs());
+}
+
+TEST(Morph, TheEnvelopeHoldsEveryPose) {
+    const Scene scene = test::morphingScene();
+    for (int k = 0; k <= 200; ++k) {
+        const double time = 4.4 * k / 200.0;
+        const Bounds b = scene.bounds(time);
+        for (int axis = 0; axis < 3; ++axis) {
+            EXPECT_LE(scene.envelope.min[axis], b.min[axis]) << "t = " << time;
+            EXPECT_GE(scene.envelope.max[axis], b.max[axis]) << "t = " << time;
+        }
+    }
+    // The pose at (−1, 10) reaches far beyond the rest shape: the envelope says so.
+    EXPECT_GT(scene.bounds(1.0).max.x - scene.bounds(0.0).max.x, 0.5f);
+}
+
+TEST(Morph, AMeshInMemoryIsChecked) {
+    Mesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    mesh.indices = {0, 1, 2};
+    MorphTarget target;
+    target.positions = {{0, 0, 1}, {0, 0, 1}};
+    mesh.targets = {target};
+    Scene scene;
+    Result<int> added = scene.addMesh(mesh);
+    ASSERT_FALSE(added);
+    EXPECT_EQ(added.error().message,
+              "mesh: morph target 0 2 position displacements for 3 vertices (one a vertex, or none)");
+    mesh.targets[0].positions = {{0, 0, 1}, {0, NAN, 1}, {0, 0, 1}};
+    added = scene.addMesh(mesh);
+    ASSERT_FALSE(added);
+    EXPECT_EQ(added.error().message, "mesh: morph target 0 position 1 is (0, nan, 1), not finite");
+    mesh.targets[0].positions[1] = {0, 0, 1};
+    mesh.weights = {1.0f, 2.0f};
+    added = scene.addMesh(mesh);
+    ASSERT_FALSE(added);
+    EXPECT_EQ(added.error().message, "mesh: 2 morph weights for 1 targets");
+    mesh.weights.clear();
+    added = scene.addMesh(mesh);
+    ASSERT_TRUE(added) << added.error().message;
+    EXPECT_EQ(scene.meshes[std::size_t(*added)].weights, std::vector<float>{0.0f});  // all 0
+}
+
+TEST(Morph, AnimatedMorphCubeReadsItsTargetsAndTheirWeights) {
+    const std::string path =
+        std::string(FRUGAL_ASSIMP_GLTF2_DIR) + "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene) << scene.error().message;
+    ASSERT_EQ(scene->meshes.size(), 1u);
+    const Mesh& mesh = scene->meshes[0];
+    ASSERT_EQ(mesh.targets.size(), 2u);
+    EXPECT_EQ(mesh.targets[0].positions.size(), mesh.positions.size());
+    EXPECT_EQ(mesh.targets[0].normals.size(), mesh.positions.size());
+    EXPECT_EQ(mesh.weights.size(), 2u);
+    ASSERT_EQ(scene->animations.size(), 1u);
+    ASSERT_EQ(scene->animations[0].channels.size(), 1u);
+    const AnimChannel& channel = scene->animations[0].channels[0];
+    EXPECT_EQ(channel.path, AnimPath::Weights);
+    EXPECT_EQ(channel.weightCount, 2);
+    EXPECT_EQ(channel.weights.size(), channel.times.size() * 2);
+    EXPECT_TRUE(scene->unsupported.empty());
+    // The cube changes shape over its animation, within its envelope.
+    const Bounds rest = scene->bounds(0.0), moved = scene->bounds(1.0);
+    EXPECT_NE(rest.max, moved.max);
+    for (int axis = 0; axis < 3; ++axis) EXPECT_GE(scene->envelope.max[axis], moved.max[axis]);
+}
+
+}  // namespace
+}  // namespace frugal
