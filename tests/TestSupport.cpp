@@ -335,4 +335,82 @@ Scene morphingScene(std::vector<float> still) {
     return scene;
 }
 
+Scene skinnedScene(float topScale, bool affine) {
+    Scene scene;
+    scene.source = "skinned test scene";
+    Material material;
+    material.baseColorFactor = {0.8f, 0.5f, 0.4f, 1.0f};
+    material.metallicFactor = 0.0f;
+    material.roughnessFactor = 0.6f;
+    material.doubleSided = true;
+    scene.materials = {material};
+    Mesh tube;
+    const int rings = 24, segments = 16;
+    Mesh::Influences influences;
+    for (int i = 0; i <= rings; ++i)
+        for (int j = 0; j <= segments; ++j) {
+            const float h = 2.0f * float(i) / float(rings), phi = 6.2831853f * float(j) / float(segments);
+            const glm::vec3 n(std::cos(phi), 0.0f, std::sin(phi));
+            tube.positions.push_back(glm::vec3(0.0f, h, 0.0f) + 0.3f * n);
+            tube.normals.push_back(n);
+            // Root below 1, the middle around 1, the top above 1.
+            const float mid = std::max(0.0f, 1.0f - std::abs(h - 1.0f));
+            const float scale = affine ? 1.0f : (j % 2 == 0 ? 0.7f : 1.3f);
+            influences.joints.push_back(glm::uvec4(0, 1, 2, 0));
+            influences.weights.push_back(
+                scale * glm::vec4(h < 1.0f ? 1.0f - mid : 0.0f, mid, h >= 1.0f ? 1.0f - mid : 0.0f, 0.0f));
+        }
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const std::uint32_t a = std::uint32_t(i * (segments + 1) + j), b = a + std::uint32_t(segments + 1);
+            tube.indices.insert(tube.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+    tube.influences = {influences};
+    tube.material = 0;
+    Mesh ball = morphingScene().meshes[0];  // the unit sphere
+    ball.material = 0;
+    EXPECT_TRUE(scene.addMesh(tube));
+    EXPECT_TRUE(scene.addMesh(ball));
+    // The joints: root at the origin, middle 1 above it, top 1 above that.
+    Node root, middle, top, skinned;
+    root.name = "root";
+    middle.name = "middle";
+    middle.translation = {0.0f, 1.0f, 0.0f};
+    top.name = "top";
+    top.translation = {0.0f, 1.0f, 0.0f};
+    scene.nodes = {root, middle, top};
+    scene.nodes[0].children = {1};
+    scene.nodes[1].parent = 0;
+    scene.nodes[1].children = {2};
+    scene.nodes[2].parent = 1;
+    skinned.name = "skinned";
+    skinned.translation = {1.5f, -0.5f, 0.0f};  // its own transform: the joints place the tube
+    skinned.meshes = {0};
+    skinned.skin = 0;
+    scene.nodes.push_back(skinned);
+    scene.roots = {0, 3};
+    Skin skin;
+    skin.joints = {0, 1, 2};
+    for (float y : {0.0f, 1.0f, 2.0f})
+        skin.inverseBindMatrices.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -y, 0.0f)));
+    scene.skins = {skin};
+    for (const glm::vec3& c : {glm::vec3(-1.5f, 0.0f, -1.0f), glm::vec3(1.0f, 1.5f, -2.0f)}) {
+        const glm::mat4 place = glm::scale(glm::translate(glm::mat4(1.0f), c), glm::vec3(0.5f));
+        EXPECT_TRUE(scene.addInstance(1, place));
+    }
+    AnimChannel turn;
+    turn.node = 1;
+    turn.path = AnimPath::Rotation;
+    turn.times = {0.0f, 2.0f, 4.0f};
+    turn.values = {{0, 0, 0, 1}, {0, 0, 0.8660254f, 0.5f}, {0, 0, 0, 1}};  // about z: 0, 120, 0 degrees
+    AnimChannel grow;
+    grow.node = 2;
+    grow.path = AnimPath::Scale;
+    grow.times = {0.0f, 2.0f, 4.0f};
+    grow.values = {{topScale, topScale, topScale, 0}, {1, 1, 1, 0}, {topScale, topScale, topScale, 0}};
+    scene.animations.push_back(Animation{"bend", {turn, grow}});
+    scene.buildInstances();
+    return scene;
+}
+
 }  // namespace frugal::test

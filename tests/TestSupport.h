@@ -99,6 +99,13 @@ Scene oneMeshScene(Mesh mesh, const Material& material = {});
 // single- and double-sided. Built in memory (buildInstances called).
 Scene morphingScene(std::vector<float> still = {0.5f, -0.5f});
 
+// A scene with a skin: a tube along y, skinned to three joints in a chain (root, middle, top) whose
+// weights blend by height, drawn by a node placed apart from the joints; the middle joint turns by
+// up to 120 degrees and back over 4 s, and the top one is scaled by `topScale` at 0 and 4 s and by
+// 1 at 2 s (a scale of 0 and of 10⁴ are the extremes); with `affine` false the weights sum to 0.7
+// or 1.3 instead of 1. Beside it two static spheres. Built in memory (buildInstances called).
+Scene skinnedScene(float topScale = 2.0f, bool affine = true);
+
 // Gives a third of the scene's meshes a blended material and a third a masked one (each a copy of
 // its material), with vertex alphas that vary across every mesh (from its positions): masked
 // triangles get holes at the cutoff of 0.5, blended ones a range of coverage. For checking that a

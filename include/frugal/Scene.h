@@ -179,9 +179,19 @@ struct Mesh {
     // an animation's "weights" channel replaces them (Scene::morphWeights).
     std::vector<MorphTarget> targets;
     std::vector<float> weights;
+    // Skinning (glTF's JOINTS_n and WEIGHTS_n; up to two sets): per vertex four joints, indices
+    // into Skin::joints of the skin of the node that draws the mesh, and their weights, used as
+    // given (glTF says they sum to 1; frugal does not renormalise, nor does the Khronos renderer).
+    // Empty: not skinned. A node without a skin draws the mesh unskinned.
+    struct Influences {
+        std::vector<glm::uvec4> joints;
+        std::vector<glm::vec4> weights;
+    };
+    std::vector<Influences> influences;
 
     std::size_t triangleCount() const { return indices.size() / 3; }
     bool morphs() const { return !targets.empty(); }
+    bool skinned() const { return !influences.empty(); }
 };
 
 // KHR_lights_punctual's kinds of light, and their names there ("directional", "point", "spot"): what
@@ -237,6 +247,17 @@ struct Node {
     int light = -1;  // index into Scene::lights
     // glTF's node.weights: the morph weights of the node's meshes (empty: the meshes' own).
     std::vector<float> weights;
+    int skin = -1;  // index into Scene::skins: the node's skinned meshes follow its joints
+};
+
+// A glTF skin: the joint nodes and their inverse bind matrices (identity where the file has none).
+// A vertex of a mesh drawn by node N with this skin is, in N's frame, Σ weightᵢ · Jᵢ · vertex with
+// Jᵢ = inverse(world(N)) · world(jointᵢ) · inverseBindᵢ (glTF's skinning, as the Khronos renderer
+// computes it: N's own transform then places it).
+struct Skin {
+    std::string name;
+    std::vector<int> joints;
+    std::vector<glm::mat4> inverseBindMatrices;  // one a joint
 };
 
 // One drawn mesh: a (node, mesh) pair. Instances are numbered in a stable order (node order, then
@@ -316,6 +337,7 @@ struct Scene {
     std::vector<SceneCamera> cameras;
     std::vector<PunctualLight> lights;  // placed by Node::light
     std::vector<Animation> animations;
+    std::vector<Skin> skins;
     // Features in the file that frugal does not model, by name ("skins", "morph targets",
     // "KHR_materials_clearcoat", ...). Reported by `frugal info` and as a warning on render.
     std::vector<std::string> unsupported;
@@ -342,6 +364,14 @@ struct Scene {
     // "weights" channel sampled, else the node's own, else its first morphing mesh's.
     std::vector<std::vector<float>> morphWeights(double time) const;
     bool morphs() const;  // does a drawn mesh have morph targets?
+    // Does instance `instance` change shape (morph targets, or a skinned mesh drawn by a node with a
+    // skin)? Such an instance is posed per frame (posedMesh) and drawn whole by every culling
+    // method; deforms() asks it of every instance.
+    bool deforms(const Instance& instance) const;
+    bool deforms() const;
+    // The joint matrices J of instance `instance` (deforms: skinned) under node matrices `world`;
+    // empty when it is not skinned.
+    std::vector<glm::mat4> jointMatrices(const Instance& instance, const std::vector<glm::mat4>& world) const;
     Bounds bounds(double time) const;
     // The envelope as defined above, computed from the meshes, nodes and animations.
     Bounds computeEnvelope() const;
@@ -389,8 +419,11 @@ std::vector<float> sampleWeights(const AnimChannel& channel, double time);
 
 // `mesh` posed by morph weights `weights` (one per target; missing ones count 0): positions,
 // normals (normalised; a zero sum keeps the base normal) and tangents displaced, in float, the
-// targets summed in order. What both backends draw, so they draw the same vertices.
-Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights);
+// targets summed in order; then, with `joints` (Scene::jointMatrices), skinned: each position
+// Σ weight · J · position over the influences in order, each normal Σ weight · J⁻ᵀ · normal
+// normalised, each tangent's xyz Σ weight · J · xyz. What both backends draw, so they draw the
+// same vertices.
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints = {});
 
 struct LoadOptions {
     bool optimizeOrder = true;   // reorder triangles for the vertex cache (meshoptimizer)

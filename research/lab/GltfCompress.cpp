@@ -215,13 +215,20 @@ Result<std::string> compressDraco(Gltf gltf, const CompressOptions& options, con
                                   : name.rfind("TEXCOORD_", 0) == 0 ? Type::TEX_COORD
                                   : name.rfind("COLOR_", 0) == 0    ? Type::COLOR
                                                                     : Type::GENERIC;
+                // Joint indices stay integers (glTF allows them unsigned byte or short only).
+                const bool joints = name.rfind("JOINTS_", 0) == 0;
                 draco::GeometryAttribute attribute;
-                attribute.Init(type, nullptr, std::uint8_t(components), draco::DT_FLOAT32, false,
-                               std::int64_t(sizeof(float)) * components, 0);
+                attribute.Init(type, nullptr, std::uint8_t(components), joints ? draco::DT_UINT16 : draco::DT_FLOAT32,
+                               false, std::int64_t(joints ? sizeof(std::uint16_t) : sizeof(float)) * components, 0);
                 const int id = source.AddAttribute(attribute, true, std::uint32_t(points));
-                for (std::size_t p = 0; p < points; ++p)
-                    source.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(std::uint32_t(p)),
-                                                            &values[p * std::size_t(components)]);
+                for (std::size_t p = 0; p < points; ++p) {
+                    std::uint16_t integers[4] = {};
+                    for (int c = 0; c < components && joints; ++c)
+                        integers[c] = std::uint16_t(values[p * std::size_t(components) + std::size_t(c)]);
+                    const void* value = joints ? static_cast<const void*>(integers)
+                                               : static_cast<const void*>(&values[p * std::size_t(components)]);
+                    source.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(std::uint32_t(p)), value);
+                }
                 ids.emplace_back(name, id);
             }
             std::vector<float> indices;
@@ -263,7 +270,7 @@ Result<std::string> compressDraco(Gltf gltf, const CompressOptions& options, con
             Json extension{{"bufferView", json["bufferViews"].size() - 1}, {"attributes", Json::object()}};
             for (const auto& [name, id] : ids) {
                 const draco::PointAttribute& attribute = *result->GetAttributeByUniqueId(std::uint32_t(id));
-                Json accessor{{"componentType", 5126},
+                Json accessor{{"componentType", name.rfind("JOINTS_", 0) == 0 ? 5123 : 5126},
                               {"count", result->num_points()},
                               {"type", json["accessors"][primitive["attributes"][name].get<std::size_t>()]["type"]}};
                 if (name == "POSITION") {

@@ -239,6 +239,16 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         out << "morph targets: " << targets << " on " << morphing << (morphing == 1 ? " mesh" : " meshes")
             << ", weights animated by " << weightChannels << (weightChannels == 1 ? " channel" : " channels")
             << " (posed on the CPU; culling draws them whole)\n";
+    std::size_t skinned = 0;
+    for (const Instance& instance : scene.instances)
+        skinned +=
+            scene.nodes[std::size_t(instance.node)].skin >= 0 && scene.meshes[std::size_t(instance.mesh)].skinned();
+    if (!scene.skins.empty()) {
+        std::size_t joints = 0;
+        for (const Skin& skin : scene.skins) joints += skin.joints.size();
+        out << "skins: " << scene.skins.size() << " (" << joints << " joints), " << skinned
+            << (skinned == 1 ? " instance" : " instances") << " skinned (posed on the CPU; culling draws them whole)\n";
+    }
     const Bounds b = scene.bounds(0.0);
     if (b.empty()) out << "bounds: empty\n";
     else out << "bounds: min " << fmt(b.min.x) << "," << fmt(b.min.y) << "," << fmt(b.min.z) << " max " << fmt(b.max.x) << ","

@@ -340,7 +340,7 @@ std::optional<double> TradeReport::xFloor(const TradeRow& row) const {
 }
 
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped,
-                                            bool morphs) {
+                                            bool deforms) {
     std::vector<TradeCandidate> out{with(base, "plain", "plain", [](Settings&) {})};
     // Every culling method by its traits: the plain render has none; an id pass is the floor, not a
     // method; a plan made ahead needs a sequence (below).
@@ -354,7 +354,7 @@ std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence,
     for (const Order order : {Order::Key, Order::Greedy})
         out.push_back(with(base, std::string("order ") + toString(order), "order", [order](Settings& s) { s.order = order; }));
     for (const Hsr hsr : {Hsr::DepthSort, Hsr::Adaptive})
-        if (!morphs)
+        if (!deforms)
             out.push_back(with(base, std::string("hsr ") + toString(hsr), "hsr", [hsr](Settings& s) { s.hsr = hsr; }));
     if (software && base.depthFormat == DepthFormat::D24)
         for (const DepthInterp interp : {DepthInterp::Span, DepthInterp::Dda})

@@ -138,10 +138,11 @@ struct TradeReport {
 // the culling methods (and the oracle as floor), the orders key and greedy, the hidden-surface modes,
 // on the software backend the interpolators, the shading trades (the Lambert approximation; one
 // sample where the base has more; no mipmaps), in a sequence reuse, and the useful combinations.
-// `mipmapped`: the scene has a texture with mipmaps (then "no mipmaps" is weighed too). `morphs`:
-// the scene has morph targets, which the hidden-surface modes do not take (they are left out).
+// `mipmapped`: the scene has a texture with mipmaps (then "no mipmaps" is weighed too). `deforms`:
+// the scene has meshes that deform (Scene::deforms), which the hidden-surface modes do not take
+// (they are left out).
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped = false,
-                                            bool morphs = false);
+                                            bool deforms = false);
 
 // What a candidate drew in one timed render: FrameStats::drawFingerprint and culledFingerprint.
 struct DrawRecord {

@@ -119,7 +119,7 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const bool mipmapped = std::any_of(loaded->textures.begin(), loaded->textures.end(),
                                        [](const Texture& t) { return t.mipmaps != MipFilter::None; });
     const std::vector<TradeCandidate> candidates =
-        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software, mipmapped, loaded->morphs());
+        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software, mipmapped, loaded->deforms());
     Result<TradeReport> report = measureTrades(*loaded, candidates, settings, progressTo(err, options.quiet));
     if (!report) return fail(err, report.error());
     out << tradeRecommendationText(*report, settings);

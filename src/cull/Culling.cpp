@@ -500,12 +500,12 @@ SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::v
 
 namespace {
 
-// `list` with every morphing instance drawn whole, in instance order (the scene order plans keep).
-DrawList withMorphingWhole(const Scene& scene, DrawList list) {
+// `list` with every deforming instance drawn whole, in instance order (the scene order plans keep).
+DrawList withDeformingWhole(const Scene& scene, DrawList list) {
     bool any = false;
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Mesh& mesh = scene.meshes[std::size_t(scene.instances[i].mesh)];
-        if (!mesh.morphs() || mesh.triangleCount() == 0) continue;
+        if (!scene.deforms(scene.instances[i]) || mesh.triangleCount() == 0) continue;
         RangeList whole;
         whole.add(0, std::uint32_t(mesh.triangleCount()));
         list.push_back(DrawCommand{int(i), std::move(whole.ranges)});
@@ -531,9 +531,8 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
     clusterStart_.assign(scene.instances.size() + 1, 0);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
-        // A morphing instance is drawn whole and is no occluder (its map is of its rest pose).
-        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
-        const bool empty = mesh.triangleCount() == 0 || mesh.morphs();
+        // A deforming instance is drawn whole and is no occluder (its map is of its rest pose).
+        const bool empty = scene.meshes[std::size_t(instance.mesh)].triangleCount() == 0 || scene.deforms(instance);
         clusterStart_[i + 1] = clusterStart_[i] + (empty ? 0 : maps_[std::size_t(instance.mesh)].clusters.size());
     }
     const std::size_t pieceClusters = sideBySide ? kPieceClusters : std::max<std::size_t>(clusterStart_.back(), 1);
@@ -598,7 +597,7 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
             }
         if (!out.ranges.empty()) list.push_back(DrawCommand{int(instance), std::move(out.ranges)});
     }
-    return withMorphingWhole(scene, std::move(list));
+    return withDeformingWhole(scene, std::move(list));
 }
 
 DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<glm::mat4>& world,
@@ -616,8 +615,8 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
         const glm::mat4& model = world[std::size_t(instance.node)];
         const bool singleSided = isSingleSided(scene, mesh);
         RangeList out;
-        if (mesh.morphs()) {
-            // Its triangles move with its weights: the mesh's map describes its rest pose only.
+        if (scene.deforms(instance)) {
+            // Its triangles move with its pose: the mesh's map describes its rest pose only.
             out.add(0, triangles);
             list.push_back(DrawCommand{int(i), std::move(out.ranges)});
             continue;

@@ -19,7 +19,7 @@ SceneRenderer::~SceneRenderer() { release(); }
 SceneRenderer::SceneRenderer(SceneRenderer&& other) noexcept
     : backend_(other.backend_), scene_(other.scene_), full_(std::move(other.full_)),
       meshes_(std::exchange(other.meshes_, {})), posedSlot_(std::move(other.posedSlot_)),
-      posed_(std::exchange(other.posed_, {})), posedWeights_(std::move(other.posedWeights_)),
+      posed_(std::exchange(other.posed_, {})), posedPose_(std::move(other.posedPose_)),
       textures_(std::exchange(other.textures_, {})),
       cullAllBackFaces_(other.cullAllBackFaces_), batching_(other.batching_),
       centroids_(std::move(other.centroids_)) {}
@@ -33,7 +33,7 @@ SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
         meshes_ = std::exchange(other.meshes_, {});
         posedSlot_ = std::move(other.posedSlot_);
         posed_ = std::exchange(other.posed_, {});
-        posedWeights_ = std::move(other.posedWeights_);
+        posedPose_ = std::move(other.posedPose_);
         textures_ = std::exchange(other.textures_, {});
         cullAllBackFaces_ = other.cullAllBackFaces_;
         batching_ = other.batching_;
@@ -67,17 +67,21 @@ MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
 void SceneRenderer::pose(double time) {
     if (posed_.empty()) return;
     const std::vector<std::vector<float>> weights = scene_->morphWeights(time);
+    const std::vector<glm::mat4> world = scene_->worldTransforms(time);
     for (std::size_t i = 0; i < posedSlot_.size(); ++i) {
         const int slot = posedSlot_[i];
         if (slot < 0) continue;
         const Instance& instance = scene_->instances[i];
         const std::vector<float>& w = weights[std::size_t(instance.node)];
-        if (posed_[std::size_t(slot)] != kNoHandle && posedWeights_[std::size_t(slot)] == w) continue;
-        const MeshHandle handle = upload(posedMesh(scene_->meshes[std::size_t(instance.mesh)], w));
+        std::vector<glm::mat4> joints = scene_->jointMatrices(instance, world);
+        Posed& posed = posedPose_[std::size_t(slot)];
+        if (posed_[std::size_t(slot)] != kNoHandle && posed.weights == w && posed.joints == joints) continue;
+        const MeshHandle handle = upload(posedMesh(scene_->meshes[std::size_t(instance.mesh)], w, joints));
         if (handle == kNoHandle) throw std::bad_alloc();
         if (posed_[std::size_t(slot)] != kNoHandle) backend_->releaseMesh(posed_[std::size_t(slot)]);
         posed_[std::size_t(slot)] = handle;
-        posedWeights_[std::size_t(slot)] = w;
+        posed.weights = w;
+        posed.joints = std::move(joints);
     }
 }
 
@@ -86,10 +90,10 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     renderer.meshes_.reserve(scene.meshes.size());
     renderer.posedSlot_.assign(scene.instances.size(), -1);
     for (std::size_t i = 0; i < scene.instances.size(); ++i)
-        if (scene.meshes[std::size_t(scene.instances[i].mesh)].morphs()) {
+        if (scene.deforms(scene.instances[i])) {
             renderer.posedSlot_[i] = int(renderer.posed_.size());
             renderer.posed_.push_back(kNoHandle);
-            renderer.posedWeights_.emplace_back();
+            renderer.posedPose_.emplace_back();
         }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
@@ -128,7 +132,7 @@ Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene
     try {
         renderer.pose(0.0);  // so that a draw before the first frame finds every posed mesh
     } catch (const std::bad_alloc&) {
-        return Error{"a morphing mesh posed at time 0: " + backend.name() + " could not store it (out of memory)"};
+        return Error{"a deforming mesh posed at time 0: " + backend.name() + " could not store it (out of memory)"};
     }
     return renderer;
 }

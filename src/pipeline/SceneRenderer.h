@@ -29,9 +29,10 @@ public:
     SceneRenderer(const SceneRenderer&) = delete;
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-    // Poses the morphing meshes (Mesh::targets) at scene time `time`: each instance of one is drawn
-    // from a mesh of its own, posed on the CPU (posedMesh) by its node's weights and uploaded again
-    // when they change, so both backends draw the same vertices. renderFrame and execute pose at
+    // Poses the deforming instances (Scene::deforms: morph targets, skins) at scene time `time`:
+    // each is drawn from a mesh of its own, posed on the CPU (posedMesh) by its node's weights and
+    // its skin's joint matrices and uploaded again when they change, so both backends draw the same
+    // vertices. renderFrame and execute pose at
     // their frame's time; nothing to do in a scene without morph targets. An upload the backend
     // refuses throws std::bad_alloc (a frame cannot be drawn without it).
     void pose(double time);
@@ -79,11 +80,15 @@ private:
     const Scene* scene_;
     DrawList full_;
     std::vector<MeshHandle> meshes_;
-    // Morphing instances: per instance its slot in posed_ (-1: drawn from meshes_), and per slot the
-    // uploaded posed mesh and the weights it was posed with.
+    // Deforming instances (Scene::deforms): per instance its slot in posed_ (-1: drawn from
+    // meshes_), and per slot the uploaded posed mesh and the pose it was made with.
+    struct Posed {
+        std::vector<float> weights;
+        std::vector<glm::mat4> joints;
+    };
     std::vector<int> posedSlot_;
     std::vector<MeshHandle> posed_;
-    std::vector<std::vector<float>> posedWeights_;
+    std::vector<Posed> posedPose_;
     std::vector<TextureHandle> textures_;
     bool cullAllBackFaces_ = false;
     bool batching_ = true;

@@ -113,11 +113,11 @@ Result<bool> Renderer::Impl::open() {
     // Values out of their range, and settings that may not go together (frugal/Settings.h).
     if (const std::optional<SettingsProblem> problem = settingsProblem(s))
         return Error{describe(*problem, s), ErrorKind::BadInput, true};
-    // The hidden-surface modes plan from the meshes' shapes, which morph targets change.
-    if (traitsOf(s.hsr).plans && scene->morphs())
+    // The hidden-surface modes plan from the meshes' shapes, which morph targets and skins change.
+    if (traitsOf(s.hsr).plans && scene->deforms())
         return Error{std::string("hsr ") + toString(s.hsr) + ": '" + scene->source +
-                         "' has morph targets, and the hidden-surface modes need meshes of a fixed shape (zbuffer "
-                         "draws it)",
+                         "' has meshes that deform (morph targets, skins), and the hidden-surface modes need "
+                         "meshes of a fixed shape (zbuffer draws it)",
                      ErrorKind::BadInput, true};
     const CullTraits& cull = traitsOf(s.cull);
     if (cull.prepares) {

@@ -56,6 +56,7 @@ TemporalReuse::TemporalReuse(const Scene& scene, int width, int height, ReuseOpt
     extents_.assign(groups, reuse::Box{});
     instanceBoxes_.assign(records_.size(), reuse::Box{});
     weights_.resize(records_.size());
+    joints_.resize(records_.size());
     posed_.resize(records_.size());
 }
 
@@ -136,7 +137,7 @@ FramePlan TemporalReuse::makePlan(const FrameParams& frame, const std::vector<gl
     lastFrame_ = frame;
     lastBackground_ = background;
 
-    if (scene_->morphs()) frameWeights_ = scene_->morphWeights(frame.time);
+    if (scene_->deforms()) frameWeights_ = scene_->morphWeights(frame.time);
     Changes changes;
     if (!classify(list, world, first, wholeAgain, changes)) {
         // Not a list reuse can split into static and dynamic instances: draw it as it is, and
@@ -210,14 +211,18 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
         bool changed = !first && (std::memcmp(&model, &models_[i], sizeof model) != 0 ||
                                   materialChanged_[std::size_t(info.material + 1)] != 0);
         if (changed || first) models_[i] = model;
-        // The morph weights, value for value (a NaN weight is never equal: dynamic every frame).
-        const Mesh& mesh = scene_->meshes[std::size_t(scene_->instances[i].mesh)];
-        if (mesh.morphs()) {
+        // The pose of a deforming instance: its morph weights and joint matrices, value for value (a
+        // NaN is never equal: dynamic every frame).
+        const Instance& instance = scene_->instances[i];
+        if (scene_->deforms(instance)) {
+            const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
             const std::vector<float>& now = frameWeights_[std::size_t(info.node)];
-            if (first || now != weights_[i]) {
+            std::vector<glm::mat4> joints = scene_->jointMatrices(instance, world);
+            if (first || now != weights_[i] || joints != joints_[i]) {
                 changed = changed || !first;
                 weights_[i] = now;
-                posed_[i] = posedMesh(mesh, now).positions;
+                posed_[i] = posedMesh(mesh, now, joints).positions;
+                joints_[i] = std::move(joints);
             }
         }
         // The drawn ranges: the whole mesh again (the common case), or compared once normalised.

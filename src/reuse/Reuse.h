@@ -4,8 +4,9 @@
 // holds what the static instances alone render to). Plans only: this module never touches a
 // backend; SceneRenderer::execute runs the FramePlan it makes on either one.
 //
-// Dynamic: an instance whose world matrix, material (any member of it), morph weights (its mesh's
-// targets: extents are then of the posed positions) or drawn ranges differ from the previous frame,
+// Dynamic: an instance whose world matrix, material (any member of it), pose (morph weights and
+// joint matrices, Scene::deforms: extents are then of the posed positions) or drawn ranges differ
+// from the previous frame,
 // compared exactly: bit for bit (so -0 and +0 differ,
 // and a NaN pose that stays the same bits is static: it draws the same nothing); appearing (drawn
 // now, not before) and disappearing count as changes. An instance of a blended material
@@ -175,10 +176,12 @@ private:
     std::vector<InstanceInfo> info_;
     std::vector<Record> records_;
     std::vector<glm::mat4> models_;                // per instance, as drawn in the previous frame
-    // Morphing instances (Mesh::targets): this frame's weights per node, and per instance the
-    // weights it was drawn with last and its posed positions (what its extents are made of).
+    // Deforming instances (Scene::deforms): this frame's morph weights per node, and per instance
+    // the weights and joint matrices it was drawn with last and its posed positions (what its
+    // extents are made of).
     std::vector<std::vector<float>> frameWeights_;
     std::vector<std::vector<float>> weights_;
+    std::vector<std::vector<glm::mat4>> joints_;
     std::vector<std::vector<glm::vec3>> posed_;
     std::vector<Material> materialKeys_;           // per material + 1 (0: the default material)
     std::vector<std::uint8_t> materialChanged_;

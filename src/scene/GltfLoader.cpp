@@ -337,6 +337,7 @@ private:
     Clearcoat clearcoatOf(int material) const;
     ExtensionTexture extensionTexture(const tinygltf::Value& value, const std::string& where) const;
     void convertAnimations();
+    void convertSkins();
     void addCamera(int node);
     void convertLights();
 
@@ -709,7 +710,7 @@ void Converter::convertNodes() {
             scene_.nodes[std::size_t(n)].meshes = meshes;
         }
         if (src.camera >= 0) addCamera(n);
-        if (src.skin >= 0) report("skins");
+        scene_.nodes[std::size_t(n)].skin = src.skin;
         if (const auto it = src.extensions.find("KHR_lights_punctual"); it != src.extensions.end()) {
             const std::string where = cat("nodes[", n, "].extensions.KHR_lights_punctual");
             if (!it->second.IsObject() || !it->second.Has("light")) fail(where, ": no light");
@@ -874,6 +875,29 @@ void Converter::readAttributes(const tinygltf::Primitive& primitive, const std::
         maps.texture[MaterialMaps::kNormal] >= 0 || maps.texture[MaterialMaps::kClearcoatNormal] >= 0;
     if (const int tangent = accessor("TANGENT"); tangent >= 0 && normalMapped && !mesh.normals.empty())
         mesh.tangents = toVectors<glm::vec4>(readFloats(tangent, "TANGENT of " + where, kVec4, nullptr, kFloat));
+    // Skinning: JOINTS_n (unsigned byte or short) and WEIGHTS_n (float or normalised), sets 0 and 1.
+    static constexpr int kJointTypes[] = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+    for (int set = 0; set < 2; ++set) {
+        const int joints = accessor(cat("JOINTS_", set)), weights = accessor(cat("WEIGHTS_", set));
+        if (joints < 0 || weights < 0) break;
+        Mesh::Influences influences;
+        const std::vector<std::uint32_t> indices =
+            read<std::uint32_t>(joints, cat("JOINTS_", set, " of ", where), {kVec4, kJointTypes}, decodeUint);
+        const std::vector<float> values = readFloats(weights, cat("WEIGHTS_", set, " of ", where), kVec4);
+        influences.joints.resize(vertexCount);
+        influences.weights.resize(vertexCount);
+        for (std::size_t v = 0; v < vertexCount; ++v)
+            for (int k = 0; k < 4; ++k) {
+                influences.joints[v][k] = indices[4 * v + std::size_t(k)];
+                const float w = values[4 * v + std::size_t(k)];
+                if (!std::isfinite(w))
+                    fail("accessor ", weights, " (WEIGHTS_", set, " of ", where, "): weight ", 4 * v + std::size_t(k),
+                         " is not finite");
+                influences.weights[v][k] = w;
+            }
+        mesh.influences.push_back(std::move(influences));
+    }
     if (const int uv = accessor(uvName); uv >= 0) {
         mesh.uvs = toVectors<glm::vec2>(readFloats(uv, uvName + " of " + where, kVec2));
     } else if (textured) {
@@ -1285,6 +1309,51 @@ void Converter::convertAnimations() {
     }
 }
 
+// Skins: joints and inverse bind matrices (MAT4 floats, one a joint at least; identity without an
+// accessor). A node with a skin that draws a skinned mesh must have every joint its vertices name.
+void Converter::convertSkins() {
+    static constexpr int kMat4[] = {TINYGLTF_TYPE_MAT4};
+    static constexpr int kFloat[] = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+    for (std::size_t k = 0; k < model_.skins.size(); ++k) {
+        const tinygltf::Skin& src = model_.skins[k];
+        const std::string where = cat("skins[", k, "]");
+        Skin skin;
+        skin.name = src.name;
+        skin.joints = src.joints;
+        if (skin.joints.empty()) fail(where, ": no joints");
+        skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));
+        if (src.inverseBindMatrices >= 0) {
+            const std::vector<float> values =
+                readFloats(src.inverseBindMatrices, "inverseBindMatrices of " + where, kMat4, nullptr, kFloat);
+            if (values.size() < 16 * skin.joints.size())
+                fail(where, ": ", values.size() / 16, " inverse bind matrices for ", skin.joints.size(), " joints");
+            for (std::size_t j = 0; j < skin.joints.size(); ++j)
+                for (int e = 0; e < 16; ++e) {
+                    const float v = values[16 * j + std::size_t(e)];
+                    if (!std::isfinite(v)) fail(where, ": inverse bind matrix ", j, " is not finite");
+                    glm::value_ptr(skin.inverseBindMatrices[j])[e] = v;
+                }
+        }
+        scene_.skins.push_back(std::move(skin));
+    }
+    for (std::size_t n = 0; n < scene_.nodes.size(); ++n) {
+        const Node& node = scene_.nodes[n];
+        if (node.skin < 0) continue;
+        const std::size_t joints = scene_.skins[std::size_t(node.skin)].joints.size();
+        for (int m : node.meshes) {
+            const Mesh& mesh = scene_.meshes[std::size_t(m)];
+            for (std::size_t set = 0; set < mesh.influences.size(); ++set)
+                for (std::size_t v = 0; v < mesh.influences[set].joints.size(); ++v)
+                    for (int c = 0; c < 4; ++c) {
+                        const std::uint32_t j = mesh.influences[set].joints[v][c];
+                        if (j >= joints && mesh.influences[set].weights[v][c] != 0.0f)
+                            fail("mesh '", oneLine(mesh.name, 60), "': JOINTS_", set, " of vertex ", v, " names joint ",
+                                 j, ", the skin of node ", n, " has ", joints);
+                    }
+        }
+    }
+}
+
 Scene Converter::run() {
     scene_.source = path_;
     // KHR_mesh_quantization only widens the accessor types, which the readers above all accept;
@@ -1304,7 +1373,7 @@ Scene Converter::run() {
     convertMaterials();
     untextureMeshesWithoutUvs();
     convertAnimations();
-    if (!model_.skins.empty()) report("skins");
+    convertSkins();
     scene_.buildInstances();
     return std::move(scene_);
 }

@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/component_wise.hpp>
 
 #include <frugal/Scene.h>
 
@@ -143,9 +145,10 @@ std::vector<float> sampleWeights(const AnimChannel& channel, double time) {
     return out;
 }
 
-Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights) {
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
     Mesh out = mesh;
     out.targets.clear();
+    out.influences.clear();
     const std::size_t n = mesh.positions.size();
     bool normals = false;
     for (std::size_t t = 0; t < mesh.targets.size() && t < weights.size(); ++t) {
@@ -160,11 +163,55 @@ Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights) {
         for (std::size_t v = 0; v < out.tangents.size() && v < target.tangents.size(); ++v)
             out.tangents[v] += glm::vec4(w * target.tangents[v], 0.0f);
     }
+    if (!joints.empty() && mesh.skinned()) {
+        std::vector<glm::mat3> normalMatrices(joints.size());
+        for (std::size_t j = 0; j < joints.size(); ++j)
+            normalMatrices[j] = glm::transpose(glm::inverse(glm::mat3(joints[j])));
+        for (std::size_t v = 0; v < n; ++v) {
+            glm::vec3 p(0.0f), normal(0.0f), tangent(0.0f);
+            for (const Mesh::Influences& set : mesh.influences)
+                for (int k = 0; k < 4; ++k) {
+                    const float w = set.weights[v][k];
+                    const std::uint32_t j = set.joints[v][k];
+                    if (w == 0.0f || j >= joints.size()) continue;
+                    p += w * glm::vec3(joints[j] * glm::vec4(out.positions[v], 1.0f));
+                    if (v < out.normals.size()) normal += w * (normalMatrices[j] * out.normals[v]);
+                    if (v < out.tangents.size()) tangent += w * (glm::mat3(joints[j]) * glm::vec3(out.tangents[v]));
+                }
+            out.positions[v] = p;
+            if (v < out.normals.size()) out.normals[v] = normal;
+            if (v < out.tangents.size()) out.tangents[v] = glm::vec4(tangent, out.tangents[v].w);
+        }
+        normals = true;
+    }
     if (normals)
         for (std::size_t v = 0; v < out.normals.size(); ++v) {
             const float length = glm::length(out.normals[v]);
             out.normals[v] = length > 0.0f && std::isfinite(length) ? out.normals[v] / length : mesh.normals[v];
         }
+    return out;
+}
+
+bool Scene::deforms(const Instance& instance) const {
+    const Mesh& mesh = meshes[std::size_t(instance.mesh)];
+    return mesh.morphs() || (mesh.skinned() && nodes[std::size_t(instance.node)].skin >= 0);
+}
+
+bool Scene::deforms() const {
+    for (const Instance& instance : instances)
+        if (deforms(instance)) return true;
+    return false;
+}
+
+std::vector<glm::mat4> Scene::jointMatrices(const Instance& instance, const std::vector<glm::mat4>& world) const {
+    const int s = nodes[std::size_t(instance.node)].skin;
+    if (s < 0 || !meshes[std::size_t(instance.mesh)].skinned()) return {};
+    const Skin& skin = skins[std::size_t(s)];
+    const glm::mat4 toNode = glm::inverse(world[std::size_t(instance.node)]);
+    std::vector<glm::mat4> out(skin.joints.size());
+    for (std::size_t j = 0; j < skin.joints.size(); ++j)
+        out[j] = toNode * world[std::size_t(skin.joints[j])] *
+                 (j < skin.inverseBindMatrices.size() ? skin.inverseBindMatrices[j] : glm::mat4(1.0f));
     return out;
 }
 
@@ -228,13 +275,17 @@ std::vector<glm::mat4> Scene::worldTransforms(double time) const {
 
 Bounds Scene::bounds(double time) const {
     const std::vector<glm::mat4> world = worldTransforms(time);
-    const std::vector<std::vector<float>> weights = morphs() ? morphWeights(time) : std::vector<std::vector<float>>{};
+    const std::vector<std::vector<float>> weights = morphWeights(time);
     Bounds bounds;
     for (const Instance& instance : instances) {
         Mesh posed;
-        const bool morphing = meshes[instance.mesh].morphs();
-        if (morphing) posed = posedMesh(meshes[instance.mesh], weights[std::size_t(instance.node)]);
-        const Mesh& mesh = morphing ? posed : meshes[instance.mesh];
+        const bool deforming = deforms(instance);
+        if (deforming)
+            posed =
+                posedMesh(meshes[instance.mesh],
+                          meshes[instance.mesh].morphs() ? weights[std::size_t(instance.node)] : std::vector<float>{},
+                          jointMatrices(instance, world));
+        const Mesh& mesh = deforming ? posed : meshes[instance.mesh];
         const glm::mat4& m = world[instance.node];
         // Only vertices that triangles use count (dropped triangles may leave unused vertices).
         for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
@@ -296,14 +347,39 @@ struct NodeMotion {
     Box translation, scale;  // the values each takes (the node's own when not animated)
 };
 
+// A ball that holds some content: what a sweep makes, kept as a ball up the hierarchy (a box
+// around a ball is √3 times wider across its diagonal, which over a chain of animated joints would
+// grow the envelope by √3 a level).
+struct Ball {
+    glm::dvec3 c{0.0};
+    double r = -1.0;  // < 0: none
+    bool empty() const { return r < 0.0; }
+};
+
+Ball ballOf(const Box& box) { return box.empty() ? Ball{} : Ball{box.center(), box.halfDiagonal()}; }
+
+// The smallest ball holding both.
+Ball merged(const Ball& a, const Ball& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    const double d = glm::length(b.c - a.c);
+    if (d + b.r <= a.r) return a;
+    if (d + a.r <= b.r) return b;
+    const double r = (d + a.r + b.r) * 0.5;
+    return Ball{a.c + (b.c - a.c) * ((r - a.r) / d), r};
+}
+
 // The box, in the parent's frame, of `content` (in the node's frame) under every local transform
 // the node can take: the content becomes a ball (centre c, radius r), scaling moves c within a box
 // and grows r by the largest scale, a rotation turns the ball about the origin (any rotation: the
 // ball about the origin that holds it), and the translations move it within their box.
-Box sweep(const Node& node, const NodeMotion& motion, const Box& content) {
+// `ball`, when not empty, also holds the content and is used when it is the smaller; `swept`
+// receives the result as a ball.
+Box sweep(const Node& node, const NodeMotion& motion, const Box& content, const Ball& ball, Ball& swept) {
     if (content.empty()) return content;
-    const glm::dvec3 c = content.center();
-    const double r = content.halfDiagonal();
+    const bool byBall = !ball.empty() && ball.r < content.halfDiagonal();
+    const glm::dvec3 c = byBall ? ball.c : content.center();
+    const double r = byBall ? ball.r : content.halfDiagonal();
     Box scaled;
     double largestScale = 0.0;
     for (int axis = 0; axis < 3; ++axis) {
@@ -325,6 +401,7 @@ Box sweep(const Node& node, const NodeMotion& motion, const Box& content) {
     Box out;
     out.add(centre - glm::dvec3(radius));
     out.add(centre + glm::dvec3(radius));
+    swept = Ball{centre, radius};
     return out;
 }
 
@@ -416,24 +493,67 @@ Bounds Scene::computeEnvelope() const {
     // A morphing vertex moves within the box of its position plus each target's displacement times
     // every weight the target can take (morphWeightRanges).
     const std::vector<std::vector<Range>> ranges = morphWeightRanges(*this);
+    const auto vertexBox = [&](std::size_t m, std::uint32_t index) {
+        Box box;
+        const glm::vec3& p = meshes[m].positions[index];
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return box;
+        glm::dvec3 low(p), high(p);
+        for (std::size_t t = 0; t < meshes[m].targets.size() && t < ranges[m].size(); ++t) {
+            if (index >= meshes[m].targets[t].positions.size()) continue;
+            const glm::dvec3 d(meshes[m].targets[t].positions[index]);
+            const glm::dvec3 a = d * ranges[m][t].low, b = d * ranges[m][t].high;
+            low += glm::min(a, b);
+            high += glm::max(a, b);
+        }
+        // The posed position is a float sum, rounded at each step: a margin of a few of its ulps.
+        const glm::dvec3 slack = meshes[m].morphs() ? (glm::abs(low) + glm::abs(high)) * 1e-6 : glm::dvec3(0.0);
+        box.add(low - slack);
+        box.add(high + slack);
+        return box;
+    };
     std::vector<Box> meshBoxes(meshes.size());
     for (std::size_t m = 0; m < meshes.size(); ++m)
+        for (std::uint32_t index : meshes[m].indices) meshBoxes[m].add(vertexBox(m, index));
+
+    // A skinned instance's vertices follow its joints: each vertex is in the box of its joints'
+    // poses of it (weights at least 0 summing to 1); its box in each joint's frame is added to the
+    // joint's content. Weights of another sum widen the world box below.
+    std::vector<Box> jointContent(n);
+    double weightSum = 1.0;                         // the largest Σ|w| of a skinned vertex
+    std::vector<bool> affine(meshes.size(), true);  // every vertex's weights at least 0, summing to 1
+    std::vector<std::vector<Box>> perJoint(meshes.size());
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+        if (!meshes[m].skinned()) continue;
         for (std::uint32_t index : meshes[m].indices) {
-            const glm::vec3& p = meshes[m].positions[index];
-            if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) continue;
-            glm::dvec3 low(p), high(p);
-            for (std::size_t t = 0; t < meshes[m].targets.size() && t < ranges[m].size(); ++t) {
-                if (index >= meshes[m].targets[t].positions.size()) continue;
-                const glm::dvec3 d(meshes[m].targets[t].positions[index]);
-                const glm::dvec3 a = d * ranges[m][t].low, b = d * ranges[m][t].high;
-                low += glm::min(a, b);
-                high += glm::max(a, b);
-            }
-            // The posed position is a float sum, rounded at each step: a margin of a few of its ulps.
-            const glm::dvec3 slack = meshes[m].morphs() ? (glm::abs(low) + glm::abs(high)) * 1e-6 : glm::dvec3(0.0);
-            meshBoxes[m].add(low - slack);
-            meshBoxes[m].add(high + slack);
+            double sum = 0.0, absolute = 0.0;
+            for (const Mesh::Influences& set : meshes[m].influences)
+                for (int k = 0; k < 4; ++k) {
+                    const float w = set.weights[index][k];
+                    if (w == 0.0f) continue;
+                    sum += w;
+                    absolute += std::abs(double(w));
+                    const std::size_t j = set.joints[index][k];
+                    if (perJoint[m].size() <= j) perJoint[m].resize(j + 1);
+                    perJoint[m][j].add(vertexBox(m, index));
+                }
+            weightSum = std::max(weightSum, absolute);
+            if (std::abs(sum - 1.0) > 1e-6 || absolute > sum + 1e-6) affine[m] = false;
         }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (nodes[i].skin < 0) continue;
+        const Skin& skin = skins[std::size_t(nodes[i].skin)];
+        for (int mesh : nodes[i].meshes) {
+            // Weights that are no affine combination pull a vertex towards the node's origin too
+            // (its matrix applies to the sum with w = 1): the origin joins the node's content.
+            if (meshes[std::size_t(mesh)].skinned() && !affine[std::size_t(mesh)]) jointContent[i].add(glm::dvec3(0.0));
+            for (std::size_t j = 0; j < perJoint[std::size_t(mesh)].size() && j < skin.joints.size(); ++j)
+                jointContent[std::size_t(skin.joints[j])].add(
+                    transformed(j < skin.inverseBindMatrices.size() ? skin.inverseBindMatrices[j] : glm::mat4(1.0f),
+                                perJoint[std::size_t(mesh)][j]));
+        }
+    }
+    const bool notAffine = std::find(affine.begin(), affine.end(), false) != affine.end();
 
     // Parents before children (loaders reject cycles), then each node's content, children first.
     std::vector<int> order, stack;
@@ -446,14 +566,42 @@ Bounds Scene::computeEnvelope() const {
         for (int child : nodes[i].children) stack.push_back(child);
     }
     std::vector<Box> content(n), swept(n);
+    std::vector<Ball> sweptBalls(n);
     Box world;
     for (auto it = order.rbegin(); it != order.rend(); ++it) {
         const std::size_t i = std::size_t(*it);
-        for (int mesh : nodes[i].meshes) content[i].add(meshBoxes[std::size_t(mesh)]);
-        for (int child : nodes[i].children) content[i].add(swept[std::size_t(child)]);
-        swept[i] = motion[i].animated && !nodes[i].hasMatrix ? sweep(nodes[i], motion[i], content[i])
-                                                             : transformed(localMatrix(nodes[i]), content[i]);
+        for (int mesh : nodes[i].meshes)
+            if (nodes[i].skin < 0 || !meshes[std::size_t(mesh)].skinned()) content[i].add(meshBoxes[std::size_t(mesh)]);
+        content[i].add(jointContent[i]);
+        Ball ball = ballOf(content[i]);  // the node's own content, then its children's balls
+        for (int child : nodes[i].children) {
+            content[i].add(swept[std::size_t(child)]);
+            ball = merged(ball, sweptBalls[std::size_t(child)].empty() ? ballOf(swept[std::size_t(child)])
+                                                                       : sweptBalls[std::size_t(child)]);
+        }
+        if (motion[i].animated && !nodes[i].hasMatrix) {
+            swept[i] = sweep(nodes[i], motion[i], content[i], ball, sweptBalls[i]);
+        } else {
+            swept[i] = transformed(localMatrix(nodes[i]), content[i]);
+            // The ball under the node's matrix: its centre moved, its radius times the largest
+            // stretch (column length); kept when smaller than the box's.
+            const glm::dmat4 m(localMatrix(nodes[i]));
+            const double stretch =
+                std::max({glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])), glm::length(glm::dvec3(m[2]))});
+            const Ball moved = ball.empty() ? Ball{} : Ball{glm::dvec3(m * glm::dvec4(ball.c, 1.0)), ball.r * stretch};
+            const Ball boxed = ballOf(swept[i]);
+            sweptBalls[i] = !moved.empty() && moved.r < boxed.r ? moved : boxed;
+        }
         if (nodes[i].parent < 0) world.add(swept[i]);
+    }
+    // Skin weights that are no affine combination: a vertex is Σ wᵢ·Xᵢ + (1 − Σ wᵢ)·T with Xᵢ its
+    // joints' poses of it and T its node's origin, all in the box so far: within (2·Σ|w| + 1) times
+    // the box's largest coordinate, either side.
+    if (!world.empty() && notAffine) {
+        const double reach =
+            (2.0 * weightSum + 1.0) * std::max(glm::compMax(glm::abs(world.min)), glm::compMax(glm::abs(world.max)));
+        world.add(glm::dvec3(-reach));
+        world.add(glm::dvec3(reach));
     }
     Bounds out;
     const bool finite =

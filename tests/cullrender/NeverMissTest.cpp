@@ -157,6 +157,22 @@ TEST(NeverMissTest, MorphingSceneOverTime) {
     expectSomethingSeen(views);
 }
 
+// Skins: the skinned instance is drawn whole by every method, the static spheres culled as always,
+// over a bend of 120 degrees and a joint scaled from 3 to 1 and back (and with weights that do not
+// sum to 1).
+TEST(NeverMissTest, SkinnedSceneOverTime) {
+    for (const bool affine : {true, false}) {
+        CullBench bench(test::skinnedScene(3.0f, affine), 160, 120);
+        ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+        Tallies tallies;
+        for (double time : {0.0, 0.7, 1.3, 2.0, 2.9, 3.6, 4.0})
+            tallies.add(test::checkFrame(bench, {}, "skinned, t = " + std::to_string(time), time));
+        Tallies views = test::checkReportViews(bench, 6, "skinned", 2.0);
+        expectSomethingSeen(tallies);
+        expectSomethingSeen(views);
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Property: random meshes, random instances (mirrored, non-uniformly scaled, single- and
 // double-sided) and random views, cameras inside the bounding sphere included.

@@ -94,9 +94,20 @@ TEST(ReuseSequence, BlendedAndMaskedSurfacesInLinearColourMatchTheFullRender) {
 // positions: the still spheres are reused around it, and every frame is the full render's.
 TEST(ReuseSequence, MorphTargetsMatchTheFullRender) {
     const Scene scene = test::morphingScene();
-    const std::vector<SequenceResult> results = expectExactEveryWay(scene, 200, 150, 40, animated(scene, {}, 200, 150));
+    const Camera camera = eyeAt({0.5f, 1.0f, 6.0f}, {0.5f, 0.0f, 0.0f});
+    const std::vector<SequenceResult> results =
+        expectExactEveryWay(scene, 200, 150, 40, animated(scene, camera, 200, 150));
     const std::string modes = results[2].modes();  // no fallback: the reuse path on every frame it can take
     EXPECT_NE(modes.find('U'), std::string::npos) << results[2].describe();
+}
+
+// A skinned instance is dynamic in the frames its joints move; the static spheres are reused.
+TEST(ReuseSequence, SkinsMatchTheFullRender) {
+    const Scene scene = test::skinnedScene(3.0f);
+    const Camera camera = eyeAt({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0.0f});
+    const std::vector<SequenceResult> results =
+        expectExactEveryWay(scene, 200, 150, 40, animated(scene, camera, 200, 150));
+    EXPECT_NE(results[2].modes().find('U'), std::string::npos) << results[2].describe();
 }
 
 TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {

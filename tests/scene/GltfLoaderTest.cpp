@@ -282,7 +282,7 @@ const std::vector<AssimpCase>& assimpCases() {
          .instances = 5,
          .textures = 1,
          .warnings = 1},
-        {.file = "simple_skin/simple_skin.gltf", .meshes = 1, .triangles = 8, .instances = 1, .unsupported = {"skins"}},
+        {.file = "simple_skin/simple_skin.gltf", .meshes = 1, .triangles = 8, .instances = 1},
         {.file = "textureTransform/TextureTransformTest.gltf",
          .meshes = 9,
          .triangles = 24,
@@ -1625,8 +1625,7 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     asset.json["nodes"][0]["extras"] = {{"extensions", {{"NOT_AN_EXTENSION", Json::object()}}}};
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based", "skins",
-                                               "primitive mode LINES"};
+    const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based", "primitive mode LINES"};
     EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));

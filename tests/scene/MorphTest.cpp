@@ -151,5 +151,51 @@ TEST(Morph, AnimatedMorphCubeReadsItsTargetsAndTheirWeights) {
     for (int axis = 0; axis < 3; ++axis) EXPECT_GE(scene->envelope.max[axis], moved.max[axis]);
 }
 
+TEST(Skin, TheEnvelopeHoldsEveryPose) {
+    for (const float scale : {0.0f, 3.0f, 1e4f})
+        for (const bool affine : {true, false}) {
+            const Scene scene = test::skinnedScene(scale, affine);
+            for (int k = 0; k <= 100; ++k) {
+                const double time = 4.2 * k / 100.0;
+                const Bounds b = scene.bounds(time);
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_LE(scene.envelope.min[axis], b.min[axis]) << "scale " << scale << ", t = " << time;
+                    EXPECT_GE(scene.envelope.max[axis], b.max[axis]) << "scale " << scale << ", t = " << time;
+                }
+            }
+        }
+}
+
+TEST(Skin, JointMatricesPoseTheMeshInItsNodesFrame) {
+    const Scene scene = test::skinnedScene(2.0f);
+    const std::vector<glm::mat4> world = scene.worldTransforms(1.0);
+    const Instance& skinned = scene.instances[0];
+    ASSERT_TRUE(scene.deforms(skinned));
+    const std::vector<glm::mat4> joints = scene.jointMatrices(skinned, world);
+    ASSERT_EQ(joints.size(), 3u);
+    // The root joint has not moved: its matrix and the node's take a vertex where it was bound,
+    // whatever the node's own offset (which the joints undo).
+    const glm::vec4 p = world[std::size_t(skinned.node)] * joints[0] * glm::vec4(0.3f, 0.2f, 0.0f, 1.0f);
+    EXPECT_NEAR(p.x, 0.3f, 1e-6f);
+    EXPECT_NEAR(p.y, 0.2f, 1e-6f);
+    const Mesh posed = posedMesh(scene.meshes[std::size_t(skinned.mesh)], {}, joints);
+    EXPECT_NE(posed.positions.back(), scene.meshes[std::size_t(skinned.mesh)].positions.back());  // the top moved
+    // A static sphere does not deform.
+    EXPECT_FALSE(scene.deforms(scene.instances[1]));
+}
+
+TEST(Skin, SimpleSkinReadsItsSkin) {
+    Result<Scene> scene = loadScene(std::string(FRUGAL_ASSIMP_GLTF2_DIR) + "/simple_skin/simple_skin.gltf");
+    ASSERT_TRUE(scene) << scene.error().message;
+    ASSERT_EQ(scene->skins.size(), 1u);
+    EXPECT_EQ(scene->skins[0].joints.size(), 2u);
+    ASSERT_EQ(scene->meshes.size(), 1u);
+    ASSERT_EQ(scene->meshes[0].influences.size(), 1u);
+    EXPECT_EQ(scene->meshes[0].influences[0].joints.size(), scene->meshes[0].positions.size());
+    EXPECT_TRUE(scene->unsupported.empty());
+    EXPECT_TRUE(scene->deforms());
+    EXPECT_NE(scene->bounds(0.0).max, scene->bounds(1.0).max);  // it bends
+}
+
 }  // namespace
 }  // namespace frugal

@@ -654,6 +654,12 @@ Camera lookFrom(glm::vec3 eye, glm::vec3 target, float znear, float zfar) {
     return spec;
 }
 
+Scene morphExtreme() { return test::morphingScene({-1.0f, 10.0f}); }
+Scene morphUnnormal() { return test::morphingScene({0.3f, 0.3f}); }
+Scene skinCollapsed() { return test::skinnedScene(0.0f); }
+Scene skinHuge() { return test::skinnedScene(1e4f); }
+Scene skinUnnormal() { return test::skinnedScene(2.0f, false); }
+
 std::vector<MatrixCase> matrix() {
     const std::string bunny = FRUGAL_BUNNY_OBJ;
     std::vector<MatrixCase> cases = {
@@ -690,24 +696,14 @@ std::vector<MatrixCase> matrix() {
         {"tonemap-aces", bright, 640, 400, lookFrom({0, 0, 6}, {0, 0, 0}, 0.5f, 20.0f), {}, ToneMap::Aces},
         {"lights", lights, 640, 400, lookFrom({0.0f, 2.5f, 6.0f}, {0, -0.8f, -1.0f}, 0.5f, 30.0f), {}},
         {"mipmaps", mipmaps, 640, 400, lookFrom({0.0f, 0.6f, 3.0f}, {0, -0.4f, -6.0f}, 0.1f, 100.0f), {}},
-        // Morph targets posed on the CPU, drawn alike by both: weights of −1 and 10, and weights
-        // that do not sum to 1.
-        {"morph-minus1-and-10",
-         [] {
-             return test::morphingScene({-1.0f, 10.0f});
-         },
-         480,
-         360,
-         lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f),
-         {}},
-        {"morph-not-summing-to-1",
-         [] {
-             return test::morphingScene({0.3f, 0.3f});
-         },
-         480,
-         360,
-         lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f),
-         {}},
+        // Morph targets and skins posed on the CPU, drawn alike by both: morph weights of −1 and 10,
+        // and not summing to 1; a joint scaled by 0 and by 10⁴, and skin weights not summing to 1.
+        {"morph-minus1-and-10", morphExtreme, 480, 360, lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f), {}},
+        {"morph-not-summing-to-1", morphUnnormal, 480, 360, lookFrom({0.5f, 1.0f, 6.0f}, {0.5f, 0, 0}, 0.5f, 30.0f), {}},
+        {"skin-joint-scaled-0", skinCollapsed, 480, 360, lookFrom({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0}, 0.5f, 30.0f), {}},
+        {"skin-joint-scaled-1e4", skinHuge, 480, 360, lookFrom({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0}, 0.5f, 30.0f), {}},
+        {"skin-weights-not-summing-to-1", skinUnnormal, 480, 360,
+         lookFrom({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0}, 0.5f, 30.0f), {}},
         // Multisampled (4 samples at llvmpipe's positions), resolved: the colour is the samples' mean,
         // depth and ids sample 0's.
         {"msaa-bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}, ToneMap::None, 4},
