@@ -71,6 +71,34 @@ inline void checkScene(const Scene& scene) {
     }
     for (int root : scene.roots)
         if (!inRange(root, scene.nodes.size())) broken("root out of range");
+    // Morph targets and skins: one value a vertex, joints that exist where a vertex leans on them.
+    for (const Mesh& mesh : scene.meshes) {
+        const std::size_t vertices = mesh.positions.size();
+        const auto sized = [vertices](std::size_t n) { return n == 0 || n == vertices; };
+        for (const MorphTarget& target : mesh.targets)
+            if (!sized(target.positions.size()) || !sized(target.normals.size()) || !sized(target.tangents.size()))
+                broken("morph target arrays not one a vertex");
+        if (mesh.weights.size() != mesh.targets.size()) broken("morph weights not one a target");
+        for (const Mesh::Influences& set : mesh.influences)
+            if (set.joints.size() != vertices || set.weights.size() != vertices)
+                broken("skin influences not one a vertex");
+    }
+    for (const Skin& skin : scene.skins) {
+        if (skin.inverseBindMatrices.size() != skin.joints.size()) broken("inverse bind matrices not one a joint");
+        for (int joint : skin.joints)
+            if (!inRange(joint, scene.nodes.size())) broken("skin joint out of range");
+    }
+    for (const Node& node : scene.nodes) {
+        if (node.skin == -1) continue;
+        if (!inRange(node.skin, scene.skins.size())) broken("node skin out of range");
+        for (int m : node.meshes)
+            for (const Mesh::Influences& set : scene.meshes[std::size_t(m)].influences)
+                for (std::size_t v = 0; v < set.joints.size(); ++v)
+                    for (int k = 0; k < 4; ++k)
+                        if (set.weights[v][k] != 0.0f &&
+                            set.joints[v][k] >= scene.skins[std::size_t(node.skin)].joints.size())
+                            broken("a vertex leans on a joint its skin does not have");
+    }
     for (const SceneCamera& camera : scene.cameras)
         if (!inRange(camera.node, scene.nodes.size())) broken("camera node out of range");
     std::uint64_t ids = 1;  // 0 is the background
@@ -88,7 +116,13 @@ inline void checkScene(const Scene& scene) {
         for (const AnimChannel& channel : animation.channels) {
             if (!inRange(channel.node, scene.nodes.size())) broken("animation channel node out of range");
             const std::size_t perKey = channel.interpolation == Interp::CubicSpline ? 3 : 1;
-            if (channel.values.size() != channel.times.size() * perKey) broken("animation values per key");
+            if (channel.path == AnimPath::Weights) {
+                if (channel.weightCount < 1 || !channel.values.empty() ||
+                    channel.weights.size() != channel.times.size() * perKey * std::size_t(channel.weightCount))
+                    broken("animation weights per key");
+            } else if (channel.values.size() != channel.times.size() * perKey) {
+                broken("animation values per key");
+            }
             for (std::size_t k = 0; k < channel.times.size(); ++k)
                 if (!std::isfinite(channel.times[k]) || (k > 0 && !(channel.times[k] > channel.times[k - 1])))
                     broken("animation key times not finite and increasing");
