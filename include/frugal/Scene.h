@@ -363,7 +363,6 @@ struct Scene {
     // Morph weights of every node at `time` (empty for a node whose meshes have no targets): its
     // "weights" channel sampled, else the node's own, else its first morphing mesh's.
     std::vector<std::vector<float>> morphWeights(double time) const;
-    bool morphs() const;  // does a drawn mesh have morph targets?
     // Does instance `instance` change shape (morph targets, or a skinned mesh drawn by a node with a
     // skin)? Such an instance is posed per frame (posedMesh) and drawn whole by every culling
     // method; deforms() asks it of every instance.

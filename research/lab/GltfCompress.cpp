@@ -18,6 +18,8 @@
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
+#include "lab/TradePage.h"  // base64
+
 namespace frugal {
 
 namespace {
@@ -28,17 +30,6 @@ using Bytes = std::vector<unsigned char>;
 Error bad(const std::string& path, const std::string& what) { return Error{path + ": " + what, ErrorKind::BadInput}; }
 
 constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-std::string base64(const Bytes& bytes) {
-    std::string out;
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        std::uint32_t group = std::uint32_t(bytes[i]) << 16;
-        if (i + 1 < bytes.size()) group |= std::uint32_t(bytes[i + 1]) << 8;
-        if (i + 2 < bytes.size()) group |= std::uint32_t(bytes[i + 2]);
-        for (std::size_t k = 0; k < 4; ++k) out += i + k <= bytes.size() ? kDigits[(group >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
 
 std::optional<Bytes> unbase64(const std::string& text) {
     Bytes out;

@@ -67,7 +67,9 @@ MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
 void SceneRenderer::pose(double time) {
     if (posed_.empty()) return;
     const std::vector<std::vector<float>> weights = scene_->morphWeights(time);
-    const std::vector<glm::mat4> world = scene_->worldTransforms(time);
+    // Node matrices only for joints to follow (a scene of morph targets alone needs none).
+    const std::vector<glm::mat4> world =
+        scene_->skins.empty() ? std::vector<glm::mat4>{} : scene_->worldTransforms(time);
     for (std::size_t i = 0; i < posedSlot_.size(); ++i) {
         const int slot = posedSlot_[i];
         if (slot < 0) continue;

@@ -215,12 +215,6 @@ std::vector<glm::mat4> Scene::jointMatrices(const Instance& instance, const std:
     return out;
 }
 
-bool Scene::morphs() const {
-    for (const Instance& instance : instances)
-        if (meshes[std::size_t(instance.mesh)].morphs()) return true;
-    return false;
-}
-
 std::vector<std::vector<float>> Scene::morphWeights(double time) const {
     std::vector<std::vector<float>> out(nodes.size());
     for (std::size_t n = 0; n < nodes.size(); ++n)
@@ -275,17 +269,19 @@ std::vector<glm::mat4> Scene::worldTransforms(double time) const {
 
 Bounds Scene::bounds(double time) const {
     const std::vector<glm::mat4> world = worldTransforms(time);
-    const std::vector<std::vector<float>> weights = morphWeights(time);
+    // Posed only where something deforms: a static scene's bounds cost what they did.
+    const bool deforming = deforms();
+    const std::vector<std::vector<float>> weights = deforming ? morphWeights(time) : std::vector<std::vector<float>>{};
     Bounds bounds;
     for (const Instance& instance : instances) {
         Mesh posed;
-        const bool deforming = deforms(instance);
-        if (deforming)
+        const bool posing = deforming && deforms(instance);
+        if (posing)
             posed =
                 posedMesh(meshes[instance.mesh],
                           meshes[instance.mesh].morphs() ? weights[std::size_t(instance.node)] : std::vector<float>{},
                           jointMatrices(instance, world));
-        const Mesh& mesh = deforming ? posed : meshes[instance.mesh];
+        const Mesh& mesh = posing ? posed : meshes[instance.mesh];
         const glm::mat4& m = world[instance.node];
         // Only vertices that triangles use count (dropped triangles may leave unused vertices).
         for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));

@@ -504,20 +504,6 @@ TEST(ReuseSequence, CulledDrawLists) {
 // ---------------------------------------------------------------------------------------------
 // glTF files with node animation.
 
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-    static const char* kChars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const std::uint32_t n = std::uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? std::uint32_t(bytes[i + 1]) << 8 : 0u) |
-                                (i + 2 < bytes.size() ? std::uint32_t(bytes[i + 2]) : 0u);
-        out += kChars[(n >> 18) & 63];
-        out += kChars[(n >> 12) & 63];
-        out += i + 1 < bytes.size() ? kChars[(n >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? kChars[n & 63] : '=';
-    }
-    return out;
-}
-
 // A glTF 2.0 file with a static ground, a translating cube, a rotating cube with a child (so the
 // child is dynamic through the hierarchy), a cube scaled in steps and a cubic-spline translation.
 std::string animatedGltf() {
@@ -592,7 +578,7 @@ std::string animatedGltf() {
     view(sOffset, scales.size() * 4);
     view(cOffset, spline.size() * 4, true);
     j << R"(],"buffers":[{"byteLength":)" << buffer.size() << R"(,"uri":"data:application/octet-stream;base64,)"
-      << base64(buffer) << R"("}]})";
+      << test::base64(std::string(buffer.begin(), buffer.end())) << R"("}]})";
     return j.str();
 }
 

@@ -83,7 +83,7 @@ TEST(Morph, TheNodesWeightsOverrideTheMeshsAndAChannelBoth) {
             EXPECT_TRUE(at1[n].empty());  // a static sphere: no weights
         }
     }
-    EXPECT_TRUE(scene.morphs());
+    EXPECT_TRUE(scene.deforms());
 }
 
 TEST(Morph, TheEnvelopeHoldsEveryPose) {
