@@ -44,13 +44,17 @@ inline void checkScene(const Scene& scene) {
     const auto inRange = [](auto index, std::size_t size) { return index >= 0 && std::size_t(index) < size; };
     for (const Mesh& mesh : scene.meshes) {
         const std::size_t vertices = mesh.positions.size();
-        if (mesh.indices.size() % 3 != 0) broken("mesh '" + mesh.name + "': indices not a multiple of 3");
+        if (std::size_t(mesh.topology) >= std::size(kTopologyNames)) broken("mesh '" + mesh.name + "': topology");
+        if (mesh.indices.size() % verticesPerPrimitive(mesh.topology) != 0)
+            broken("mesh '" + mesh.name + "': indices not whole primitives");
         for (std::uint32_t index : mesh.indices)
             if (index >= vertices) broken("mesh '" + mesh.name + "': index out of range");
-        if (mesh.normals.size() != vertices) broken("mesh '" + mesh.name + "': normals not one per vertex");
+        // Points and segments may have no normals (drawn unlit); triangles always have them.
+        if (mesh.normals.size() != vertices && (mesh.triangles() || !mesh.normals.empty()))
+            broken("mesh '" + mesh.name + "': normals not one per vertex");
         if (!mesh.colors.empty() && mesh.colors.size() != vertices) broken("mesh '" + mesh.name + "': colours");
         if (!mesh.uvs.empty() && mesh.uvs.size() != vertices) broken("mesh '" + mesh.name + "': uvs");
-        if (mesh.triangleSource.size() != mesh.triangleCount()) broken("mesh '" + mesh.name + "': triangleSource");
+        if (mesh.triangleSource.size() != mesh.primitiveCount()) broken("mesh '" + mesh.name + "': triangleSource");
         if (mesh.material != -1 && !inRange(mesh.material, scene.materials.size()))
             broken("mesh '" + mesh.name + "': material out of range");
     }

@@ -9,7 +9,8 @@
 // Variants (see mesh.vert): without FRUGAL_COLORS the vertex colour is exactly white and without
 // FRUGAL_TEXTURE the texel is, so their factors are left out; each other map (FRUGAL_*_MAP) is read
 // only by the materials that have it; without FRUGAL_IDS there is no id output; FRUGAL_UNLIT
-// (KHR_materials_unlit) writes the base colour; FRUGAL_ALPHA_MASK discards a fragment whose alpha is
+// (KHR_materials_unlit) writes the base colour, FRUGAL_UNLIT with FRUGAL_BARE (segments or points
+// without normals, as the Khronos renderer draws them) the emission plus the base colour; FRUGAL_ALPHA_MASK discards a fragment whose alpha is
 // below the cutoff (GLSL's discard writes no colour, depth or id); alpha is written as it is only by
 // FRUGAL_ALPHA_BLEND (the draw blends), else 1, as glTF's OPAQUE and MASK ask. Sampling a 1×1
 // white texture instead cost +0.64 ms per bunny frame on llvmpipe. The maps are read as the
@@ -255,6 +256,13 @@ void main() {
 #endif
 #ifdef FRUGAL_UNLIT
     vec3 linear = base.rgb;
+#ifdef FRUGAL_BARE
+    vec3 emission = u_emissive;
+#ifdef FRUGAL_EMISSIVE_MAP
+    emission = emission * texture(u_emissiveMap, v_uv).rgb;
+#endif
+    linear = emission + linear;
+#endif
 #else
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;

@@ -352,7 +352,7 @@ inline Frames culledFrames(const Scene& scene, const SceneCuller& culler, Cull m
         f.world = setup->world;
         f.params = setup->params;
         f.list = culler.cull(method, scene, setup->world, setup->view);
-        culled += submittedTriangles(scene, f.list) < scene.triangleCount() ? 1 : 0;
+        culled += submittedTriangles(scene, f.list) < scene.primitiveCount() ? 1 : 0;
         return f;
     };
 }

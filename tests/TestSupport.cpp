@@ -335,6 +335,72 @@ Scene morphingScene(std::vector<float> still) {
     return scene;
 }
 
+Scene pointsLinesScene() {
+    Scene scene = morphingScene();  // for its spheres: the morphing meshes and instances go
+    scene.source = "points and lines test scene";
+    scene.animations.clear();
+    scene.meshes.resize(1);
+    for (Node& node : scene.nodes) std::erase_if(node.meshes, [](int mesh) { return mesh != 0; });
+    Material bare;
+    bare.baseColorFactor = {0.2f, 0.9f, 0.4f, 1.0f};
+    bare.emissiveFactor = {0.3f, 0.0f, 0.2f};
+    scene.materials.push_back(bare);
+    const int bareMaterial = int(scene.materials.size()) - 1;
+
+    Mesh ring;
+    ring.topology = Topology::Lines;
+    ring.material = 0;
+    constexpr std::uint32_t kSegments = 48;
+    for (std::uint32_t i = 0; i < kSegments; ++i) {
+        const float a = 6.2831853f * float(i) / float(kSegments);
+        ring.positions.push_back({1.6f * std::cos(a), 0.4f * std::sin(3.0f * a), 1.6f * std::sin(a)});
+        ring.normals.push_back(glm::normalize(glm::vec3(std::cos(a), 0.5f, std::sin(a))));
+        ring.indices.insert(ring.indices.end(), {i, (i + 1) % kSegments});
+    }
+    Mesh grid;
+    grid.topology = Topology::Points;
+    grid.material = bareMaterial;
+    for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x) {
+            grid.indices.push_back(std::uint32_t(grid.positions.size()));
+            grid.positions.push_back({-3.0f + 0.3f * float(x), -2.0f + 0.22f * float(y), -2.6f});
+        }
+    Mesh strip;
+    strip.topology = Topology::Lines;
+    strip.material = bareMaterial;
+    for (int i = 0; i < 12; ++i) {
+        strip.positions.push_back({-2.5f + 0.45f * float(i), 1.2f * std::sin(1.3f * float(i)), 1.8f});
+        if (i % 4 == 1) strip.positions.push_back(strip.positions.back());  // a zero-length segment
+    }
+    for (std::uint32_t v = 0; v + 1 < strip.positions.size(); ++v)
+        strip.indices.insert(strip.indices.end(), {v, v + 1});
+    const Result<int> ringMesh = scene.addMesh(ring), gridMesh = scene.addMesh(grid), stripMesh = scene.addMesh(strip);
+    EXPECT_TRUE(ringMesh && gridMesh && stripMesh);
+    if (!ringMesh || !gridMesh || !stripMesh) return scene;
+    const Result<int> turning = scene.addInstance(*ringMesh, glm::mat4(1.0f), "ring");
+    EXPECT_TRUE(turning && scene.addInstance(*gridMesh, glm::mat4(1.0f), "grid") &&
+                scene.addInstance(*stripMesh, glm::mat4(1.0f), "strip"));
+    if (turning) {
+        AnimChannel spin;
+        spin.node = *turning;
+        spin.path = AnimPath::Rotation;
+        spin.interpolation = Interp::Linear;
+        spin.times = {0.0f, 2.0f, 4.0f};
+        for (const float angle : {0.0f, 1.5f, 3.0f}) {
+            const glm::quat q = glm::angleAxis(angle, glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)));
+            spin.values.push_back({q.x, q.y, q.z, q.w});
+        }
+        AnimChannel sweep;
+        sweep.node = *turning;
+        sweep.path = AnimPath::Translation;
+        sweep.times = {0.0f, 2.0f, 4.0f};
+        sweep.values = {{-1.0f, 0.0f, -1.5f, 0.0f}, {1.0f, 0.3f, 0.0f, 0.0f}, {0.5f, -0.5f, -2.0f, 0.0f}};
+        scene.animations.push_back(Animation{"ring", {spin, sweep}});
+    }
+    scene.buildInstances();
+    return scene;
+}
+
 Scene skinnedScene(float topScale, bool affine) {
     Scene scene;
     scene.source = "skinned test scene";

@@ -106,6 +106,13 @@ Scene morphingScene(std::vector<float> still = {0.5f, -0.5f});
 // or 1.3 instead of 1. Beside it two static spheres. Built in memory (buildInstances called).
 Scene skinnedScene(float topScale = 2.0f, bool affine = true);
 
+// A scene of points and line segments among triangles: three static spheres; a ring of 48
+// segments (a closed loop, lit: it has normals) that turns and sweeps through them over 4 s; a
+// static grid of 400 points (no normals) partly behind the spheres; and a static strip of
+// segments in front of them whose vertices include repeated ones (zero-length segments). Built in
+// memory (buildInstances called).
+Scene pointsLinesScene();
+
 // Gives a third of the scene's meshes a blended material and a third a masked one (each a copy of
 // its material), with vertex alphas that vary across every mesh (from its positions): masked
 // triangles get holes at the cutoff of 0.5, blended ones a range of coverage. For checking that a

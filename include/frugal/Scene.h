@@ -6,10 +6,12 @@
 // - Right-handed, column vectors, glm; units are whatever the file uses.
 // - Texture coordinates follow glTF: (0,0) is the first texel of the first row of the image as stored
 //   in the file (its top-left). The OBJ loader flips v to match.
-// - A Mesh is one triangle list with one material (a glTF primitive). Its triangles are kept in a
-//   vertex-cache-friendly order (meshoptimizer); `triangleSource[t]` names the primitive index that
-//   triangle t had in the file, so triangle IDs stay stable whatever the order.
-// - Global triangle id = instance.firstId + triangleSource[t]; 0 is the background.
+// - A Mesh is one list of primitives with one material (a glTF primitive): triangles (most meshes),
+//   line segments or points (Mesh::topology). Its triangles are kept in a vertex-cache-friendly
+//   order (meshoptimizer); `triangleSource[t]` names the index that primitive t had in the file, so
+//   ids stay stable whatever the order. Segments and points keep the file's order.
+// - Global id = instance.firstId + triangleSource[t] (a triangle's, a segment's or a point's); 0 is
+//   the background.
 #pragma once
 
 #include <cstddef>
@@ -159,10 +161,36 @@ struct MorphTarget {
     std::vector<glm::vec3> tangents;  // xyz of the tangent (its w, the handedness, is not displaced)
 };
 
+// What a mesh's indices make: triangles (3 indices each), line segments (2) or points (1). The glTF
+// loader turns glTF's seven modes into these three lists: strips and fans into triangles, LINE_STRIP
+// and LINE_LOOP into segments (a loop's last one closing it), numbered as glTF counts them.
+enum class Topology : std::uint8_t { Triangles, Lines, Points };
+inline constexpr const char* kTopologyNames[] = {"triangles", "lines", "points"};
+inline const char* topologyName(Topology topology) { return kTopologyNames[std::size_t(topology)]; }
+// The topology named `name`; false when there is none.
+inline bool topologyNamed(std::string_view name, Topology& topology) {
+    for (std::size_t i = 0; i < std::size(kTopologyNames); ++i)
+        if (name == kTopologyNames[i]) {
+            topology = Topology(i);
+            return true;
+        }
+    return false;
+}
+inline constexpr std::size_t verticesPerPrimitive(Topology topology) {
+    return topology == Topology::Triangles ? 3 : topology == Topology::Lines ? 2 : 1;
+}
+
 struct Mesh {
     std::string name;
+    // Triangles are shaded as Material says. Segments and points are drawn one pixel wide (GL's
+    // line width and point size 1), lit as triangles are where the mesh has normals (no normal map
+    // without tangents, no back face), and without normals given the base colour plus the emission,
+    // unlit: how the Khronos glTF Sample Renderer draws glTF's POINTS and LINES.
+    Topology topology = Topology::Triangles;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;             // always filled (computed when the file has none)
+    // Triangles: always filled (computed when the file has none). Segments and points: the file's,
+    // or empty (unlit, above).
+    std::vector<glm::vec3> normals;
     std::vector<glm::vec4> colors;              // empty = white
     std::vector<glm::vec2> uvs;                 // empty = no texture coordinates
     // glTF's TANGENT: xyz the direction of increasing u, w = ±1 the handedness (the bitangent is
@@ -170,8 +198,8 @@ struct Mesh {
     // material reads a tangent basis (Material::tangentSpace) gets generated ones when it is
     // uploaded (generateTangents).
     std::vector<glm::vec4> tangents;
-    std::vector<std::uint32_t> indices;         // 3 per triangle, counter-clockwise = front
-    std::vector<std::uint32_t> triangleSource;  // per triangle: its primitive index in the file
+    std::vector<std::uint32_t> indices;         // verticesPerPrimitive(topology) a primitive; counter-clockwise = front
+    std::vector<std::uint32_t> triangleSource;  // per primitive: its index in the file (ids)
     int material = -1;                          // -1 = default material (white, single-sided)
     // Morph targets and their default weights (glTF's mesh.weights; one per target, 0 where the file
     // gives none). A drawn vertex is position + Σ weightᵢ · targetᵢ.position, its normal the same sum
@@ -189,7 +217,10 @@ struct Mesh {
     };
     std::vector<Influences> influences;
 
-    std::size_t triangleCount() const { return indices.size() / 3; }
+    // Triangles, segments or points, as topology says; triangleCount() is 0 but for triangles.
+    std::size_t primitiveCount() const { return indices.size() / verticesPerPrimitive(topology); }
+    std::size_t triangleCount() const { return topology == Topology::Triangles ? indices.size() / 3 : 0; }
+    bool triangles() const { return topology == Topology::Triangles; }
     bool morphs() const { return !targets.empty(); }
     bool skinned() const { return !influences.empty(); }
 };
@@ -356,8 +387,9 @@ struct Scene {
     // Rebuilds `instances` (and their ids) from the node hierarchy, and `envelope`. Loaders call it
     // last, and so must anything that changes nodes, meshes or animations afterwards.
     void buildInstances();
-    std::size_t triangleCount() const;  // over instances
-    double duration() const;            // last key time of any animation, 0 if static
+    std::size_t triangleCount() const;   // over instances
+    std::size_t primitiveCount() const;  // over instances: triangles, segments and points
+    double duration() const;             // last key time of any animation, 0 if static
     // World matrix of every node at `time` seconds (animations sampled, hierarchy applied).
     std::vector<glm::mat4> worldTransforms(double time) const;
     // Morph weights of every node at `time` (empty for a node whose meshes have no targets): its

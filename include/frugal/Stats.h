@@ -46,8 +46,8 @@ struct OcclusionFrameStats {
 };
 
 struct CullStats {
-    std::size_t tos = 0;     // the scene's triangles
-    std::size_t pvs = 0;     // the triangles submitted (the oracle: its visible set)
+    std::size_t tos = 0;     // the scene's triangles (and its segments and points: Mesh::topology)
+    std::size_t pvs = 0;     // the triangles submitted (the oracle: its visible set), segments and points too
     double ms = 0.0;         // culling (the oracle: its id pass, read-back and scene; not in renderMs)
     std::size_t ranges = 0;  // index ranges submitted (none for the oracle)
     std::optional<OcclusionFrameStats> occlusion;  // cull occlusion and occlusion-ahead only

@@ -143,6 +143,7 @@ class _Instance(TypedDict):
     mesh: int
     first_id: int
     triangles: int
+    primitives: int
 
 class _Decompression(TypedDict):
     method: str
@@ -180,6 +181,7 @@ class _Material(TypedDict):
 
 class _MeshArrays(TypedDict):
     name: str
+    topology: Literal["triangles", "lines", "points"]
     positions: npt.NDArray[np.float32]
     normals: npt.NDArray[np.float32]
     indices: npt.NDArray[np.uint32]
@@ -209,7 +211,7 @@ class Scene(_pybind11_object):
     def add_mesh(self, positions: npt.ArrayLike, indices: npt.ArrayLike, *, normals: npt.ArrayLike | None = ...,
                  colors: npt.ArrayLike | None = ..., uvs: npt.ArrayLike | None = ...,
                  tangents: npt.ArrayLike | None = ..., material: int | None = ..., name: str = ...,
-                 file_order: bool = ...) -> int: ...
+                 file_order: bool = ..., topology: Literal["triangles", "lines", "points"] = ...) -> int: ...
     def add_light(self, kind: Literal["directional", "point", "spot"] = ..., *, color: Sequence[float] = ...,
                   intensity: float = ..., range: float = ..., inner_cone: float = ..., outer_cone: float = ...,
                   transform: npt.ArrayLike | None = ..., name: str = ...) -> int: ...

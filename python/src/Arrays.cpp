@@ -72,7 +72,7 @@ std::vector<glm::vec4> colorsFrom(const py::handle& object) {
     return out;
 }
 
-std::vector<std::uint32_t> indicesFrom(const py::handle& object) {
+std::vector<std::uint32_t> indicesFrom(const py::handle& object, py::ssize_t columns) {
     const std::string what = "indices";
     const py::array array = asArray(object, what);
     const char kind = kindOf(array);
@@ -82,8 +82,10 @@ std::vector<std::uint32_t> indicesFrom(const py::handle& object) {
                          (nan >= 0 ? " (and index " + std::to_string(nan) + " is NaN)" : "")};
     }
     if (kind != 'i' && kind != 'u') throw InputError{what + ": dtype " + dtypeText(array) + " is not an integer type"};
-    if (!(array.ndim() == 1 || (array.ndim() == 2 && array.shape(1) == 3)))
-        throw InputError{what + ": expected a (T, 3) or (3T,) array, got shape " + shapeText(array)};
+    if (!(array.ndim() == 1 || (array.ndim() == 2 && array.shape(1) == columns)))
+        throw InputError{what + ": expected a (T, " + std::to_string(columns) + ") or (" +
+                         (columns == 1 ? std::string() : std::to_string(columns)) + "T,) array, got shape " +
+                         shapeText(array)};
     std::vector<std::uint32_t> out(std::size_t(array.size()));
     constexpr auto kMax = std::numeric_limits<std::uint32_t>::max();
     const auto tooLarge = [&](std::size_t i, const std::string& value) {

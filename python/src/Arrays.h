@@ -28,9 +28,10 @@ std::vector<glm::vec<K, float>> vectorsFrom(const py::handle& object, const char
 // Per-vertex colours: (N, 3) RGB (alpha 1) or (N, 4) RGBA.
 std::vector<glm::vec4> colorsFrom(const py::handle& object);
 
-// Triangle indices: an (T, 3) or (3T,) array of integers (any integer dtype, none negative, each
-// below 2^32). A float array is refused even when its values are whole.
-std::vector<std::uint32_t> indicesFrom(const py::handle& object);
+// Indices of primitives of `columns` vertices (3: triangles, 2: segments, 1: points): a (T, columns)
+// or (columns·T,) array of integers (any integer dtype, none negative, each below 2^32). A float
+// array is refused even when its values are whole.
+std::vector<std::uint32_t> indicesFrom(const py::handle& object, py::ssize_t columns = 3);
 
 // A 4x4 matrix of finite numbers, row-major as numpy prints it (translation in the last column),
 // as glm's column-major matrix.

@@ -99,11 +99,13 @@ int addMaterial(PyScene& s, const py::handle& color, std::optional<int> texture,
 
 int addMesh(PyScene& s, const py::handle& positions, const py::handle& indices, const py::handle& normals,
             const py::handle& colors, const py::handle& uvs, const py::handle& tangents, std::optional<int> material,
-            const std::string& name, bool fileOrder) {
+            const std::string& name, bool fileOrder, const std::string& topology) {
     Mesh mesh;
     mesh.name = name;
+    if (!topologyNamed(topology, mesh.topology))
+        throw InputError{"topology: '" + topology + "' is not a topology (triangles, lines, points)"};
     mesh.positions = vectorsFrom<3>(positions, "positions");
-    mesh.indices = indicesFrom(indices);
+    mesh.indices = indicesFrom(indices, py::ssize_t(verticesPerPrimitive(mesh.topology)));
     if (!normals.is_none()) mesh.normals = vectorsFrom<3>(normals, "normals");
     if (!colors.is_none()) mesh.colors = colorsFrom(colors);
     if (!uvs.is_none()) mesh.uvs = vectorsFrom<2>(uvs, "uvs");
@@ -147,6 +149,7 @@ py::list instanceList(Scene& scene) {
         d["mesh"] = instance.mesh;
         d["first_id"] = instance.firstId;
         d["triangles"] = scene.meshes[std::size_t(instance.mesh)].triangleCount();
+        d["primitives"] = scene.meshes[std::size_t(instance.mesh)].primitiveCount();
         out.append(d);
     }
     return out;
@@ -227,7 +230,9 @@ py::dict meshDict(const Mesh& mesh) {
     d["name"] = mesh.name;
     d["positions"] = rows(mesh.positions, 3, 0.0f);
     d["normals"] = rows(mesh.normals, 3, 0.0f);
-    py::array_t<std::uint32_t> indices({py::ssize_t(mesh.triangleCount()), py::ssize_t(3)});
+    d["topology"] = topologyName(mesh.topology);
+    py::array_t<std::uint32_t> indices(
+        {py::ssize_t(mesh.primitiveCount()), py::ssize_t(verticesPerPrimitive(mesh.topology))});
     if (!mesh.indices.empty()) std::memcpy(indices.mutable_data(), mesh.indices.data(), mesh.indices.size() * 4);
     d["indices"] = indices;
     py::array_t<std::uint32_t> source(py::ssize_t(mesh.triangleSource.size()));
@@ -312,9 +317,12 @@ void bindScene(py::module_& m) {
              py::arg("normals") = py::none(), py::arg("colors") = py::none(), py::arg("uvs") = py::none(),
              py::arg("tangents") = py::none(),
              py::arg("material") = py::none(), py::arg("name") = "", py::arg("file_order") = false,
-             "A triangle mesh: positions (N, 3), indices (T, 3) or (3T,) of an integer dtype, counter-clockwise\n"
+             py::arg("topology") = "triangles",
+             "A mesh: positions (N, 3), indices (T, 3) or (3T,) of an integer dtype, counter-clockwise\n"
              "= front; normals (N, 3) (computed when None), colors (N, 3|4), uvs (N, 2), tangents (N, 4) as glTF's\n"
              "TANGENT (xyz toward increasing u, w = +1 or -1 the handedness; generated for a normal map when None).\n"
+             "topology 'lines' or 'points': indices (T, 2) or (T,) name line segments or points, 1 pixel wide,\n"
+             "lit where normals are given, else drawn in the base colour plus the emission.\n"
              "Checked (dtype, shape, finite values, indices below N) and finished as a loaded mesh is: its\n"
              "triangles are reordered for\n"
              "the vertex cache unless file_order, and triangle ids stay those of `indices`. Returns its index.")

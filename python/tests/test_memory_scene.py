@@ -398,3 +398,35 @@ def test_instances_materials_and_ids_name_what_drew_each_pixel():
     assert set(np.unique(instance[ids > 0])) == {0, 1, 2}
     counts = np.array([i["triangles"] for i in instances])
     assert (triangle[ids > 0] < counts[instance[ids > 0]]).all()
+
+
+def test_points_and_lines_are_drawn_with_their_ids():
+    """topology='lines' and 'points': one pixel wide, ids per segment and per point, drawn in the
+    base colour plus the emission where there are no normals (the Khronos renderer's rule)."""
+    scene = frugal.Scene()
+    ring = np.array([[np.cos(a), np.sin(a), 0.0] for a in np.linspace(0, 2 * np.pi, 9)[:-1]], np.float32)
+    material = scene.add_material((0.2, 0.4, 0.6, 1.0), emissive=(0.1, 0.0, 0.0))
+    segments = np.array([[i, (i + 1) % 8] for i in range(8)], np.uint32)
+    lines = scene.add_mesh(ring, segments, material=material, topology="lines")
+    points = scene.add_mesh(ring * 0.5, np.arange(8), material=material, topology="points")
+    scene.add_instance(lines)
+    scene.add_instance(points)
+    assert scene.mesh(lines)["topology"] == "lines" and scene.mesh(lines)["indices"].shape == (8, 2)
+    assert scene.mesh(points)["indices"].shape == (8, 1)
+    assert [i["primitives"] for i in scene.instances] == [8, 8]
+    assert [i["triangles"] for i in scene.instances] == [0, 0]
+    camera = frugal.Camera.look_at((0, 0, 3), (0, 0, 0), fov=60)
+    frames = [frugal.Renderer(scene, size=(96, 96), ids=True, backend=b).render(camera)
+              for b in ("auto", "software")]
+    for frame in frames:
+        ids = frame.ids[frame.ids > 0]
+        assert set(np.unique(ids)) == set(range(1, 17))  # every segment and every point
+        drawn = frame.color[frame.ids > 0][:, :3]
+        # (0.1 + 0.2, 0.4, 0.6) encoded as rgb^(1/2.2)
+        np.testing.assert_allclose(drawn, np.broadcast_to([148, 168, 202], drawn.shape), atol=1)
+    np.testing.assert_array_equal(frames[0].ids, frames[1].ids)
+    np.testing.assert_array_equal(frames[0].depth, frames[1].depth)
+    with pytest.raises(ValueError, match="topology: 'quads' is not a topology"):
+        scene.add_mesh(ring, segments, topology="quads")
+    with pytest.raises(ValueError, match=r"indices: expected a \(T, 2\)"):
+        scene.add_mesh(ring, np.zeros((2, 3), np.uint32), topology="lines")

@@ -177,7 +177,7 @@ Result<ViewResult> ViewMeasure::run(std::size_t v, const ReportView& reportView,
     view.eye = setup_->view.eye;
     view.target = reportView.camera.target.value_or(setup_->view.eye + setup_->view.forward);
     std::ostringstream progress;
-    progress << "rvs " << oracle_->rvs.count << " of " << scene_.triangleCount() << ", full " << fmt(fullMs)
+    progress << "rvs " << oracle_->rvs.count << " of " << scene_.primitiveCount() << ", full " << fmt(fullMs)
              << " ms, oracle " << fmt(oracleMs) << " ms";
     for (std::size_t m = 0; m < methods.size(); ++m) {
         Timing& t = timings[m];

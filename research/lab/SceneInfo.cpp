@@ -27,6 +27,7 @@ double sceneDetail(const Scene& scene) {
     for (const Instance& instance : scene.instances) {
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
         const glm::mat3 m(world[std::size_t(instance.node)]);
+        if (!mesh.triangles()) continue;
         for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
             for (int k = 0; k < 3; ++k) {
                 const glm::vec3 a = mesh.positions[mesh.indices[t + std::size_t(k)]];
@@ -147,6 +148,15 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
     out << "meshes: " << scene.meshes.size() << " (" << vertices << " vertices)\n";
     out << "instances: " << scene.instances.size() << "\n";
     out << "triangles: " << scene.triangleCount() << " (drawn per frame)\n";
+    std::size_t segments = 0, points = 0;
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
+        if (mesh.topology == Topology::Lines) segments += mesh.primitiveCount();
+        if (mesh.topology == Topology::Points) points += mesh.primitiveCount();
+    }
+    if (segments + points > 0)
+        out << "points and lines: " << segments << (segments == 1 ? " line segment, " : " line segments, ") << points
+            << (points == 1 ? " point" : " points") << " (1 pixel wide; culling draws them whole)\n";
     out << "materials: " << scene.materials.size() << "\n";
     for (const Material& m : scene.materials) {
         out << "  '" << m.name << "' base colour " << fmt(m.baseColorFactor.r) << "," << fmt(m.baseColorFactor.g) << ","

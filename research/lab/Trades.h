@@ -139,8 +139,8 @@ struct TradeReport {
 // on the software backend the interpolators, the shading trades (the Lambert approximation; one
 // sample where the base has more; no mipmaps), in a sequence reuse, and the useful combinations.
 // `mipmapped`: the scene has a texture with mipmaps (then "no mipmaps" is weighed too). `deforms`:
-// the scene has meshes that deform (Scene::deforms), which the hidden-surface modes do not take
-// (they are left out).
+// the scene has meshes the hidden-surface modes do not take, meshes that deform (Scene::deforms) or
+// points and lines (they are left out).
 std::vector<TradeCandidate> tradeCandidates(const Settings& base, bool sequence, bool software, bool mipmapped = false,
                                             bool deforms = false);
 

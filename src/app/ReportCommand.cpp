@@ -118,8 +118,11 @@ int runReport(const std::vector<std::string>& args, std::ostream& out, std::ostr
     const Settings base = options.settings;
     const bool mipmapped = std::any_of(loaded->textures.begin(), loaded->textures.end(),
                                        [](const Texture& t) { return t.mipmaps != MipFilter::None; });
+    // The hidden-surface modes plan from fixed triangles: not for meshes that deform, nor for points and lines.
+    const bool noHsr = loaded->deforms() || std::any_of(loaded->meshes.begin(), loaded->meshes.end(),
+                                                        [](const Mesh& mesh) { return !mesh.triangles(); });
     const std::vector<TradeCandidate> candidates =
-        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software, mipmapped, loaded->deforms());
+        tradeCandidates(base, settings.sequence, base.backend == BackendKind::Software, mipmapped, noHsr);
     Result<TradeReport> report = measureTrades(*loaded, candidates, settings, progressTo(err, options.quiet));
     if (!report) return fail(err, report.error());
     out << tradeRecommendationText(*report, settings);

@@ -500,14 +500,22 @@ SphereClass SceneCuller::classify(const Scene& scene, int instance, const std::v
 
 namespace {
 
-// `list` with every deforming instance drawn whole, in instance order (the scene order plans keep).
+// Instances that culling draws whole: a deforming one (its map, clusters and hull are of its rest
+// pose) and one of points or segments (the maps, cones and hulls are of triangles; a point or a
+// segment is never culled, so never wrongly).
+bool drawnWhole(const Scene& scene, const Instance& instance) {
+    return scene.deforms(instance) || !scene.meshes[std::size_t(instance.mesh)].triangles();
+}
+
+// `list` with every instance drawn whole (drawnWhole) added, in instance order (the scene order
+// plans keep).
 DrawList withDeformingWhole(const Scene& scene, DrawList list) {
     bool any = false;
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Mesh& mesh = scene.meshes[std::size_t(scene.instances[i].mesh)];
-        if (!scene.deforms(scene.instances[i]) || mesh.triangleCount() == 0) continue;
+        if (!drawnWhole(scene, scene.instances[i]) || mesh.primitiveCount() == 0) continue;
         RangeList whole;
-        whole.add(0, std::uint32_t(mesh.triangleCount()));
+        whole.add(0, std::uint32_t(mesh.primitiveCount()));
         list.push_back(DrawCommand{int(i), std::move(whole.ranges)});
         any = true;
     }
@@ -531,8 +539,8 @@ DrawList SceneCuller::cullOcclusion(const Scene& scene, const std::vector<glm::m
     clusterStart_.assign(scene.instances.size() + 1, 0);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
-        // A deforming instance is drawn whole and is no occluder (its map is of its rest pose).
-        const bool empty = scene.meshes[std::size_t(instance.mesh)].triangleCount() == 0 || scene.deforms(instance);
+        // A deforming instance, or one of points or segments, is drawn whole and is no occluder.
+        const bool empty = scene.meshes[std::size_t(instance.mesh)].triangleCount() == 0 || drawnWhole(scene, instance);
         clusterStart_[i + 1] = clusterStart_[i] + (empty ? 0 : maps_[std::size_t(instance.mesh)].clusters.size());
     }
     const std::size_t pieceClusters = sideBySide ? kPieceClusters : std::max<std::size_t>(clusterStart_.back(), 1);
@@ -610,13 +618,14 @@ DrawList SceneCuller::cull(Cull method, const Scene& scene, const std::vector<gl
         const Instance& instance = scene.instances[i];
         const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
         const MeshMap& map = maps_[std::size_t(instance.mesh)];
-        const std::uint32_t triangles = std::uint32_t(mesh.triangleCount());
+        const std::uint32_t triangles = std::uint32_t(mesh.primitiveCount());
         if (triangles == 0) continue;
         const glm::mat4& model = world[std::size_t(instance.node)];
         const bool singleSided = isSingleSided(scene, mesh);
         RangeList out;
-        if (scene.deforms(instance)) {
-            // Its triangles move with its pose: the mesh's map describes its rest pose only.
+        if (drawnWhole(scene, instance)) {
+            // Its triangles move with its pose (the mesh's map describes its rest pose only), or it
+            // has none.
             out.add(0, triangles);
             list.push_back(DrawCommand{int(i), std::move(out.ranges)});
             continue;
@@ -730,7 +739,7 @@ std::size_t submittedTriangles(const Scene& scene, const DrawList& list) {
     for (const DrawCommand& command : list) {
         if (command.instance < 0 || std::size_t(command.instance) >= scene.instances.size()) continue;
         const Mesh& mesh = scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)];
-        total += normalizeRanges(command.ranges, std::uint32_t(mesh.triangleCount()), runs);
+        total += normalizeRanges(command.ranges, std::uint32_t(mesh.primitiveCount()), runs);
     }
     return std::size_t(total);
 }

@@ -16,13 +16,13 @@ bool validMesh(const Scene& scene, const Instance& instance) {
 }
 
 std::size_t trianglesOf(const Scene& scene, const Instance& instance) {
-    return validMesh(scene, instance) ? scene.meshes[std::size_t(instance.mesh)].triangleCount() : 0;
+    return validMesh(scene, instance) ? scene.meshes[std::size_t(instance.mesh)].primitiveCount() : 0;
 }
 
 // A mesh's source → triangle table: inverse[s] = t with triangleSource[t] = s, kNoTriangle for a
 // source no triangle has. Without triangleSource, source t is triangle t.
 std::vector<std::uint32_t> inverseSources(const Mesh& mesh) {
-    const std::size_t triangles = mesh.triangleCount();
+    const std::size_t triangles = mesh.primitiveCount();
     if (mesh.triangleSource.empty()) {
         std::vector<std::uint32_t> inverse(triangles);
         for (std::size_t t = 0; t < triangles; ++t) inverse[t] = std::uint32_t(t);
@@ -179,17 +179,18 @@ Scene oracleScene(const Scene& scene, const TriangleSet& set) {
             mesh.uvs = from.uvs;
             mesh.tangents = from.tangents;
             mesh.material = from.material;
-            const std::size_t triangles = from.triangleCount();
+            mesh.topology = from.topology;
+            const std::size_t triangles = from.primitiveCount(), corners = verticesPerPrimitive(from.topology);
             static const std::vector<std::uint8_t> none;
             const std::vector<std::uint8_t>& members = i < set.perInstance.size() ? set.perInstance[i] : none;
             std::size_t kept = 0;
             for (std::size_t t = 0; t < triangles && t < members.size(); ++t) kept += members[t] != 0;
-            mesh.indices.reserve(3 * kept);
+            mesh.indices.reserve(corners * kept);
             mesh.triangleSource.reserve(kept);
             for (std::size_t t = 0; t < triangles && t < members.size(); ++t) {
                 if (members[t] == 0) continue;
-                mesh.indices.insert(mesh.indices.end(), from.indices.begin() + std::ptrdiff_t(3 * t),
-                                    from.indices.begin() + std::ptrdiff_t(3 * t + 3));
+                mesh.indices.insert(mesh.indices.end(), from.indices.begin() + std::ptrdiff_t(corners * t),
+                                    from.indices.begin() + std::ptrdiff_t(corners * (t + 1)));
                 mesh.triangleSource.push_back(from.triangleSource.empty() ? std::uint32_t(t) : from.triangleSource[t]);
             }
         }

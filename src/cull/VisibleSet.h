@@ -5,7 +5,9 @@
 //         renderer/Oracle.h).
 //   misses = |RVS \ PVS| (dropped yet visible), waste = |PVS \ RVS| (submitted yet hidden).
 // A triangle is named by (instance, t), t its position in the mesh's index buffer as uploaded (after
-// any reordering), so sets built from draw lists and from id images compare directly.
+// any reordering), so sets built from draw lists and from id images compare directly. A mesh of
+// segments or points (Mesh::topology) counts its primitives the same way: "triangle" here means a
+// primitive, and the counts are of primitives.
 #pragma once
 
 #include <cstddef>

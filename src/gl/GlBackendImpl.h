@@ -77,7 +77,8 @@ enum Variant : unsigned {
     kLinearBit = 8388608u,                 // a Rgba32F target: the linear colour, unencoded
     kDielectricBit = 16777216u,            // metallic exactly 0, no map: the metal terms left out
     kMetalBit = 33554432u,                 // metallic exactly 1, no map: the dielectric terms left out
-    kVariantCount = 67108864u
+    kBareBit = 67108864u,  // segments or points without normals: unlit, base colour + emission (Mesh::topology)
+    kVariantCount = 134217728u
 };
 constexpr unsigned kMapBits = kTextureBit | kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit |
                               kSpecularGlossinessMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
@@ -132,7 +133,9 @@ struct VertexLayout {
 };
 
 struct GlMesh {
-    std::uint32_t triangles = 0;
+    std::uint32_t triangles = 0;  // primitives: triangles, segments or points (Mesh::topology)
+    GLenum mode = GL_TRIANGLES;   // GL_TRIANGLES, GL_LINES or GL_POINTS
+    std::uint32_t corners = 3;    // vertices a primitive
     std::uint32_t vertices = 0;
     GLuint vao = 0, vbo = 0, ibo = 0;
     VertexLayout layout;

@@ -122,26 +122,30 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
     else variant &= ~kSpecularGlossinessMapBit;
     if (params.clearcoat > 0.0f) variant |= kClearcoatBit;
     else variant &= ~kClearcoatBits;
-    if (params.unlit)  // light only
-        variant &= ~(kMetallicRoughnessBit | kOcclusionBit | kEmissiveBit | kNormalMapBit | kSpecularGlossinessBit |
-                     kSpecularGlossinessMapBit | kClearcoatBits);
-    if (frame_.shading == ShadingModel::Lambert && !params.unlit)  // the diffuse term: base colour and emission
+    // Segments or points without normals: the base colour and the emission, unlit (Backend.h).
+    const bool bare = mesh.mode != GL_TRIANGLES && mesh.layout.normal < 0 && !params.unlit;
+    if (params.unlit || bare)  // light only (a bare draw keeps its emissive map)
+        variant &= ~(kMetallicRoughnessBit | kOcclusionBit | (bare ? 0u : kEmissiveBit) | kNormalMapBit |
+                     kSpecularGlossinessBit | kSpecularGlossinessMapBit | kClearcoatBits);
+    if (bare) variant |= kBareBit;
+    const bool unlit = params.unlit || bare;
+    if (frame_.shading == ShadingModel::Lambert && !unlit)  // the diffuse term: base colour and emission
         variant = (variant & ~(kMetallicRoughnessBit | kOcclusionBit | kNormalMapBit | kSpecularGlossinessBit |
                                kSpecularGlossinessMapBit | kClearcoatBit | kClearcoatBits)) |
                   kLambertBit;
     if (mesh.layout.tangent < 0) variant &= ~(kNormalMapBit | kClearcoatNormalMapBit);  // no basis to read them in
     if (mesh.layout.color >= 0) variant |= kColorsBit;
-    if (params.unlit) variant |= kUnlitBit;
+    if (unlit) variant |= kUnlitBit;
     if (params.alphaMode == AlphaMode::Mask) variant |= kAlphaMaskBit;
     if (params.alphaMode == AlphaMode::Blend) variant |= kAlphaBlendBit;
     if (frame_.tonemap == ToneMap::PbrNeutral) variant |= kToneMapNeutralBit;
     if (frame_.tonemap == ToneMap::Aces) variant |= kToneMapAcesBit;
-    if (!params.unlit && !frame_.lighting.lights.empty()) variant |= kLightsBit;
-    if (!params.unlit && frame_.lighting.map) variant |= kEnvironmentMapBit;
-    if (!params.unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
+    if (!unlit && !frame_.lighting.lights.empty()) variant |= kLightsBit;
+    if (!unlit && frame_.lighting.map) variant |= kEnvironmentMapBit;
+    if (!unlit && frame_.shading == ShadingModel::Full && !frame_.lighting.environmentSpecular)
         variant |= kNoEnvironmentSpecularBit;
     if (target.colorFormat == ColorFormat::Rgba32F) variant |= kLinearBit;
-    if (!params.unlit && !(variant & kLambertBit)) {  // one side of the metal mix alone (Backend.h)
+    if (!unlit && !(variant & kLambertBit)) {  // one side of the metal mix alone (Backend.h)
         const MetalMix mix = metalMixOf(params.metallic, (variant & kMetallicRoughnessBit) != 0,
                                         (variant & kSpecularGlossinessBit) != 0);
         if (mix == MetalMix::Dielectric) variant |= kDielectricBit;
@@ -184,7 +188,7 @@ GlProgram* GlBackend::prepareDraw(const DrawParams& params, GlTarget& target, co
         gl_.Uniform1f(p->occlusionStrength, params.occlusionStrength);
     if ((variant & kNormalMapBit) && state_.uniformChanged(p->normalScaleValue, params.normalScale))
         gl_.Uniform1f(p->normalScale, params.normalScale);
-    if (!params.unlit && state_.uniformChanged(p->emissiveValue, params.emissive))
+    if ((!params.unlit || bare) && state_.uniformChanged(p->emissiveValue, params.emissive))
         gl_.Uniform3fv(p->emissive, 1, glm::value_ptr(params.emissive));
     if ((variant & kAlphaMaskBit) && state_.uniformChanged(p->alphaCutoffValue, params.alphaCutoff))
         gl_.Uniform1f(p->alphaCutoff, params.alphaCutoff);
@@ -244,36 +248,37 @@ void GlBackend::draw(const DrawParams& params, std::span<const IndexRange> range
             return;
         }
         for (std::size_t i = 0; i < counts_.size(); ++i) {
-            firsts_[i] *= 3;
-            counts_[i] *= 3;
+            firsts_[i] *= GLint(mesh->corners);
+            counts_[i] *= GLsizei(mesh->corners);
         }
         state_.bindVao(mesh->idVao);
-        gl_.MultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
+        gl_.MultiDrawArrays(mesh->mode, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
     } else if (runs_.size() >= kGatherMinRuns &&
                triangles / runs_.size() < kGatherMaxAverageRun) {
         drawGathered(*mesh, triangles);
     } else {
         offsets_.resize(counts_.size());
         for (std::size_t i = 0; i < counts_.size(); ++i) {
-            offsets_[i] = reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * 3 * sizeof(std::uint32_t));
-            counts_[i] *= 3;
+            offsets_[i] =
+                reinterpret_cast<const void*>(std::uintptr_t(firsts_[i]) * mesh->corners * sizeof(std::uint32_t));
+            counts_[i] *= GLsizei(mesh->corners);
         }
         state_.bindVao(mesh->vao);
-        gl_.MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(), GLsizei(counts_.size()));
+        gl_.MultiDrawElements(mesh->mode, counts_.data(), GL_UNSIGNED_INT, offsets_.data(), GLsizei(counts_.size()));
     }
     check("draw");
 }
 
 void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
     if (m.indices.empty()) {
-        m.indices.resize(std::size_t(m.triangles) * 3);
+        m.indices.resize(std::size_t(m.triangles) * m.corners);
         readBuffer(m.ibo, m.indices.data(), GLsizeiptr(m.indices.size() * sizeof(std::uint32_t)));
     }
-    gathered_.resize(std::size_t(triangles) * 3);
+    gathered_.resize(std::size_t(triangles) * m.corners);
     std::uint32_t* out = gathered_.data();
     for (const IndexRange& run : runs_) {
-        const std::uint32_t* from = m.indices.data() + std::size_t(run.firstTriangle) * 3;
-        out = std::copy(from, from + std::size_t(run.triangleCount) * 3, out);
+        const std::uint32_t* from = m.indices.data() + std::size_t(run.firstTriangle) * m.corners;
+        out = std::copy(from, from + std::size_t(run.triangleCount) * m.corners, out);
     }
     if (streamIbo_ == 0) gl_.GenBuffers(1, &streamIbo_);
     // The element binding is VAO state: the stream buffer goes into the mesh's VAO for this draw and
@@ -282,17 +287,18 @@ void GlBackend::drawGathered(GlMesh& m, std::uint64_t triangles) {
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, streamIbo_);
     gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(gathered_.size() * sizeof(std::uint32_t)), gathered_.data(),
                    GL_STREAM_DRAW);
-    gl_.DrawElements(GL_TRIANGLES, GLsizei(gathered_.size()), GL_UNSIGNED_INT, nullptr);
+    gl_.DrawElements(m.mode, GLsizei(gathered_.size()), GL_UNSIGNED_INT, nullptr);
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
 }
 
 bool GlBackend::buildIdPass(GlMesh& m) {
     std::vector<std::uint8_t> vertexData(static_cast<std::size_t>(m.layout.size));
-    std::vector<std::uint32_t> indices(std::size_t(m.triangles) * 3);
+    std::vector<std::uint32_t> indices(std::size_t(m.triangles) * m.corners);
     readBuffer(m.vbo, vertexData.data(), m.layout.size);
     readBuffer(m.ibo, indices.data(), GLsizeiptr(indices.size() * sizeof(std::uint32_t)));
 
-    // Same sections as the indexed buffer, 3 vertices per triangle, plus the id section.
+    // Same sections as the indexed buffer, 3 vertices per triangle (2 a segment, 1 a point), plus the
+    // id section.
     const std::size_t n = indices.size();
     VertexLayout expanded;
     GLsizeiptr size = GLsizeiptr(n * sizeof(glm::vec3));
@@ -321,7 +327,7 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     gather(m.layout.uv, expanded.uv, sizeof(glm::vec2));
     gather(m.layout.tangent, expanded.tangent, sizeof(glm::vec4));
     for (std::size_t k = 0; k < n; ++k)
-        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t), &m.triangleSource[k / 3],
+        std::memcpy(data.data() + expanded.id + k * sizeof(std::uint32_t), &m.triangleSource[k / m.corners],
                     sizeof(std::uint32_t));
 
     gl_.GenVertexArrays(1, &m.idVao);
@@ -384,12 +390,14 @@ void GlBackend::drawInstances(const DrawParams& params, std::span<const Instance
             return;
         }
         attachInstances(mesh->idVao, mesh->idVaoInstanced);
-        gl_.DrawArraysInstanced(GL_TRIANGLES, GLint(run.firstTriangle) * 3, GLsizei(run.triangleCount) * 3, count);
+        gl_.DrawArraysInstanced(mesh->mode, GLint(run.firstTriangle * mesh->corners),
+                                GLsizei(run.triangleCount * mesh->corners), count);
     } else {
         attachInstances(mesh->vao, mesh->vaoInstanced);
-        gl_.DrawElementsInstanced(GL_TRIANGLES, GLsizei(run.triangleCount) * 3, GL_UNSIGNED_INT,
-                                  reinterpret_cast<const void*>(std::uintptr_t(run.firstTriangle) * 3 * sizeof(std::uint32_t)),
-                                  count);
+        gl_.DrawElementsInstanced(
+            mesh->mode, GLsizei(run.triangleCount * mesh->corners), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(std::uintptr_t(run.firstTriangle) * mesh->corners * sizeof(std::uint32_t)),
+            count);
     }
     state_.countDraw();
     check("drawInstances");

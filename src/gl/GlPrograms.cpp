@@ -94,6 +94,7 @@ std::string GlBackend::compileVariant(unsigned variant) {
     if (variant & kIdsBit) defines += "#define FRUGAL_IDS\n";
     if (variant & kInstancedBit) defines += "#define FRUGAL_INSTANCED\n";
     if (variant & kUnlitBit) defines += "#define FRUGAL_UNLIT\n";
+    if (variant & kBareBit) defines += "#define FRUGAL_BARE\n";
     if (variant & kAlphaMaskBit) defines += "#define FRUGAL_ALPHA_MASK\n";
     if (variant & kAlphaBlendBit) defines += "#define FRUGAL_ALPHA_BLEND\n";
     if (variant & kSpecularGlossinessBit) defines += "#define FRUGAL_SPECULAR_GLOSSINESS\n";

@@ -1,10 +1,11 @@
 // The GL backend's meshes and textures: upload and release (the class: GlBackendImpl.h).
 //
 // Meshes: uploadMesh refuses (kNoHandle) attribute arrays that do not match the positions, index
-// counts not a multiple of 3, indices past the last vertex, and a triangleSource of the wrong
-// length. What a mesh may leave out (the software backend uses the same defaults): normals → (0,0,1),
-// colours → white, uvs → (0,0), triangleSource → t for triangle t. id = firstId + source, added in
-// the vertex stage in 32-bit unsigned arithmetic.
+// counts not a multiple of 3 (2 for segments, Mesh::topology), indices past the last vertex, and a
+// triangleSource of the wrong length. Segments and points are drawn as GL_LINES and GL_POINTS, of
+// GL's default width and size, 1. What a mesh may leave out (the software backend uses the same defaults): normals →
+// (0,0,1), colours → white, uvs → (0,0), triangleSource → t for triangle t. id = firstId + source, added in the vertex
+// stage in 32-bit unsigned arithmetic.
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -38,11 +39,13 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     // Bad data gets kNoHandle, never a GL call that reads out of bounds.
     if (!isUploadable(mesh)) return kNoHandle;
     const std::size_t vertices = mesh.positions.size();
-    const std::size_t triangles = mesh.triangleCount();
+    const std::size_t triangles = mesh.primitiveCount();
 
     activate();
     GlMesh m;
     m.triangles = std::uint32_t(triangles);
+    m.mode = mesh.topology == Topology::Lines ? GL_LINES : mesh.topology == Topology::Points ? GL_POINTS : GL_TRIANGLES;
+    m.corners = std::uint32_t(verticesPerPrimitive(mesh.topology));
     m.vertices = std::uint32_t(vertices);
     m.triangleSource = triangleSources(mesh);
 

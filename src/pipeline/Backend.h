@@ -58,7 +58,8 @@ constexpr bool operator==(Handle<Kind> handle, NoHandle) {
     return handle.id == 0;
 }
 
-// A run of triangles of one mesh, in units of triangles of its (reordered) index buffer.
+// A run of triangles of one mesh, in units of triangles of its (reordered) index buffer; of a mesh
+// of segments or points (Mesh::topology), a run of those: "triangle" below means a primitive.
 struct IndexRange {
     std::uint32_t firstTriangle = 0;
     std::uint32_t triangleCount = 0;
@@ -219,8 +220,10 @@ struct InstanceParams {
 };
 
 // The contract uploadMesh checks in every backend (a mesh that breaks it gets kNoHandle): attribute
-// arrays (tangents too) match the positions or are empty, indices come in threes and stay below the
-// vertex count, triangleSource has one entry per triangle or is empty (then triangle t has source t).
+// arrays (tangents too) match the positions or are empty, indices come in threes (twos for segments,
+// ones for points) and stay below the vertex count, triangleSource has one entry per primitive or is
+// empty (then primitive t has source t). A mesh of segments or points without normals is drawn
+// unlit: rgb = base.rgb + the emission (Mesh::topology).
 bool isUploadable(const Mesh& mesh);
 
 // How a backend draws one draw() of several index ranges: each range as a draw of its own, or, from

@@ -27,7 +27,7 @@ std::uint64_t normalizeRanges(std::span<const IndexRange> ranges, std::uint32_t 
 
 std::vector<std::uint32_t> triangleSources(const Mesh& mesh) {
     if (!mesh.triangleSource.empty()) return mesh.triangleSource;
-    std::vector<std::uint32_t> sources(mesh.triangleCount());
+    std::vector<std::uint32_t> sources(mesh.primitiveCount());
     std::iota(sources.begin(), sources.end(), 0u);
     return sources;
 }

@@ -31,8 +31,8 @@ DrawList fullDrawList(const Scene& scene) {
     list.reserve(scene.instances.size());
     for (int i = 0; i < int(scene.instances.size()); ++i) {
         const Mesh& mesh = scene.meshes[scene.instances[i].mesh];
-        if (mesh.triangleCount() == 0) continue;
-        list.push_back({i, {{0, std::uint32_t(mesh.triangleCount())}}});
+        if (mesh.primitiveCount() == 0) continue;
+        list.push_back({i, {{0, std::uint32_t(mesh.primitiveCount())}}});
     }
     return list;
 }

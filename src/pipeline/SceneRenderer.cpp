@@ -53,9 +53,10 @@ void SceneRenderer::release() {
 }
 
 MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
-    // A normal map (the surface's or its coat's) needs tangents: a mesh without them is uploaded
-    // with generated ones.
-    const bool needsTangents = mesh.tangents.empty() && mesh.material >= 0 &&
+    // A normal map (the surface's or its coat's) needs tangents: a mesh of triangles without them is
+    // uploaded with generated ones (segments and points without tangents ignore normal maps, as the
+    // Khronos renderer draws them).
+    const bool needsTangents = mesh.tangents.empty() && mesh.triangles() && mesh.material >= 0 &&
                                std::size_t(mesh.material) < scene_->materials.size() &&
                                scene_->materials[std::size_t(mesh.material)].tangentSpace();
     if (!needsTangents) return backend_->uploadMesh(mesh);

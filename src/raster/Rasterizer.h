@@ -163,7 +163,11 @@ struct Triangle {
     std::uint32_t front;          // 1: front face (gl_FrontFacing)
     bool writesId;                // the draw writes ids (FrameParams::writeIds when it was made)
     bool depthTest;               // DepthMode::Test; false: every covered pixel passes, no depth written
+    // 0: a triangle. kPointShape or kSegmentShape: a point or a segment (raster/PointsLines.h), whose
+    // record (sw::ShapeRecord) begins with the three vertices v points to; e, z0, dzdx, dzdy unused.
+    std::uint8_t shape = 0;
 };
+inline constexpr std::uint8_t kPointShape = 1, kSegmentShape = 2;
 
 // Multisampling (6. above): llvmpipe's standard positions of 4 samples, in pixels and in setup's
 // fixed point.

@@ -119,6 +119,14 @@ Result<bool> Renderer::Impl::open() {
                          "' has meshes that deform (morph targets, skins), and the hidden-surface modes need "
                          "meshes of a fixed shape (zbuffer draws it)",
                      ErrorKind::BadInput, true};
+    if (traitsOf(s.hsr).plans)
+        for (const Instance& instance : scene->instances)
+            if (const Mesh& mesh = scene->meshes[std::size_t(instance.mesh)]; !mesh.triangles())
+                return Error{std::string("hsr ") + toString(s.hsr) + ": '" + scene->source + "' has " +
+                                 topologyName(mesh.topology) + " (mesh " + std::to_string(instance.mesh) +
+                                 (mesh.name.empty() ? std::string() : " '" + mesh.name + "'") +
+                                 "), and the hidden-surface modes order polygons (zbuffer draws it)",
+                             ErrorKind::BadInput, true};
     const CullTraits& cull = traitsOf(s.cull);
     if (cull.prepares) {
         MapParams bins{s.cullBinsTheta, s.cullBinsPhi};
@@ -245,7 +253,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         // The id pass and the oracle's own index buffers come before the clock starts.
         Result<Oracle> oracle = makeOracle(*renderer, target, s.width, s.height, setup->params, setup->world, clear);
         if (!oracle) return Error{scene->source + ": " + oracle.error().message};
-        stats.cull = CullStats{scene->triangleCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
+        stats.cull = CullStats{scene->primitiveCount(), oracle->rvs.count, oracle->ms, 0, std::nullopt};
         t0 = Clock::now();
         oracle->renderer->renderFrame(target, s.width, s.height, setup->params, setup->world, clear);
     } else if (culler) {
@@ -257,7 +265,7 @@ Result<bool> Renderer::Impl::render(const Camera& camera, double seconds, Frame&
         const double cullMs = msBetween(t0, Clock::now());
         std::size_t ranges = 0;
         for (const DrawCommand& command : list) ranges += command.ranges.size();
-        stats.cull = CullStats{scene->triangleCount(), submittedTriangles(*scene, list), cullMs, ranges, std::nullopt};
+        stats.cull = CullStats{scene->primitiveCount(), submittedTriangles(*scene, list), cullMs, ranges, std::nullopt};
         if (traitsOf(s.cull).occlusion) {
             const OcclusionStats& o = culler->occlusion().stats();
             stats.cull->occlusion = OcclusionFrameStats{o.ran, o.ms, o.trianglesHidden, madeAhead.has_value(), 0.0};

@@ -140,27 +140,6 @@ const char* componentTypeName(int componentType) {
     }
 }
 
-const char* modeName(int mode) {
-    switch (mode) {
-        case TINYGLTF_MODE_POINTS:
-            return "POINTS";
-        case TINYGLTF_MODE_LINE:
-            return "LINES";
-        case TINYGLTF_MODE_LINE_LOOP:
-            return "LINE_LOOP";
-        case TINYGLTF_MODE_LINE_STRIP:
-            return "LINE_STRIP";
-        case TINYGLTF_MODE_TRIANGLES:
-            return "TRIANGLES";
-        case TINYGLTF_MODE_TRIANGLE_STRIP:
-            return "TRIANGLE_STRIP";
-        case TINYGLTF_MODE_TRIANGLE_FAN:
-            return "TRIANGLE_FAN";
-        default:
-            return "?";
-    }
-}
-
 // Component decoding; normalised integers follow the glTF 2.0 formulas (signed: max(c / MAX, -1)).
 // memcpy because glTF only promises alignment to the component size within the buffer.
 template <class T>
@@ -823,6 +802,37 @@ std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& v, int 
     return out;
 }
 
+Topology topologyOf(int mode) {
+    switch (mode) {
+        case TINYGLTF_MODE_POINTS:
+            return Topology::Points;
+        case TINYGLTF_MODE_LINE:
+        case TINYGLTF_MODE_LINE_LOOP:
+        case TINYGLTF_MODE_LINE_STRIP:
+            return Topology::Lines;
+        default:
+            return Topology::Triangles;
+    }
+}
+
+// The points or line segments of a primitive, as indices into its vertex list: POINTS as they are,
+// LINES in pairs, LINE_STRIP segment i = (v_i, v_{i+1}), LINE_LOOP the same and a last one (v_{n-1},
+// v_0) (spec, "Topology types"); segment i at position i, so triangleSource stays the identity. A
+// strip or loop of fewer than 2 vertices has no segment, as GL draws it.
+std::vector<std::uint32_t> segments(const std::vector<std::uint32_t>& v, int mode, const std::string& where) {
+    if (mode == TINYGLTF_MODE_POINTS) return v;
+    if (mode == TINYGLTF_MODE_LINE) {
+        if (v.size() % 2 != 0) fail(where, ": LINES with ", v.size(), " vertices, which is not a multiple of 2");
+        return v;
+    }
+    std::vector<std::uint32_t> out;
+    if (v.size() < 2) return out;
+    out.reserve(2 * v.size());
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) out.insert(out.end(), {v[i], v[i + 1]});
+    if (mode == TINYGLTF_MODE_LINE_LOOP) out.insert(out.end(), {v.back(), v.front()});
+    return out;
+}
+
 int attributeAccessor(const tinygltf::Primitive& primitive, const std::string& name) {
     const auto it = primitive.attributes.find(name);
     return it == primitive.attributes.end() ? -1 : it->second;
@@ -968,10 +978,6 @@ void Converter::convertPrimitive(int meshIndex, int primitiveIndex) {
     const tinygltf::Primitive& primitive = gltfMesh.primitives[std::size_t(primitiveIndex)];
     const std::string where = cat("mesh ", meshIndex, " primitive ", primitiveIndex);
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    if (mode < TINYGLTF_MODE_TRIANGLES) {
-        report(cat("primitive mode ", modeName(mode)));
-        return;
-    }
     if (attributeAccessor(primitive, "POSITION") < 0) {
         warn(cat(where, ": no POSITION attribute, not drawn"));
         return;
@@ -984,14 +990,19 @@ void Converter::convertPrimitive(int meshIndex, int primitiveIndex) {
     if (primitive.material >= 0) materialUsed_[std::size_t(primitive.material)] = true;
     readAttributes(primitive, where, mesh);
     readTargets(primitive, gltfMesh, where, mesh);
-    mesh.indices = triangulate(readVertexList(primitive, where, mesh.positions.size()), mode, where);
+    mesh.topology = topologyOf(mode);
+    mesh.indices = mesh.triangles() ? triangulate(readVertexList(primitive, where, mesh.positions.size()), mode, where)
+                                    : segments(readVertexList(primitive, where, mesh.positions.size()), mode, where);
 
     const MeshBuildStats stats = finalizeMesh(mesh, options_.optimizeOrder);
     if (stats.droppedNonFinite > 0) {
         const std::string name =
             gltfMesh.name.empty() ? cat("mesh ", meshIndex) : cat("mesh '", oneLine(gltfMesh.name, 60), "'");
-        warn(cat(name, " primitive ", primitiveIndex, ": dropped ", stats.droppedNonFinite,
-                 " triangles with non-finite positions"));
+        warn(cat(name, " primitive ", primitiveIndex, ": dropped ", stats.droppedNonFinite, " ",
+                 mesh.triangles()                   ? "triangles"
+                 : mesh.topology == Topology::Lines ? "line segments"
+                                                    : "points",
+                 " with non-finite positions"));
     }
     const auto& source = mesh.triangleSource;
     idCount_.push_back(source.empty() ? 0 : std::uint64_t(*std::max_element(source.begin(), source.end())) + 1);

@@ -93,28 +93,33 @@ void optimizeOrder(Mesh& mesh) {
 }  // namespace
 
 MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
-    assert(mesh.indices.size() % 3 == 0);
+    const std::size_t corners = verticesPerPrimitive(mesh.topology);
+    assert(mesh.indices.size() % corners == 0);
     MeshBuildStats stats;
     if (mesh.triangleSource.empty()) {
-        mesh.triangleSource.resize(mesh.triangleCount());
+        mesh.triangleSource.resize(mesh.primitiveCount());
         for (std::size_t t = 0; t < mesh.triangleSource.size(); ++t) mesh.triangleSource[t] = std::uint32_t(t);
     }
-    assert(mesh.triangleSource.size() == mesh.triangleCount());
+    assert(mesh.triangleSource.size() == mesh.primitiveCount());
 
-    // Drop triangles that touch a NaN/Inf position: GL behaviour for them is undefined.
+    // Drop primitives that touch a NaN/Inf position: GL behaviour for them is undefined.
     std::size_t kept = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const std::uint32_t* tri = &mesh.indices[3 * t];
-        assert(tri[0] < mesh.positions.size() && tri[1] < mesh.positions.size() && tri[2] < mesh.positions.size());
-        if (!isFinite(mesh.positions[tri[0]]) || !isFinite(mesh.positions[tri[1]]) || !isFinite(mesh.positions[tri[2]])) {
+    for (std::size_t t = 0; t < mesh.primitiveCount(); ++t) {
+        const std::uint32_t* primitive = &mesh.indices[corners * t];
+        bool finite = true;
+        for (std::size_t k = 0; k < corners; ++k) {
+            assert(primitive[k] < mesh.positions.size());
+            finite = finite && isFinite(mesh.positions[primitive[k]]);
+        }
+        if (!finite) {
             ++stats.droppedNonFinite;
             continue;
         }
-        for (int k = 0; k < 3; ++k) mesh.indices[3 * kept + k] = tri[k];
+        for (std::size_t k = 0; k < corners; ++k) mesh.indices[corners * kept + k] = primitive[k];
         mesh.triangleSource[kept] = mesh.triangleSource[t];
         ++kept;
     }
-    mesh.indices.resize(3 * kept);
+    mesh.indices.resize(corners * kept);
     mesh.triangleSource.resize(kept);
     // Unused non-finite positions stay in the vertex buffer; make them harmless zeros.
     for (glm::vec3& p : mesh.positions)
@@ -127,9 +132,20 @@ MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrderFlag) {
     for (glm::vec4& t : mesh.tangents)
         if (!isFinite(t)) t = glm::vec4(0.0f);  // repaired with the normals below
 
-    computeMissingNormals(mesh);
+    if (mesh.triangles()) {
+        computeMissingNormals(mesh);
+    } else {
+        // Segments and points have no face to take a normal from: a broken normal becomes +z, and
+        // without normals there is no tangent basis to read.
+        for (glm::vec3& n : mesh.normals) {
+            const float length = glm::length(n);
+            n = std::isfinite(length) && length > 0.0f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+        if (mesh.normals.empty()) mesh.tangents.clear();
+    }
     repairTangents(mesh);
-    if (optimizeOrderFlag && kept > 0) optimizeOrder(mesh);
+    // Segments and points keep the file's order: it is their draw order, and no vertex cache gains.
+    if (optimizeOrderFlag && kept > 0 && mesh.triangles()) optimizeOrder(mesh);
     return stats;
 }
 

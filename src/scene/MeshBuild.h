@@ -18,16 +18,18 @@ bool isFinite(const glm::vec<N, float>& v) {
 }
 
 struct MeshBuildStats {
-    std::size_t droppedNonFinite = 0;  // triangles with a NaN/Inf position (never passed to GL)
+    std::size_t droppedNonFinite = 0;  // primitives with a NaN/Inf position (never passed to GL)
 };
 
-// Requires indices.size() % 3 == 0, every index < positions.size(), and normals/colors/uvs either
-// empty or as long as positions (loaders validate this before calling).
-// - drops triangles that touch a non-finite position, and counts them;
+// Requires indices.size() to be a multiple of verticesPerPrimitive(topology), every index <
+// positions.size(), and normals/colors/uvs either empty or as long as positions (loaders validate
+// this before calling).
+// - drops primitives that touch a non-finite position, and counts them;
 // - fills `triangleSource` with 0..n-1 if the loader left it empty;
-// - computes area-weighted vertex normals when `normals` is empty, and replaces non-finite or zero
-//   normals by the face normal; normalises tangents, and replaces broken ones by a perpendicular of
-//   the normal;
+// - triangles: computes area-weighted vertex normals when `normals` is empty, and replaces
+//   non-finite or zero normals by the face normal; segments and points: normalises the normals
+//   there are (a broken one becomes +z) and computes none;
+// - normalises tangents, and replaces broken ones by a perpendicular of the normal;
 // - reorders triangles for the post-transform vertex cache (meshoptimizer) when `optimizeOrder`,
 //   carrying `triangleSource` along.
 MeshBuildStats finalizeMesh(Mesh& mesh, bool optimizeOrder);

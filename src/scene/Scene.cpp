@@ -24,10 +24,10 @@ void Scene::buildInstances() {
         for (int mesh : nodes[n].meshes) {
             instances.push_back({n, mesh, nextId});
             // Ids are given per source primitive, so the range is the source count, which equals the
-            // triangle count after loading (dropped triangles keep their ids unused). A mesh without
-            // triangleSource has source t for triangle t (pipeline/Backend.h).
+            // primitive count after loading (dropped primitives keep their ids unused). A mesh
+            // without triangleSource has source t for primitive t (pipeline/Backend.h).
             const Mesh& m = meshes[mesh];
-            auto sourceCount = std::uint32_t(m.triangleSource.empty() ? m.triangleCount() : 0);
+            auto sourceCount = std::uint32_t(m.triangleSource.empty() ? m.primitiveCount() : 0);
             for (std::uint32_t s : m.triangleSource) sourceCount = std::max(sourceCount, s + 1);
             nextId += sourceCount;
         }
@@ -37,6 +37,12 @@ void Scene::buildInstances() {
 std::size_t Scene::triangleCount() const {
     std::size_t count = 0;
     for (const Instance& instance : instances) count += meshes[instance.mesh].triangleCount();
+    return count;
+}
+
+std::size_t Scene::primitiveCount() const {
+    std::size_t count = 0;
+    for (const Instance& instance : instances) count += meshes[instance.mesh].primitiveCount();
     return count;
 }
 

@@ -53,11 +53,16 @@ Node& addRoot(Scene& scene, const glm::mat4& transform, std::string name) {
 
 std::string meshProblem(const Mesh& mesh, std::size_t materials) {
     const std::size_t vertices = mesh.positions.size();
-    if (mesh.indices.size() % 3 != 0)
-        return std::to_string(mesh.indices.size()) + " indices are not whole triangles (3 a triangle)";
+    const std::size_t corners = verticesPerPrimitive(mesh.topology);
+    const char* primitive = mesh.triangles() ? "triangle" : mesh.topology == Topology::Lines ? "segment" : "point";
+    if (std::size_t(mesh.topology) >= std::size(kTopologyNames))
+        return "topology " + std::to_string(int(mesh.topology)) + " is not triangles, lines or points";
+    if (mesh.indices.size() % corners != 0)
+        return std::to_string(mesh.indices.size()) + " indices are not whole " + primitive + "s (" +
+               std::to_string(corners) + " a " + primitive + ")";
     for (std::size_t i = 0; i < mesh.indices.size(); ++i)
         if (mesh.indices[i] >= vertices)
-            return "index " + std::to_string(mesh.indices[i]) + " (triangle " + std::to_string(i / 3) +
+            return "index " + std::to_string(mesh.indices[i]) + " (" + primitive + " " + std::to_string(i / corners) +
                    ") is past the " + std::to_string(vertices) + " vertices";
     const auto count = [&](const char* what, std::size_t n) -> std::string {
         if (n == 0 || n == vertices) return {};
@@ -88,9 +93,9 @@ std::string meshProblem(const Mesh& mesh, std::size_t materials) {
     for (std::size_t w = 0; w < mesh.weights.size(); ++w)
         if (!std::isfinite(mesh.weights[w]))
             return "morph weight " + std::to_string(w) + " is " + fmt(double(mesh.weights[w])) + ", not finite";
-    if (!mesh.triangleSource.empty() && mesh.triangleSource.size() != mesh.triangleCount())
+    if (!mesh.triangleSource.empty() && mesh.triangleSource.size() != mesh.primitiveCount())
         return std::to_string(mesh.triangleSource.size()) + " triangle sources for " +
-               std::to_string(mesh.triangleCount()) + " triangles";
+               std::to_string(mesh.primitiveCount()) + " " + primitive + "s";
     return {};
 }
 

@@ -912,7 +912,15 @@ void shadeSamples(std::uint32_t index, const DrawShading& shading, TileState& ti
             }
 
             F8 linear[3] = {base[0], base[1], base[2]};
-            if (!shading.unlit) {
+            if (shading.bare) {  // mesh.frag's FRUGAL_BARE
+                F8 emission[3] = {light.emission[0], light.emission[1], light.emission[2]};
+                if (shading.emissive) {
+                    F8 emitted[4];
+                    sampleLanes(*shading.emissive, s, tt, footprints, lanes, emitted);
+                    for (int c = 0; c < 3; ++c) emission[c] = emission[c] * emitted[c];
+                }
+                for (int c = 0; c < 3; ++c) linear[c] = emission[c] + linear[c];
+            } else if (!shading.unlit) {
                 Vec3 n = normalize({value[0], value[1], value[2]});
                 if (!t.front) n = {simd::neg(n.x), simd::neg(n.y), simd::neg(n.z)};
                 F8 emission[3] = {light.emission[0], light.emission[1], light.emission[2]};

@@ -1,9 +1,10 @@
 #include "software/Pipeline.h"
 
-#include <functional>
-
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <cstring>
+#include <functional>
 #include <iterator>
 #include <new>
 
@@ -53,7 +54,7 @@ Pipeline::DrawRecord& Pipeline::newDraw() {
 void Pipeline::transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
                                  std::uint64_t triangles) {
     const std::size_t vertices = mesh.positions.size();
-    if (triangles * 3 >= vertices / 2) {
+    if (triangles * mesh.corners >= vertices / 2) {
         // Most of the mesh: every vertex, in parallel chunks.
         const std::size_t chunks = (vertices + kVertexChunk - 1) / kVertexChunk;
         pool_.run(chunks, [&](std::size_t c, int) {
@@ -65,8 +66,8 @@ void Pipeline::transformVertices(SoftwareMesh& mesh, const VertexJob& job, const
     const std::uint64_t serial = ++drawSerial_;
     for (const Run& run : runs)
         for (std::uint32_t t = run.first; t < run.end; ++t)
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t v = mesh.indices[std::size_t(t) * 3 + k];
+            for (std::uint32_t k = 0; k < mesh.corners; ++k) {
+                const std::uint32_t v = mesh.indices[std::size_t(t) * mesh.corners + k];
                 if (mesh.stamp[v] == serial) continue;
                 mesh.stamp[v] = serial;
                 kernels_.transform(job, v, v + 1);
@@ -170,6 +171,12 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
     vertexJob.mask = record.mask.data();
     transformVertices(mesh, vertexJob, runs, triangles);
 
+    if (mesh.corners != 3) {  // points or segments: no faces, and few enough to set up here
+        const SetupJob job{&mesh, &record, vertexJob.viewport, drawIndex, input.firstId, 0, false, &runs, nullptr};
+        setupShapes(job, record, triangles, segmentCount_ > 0 ? *segments_[segmentCount_ - 1] : newSegment());
+        return;
+    }
+
     // Which draw-module batches run the pipeline (this only matters when back faces are culled).
     const bool cullBack = !input.doubleSided;
     const std::uint32_t batchSize = input.shading.writeIds ? kArrayBatch : kIndexedBatch;
@@ -198,6 +205,126 @@ void Pipeline::draw(SoftwareMesh& mesh, int width, int height, const DrawInput& 
         });
     } else {
         setup(job, 0, triangles, segmentCount_ > 0 ? *segments_[segmentCount_ - 1] : newSegment());
+    }
+}
+
+void Pipeline::setupShapes(const SetupJob& job, DrawRecord& record, std::uint64_t primitives, Segment& segment) {
+    const int tilesX = (job.viewport.width + kTileSize - 1) / kTileSize;
+    const SoftwareMesh& mesh = *job.mesh;
+    const bool points = mesh.corners == 1;
+    record.shapes.clear();
+    try {
+        record.shapes.reserve(std::size_t(primitives));  // Triangle::v points into it: no reallocation
+    } catch (const std::bad_alloc&) {
+        assert(false && "draw: out of memory");
+        return;
+    }
+    // The vertex made by the clipper at t from `out` toward `in` (raster/PointsLines.h, 2.).
+    const auto clipped = [&](std::uint32_t out, std::uint32_t in, float t) {
+        const glm::vec4& a = record.clip[out];
+        const glm::vec4& b = record.clip[in];
+        glm::vec4 clip;
+        for (int i = 0; i < 4; ++i) clip[i] = a[i] + t * (b[i] - a[i]);
+        SetupVertex v = clippedWindowVertex(clip, job.viewport);
+        const SetupVertex &va = record.vertices[out], &vb = record.vertices[in];
+        for (int i = 0; i < kAttributes; ++i) v.a[i] = va.a[i] + t * (vb.a[i] - va.a[i]);
+        return v;
+    };
+    for (const Run& run : *job.runs)
+        for (std::uint32_t p = run.first; p < run.end; ++p) {
+            const std::uint32_t* index = mesh.indices.data() + std::size_t(p) * mesh.corners;
+            ShapeRecord shape;
+            if (points) {
+                if (record.mask[index[0]] != 0) continue;  // drawn only when its centre is inside
+                const SetupVertex& v = record.vertices[index[0]];
+                if (!setupPoint(v, job.viewport, &shape.setup)) continue;
+                // Shading's planes: three corners with the point's values, so every varying is constant.
+                shape.corner[0] = shape.corner[1] = shape.corner[2] = v;
+                shape.corner[1].x += 1.0f;
+                shape.corner[2].y += 1.0f;
+            } else {
+                const std::uint32_t i0 = index[0], i1 = index[1];
+                float t0 = 0.0f, t1 = 0.0f;
+                if (!clipSegment(record.clip[i0], record.clip[i1], record.mask[i0], record.mask[i1], job.viewport.halfZ,
+                                 &t0, &t1))
+                    continue;
+                const SetupVertex a = record.mask[i0] != 0 ? clipped(i0, i1, t0) : record.vertices[i0];
+                const SetupVertex b = record.mask[i1] != 0 ? clipped(i1, i0, t1) : record.vertices[i1];
+                if (!setupSegment(a, b, job.viewport, &shape.setup)) continue;
+                // Shading's planes, as llvmpipe's line setup makes them: from the segment's ends and
+                // a third corner with the first end's values, a pixel across the minor axis when
+                // single-sampled (the varyings follow the major axis only), square to the segment
+                // with 4 samples (they follow the segment); there its planes are made with half a
+                // pixel of offset while the rasterizer takes none, so they are read half a pixel up
+                // and right (raster/PointsLines.h, 7.): the corners move half a pixel the other way.
+                shape.corner[0] = a;
+                shape.corner[1] = b;
+                shape.corner[2] = a;
+                if (job.viewport.samples == 1) {
+                    (shape.setup.xMajor ? shape.corner[2].y : shape.corner[2].x) += 1.0f;
+                } else {
+                    shape.corner[2].x -= b.y - a.y;
+                    shape.corner[2].y += b.x - a.x;
+                    for (SetupVertex& corner : shape.corner) corner.x -= 0.5f, corner.y -= 0.5f;
+                }
+            }
+            const ShapeRecord& kept = record.shapes.emplace_back(shape);
+            Triangle t{};
+            t.x0 = kept.setup.x0, t.y0 = kept.setup.y0, t.x1 = kept.setup.x1, t.y1 = kept.setup.y1;
+            t.v[0] = &kept.corner[0], t.v[1] = &kept.corner[1], t.v[2] = &kept.corner[2];
+            t.draw = job.drawIndex;
+            t.id = job.firstId + mesh.triangleSource[p];  // 32-bit wrap, as in mesh.vert
+            t.front = 1;                                  // gl_FrontFacing is true for points and lines
+            t.writesId = record.shading.writeIds;
+            t.depthTest = record.shading.depthTest;
+            t.shape = points ? kPointShape : kSegmentShape;
+            segment.triangles.push_back(t);
+            segment.bin(std::uint32_t(segment.triangles.size() - 1), tilesX);
+        }
+}
+
+void Pipeline::rasterShape(const Triangle& t, TileState& tile) const {
+    const ShapeSetup& shape = shapeOf(t).setup;
+    const int x0 = std::max(t.x0, tile.x0), x1 = std::min(t.x1, tile.x1 - 1);
+    const int y0 = std::max(t.y0, tile.y0), y1 = std::min(t.y1, tile.y1 - 1);
+    const TargetView& target = tile.target;
+    const int samples = target.samples;
+    const bool reversed = target.depthFormat == DepthFormat::D32F;
+    const std::size_t stride = std::size_t(target.stride);
+    std::uint32_t myIndex = kNoWinner;
+    for (int sample = 0; sample < samples; ++sample) {
+        const std::size_t plane = std::size_t(sample) * target.sampleStride;
+        const float sx = samples > 1 ? kSamplePositions[sample][0] : 0.0f;
+        const float sy = samples > 1 ? kSamplePositions[sample][1] : 0.0f;
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                if (!shapeCovers(shape, x, y, sample, samples)) continue;
+                const std::size_t at = plane + std::size_t(y) * stride + std::size_t(x);
+                if (t.depthTest) {  // as the kernels' raster() stores a triangle's depth
+                    const float z = shapeDepth(shape, float(x) + sx, float(y) + sy, fused_);
+                    if (reversed) {
+                        // minps then maxps, as the kernels: NaN becomes 1, −0 becomes 0.
+                        float clamped = z < 1.0f ? z : 1.0f;
+                        clamped = clamped > 0.0f ? clamped : 0.0f;
+                        std::uint32_t bits;
+                        std::memcpy(&bits, &clamped, sizeof bits);
+                        if (!(bits > target.depth[at])) continue;
+                        target.depth[at] = bits;
+                    } else {
+                        float clamped = z > 0.0f ? z : 0.0f;  // maxps then minps: NaN becomes 0
+                        clamped = clamped < 1.0f ? clamped : 1.0f;
+                        const auto zi = std::uint32_t(std::nearbyint(clamped * 16777215.0f));
+                        if (!(target.depth[at] > zi)) continue;
+                        target.depth[at] = zi;
+                    }
+                }
+                if (myIndex == kNoWinner) {
+                    myIndex = std::uint32_t(tile.won.size());
+                    tile.won.push_back(&t);
+                }
+                tile.winner[sample * TileState::kPlane + (y - tile.y0) * kTileSize + (x - tile.x0)] = myIndex;
+                if (t.writesId) target.ids[at] = t.id;
+            }
     }
 }
 
@@ -245,7 +372,9 @@ void Pipeline::flush(const TargetView& target) {
         InterpScratch* scratch = interpScratch_.empty() ? nullptr : &interpScratch_[std::size_t(worker)];
         const auto rasterize = [&](const Triangle& t) {
             // The slow path (InterpRaster.h): span-interpolated depth, one pixel at a time.
-            if (scratch != nullptr && t.depthTest)
+            if (t.shape != 0)
+                rasterShape(t, tile);
+            else if (scratch != nullptr && t.depthTest)
                 rasterInterp(t, tile, interp_, fused_, *scratch);
             else
                 kernels_.raster(t, tile);

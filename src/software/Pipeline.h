@@ -7,17 +7,19 @@
 #pragma once
 
 #include <cstdint>
-#include <glm/glm.hpp>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include "base/ThreadPool.h"
 #include "pipeline/Backend.h"
-#include "software/Kernels.h"
+#include "raster/PointsLines.h"
 #include "raster/Rasterizer.h"
 #include "software/InterpRaster.h"
+#include "software/Kernels.h"
 #include "software/Shading.h"
-#include "base/ThreadPool.h"
 #include "span/Interp.h"
 
 namespace frugal::sw {
@@ -29,9 +31,19 @@ struct SoftwareMesh {
     std::vector<glm::vec2> uvs;
     std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices, triangleSource;  // triangleSource filled in (t when the mesh had none)
-    std::uint32_t triangles = 0;
+    std::uint32_t triangles = 0;                         // primitives (Mesh::topology)
+    std::uint32_t corners = 3;                           // vertices a primitive: 3, 2 (segments) or 1 (points)
     std::vector<std::uint64_t> stamp;  // per vertex: the draw that last transformed it (partial draws)
 };
+
+// A point or a segment as the tiles rasterize it (Triangle::shape): shading reads `corner` as a
+// triangle's vertices, planes that give the shape's varyings (a segment's along its major axis and
+// constant across, a point's constant), and the tiles rasterize `setup` (raster/PointsLines.h).
+struct ShapeRecord {
+    SetupVertex corner[3];  // first: Triangle::v points here
+    ShapeSetup setup;
+};
+inline const ShapeRecord& shapeOf(const Triangle& t) { return *reinterpret_cast<const ShapeRecord*>(t.v[0]); }
 
 struct DrawInput {
     glm::mat4 mvp{1.0f};           // (projection · view) · model, as GlBackend::draw computes it
@@ -75,6 +87,7 @@ private:
         std::vector<SetupVertex> vertices;
         std::vector<glm::vec4> clip;
         std::vector<std::uint8_t> mask;
+        std::vector<ShapeRecord> shapes;  // a draw of points or segments: one a primitive set up
         DrawShading shading;
     };
     struct SetupJob {  // what every setup chunk of one draw shares
@@ -98,6 +111,11 @@ private:
     void transformVertices(SoftwareMesh& mesh, const VertexJob& job, const std::vector<Run>& runs,
                            std::uint64_t triangles);
     void setup(const SetupJob& job, std::uint64_t skip, std::uint64_t count, Segment& segment);
+    // Clips, sets up and bins a draw's points or segments (on this thread: they are few).
+    void setupShapes(const SetupJob& job, DrawRecord& record, std::uint64_t primitives, Segment& segment);
+    // Coverage and depth test of a point or segment within the tile (the kernels' raster() for
+    // shapes); records winners.
+    void rasterShape(const Triangle& t, TileState& tile) const;
     Segment& newSegment();
     DrawRecord& newDraw();
 

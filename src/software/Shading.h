@@ -187,6 +187,7 @@ struct DrawShading {
     bool colors = true;  // false: the mesh has none, colour 1.0 exactly (not interpolated: no varying)
     float metallic = 1.0f, roughness = 1.0f;
     bool unlit = false;   // rgb = base.rgb
+    bool bare = false;    // with unlit: rgb = emission (× the emissive map) + base.rgb (Backend.h)
     bool lambert = false;  // FrameParams::shading Lambert: rgb = base.rgb · (L + Σ E·n·l/π) + emission
     glm::vec3 emission{0.0f};
     // Every texture slot above, nullptr where the draw has none.

@@ -170,7 +170,7 @@ MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
     // The GL backend's validation, so both backends accept and refuse the same meshes.
     if (!isUploadable(mesh)) return kNoHandle;
     const std::size_t vertices = mesh.positions.size();
-    const std::size_t triangles = mesh.triangleCount();
+    const std::size_t triangles = mesh.primitiveCount();
     SwMesh m;
     try {
         m.positions = mesh.positions;
@@ -180,6 +180,7 @@ MeshHandle SoftwareBackend::uploadMesh(const Mesh& mesh) {
         m.tangents = mesh.tangents;
         m.indices = mesh.indices;
         m.triangles = std::uint32_t(triangles);
+        m.corners = std::uint32_t(verticesPerPrimitive(mesh.topology));
         m.triangleSource = triangleSources(mesh);
         m.stamp.assign(vertices, 0);
     } catch (const std::bad_alloc&) {
@@ -272,7 +273,11 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.specular = params.specular;
     input.shading.glossiness = params.glossiness;
     input.shading.roughness = params.roughness;
-    input.shading.unlit = params.unlit;
+    // Segments or points without normals: the base colour and the emission, unlit (Backend.h).
+    const bool bare = mesh->corners != 3 && mesh->normals.empty() && !params.unlit;
+    const bool unlit = params.unlit || bare;
+    input.shading.unlit = unlit;
+    input.shading.bare = bare;
     input.shading.emission = params.emissive;
     input.shading.eye = eye_;
     const auto texture = [this](TextureHandle handle) -> const sw::SoftwareTexture* {
@@ -282,10 +287,10 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
         return t;
     };
     input.shading.texture = texture(params.texture);
-    input.shading.lambert = frame_.shading == ShadingModel::Lambert && !params.unlit;
-    if (input.shading.lambert) {  // the diffuse term: the base colour's texture and the emission's only
+    input.shading.lambert = frame_.shading == ShadingModel::Lambert && !unlit;
+    if (input.shading.lambert || bare) {  // the diffuse term: the base colour's texture and the emission's only
         input.shading.emissive = texture(params.emissiveTexture);
-    } else if (!params.unlit) {  // the other maps are light (as the GL backend's variants)
+    } else if (!unlit) {  // the other maps are light (as the GL backend's variants)
         input.shading.specularGlossiness = params.specularGlossiness;
         if (params.specularGlossiness)
             input.shading.specularGlossinessMap = texture(params.specularGlossinessTexture);
@@ -307,7 +312,7 @@ void SoftwareBackend::draw(const DrawParams& params, std::span<const IndexRange>
     input.shading.occlusionStrength = params.occlusionStrength;
     input.shading.environment = frame_.lighting.environment;
     input.shading.environmentSpecular = frame_.lighting.environmentSpecular;
-    input.shading.environmentMap = params.unlit ? nullptr : environments_.back().get();
+    input.shading.environmentMap = unlit ? nullptr : environments_.back().get();
     input.shading.tonemap = frame_.tonemap;
     input.shading.lights = lightSets_.back();  // beginFrame's: frame_'s own may be replaced before a flush
     input.shading.writeIds = frame_.writeIds;

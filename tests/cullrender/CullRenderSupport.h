@@ -156,7 +156,7 @@ inline void expectWellFormed(const Scene& scene, const DrawList& list, const std
         ASSERT_GE(command.instance, 0) << what;
         ASSERT_LT(std::size_t(command.instance), scene.instances.size()) << what;
         const std::size_t triangles =
-            scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)].triangleCount();
+            scene.meshes[std::size_t(scene.instances[std::size_t(command.instance)].mesh)].primitiveCount();
         EXPECT_FALSE(command.ranges.empty()) << what << ": instance " << command.instance << " with no range";
         std::uint64_t end = 0;
         for (const IndexRange& range : command.ranges) {

@@ -173,6 +173,19 @@ TEST(NeverMissTest, SkinnedSceneOverTime) {
     }
 }
 
+// Points and segments: drawn whole by every method (never culled, so never wrongly) and never
+// occluders; the spheres around them culled as always.
+TEST(NeverMissTest, PointsAndLinesOverTime) {
+    CullBench bench(test::pointsLinesScene(), 160, 120);
+    ASSERT_TRUE(bench.canRender()) << bench.uploadError;
+    Tallies tallies;
+    for (double time : {0.0, 0.9, 2.0, 3.1, 4.0})
+        tallies.add(test::checkFrame(bench, {}, "points and lines, t = " + std::to_string(time), time));
+    Tallies views = test::checkReportViews(bench, 6, "points and lines", 1.0);
+    expectSomethingSeen(tallies);
+    expectSomethingSeen(views);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Property: random meshes, random instances (mirrored, non-uniformly scaled, single- and
 // double-sided) and random views, cameras inside the bounding sphere included.

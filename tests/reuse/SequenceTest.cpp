@@ -110,6 +110,16 @@ TEST(ReuseSequence, SkinsMatchTheFullRender) {
     EXPECT_NE(results[2].modes().find('U'), std::string::npos) << results[2].describe();
 }
 
+// A moving ring of segments is dynamic (its boxes one pixel wider than a triangle's: its pixels
+// reach half a pixel past it); the still points, strip and spheres are reused around it.
+TEST(ReuseSequence, PointsAndLinesMatchTheFullRender) {
+    const Scene scene = test::pointsLinesScene();
+    const Camera camera = eyeAt({0.5f, 1.0f, 7.0f}, {0.0f, 0.0f, 0.0f});
+    const std::vector<SequenceResult> results =
+        expectExactEveryWay(scene, 200, 150, 40, animated(scene, camera, 200, 150));
+    EXPECT_NE(results[2].modes().find('U'), std::string::npos) << results[2].describe();
+}
+
 TEST(ReuseSequence, CubesEverythingDynamicFallsBackAndStillMatches) {
     const Scene scene = loadOrFail("builtin:cubes");
     // Every cube spins: from the second frame on, everything is dynamic.

@@ -148,6 +148,7 @@ struct AssimpCase {
     const char* file;             // relative to FRUGAL_ASSIMP_GLTF2_DIR
     const char* error = nullptr;  // expected message after "<path>: ", or nullptr if the file loads
     std::size_t meshes = 0, triangles = 0, instances = 0, textures = 0, cameras = 0, warnings = 0;
+    std::size_t segments = 0, points = 0;       // of Topology::Lines and Points meshes
     std::vector<std::string> unsupported = {};  // any order
     bool facesPlusZ = false;  // every triangle is counter-clockwise seen from +z (Asset Generator quads)
 };
@@ -216,13 +217,21 @@ const std::vector<AssimpCase>& assimpCases() {
         {.file = "cameras/Cameras.gltf", .meshes = 1, .triangles = 2, .instances = 1, .cameras = 2},
         {.file = "draco/2CylinderEngine.gltf", .meshes = 34, .triangles = 110336, .instances = 115, .cameras = 1},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf",
-         .unsupported = {"primitive mode POINTS"}},
+         .meshes = 1,
+         .instances = 1,
+         .points = 1024},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf",
-         .unsupported = {"primitive mode LINES"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_02.gltf",
-         .unsupported = {"primitive mode LINE_LOOP"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_03.gltf",
-         .unsupported = {"primitive mode LINE_STRIP"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_04.gltf",
          .meshes = 1,
          .triangles = 2,
@@ -239,13 +248,21 @@ const std::vector<AssimpCase>& assimpCases() {
          .instances = 1,
          .facesPlusZ = true},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_07.gltf",
-         .unsupported = {"primitive mode POINTS"}},
+         .meshes = 1,
+         .instances = 1,
+         .points = 1024},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_08.gltf",
-         .unsupported = {"primitive mode LINES"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_09.gltf",
-         .unsupported = {"primitive mode LINE_LOOP"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_10.gltf",
-         .unsupported = {"primitive mode LINE_STRIP"}},
+         .meshes = 1,
+         .instances = 1,
+         .segments = 4},
         {.file = "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_11.gltf",
          .meshes = 1,
          .triangles = 2,
@@ -333,6 +350,13 @@ TEST_P(GltfAssimpModel, LoadsOrFailsAsExpected) {
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_EQ(scene->meshes.size(), c.meshes);
     EXPECT_EQ(scene->triangleCount(), c.triangles);
+    std::size_t segments = 0, points = 0;
+    for (const Mesh& mesh : scene->meshes) {
+        if (mesh.topology == Topology::Lines) segments += mesh.primitiveCount();
+        if (mesh.topology == Topology::Points) points += mesh.primitiveCount();
+    }
+    EXPECT_EQ(segments, c.segments);
+    EXPECT_EQ(points, c.points);
     EXPECT_EQ(scene->instances.size(), c.instances);
     EXPECT_EQ(scene->textures.size(), c.textures);
     EXPECT_EQ(scene->cameras.size(), c.cameras);
@@ -341,12 +365,14 @@ TEST_P(GltfAssimpModel, LoadsOrFailsAsExpected) {
               std::multiset<std::string>(c.unsupported.begin(), c.unsupported.end()));
     EXPECT_EQ(scene->source, path);
     for (const Mesh& mesh : scene->meshes) {
-        EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+        if (mesh.triangles()) {
+            EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+        }
         ASSERT_LT(mesh.material, int(scene->materials.size()));
         if (mesh.material >= 0 && scene->materials[std::size_t(mesh.material)].baseColorTexture >= 0) {
             EXPECT_EQ(mesh.uvs.size(), mesh.positions.size()) << "a textured mesh without uvs";
         }
-        EXPECT_EQ(mesh.triangleSource.size(), mesh.triangleCount());
+        EXPECT_EQ(mesh.triangleSource.size(), mesh.primitiveCount());
         for (std::uint32_t index : mesh.indices) ASSERT_LT(index, mesh.positions.size());
         if (!c.facesPlusZ) continue;
         for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
@@ -993,6 +1019,48 @@ TEST(GltfLoaderTest, TriangleStripsAndFansKeepTheirWinding) {
     EXPECT_EQ(tiny->triangleCount(), 0u);
 }
 
+TEST(GltfLoaderTest, PointsAndLineModesBecomePointsAndSegments) {
+    const fs::path dir = test::freshDir("GltfPointsLines");
+    const auto loadMode = [&](const char* name, int mode, std::size_t count) {
+        return load(writeGltf(dir, name, stripAsset(mode, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, count)));
+    };
+    struct Expect {
+        const char* name;
+        int mode;
+        Topology topology;
+        std::vector<std::uint32_t> indices;
+    };
+    // glTF's numbering of each mode's primitives (spec, "Topology types"): ids follow it.
+    for (const Expect& e :
+         {Expect{"points", 0, Topology::Points, {0, 1, 2, 3}}, Expect{"lines", 1, Topology::Lines, {0, 1, 2, 3}},
+          Expect{"loop", 2, Topology::Lines, {0, 1, 1, 2, 2, 3, 3, 0}},
+          Expect{"strip", 3, Topology::Lines, {0, 1, 1, 2, 2, 3}}}) {
+        const Result<Scene> scene = loadMode(e.name, e.mode, 4);
+        ASSERT_TRUE(scene.ok()) << e.name << ": " << scene.error().message;
+        const Mesh& mesh = scene->meshes[0];
+        EXPECT_EQ(mesh.topology, e.topology) << e.name;
+        EXPECT_EQ(mesh.indices, e.indices) << e.name;
+        EXPECT_EQ(mesh.primitiveCount(), e.indices.size() / verticesPerPrimitive(e.topology)) << e.name;
+        EXPECT_EQ(mesh.triangleCount(), 0u) << e.name;
+        std::vector<std::uint32_t> identity(mesh.primitiveCount());
+        for (std::uint32_t i = 0; i < identity.size(); ++i) identity[i] = i;
+        EXPECT_EQ(mesh.triangleSource, identity) << e.name;
+        EXPECT_TRUE(mesh.normals.empty()) << e.name << ": no normals are made up for points and lines";
+        EXPECT_TRUE(scene->unsupported.empty()) << e.name;
+        // Ids: the instance's range is the primitive count.
+        EXPECT_EQ(scene->instances[0].firstId, 1u);
+    }
+    // A strip or loop of one vertex has no segment; LINES of an odd count is a broken file.
+    const Result<Scene> one = loadMode("one", 3, 1);
+    ASSERT_TRUE(one.ok()) << one.error().message;
+    EXPECT_EQ(one->meshes[0].primitiveCount(), 0u);
+    const Result<Scene> odd = loadMode("odd", 1, 3);
+    ASSERT_FALSE(odd.ok());
+    EXPECT_NE(odd.error().message.find("mesh 0 primitive 0: LINES with 3 vertices, which is not a multiple of 2"),
+              std::string::npos)
+        << odd.error().message;
+}
+
 TEST(GltfLoaderTest, NormalizedIntegerAttributesFollowTheSpecFormulas) {
     Asset asset = quad();
     Json& attributes = asset.primitive()["attributes"];
@@ -1625,13 +1693,14 @@ TEST(GltfLoaderTest, UnmodelledFeaturesAreReportedOnceByName) {
     asset.json["nodes"][0]["extras"] = {{"extensions", {{"NOT_AN_EXTENSION", Json::object()}}}};
     const Result<Scene> scene = load(writeGltf(test::freshDir("GltfUnsupported"), "features", asset));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
-    const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based", "primitive mode LINES"};
+    const std::vector<std::string> expected = {"KHR_materials_sheen", "EXT_lights_image_based"};
     EXPECT_TRUE(scene->materials[0].unlit) << "KHR_materials_unlit is modelled";
     EXPECT_EQ(std::multiset<std::string>(scene->unsupported.begin(), scene->unsupported.end()),
               std::multiset<std::string>(expected.begin(), expected.end()));
-    EXPECT_EQ(scene->meshes.size(), 2u);  // the LINES primitive is not drawn
+    ASSERT_EQ(scene->meshes.size(), 3u);  // the LINES primitive too
     EXPECT_EQ(scene->meshes[0].name, "quad #0");
     EXPECT_EQ(scene->meshes[1].name, "quad #1");
+    EXPECT_EQ(scene->meshes[2].topology, Topology::Lines);
 }
 
 TEST(GltfLoaderTest, AlphaModesAndCutoffsAreReadAsGltfDefinesThem) {

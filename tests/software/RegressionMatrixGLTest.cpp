@@ -659,6 +659,7 @@ Scene morphUnnormal() { return test::morphingScene({0.3f, 0.3f}); }
 Scene skinCollapsed() { return test::skinnedScene(0.0f); }
 Scene skinHuge() { return test::skinnedScene(1e4f); }
 Scene skinUnnormal() { return test::skinnedScene(2.0f, false); }
+Scene pointsLines() { return test::pointsLinesScene(); }
 
 std::vector<MatrixCase> matrix() {
     const std::string bunny = FRUGAL_BUNNY_OBJ;
@@ -704,6 +705,11 @@ std::vector<MatrixCase> matrix() {
         {"skin-joint-scaled-1e4", skinHuge, 480, 360, lookFrom({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0}, 0.5f, 30.0f), {}},
         {"skin-weights-not-summing-to-1", skinUnnormal, 480, 360,
          lookFrom({0.5f, 1.0f, 7.0f}, {0.5f, 0.5f, 0}, 0.5f, 30.0f), {}},
+        // Points and segments among triangles (lit segments, bare points, a strip with zero-length
+        // segments), and multisampled.
+        {"points-lines", pointsLines, 480, 360, lookFrom({0.5f, 1.0f, 7.0f}, {0, 0, 0}, 0.5f, 30.0f), {}},
+        {"msaa-points-lines", pointsLines, 480, 360, lookFrom({0.5f, 1.0f, 7.0f}, {0, 0, 0}, 0.5f, 30.0f), {},
+         ToneMap::None, 4},
         // Multisampled (4 samples at llvmpipe's positions), resolved: the colour is the samples' mean,
         // depth and ids sample 0's.
         {"msaa-bunny-800x600", [bunny] { return loaded(bunny); }, 800, 600, {}, {}, ToneMap::None, 4},
