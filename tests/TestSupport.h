@@ -76,7 +76,8 @@ struct CliRun {
 // frugal-lab's own commands (the research tree's), which frugal does not have.
 inline const std::vector<std::string> kLabCommands = {"bench",     "reuse-bench", "order-bench",
                                                       "hsr-bench", "span-bench",  "state-sim",
-                                                      "soak",      "write-bench", "shading-bench"};
+                                                      "soak",      "write-bench", "shading-bench",
+                                                      "pose-bench"};
 // The binary that runs `args`: frugal-lab (FRUGAL_LAB_CLI) for its own commands (and their help),
 // else frugal (FRUGAL_CLI).
 const char* binaryFor(const std::vector<std::string>& args);

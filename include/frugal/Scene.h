@@ -456,6 +456,16 @@ std::vector<float> sampleWeights(const AnimChannel& channel, double time);
 // same vertices.
 Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints = {});
 
+// The arrays a pose changes, as posedMesh computes them (the same floats), into `out` (its vectors
+// reused from call to call): positions always; normals and tangents when `frames` (else left
+// empty). What a renderer uploads each frame a mesh deforms, without copying the rest of the mesh.
+struct PosedVertices {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec4> tangents;
+};
+void poseVertices(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints,
+                  PosedVertices& out, bool frames = true);
+
 struct LoadOptions {
     bool optimizeOrder = true;   // reorder triangles for the vertex cache (meshoptimizer)
     bool objDoubleSided = true;  // OBJ has no culling flag: drawn double-sided unless told otherwise

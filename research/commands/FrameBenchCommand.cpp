@@ -1,4 +1,4 @@
-// What the one-frame benchmarks' commands share (order-bench, shading-bench): SCENE, --repeat,
+// What the one-frame benchmarks' commands share (order-bench, shading-bench, pose-bench): SCENE, --repeat,
 // --warmup, the report outputs, the frame set up from the settings, the measurement's texts written.
 #include <ostream>
 
@@ -12,13 +12,14 @@ namespace frugal {
 int runFrameBench(const FrameBenchCommand& bench, const std::vector<std::string>& args, std::ostream& out,
                   std::ostream& err) {
     RenderOptions options;
-    options.scene = "builtin:materials";
+    options.scene = bench.defaultScene;
     ReportPaths outputs;
-    int runs = 20, warmup = 3;
+    int runs = bench.defaultRepeat, warmup = 3;
     const std::string per = " per " + bench.unit;
     CommandLine command{bench.name, bench.help, &options};
     command.flags = {{"", {
-        flag::whole("--repeat", "N", "timed frames" + per + " (default 20)", runs, 1, 100000),
+        flag::whole("--repeat", "N", "timed frames" + per + " (default " + std::to_string(bench.defaultRepeat) + ")",
+                    runs, 1, 100000),
         flag::whole("--warmup", "N", "untimed frames" + per + " first (default 3: llvmpipe compiles its variants)",
                     warmup, 0, 100000),
     }}};
@@ -30,7 +31,8 @@ int runFrameBench(const FrameBenchCommand& bench, const std::vector<std::string>
     };
     if (std::optional<int> status = parseCommandLine(command, args, out, err)) return *status;
 
-    Result<Scene> loaded = loadForRender(options, err);
+    Result<Scene> loaded = bench.generated && options.scene == bench.defaultScene ? Result<Scene>(bench.generated())
+                                                                                  : loadForRender(options, err);
     if (!loaded) return fail(err, loaded.error());
     Result<FrameSetup> setup = frameSetups(options, *loaded, false)(options.frames ? options.frames->first : 0);
     if (!setup) return fail(err, setup.error());

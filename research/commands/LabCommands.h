@@ -23,6 +23,7 @@ int runStateSim(const std::vector<std::string>& args, std::ostream& out, std::os
 int runSoak(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runWriteBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runShadingBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
+int runPoseBench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 int runCompress(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);
 
 const char* benchHelp();
@@ -34,12 +35,14 @@ const char* stateSimHelp();
 const char* soakHelp();
 const char* writeBenchHelp();
 const char* shadingBenchHelp();
+const char* poseBenchHelp();
 const char* compressHelp();
 
-// A one-frame benchmark's command (order-bench, shading-bench): its name and help, what one unit of
-// it is called ("order", "variant"), the report outputs' descriptions (reportFlags), the measurement
-// (the scene, its frame set up from the settings, --repeat, --warmup, the progress lines) and its
-// gnuplot script.
+// A one-frame benchmark's command (order-bench, shading-bench, pose-bench): its name and help, what
+// one unit of it is called ("order", "variant"), the report outputs' descriptions (reportFlags), the
+// measurement (the scene, its frame set up from the settings, --repeat, --warmup, the progress lines)
+// and its gnuplot script; the scene without a SCENE argument (`defaultScene`, made by `generated`
+// when it has one: a scene of the command's own, no file) and --repeat's default.
 struct FrameBenchCommand {
     std::string name;
     const char* help;
@@ -50,6 +53,9 @@ struct FrameBenchCommand {
         measure;
     std::function<std::string(const std::string& csvPath, const std::string& svgPath, const std::string& scene)>
         gnuplot;
+    std::string defaultScene = "builtin:materials";
+    std::function<Scene()> generated = nullptr;
+    int defaultRepeat = 20;
 };
 // Parses `args` (SCENE, --repeat, --warmup, the render options and report outputs), sets up the
 // frame, measures it and writes the report: the command's exit status.

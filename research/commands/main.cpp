@@ -19,6 +19,8 @@ const Program& labProgram() {
                        runHsrBench},
                       {"shading-bench", "[SCENE] [options]", "what each shading term costs on a frame",
                        runShadingBench},
+                      {"pose-bench", "[SCENE] [options]", "what skins and morph targets cost a frame",
+                       runPoseBench},
                       {"span-bench", "[options]", "paper 001's shading engine model: Fig. 11, error tables",
                        runSpanBench},
                       {"write-bench", "[--scene SCENE ...] [opts]",

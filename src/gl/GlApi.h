@@ -66,6 +66,7 @@ class GlContext;
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
     X(PFNGLBINDBUFFERPROC, BindBuffer)                                         \
     X(PFNGLBUFFERDATAPROC, BufferData)                                         \
+    X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                                   \
     X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                             \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                               \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \

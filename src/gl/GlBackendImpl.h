@@ -141,6 +141,7 @@ struct GlMesh {
     VertexLayout layout;
     std::vector<std::uint32_t> triangleSource;
     GLuint idVao = 0, idVbo = 0;  // the expanded id pass, built on first use
+    VertexLayout idLayout;        // its sections
     bool vaoInstanced = false, idVaoInstanced = false;  // the instance attributes are attached
     std::vector<std::uint32_t> indices;  // read back on the first gathered draw
 };
@@ -170,6 +171,8 @@ public:
     MeshHandle uploadMesh(const Mesh& mesh) override;
     TextureHandle uploadTexture(const Texture& texture) override;
     void releaseMesh(MeshHandle mesh) override;
+    bool updateVertices(MeshHandle mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                        std::span<const glm::vec4> tangents) override;
     void releaseTexture(TextureHandle texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
     void draw(const DrawParams& params, std::span<const IndexRange> ranges) override;

@@ -314,6 +314,7 @@ bool GlBackend::buildIdPass(GlMesh& m) {
     expanded.tangent = section(m.layout.tangent, sizeof(glm::vec4));
     expanded.id = section(0, sizeof(std::uint32_t));
     expanded.size = size;
+    m.idLayout = expanded;
     std::vector<std::uint8_t> data(static_cast<std::size_t>(size));
     const auto gather = [&](GLintptr from, GLintptr to, std::size_t elementSize) {
         if (from < 0) return;

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <span>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -84,6 +86,43 @@ MeshHandle GlBackend::uploadMesh(const Mesh& mesh) {
     setVertexLayout(m.vao, m.vbo, m.ibo, m.layout);
     check("uploadMesh");
     return meshes_.add(std::move(m));
+}
+
+bool GlBackend::updateVertices(MeshHandle mesh, std::span<const glm::vec3> positions,
+                               std::span<const glm::vec3> normals, std::span<const glm::vec4> tangents) {
+    GlMesh* m = meshes_.find(mesh);
+    if (m == nullptr || positions.size() != m->vertices ||
+        (!normals.empty() && (m->layout.normal < 0 || normals.size() != m->vertices)) ||
+        (!tangents.empty() && (m->layout.tangent < 0 || tangents.size() != m->vertices)))
+        return false;
+    activate();
+    // In place: GL keeps what draws already submitted read (llvmpipe waits for them).
+    const auto put = [this](GLuint buffer, GLintptr at, const void* data, std::size_t bytes) {
+        if (bytes == 0) return;
+        gl_.BindBuffer(GL_ARRAY_BUFFER, buffer);
+        gl_.BufferSubData(GL_ARRAY_BUFFER, at, GLsizeiptr(bytes), data);
+    };
+    put(m->vbo, 0, positions.data(), positions.size_bytes());
+    put(m->vbo, m->layout.normal, normals.data(), normals.size_bytes());
+    put(m->vbo, m->layout.tangent, tangents.data(), tangents.size_bytes());
+    if (m->idVbo != 0) {  // the id pass's expanded copy: the same values gathered by the indices
+        if (m->indices.empty()) {
+            m->indices.resize(std::size_t(m->triangles) * m->corners);
+            readBuffer(m->ibo, m->indices.data(), GLsizeiptr(m->indices.size() * sizeof(std::uint32_t)));
+        }
+        const auto gather = [&](GLintptr at, const auto& values) {
+            using Value = typename std::decay_t<decltype(values)>::value_type;
+            if (values.empty()) return;
+            std::vector<Value> expanded(m->indices.size());
+            for (std::size_t k = 0; k < expanded.size(); ++k) expanded[k] = values[m->indices[k]];
+            put(m->idVbo, at, expanded.data(), expanded.size() * sizeof(Value));
+        };
+        gather(0, positions);
+        gather(m->idLayout.normal, normals);
+        gather(m->idLayout.tangent, tangents);
+    }
+    check("updateVertices");
+    return true;
 }
 
 void GlBackend::setVertexLayout(GLuint vao, GLuint vbo, GLuint ibo, const VertexLayout& layout) {

@@ -281,6 +281,12 @@ public:
     // Frees what an upload made; draws already submitted with it are executed first. A handle that
     // is not (or no longer) a mesh / texture is ignored.
     virtual void releaseMesh(MeshHandle mesh) = 0;
+    // New positions, normals and tangents for an uploaded mesh (a deforming mesh's pose, PosedVertices):
+    // each array as long as the mesh's (normals and tangents only where the mesh has them; empty keeps
+    // them), in place, so that later draws use them and draws already submitted keep the old ones.
+    // False (nothing changed) for a handle that is no mesh or arrays of another length.
+    virtual bool updateVertices(MeshHandle mesh, std::span<const glm::vec3> positions,
+                                std::span<const glm::vec3> normals, std::span<const glm::vec4> tangents) = 0;
     virtual void releaseTexture(TextureHandle texture) = 0;
 
     // Starts drawing into `target` with the given camera and light; following draws use them.

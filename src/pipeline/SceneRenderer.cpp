@@ -1,15 +1,26 @@
 #include "pipeline/SceneRenderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <new>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "base/Format.h"
 #include "scene/MeshBuild.h"
+#include "scene/Posing.h"
 
 namespace frugal {
+
+namespace {
+
+// From this many vertices a pose is split over two threads: waking a thread costs tens of
+// microseconds (base/ThreadPool.h), posing 16,384 skinned vertices about a quarter of a millisecond.
+constexpr std::size_t kParallelPoseVertices = 16384;
+
+}  // namespace
 
 SceneRenderer::SceneRenderer(Backend& backend, const Scene& scene)
     : backend_(&backend), scene_(&scene), full_(fullDrawList(scene)) {}
@@ -20,7 +31,7 @@ SceneRenderer::SceneRenderer(SceneRenderer&& other) noexcept
     : backend_(other.backend_), scene_(other.scene_), full_(std::move(other.full_)),
       meshes_(std::exchange(other.meshes_, {})), posedSlot_(std::move(other.posedSlot_)),
       posed_(std::exchange(other.posed_, {})), posedPose_(std::move(other.posedPose_)),
-      textures_(std::exchange(other.textures_, {})),
+      posePool_(std::move(other.posePool_)), textures_(std::exchange(other.textures_, {})),
       cullAllBackFaces_(other.cullAllBackFaces_), batching_(other.batching_),
       centroids_(std::move(other.centroids_)) {}
 
@@ -34,6 +45,7 @@ SceneRenderer& SceneRenderer::operator=(SceneRenderer&& other) noexcept {
         posedSlot_ = std::move(other.posedSlot_);
         posed_ = std::exchange(other.posed_, {});
         posedPose_ = std::move(other.posedPose_);
+        posePool_ = std::move(other.posePool_);
         textures_ = std::exchange(other.textures_, {});
         cullAllBackFaces_ = other.cullAllBackFaces_;
         batching_ = other.batching_;
@@ -52,14 +64,17 @@ void SceneRenderer::release() {
     textures_.clear();
 }
 
-MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
+bool SceneRenderer::generatesTangents(const Mesh& mesh) const {
     // A normal map (the surface's or its coat's) needs tangents: a mesh of triangles without them is
     // uploaded with generated ones (segments and points without tangents ignore normal maps, as the
     // Khronos renderer draws them).
-    const bool needsTangents = mesh.tangents.empty() && mesh.triangles() && mesh.material >= 0 &&
-                               std::size_t(mesh.material) < scene_->materials.size() &&
-                               scene_->materials[std::size_t(mesh.material)].tangentSpace();
-    if (!needsTangents) return backend_->uploadMesh(mesh);
+    return mesh.tangents.empty() && mesh.triangles() && mesh.material >= 0 &&
+           std::size_t(mesh.material) < scene_->materials.size() &&
+           scene_->materials[std::size_t(mesh.material)].tangentSpace();
+}
+
+MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
+    if (!generatesTangents(mesh)) return backend_->uploadMesh(mesh);
     Mesh withTangents = mesh;
     generateTangents(withTangents);
     return backend_->uploadMesh(withTangents);
@@ -67,6 +82,7 @@ MeshHandle SceneRenderer::upload(const Mesh& mesh) const {
 
 void SceneRenderer::pose(double time) {
     if (posed_.empty()) return;
+    if (posePool_) posePool_->warm(std::chrono::microseconds(2000));  // it wakes while the joints are computed
     const std::vector<std::vector<float>> weights = scene_->morphWeights(time);
     // Node matrices only for joints to follow (a scene of morph targets alone needs none).
     const std::vector<glm::mat4> world =
@@ -78,26 +94,55 @@ void SceneRenderer::pose(double time) {
         const std::vector<float>& w = weights[std::size_t(instance.node)];
         std::vector<glm::mat4> joints = scene_->jointMatrices(instance, world);
         Posed& posed = posedPose_[std::size_t(slot)];
-        if (posed_[std::size_t(slot)] != kNoHandle && posed.weights == w && posed.joints == joints) continue;
-        const MeshHandle handle = upload(posedMesh(scene_->meshes[std::size_t(instance.mesh)], w, joints));
-        if (handle == kNoHandle) throw std::bad_alloc();
-        if (posed_[std::size_t(slot)] != kNoHandle) backend_->releaseMesh(posed_[std::size_t(slot)]);
-        posed_[std::size_t(slot)] = handle;
+        MeshHandle& handle = posed_[std::size_t(slot)];
+        if (handle != kNoHandle && posed.weights == w && posed.joints == joints) continue;
+        const Mesh& mesh = scene_->meshes[std::size_t(instance.mesh)];
+        const Posing posing(mesh, w, joints, posed.vertices, /*frames=*/true);
+        const std::size_t n = posing.vertices();
+        if (posePool_ && n >= kParallelPoseVertices) {
+            // In pieces, so that the worker, woken at the start of pose(), takes its share as soon
+            // as it is up.
+            constexpr std::size_t kPieces = 32;
+            posePool_->run(kPieces,
+                           [&](std::size_t piece, int) { posing.run(n * piece / kPieces, n * (piece + 1) / kPieces); });
+        } else {
+            posing.run(0, n);
+        }
+        // In place, unless its tangents are made from its posed shape (upload): then all again.
+        if (handle == kNoHandle || generatesTangents(mesh) ||
+            !backend_->updateVertices(handle, posed.vertices.positions, posed.vertices.normals,
+                                      posed.vertices.tangents)) {
+            Mesh posedMesh = mesh;
+            posedMesh.targets.clear();
+            posedMesh.influences.clear();
+            posedMesh.positions = posed.vertices.positions;
+            posedMesh.normals = posed.vertices.normals;
+            posedMesh.tangents = posed.vertices.tangents;
+            const MeshHandle uploaded = upload(posedMesh);
+            if (uploaded == kNoHandle) throw std::bad_alloc();
+            if (handle != kNoHandle) backend_->releaseMesh(handle);
+            handle = uploaded;
+        }
         posed.weights = w;
         posed.joints = std::move(joints);
     }
+    if (posePool_) posePool_->rest();
 }
 
 Result<SceneRenderer> SceneRenderer::create(Backend& backend, const Scene& scene, bool mipmaps) {
     SceneRenderer renderer(backend, scene);
     renderer.meshes_.reserve(scene.meshes.size());
     renderer.posedSlot_.assign(scene.instances.size(), -1);
+    bool large = false;
     for (std::size_t i = 0; i < scene.instances.size(); ++i)
         if (scene.deforms(scene.instances[i])) {
             renderer.posedSlot_[i] = int(renderer.posed_.size());
             renderer.posed_.push_back(kNoHandle);
             renderer.posedPose_.emplace_back();
+            large =
+                large || scene.meshes[std::size_t(scene.instances[i].mesh)].positions.size() >= kParallelPoseVertices;
         }
+    if (large && std::thread::hardware_concurrency() >= 2) renderer.posePool_ = std::make_unique<ThreadPool>(2);
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const Mesh& mesh = scene.meshes[i];
         const MeshHandle handle = renderer.upload(mesh);

@@ -1,13 +1,14 @@
 // Draws a Scene through a Backend: uploads its meshes and textures once, then executes draw lists.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <utility>
-
 #include <vector>
 
 #include <frugal/Result.h>
 
+#include "base/ThreadPool.h"
 #include "pipeline/Backend.h"
 #include "pipeline/Plan.h"
 
@@ -30,9 +31,11 @@ public:
     SceneRenderer& operator=(const SceneRenderer&) = delete;
 
     // Poses the deforming instances (Scene::deforms: morph targets, skins) at scene time `time`:
-    // each is drawn from a mesh of its own, posed on the CPU (posedMesh) by its node's weights and
-    // its skin's joint matrices and uploaded again when they change, so both backends draw the same
-    // vertices. renderFrame and execute pose at
+    // each is drawn from a mesh of its own, posed on the CPU (poseVertices) by its node's weights
+    // and its skin's joint matrices, its positions, normals and tangents updated in place when they
+    // change (Backend::updateVertices; a mesh whose tangents are generated for a normal map is
+    // uploaded again, tangents and all), so both backends draw the same vertices. renderFrame and
+    // execute pose at
     // their frame's time; nothing to do in a scene without morph targets. An upload the backend
     // refuses throws std::bad_alloc (a frame cannot be drawn without it).
     void pose(double time);
@@ -75,6 +78,8 @@ private:
     void release();
     // `mesh` as the backend draws it (with generated tangents when its material needs them).
     MeshHandle upload(const Mesh& mesh) const;
+    // Whether upload() gives `mesh` generated tangents (a normal map and none of its own).
+    bool generatesTangents(const Mesh& mesh) const;
 
     Backend* backend_;
     const Scene* scene_;
@@ -85,10 +90,14 @@ private:
     struct Posed {
         std::vector<float> weights;
         std::vector<glm::mat4> joints;
+        PosedVertices vertices;  // the arrays updated, kept from frame to frame
     };
     std::vector<int> posedSlot_;
     std::vector<MeshHandle> posed_;
     std::vector<Posed> posedPose_;
+    // Poses a large mesh on two threads (pose(): the vertex ranges of scene/Posing.h), made only
+    // when a deforming mesh has kParallelPoseVertices vertices or more and the machine two cores.
+    std::unique_ptr<ThreadPool> posePool_;
     std::vector<TextureHandle> textures_;
     bool cullAllBackFaces_ = false;
     bool batching_ = true;

@@ -233,7 +233,8 @@ bool TemporalReuse::classify(const DrawList& list, const std::vector<glm::mat4>&
             if (first || now != weights_[i] || joints != joints_[i]) {
                 changed = changed || !first;
                 weights_[i] = now;
-                posed_[i] = posedMesh(mesh, now, joints).positions;
+                poseVertices(mesh, now, joints, poseScratch_, /*frames=*/false);  // positions are all it needs
+                posed_[i].swap(poseScratch_.positions);
                 joints_[i] = std::move(joints);
             }
         }

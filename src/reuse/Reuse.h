@@ -183,6 +183,7 @@ private:
     std::vector<std::vector<float>> weights_;
     std::vector<std::vector<glm::mat4>> joints_;
     std::vector<std::vector<glm::vec3>> posed_;
+    PosedVertices poseScratch_;                    // poseVertices' output, its memory kept from frame to frame
     std::vector<Material> materialKeys_;           // per material + 1 (0: the default material)
     std::vector<std::uint8_t> materialChanged_;
     DrawList fullList_;

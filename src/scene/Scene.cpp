@@ -7,6 +7,8 @@
 
 #include <frugal/Scene.h>
 
+#include "scene/Posing.h"
+
 namespace frugal {
 
 glm::mat4 localMatrix(const Node& node) {
@@ -151,50 +153,86 @@ std::vector<float> sampleWeights(const AnimChannel& channel, double time) {
     return out;
 }
 
-Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
-    Mesh out = mesh;
-    out.targets.clear();
-    out.influences.clear();
+Posing::Posing(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints,
+               PosedVertices& out, bool frames)
+    : mesh_(mesh), weights_(weights), joints_(joints), out_(out) {
     const std::size_t n = mesh.positions.size();
-    bool normals = false;
-    for (std::size_t t = 0; t < mesh.targets.size() && t < weights.size(); ++t) {
-        const float w = weights[t];
-        const MorphTarget& target = mesh.targets[t];
-        if (w == 0.0f) continue;
-        for (std::size_t v = 0; v < n && v < target.positions.size(); ++v) out.positions[v] += w * target.positions[v];
-        for (std::size_t v = 0; v < out.normals.size() && v < target.normals.size(); ++v) {
-            out.normals[v] += w * target.normals[v];
-            normals = true;
-        }
-        for (std::size_t v = 0; v < out.tangents.size() && v < target.tangents.size(); ++v)
-            out.tangents[v] += glm::vec4(w * target.tangents[v], 0.0f);
-    }
-    if (!joints.empty() && mesh.skinned()) {
-        std::vector<glm::mat3> normalMatrices(joints.size());
+    out.positions.resize(n);
+    out.normals.resize(frames ? mesh.normals.size() : 0);
+    out.tangents.resize(frames ? mesh.tangents.size() : 0);
+    for (std::size_t t = 0; t < mesh.targets.size() && t < weights.size(); ++t)
+        renormalise_ = renormalise_ || (weights[t] != 0.0f && !out.normals.empty() && !mesh.targets[t].normals.empty());
+    skinning_ = !joints.empty() && mesh.skinned();
+    renormalise_ = renormalise_ || skinning_;
+    if (skinning_ && frames) {
+        normalMatrices_.resize(joints.size());
         for (std::size_t j = 0; j < joints.size(); ++j)
-            normalMatrices[j] = glm::transpose(glm::inverse(glm::mat3(joints[j])));
-        for (std::size_t v = 0; v < n; ++v) {
-            glm::vec3 p(0.0f), normal(0.0f), tangent(0.0f);
+            normalMatrices_[j] = glm::transpose(glm::inverse(glm::mat3(joints[j])));
+    }
+}
+
+void Posing::run(std::size_t begin, std::size_t end) const {
+    const Mesh& mesh = mesh_;
+    PosedVertices& out = out_;
+    const std::vector<glm::mat4>& joints = joints_;
+    for (std::size_t v = begin; v < end; ++v) {
+        glm::vec3 position = mesh.positions[v];
+        const bool hasNormal = v < out.normals.size(), hasTangent = v < out.tangents.size();
+        glm::vec3 normal = hasNormal ? mesh.normals[v] : glm::vec3(0.0f);
+        glm::vec4 tangent = hasTangent ? mesh.tangents[v] : glm::vec4(0.0f);
+        // The targets in order, each displacement times its weight.
+        for (std::size_t t = 0; t < mesh.targets.size() && t < weights_.size(); ++t) {
+            const float w = weights_[t];
+            const MorphTarget& target = mesh.targets[t];
+            if (w == 0.0f) continue;
+            if (v < target.positions.size()) position += w * target.positions[v];
+            if (hasNormal && v < target.normals.size()) normal += w * target.normals[v];
+            if (hasTangent && v < target.tangents.size()) tangent += glm::vec4(w * target.tangents[v], 0.0f);
+        }
+        if (skinning_) {
+            glm::vec3 p(0.0f), n(0.0f), d(0.0f);
             for (const Mesh::Influences& set : mesh.influences)
                 for (int k = 0; k < 4; ++k) {
                     const float w = set.weights[v][k];
                     const std::uint32_t j = set.joints[v][k];
                     if (w == 0.0f || j >= joints.size()) continue;
-                    p += w * glm::vec3(joints[j] * glm::vec4(out.positions[v], 1.0f));
-                    if (v < out.normals.size()) normal += w * (normalMatrices[j] * out.normals[v]);
-                    if (v < out.tangents.size()) tangent += w * (glm::mat3(joints[j]) * glm::vec3(out.tangents[v]));
+                    // glm's J · (position, 1), (c0·x + c1·y) + (c2·z + c3·1), without its fourth row.
+                    const glm::mat4& J = joints[j];
+                    p += w * ((glm::vec3(J[0]) * position.x + glm::vec3(J[1]) * position.y) +
+                              (glm::vec3(J[2]) * position.z + glm::vec3(J[3])));
+                    if (hasNormal) n += w * (normalMatrices_[j] * normal);
+                    if (hasTangent) d += w * (glm::mat3(J) * glm::vec3(tangent));
                 }
-            out.positions[v] = p;
-            if (v < out.normals.size()) out.normals[v] = normal;
-            if (v < out.tangents.size()) out.tangents[v] = glm::vec4(tangent, out.tangents[v].w);
+            position = p;
+            normal = n;
+            tangent = glm::vec4(d, tangent.w);
         }
-        normals = true;
+        out.positions[v] = position;
+        if (hasNormal) {
+            const float length = glm::length(normal);
+            out.normals[v] = !renormalise_                            ? normal
+                             : length > 0.0f && std::isfinite(length) ? normal / length
+                                                                      : mesh.normals[v];
+        }
+        if (hasTangent) out.tangents[v] = tangent;
     }
-    if (normals)
-        for (std::size_t v = 0; v < out.normals.size(); ++v) {
-            const float length = glm::length(out.normals[v]);
-            out.normals[v] = length > 0.0f && std::isfinite(length) ? out.normals[v] / length : mesh.normals[v];
-        }
+}
+
+void poseVertices(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints,
+                  PosedVertices& out, bool frames) {
+    const Posing posing(mesh, weights, joints, out, frames);
+    posing.run(0, posing.vertices());
+}
+
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
+    PosedVertices posed;
+    poseVertices(mesh, weights, joints, posed);
+    Mesh out = mesh;
+    out.targets.clear();
+    out.influences.clear();
+    out.positions = std::move(posed.positions);
+    out.normals = std::move(posed.normals);
+    out.tangents = std::move(posed.tangents);
     return out;
 }
 
@@ -279,18 +317,17 @@ Bounds Scene::bounds(double time) const {
     const bool deforming = deforms();
     const std::vector<std::vector<float>> weights = deforming ? morphWeights(time) : std::vector<std::vector<float>>{};
     Bounds bounds;
+    PosedVertices posed;
     for (const Instance& instance : instances) {
-        Mesh posed;
+        const Mesh& mesh = meshes[instance.mesh];
         const bool posing = deforming && deforms(instance);
         if (posing)
-            posed =
-                posedMesh(meshes[instance.mesh],
-                          meshes[instance.mesh].morphs() ? weights[std::size_t(instance.node)] : std::vector<float>{},
-                          jointMatrices(instance, world));
-        const Mesh& mesh = posing ? posed : meshes[instance.mesh];
+            poseVertices(mesh, mesh.morphs() ? weights[std::size_t(instance.node)] : std::vector<float>{},
+                         jointMatrices(instance, world), posed, /*frames=*/false);
+        const std::vector<glm::vec3>& positions = posing ? posed.positions : mesh.positions;
         const glm::mat4& m = world[instance.node];
         // Only vertices that triangles use count (dropped triangles may leave unused vertices).
-        for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(mesh.positions[index], 1.0f)));
+        for (std::uint32_t index : mesh.indices) bounds.add(glm::vec3(m * glm::vec4(positions[index], 1.0f)));
     }
     return bounds;
 }

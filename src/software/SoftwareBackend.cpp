@@ -90,6 +90,8 @@ public:
     void destroyTarget(TargetHandle target) override;
     MeshHandle uploadMesh(const Mesh& mesh) override;
     void releaseMesh(MeshHandle mesh) override;
+    bool updateVertices(MeshHandle mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                        std::span<const glm::vec4> tangents) override;
     void releaseTexture(TextureHandle texture) override;
     TextureHandle uploadTexture(const Texture& texture) override;
     void beginFrame(TargetHandle target, const FrameParams& frame) override;
@@ -194,6 +196,20 @@ void SoftwareBackend::releaseMesh(MeshHandle mesh) {
     if (meshes_.find(mesh) == nullptr) return;
     flush();
     meshes_.remove(mesh);
+}
+
+bool SoftwareBackend::updateVertices(MeshHandle mesh, std::span<const glm::vec3> positions,
+                                     std::span<const glm::vec3> normals, std::span<const glm::vec4> tangents) {
+    SwMesh* m = meshes_.find(mesh);
+    if (m == nullptr || positions.size() != m->positions.size() ||
+        (!normals.empty() && normals.size() != m->normals.size()) ||
+        (!tangents.empty() && tangents.size() != m->tangents.size()))
+        return false;
+    flush();  // pending draws were transformed already, but keep the rule of releaseMesh
+    std::copy(positions.begin(), positions.end(), m->positions.begin());
+    std::copy(normals.begin(), normals.end(), m->normals.begin());
+    std::copy(tangents.begin(), tangents.end(), m->tangents.begin());
+    return true;
 }
 
 void SoftwareBackend::releaseTexture(TextureHandle texture) {

@@ -26,6 +26,11 @@ public:
     TargetHandle createTarget(int, int, DepthFormat, int, ColorFormat) override { return TargetHandle{1}; }
     void destroyTarget(TargetHandle) override {}
     void releaseMesh(MeshHandle mesh) override { calls.push_back("release mesh " + std::to_string(mesh.id)); }
+    bool updateVertices(MeshHandle mesh, std::span<const glm::vec3>, std::span<const glm::vec3>,
+                        std::span<const glm::vec4>) override {
+        calls.push_back("update mesh " + std::to_string(mesh.id));
+        return true;
+    }
     void releaseTexture(TextureHandle texture) override { calls.push_back("release texture " + std::to_string(texture.id)); }
     MeshHandle uploadMesh(const Mesh& mesh) override {
         return mesh.name == "refuse" ? kNoHandle : MeshHandle(10 + meshes_++);

@@ -1,15 +1,19 @@
 // Morph targets (frugal/Scene.h): weights sampled as any channel is (step, linear, cubic spline),
 // the node's over the mesh's, the pose they make (posedMesh), the envelope that holds every pose,
-// the checks of a mesh built in memory, and AnimatedMorphCube read from its file.
+// the checks of a mesh built in memory, and AnimatedMorphCube read from its file; the pose made in
+// one pass and in ranges equal to the plain formula's.
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <frugal/Scene.h>
 
 #include "TestSupport.h"
+#include "scene/Posing.h"
 
 namespace frugal {
 namespace {
@@ -195,6 +199,101 @@ TEST(Skin, SimpleSkinReadsItsSkin) {
     EXPECT_TRUE(scene->unsupported.empty());
     EXPECT_TRUE(scene->deforms());
     EXPECT_NE(scene->bounds(0.0).max, scene->bounds(1.0).max);  // it bends
+}
+
+}  // namespace
+}  // namespace frugal
+
+namespace frugal {
+namespace {
+
+// The pose as Scene.h states it, written the plain way (each target over every vertex, then glm's
+// J · (p, 1) per influence): poseVertices, which makes it in one pass per vertex and in ranges that
+// may run on threads of their own, must give these floats bit for bit, whatever the split.
+PosedVertices plainPose(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
+    PosedVertices out{mesh.positions, mesh.normals, mesh.tangents};
+    bool normals = false;
+    for (std::size_t t = 0; t < mesh.targets.size() && t < weights.size(); ++t) {
+        if (weights[t] == 0.0f) continue;
+        const MorphTarget& target = mesh.targets[t];
+        for (std::size_t v = 0; v < target.positions.size(); ++v) out.positions[v] += weights[t] * target.positions[v];
+        for (std::size_t v = 0; v < target.normals.size(); ++v, normals = true)
+            out.normals[v] += weights[t] * target.normals[v];
+        for (std::size_t v = 0; v < target.tangents.size(); ++v)
+            out.tangents[v] += glm::vec4(weights[t] * target.tangents[v], 0.0f);
+    }
+    for (std::size_t v = 0; v < out.positions.size() && !joints.empty(); ++v, normals = true) {
+        glm::vec3 p(0.0f), n(0.0f), d(0.0f);
+        for (const Mesh::Influences& set : mesh.influences)
+            for (int k = 0; k < 4; ++k) {
+                const float w = set.weights[v][k];
+                const std::uint32_t j = set.joints[v][k];
+                if (w == 0.0f || j >= joints.size()) continue;
+                p += w * glm::vec3(joints[j] * glm::vec4(out.positions[v], 1.0f));
+                n += w * (glm::transpose(glm::inverse(glm::mat3(joints[j]))) * out.normals[v]);
+                d += w * (glm::mat3(joints[j]) * glm::vec3(out.tangents[v]));
+            }
+        out.positions[v] = p, out.normals[v] = n, out.tangents[v] = glm::vec4(d, out.tangents[v].w);
+    }
+    for (std::size_t v = 0; v < out.normals.size() && normals; ++v) {
+        const float length = glm::length(out.normals[v]);
+        out.normals[v] = length > 0.0f && std::isfinite(length) ? out.normals[v] / length : mesh.normals[v];
+    }
+    return out;
+}
+
+TEST(Pose, OnePassAndAnySplitGiveThePlainPoseBitForBit) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    const auto vec3 = [&] { return glm::vec3(u(rng), u(rng), u(rng)); };
+    Mesh mesh;
+    const std::size_t n = 997;
+    for (std::size_t v = 0; v < n; ++v) {
+        mesh.positions.push_back(vec3());
+        mesh.normals.push_back(glm::normalize(vec3()));
+        mesh.tangents.push_back(glm::vec4(glm::normalize(vec3()), v % 2 ? 1.0f : -1.0f));
+    }
+    mesh.targets.resize(2);
+    for (MorphTarget& target : mesh.targets)
+        for (std::size_t v = 0; v < n; ++v) {
+            target.positions.push_back(vec3());
+            target.normals.push_back(vec3());
+            target.tangents.push_back(vec3());
+        }
+    Mesh::Influences set;
+    for (std::size_t v = 0; v < n; ++v) {
+        set.joints.push_back({v % 5, (v + 1) % 5, (v + 2) % 7, 0});  // joint 5 and 6 do not exist: skipped
+        set.weights.push_back({0.5f, 0.3f, v % 3 ? 0.2f : 0.0f, 0.0f});
+    }
+    mesh.influences = {set};
+    std::vector<glm::mat4> joints;
+    for (int j = 0; j < 5; ++j)
+        joints.push_back(
+            glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), vec3()), u(rng), glm::normalize(vec3())),
+                       glm::vec3(0.5f + 0.2f * float(j), 1.0f, 2.0f)));
+    const auto same = [](const PosedVertices& a, const PosedVertices& b) {
+        return a.positions == b.positions && a.normals == b.normals && a.tangents == b.tangents;
+    };
+    for (const std::vector<float>& weights : {std::vector<float>{0.0f, 0.0f}, {-1.0f, 10.0f}, {0.3f, 0.0f}})
+        for (const bool skinned : {false, true}) {
+            const std::vector<glm::mat4> used = skinned ? joints : std::vector<glm::mat4>{};
+            const PosedVertices expected = plainPose(mesh, weights, used);
+            PosedVertices whole;
+            poseVertices(mesh, weights, used, whole);
+            EXPECT_TRUE(same(whole, expected))
+                << "weights " << weights[0] << ", " << weights[1] << ", skinned " << skinned;
+            PosedVertices split;
+            const Posing posing(mesh, weights, used, split, true);
+            for (const std::size_t at : {std::size_t(0), std::size_t(300), std::size_t(301), std::size_t(800)}) {
+                const std::size_t end = at == 0 ? 300 : at == 300 ? 301 : at == 301 ? 800 : n;
+                posing.run(at, end);
+            }
+            EXPECT_TRUE(same(split, expected));
+            PosedVertices positionsOnly;
+            poseVertices(mesh, weights, used, positionsOnly, /*frames=*/false);
+            EXPECT_EQ(positionsOnly.positions, expected.positions);
+            EXPECT_TRUE(positionsOnly.normals.empty() && positionsOnly.tangents.empty());
+        }
 }
 
 }  // namespace
