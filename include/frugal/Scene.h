@@ -29,6 +29,18 @@
 
 namespace frugal {
 
+// The value of enum E whose name in `names` (one per value, in the enum's order) is `name`; false
+// when none is.
+template <class E, std::size_t N>
+bool enumNamed(const char* const (&names)[N], std::string_view name, E& value) {
+    for (std::size_t i = 0; i < N; ++i)
+        if (name == names[i]) {
+            value = E(i);
+            return true;
+        }
+    return false;
+}
+
 enum class Wrap : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 enum class Filter : std::uint8_t { Nearest, Linear };
 // How a minified texture uses its mipmaps (Texture::mipmaps): not at all (the base level only), the
@@ -169,12 +181,7 @@ inline constexpr const char* kTopologyNames[] = {"triangles", "lines", "points"}
 inline const char* topologyName(Topology topology) { return kTopologyNames[std::size_t(topology)]; }
 // The topology named `name`; false when there is none.
 inline bool topologyNamed(std::string_view name, Topology& topology) {
-    for (std::size_t i = 0; i < std::size(kTopologyNames); ++i)
-        if (name == kTopologyNames[i]) {
-            topology = Topology(i);
-            return true;
-        }
-    return false;
+    return enumNamed(kTopologyNames, name, topology);
 }
 inline constexpr std::size_t verticesPerPrimitive(Topology topology) {
     return topology == Topology::Triangles ? 3 : topology == Topology::Lines ? 2 : 1;
@@ -231,14 +238,7 @@ enum class LightType : std::uint8_t { Directional, Point, Spot };
 inline constexpr const char* kLightTypeNames[] = {"directional", "point", "spot"};
 inline const char* lightTypeName(LightType type) { return kLightTypeNames[std::size_t(type)]; }
 // The type named `name`; false when there is none.
-inline bool lightTypeNamed(std::string_view name, LightType& type) {
-    for (std::size_t i = 0; i < std::size(kLightTypeNames); ++i)
-        if (name == kLightTypeNames[i]) {
-            type = LightType(i);
-            return true;
-        }
-    return false;
-}
+inline bool lightTypeNamed(std::string_view name, LightType& type) { return enumNamed(kLightTypeNames, name, type); }
 
 // A punctual light (KHR_lights_punctual), placed by the nodes that refer to it (Node::light): at the
 // node's origin, shining down the node's −Z (directional and spot lights). In the extension's units:

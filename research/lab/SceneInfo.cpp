@@ -103,9 +103,20 @@ void printShading(const Scene& scene, std::ostream& out) {
         if (!drawn[i]) continue;
         const Mesh& mesh = scene.meshes[i];
         const Material& m = mesh.material >= 0 ? scene.materials[std::size_t(mesh.material)] : kDefault;
-        std::string terms = m.unlit                ? "unlit"
+        // Points and segments without normals: the base colour plus the emission (Mesh::topology).
+        const bool bare = !mesh.triangles() && mesh.normals.empty() && !m.unlit;
+        std::string terms = m.unlit ? "unlit"
+                            : bare  ? std::string(topologyName(mesh.topology)) + ", unlit: base colour + emission"
                             : m.specularGlossiness ? "specular-glossiness BRDF"
                                                    : "metallic-roughness BRDF";
+        if (!mesh.triangles() && !bare) terms += std::string(" (") + topologyName(mesh.topology) + ")";
+        if (bare) {
+            if (m.baseColorTexture >= 0) terms += ", base colour map";
+            if (m.emissiveTexture >= 0) terms += ", emissive map";
+            if (!mesh.colors.empty()) terms += ", vertex colours";
+            ++variants[terms];
+            continue;
+        }
         if (!m.unlit) {  // one side of the metal mix alone (pipeline/Backend.h, MetalMix)
             const MetalMix mix = metalMixOf(m.metallicFactor, m.metallicRoughnessTexture >= 0, m.specularGlossiness);
             if (mix == MetalMix::Dielectric) terms += ", dielectric only";
@@ -118,14 +129,15 @@ void printShading(const Scene& scene, std::ostream& out) {
             if (m.specularGlossinessTexture >= 0 && m.specularGlossiness) terms += ", specular-glossiness map";
             if (m.occlusionTexture >= 0) terms += ", occlusion map";
             if (m.emissiveTexture >= 0) terms += ", emissive map";
-            if (m.normalTexture >= 0) terms += ", normal map";
+            // Segments and points read a normal map only with tangents of their own (the Khronos renderer's rule).
+            if (m.normalTexture >= 0 && (mesh.triangles() || !mesh.tangents.empty())) terms += ", normal map";
             if (m.clearcoat()) {
                 terms += ", clear coat";
                 if (m.clearcoatTexture >= 0) terms += ", clear-coat map";
                 if (m.clearcoatRoughnessTexture >= 0) terms += ", clear-coat roughness map";
                 if (m.clearcoatNormalTexture >= 0) terms += ", clear-coat normal map";
             }
-            if (m.tangentSpace() && mesh.tangents.empty()) terms += " (tangents generated)";
+            if (m.tangentSpace() && mesh.tangents.empty() && mesh.triangles()) terms += " (tangents generated)";
         }
         if (m.alphaMode == AlphaMode::Mask) terms += ", alpha mask (cutoff " + fmt(double(m.alphaCutoff)) + ")";
         if (m.alphaMode == AlphaMode::Blend) terms += ", blended (drawn last, far to near)";
@@ -203,7 +215,10 @@ std::string sceneInfoText(const Scene& scene, int longSide) {
         out << (t.srgb ? ", sRGB colour" : ", linear data") << "\n";
     }
     const double detail = sceneDetail(scene);
-    out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
+    if (detail > 0.0)
+        out << "detail: 1 % of the triangle edges are shorter than " << fmt(detail) << "\n";
+    else
+        out << "detail: no triangle edge longer than 0\n";
     out << "cameras: " << scene.cameras.size() << "\n";
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
         const SceneCamera& c = scene.cameras[i];

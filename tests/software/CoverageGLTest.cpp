@@ -217,15 +217,7 @@ private:
     std::mt19937 rng_;
 };
 
-class CoverageGLTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        reference = test::makeReference();
-        ASSERT_NE(reference, nullptr);
-        software = makeSoftwareBackend();
-    }
-    std::unique_ptr<Backend> reference, software;
-};
+class CoverageGLTest : public test::ReferencePairTest {};
 
 // One triangle per draw, `perKind` of each kind. In D32F the clip-space kinds (z in [−0.95, 0.95],
 // w = 1) cross the zero-to-one near plane z = 0 half the time: its clipping is compared too.

@@ -34,6 +34,17 @@ inline std::unique_ptr<Backend> makeReference() {
     return std::move(*backend);
 }
 
+// A fixture with both backends, made for each test: the reference and the software backend.
+class ReferencePairTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        reference = makeReference();
+        ASSERT_NE(reference, nullptr);
+        software = makeSoftwareBackend();
+    }
+    std::unique_ptr<Backend> reference, software;
+};
+
 struct Comparison {
     std::size_t pixels = 0;
     std::size_t covered = 0;       // pixels the reference drew (depth below the clear value or id ≠ 0)

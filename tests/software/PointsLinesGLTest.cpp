@@ -221,15 +221,7 @@ void compareKinds(Backend& reference, Backend& software, const Config& config, i
     EXPECT_GT(coveredAll, 0u) << "nothing was drawn: the test would prove nothing";
 }
 
-class PointsLinesGLTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        reference = test::makeReference();
-        ASSERT_NE(reference, nullptr);
-        software = makeSoftwareBackend();
-    }
-    std::unique_ptr<Backend> reference, software;
-};
+class PointsLinesGLTest : public test::ReferencePairTest {};
 
 TEST_F(PointsLinesGLTest, PointsOneSample) {
     compareKinds(*reference, *software, {Topology::Points, 64, 64, 1, DepthFormat::D24}, 6, 200, 1);

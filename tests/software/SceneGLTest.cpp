@@ -35,14 +35,8 @@ std::string safeName(std::string text) {
     return text;
 }
 
-class SceneGLTest : public ::testing::Test {
+class SceneGLTest : public test::ReferencePairTest {
 protected:
-    void SetUp() override {
-        reference = test::makeReference();
-        ASSERT_NE(reference, nullptr);
-        software = makeSoftwareBackend();
-    }
-
     // Renders `scene` on both and checks the thresholds; returns the comparison for the log.
     test::Comparison check(const Scene& scene, const std::string& name, int width, int height, double time = 0.0,
                            bool ids = true) {
@@ -55,8 +49,6 @@ protected:
         std::printf("[ %s ] %s\n", label.c_str(), c.summary().c_str());
         return c;
     }
-
-    std::unique_ptr<Backend> reference, software;
 };
 
 TEST_F(SceneGLTest, BuiltinDefault) {
