@@ -112,13 +112,7 @@ void SceneRenderer::pose(double time) {
         if (handle == kNoHandle || generatesTangents(mesh) ||
             !backend_->updateVertices(handle, posed.vertices.positions, posed.vertices.normals,
                                       posed.vertices.tangents)) {
-            Mesh posedMesh = mesh;
-            posedMesh.targets.clear();
-            posedMesh.influences.clear();
-            posedMesh.positions = posed.vertices.positions;
-            posedMesh.normals = posed.vertices.normals;
-            posedMesh.tangents = posed.vertices.tangents;
-            const MeshHandle uploaded = upload(posedMesh);
+            const MeshHandle uploaded = upload(withPose(mesh, PosedVertices(posed.vertices)));
             if (uploaded == kNoHandle) throw std::bad_alloc();
             if (handle != kNoHandle) backend_->releaseMesh(handle);
             handle = uploaded;

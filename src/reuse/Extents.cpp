@@ -49,4 +49,12 @@ Box ExtentBuilder::triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) c
     return box;
 }
 
+Box ExtentBuilder::segment(std::uint32_t a, std::uint32_t b) const {
+    Box box = triangle(a, b, b);
+    if (box.empty()) return box;
+    box.x0 = std::max(box.x0 - 1, 0), box.y0 = std::max(box.y0 - 1, 0);
+    box.x1 = std::min(box.x1 + 1, width_), box.y1 = std::min(box.y1 + 1, height_);
+    return box;
+}
+
 }  // namespace frugal::reuse

@@ -63,6 +63,10 @@ public:
     void project(const glm::mat4& mvp, std::span<const glm::vec3> positions);
     // The extent of triangle (a, b, c) of the positions last projected.
     Box triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
+    // The extent of segment (a, b), or of point a when b = a (Mesh::topology): the triangle's box,
+    // one pixel wider each side, for a segment's or a point's pixels reach half a pixel beyond its
+    // projection (raster/PointsLines.h).
+    Box segment(std::uint32_t a, std::uint32_t b) const;
 
     Box screen() const { return Box{0, 0, width_, height_}; }
     int width() const { return width_; }

@@ -80,17 +80,9 @@ void TemporalReuse::computeExtents(int instance, const glm::mat4& viewProjection
     const std::uint32_t triangles = std::uint32_t(mesh.primitiveCount());
     const std::uint32_t* index = mesh.indices.data();
     const std::uint32_t corners = std::uint32_t(verticesPerPrimitive(mesh.topology));
-    // A segment's or point's pixels reach half a pixel beyond its projection (raster/PointsLines.h):
-    // its box (the triangle's, with one pixel of margin) grows by one more pixel each side.
     const auto primitiveBox = [&](std::uint32_t t) {
         const std::uint32_t* at = index + std::size_t(t) * corners;
-        if (corners == 3) return builder_.triangle(at[0], at[1], at[2]);
-        reuse::Box box = builder_.triangle(at[0], at[corners - 1], at[corners - 1]);
-        if (box.empty()) return box;
-        const reuse::Box screen = builder_.screen();
-        box.x0 = std::max(box.x0 - 1, screen.x0), box.y0 = std::max(box.y0 - 1, screen.y0);
-        box.x1 = std::min(box.x1 + 1, screen.x1), box.y1 = std::min(box.y1 + 1, screen.y1);
-        return box;
+        return corners == 3 ? builder_.triangle(at[0], at[1], at[2]) : builder_.segment(at[0], at[corners - 1]);
     };
     for (std::uint32_t g = 0; g < record.groups; ++g) {
         reuse::Box box;

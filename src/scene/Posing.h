@@ -11,6 +11,10 @@
 
 namespace frugal {
 
+// `mesh` drawn in `posed` (its arrays moved in): what posedMesh returns, a mesh without targets or
+// influences, for an upload.
+Mesh withPose(const Mesh& mesh, PosedVertices&& posed);
+
 class Posing {
 public:
     Posing(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints,

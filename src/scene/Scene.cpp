@@ -224,9 +224,7 @@ void poseVertices(const Mesh& mesh, const std::vector<float>& weights, const std
     posing.run(0, posing.vertices());
 }
 
-Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
-    PosedVertices posed;
-    poseVertices(mesh, weights, joints, posed);
+Mesh withPose(const Mesh& mesh, PosedVertices&& posed) {
     Mesh out = mesh;
     out.targets.clear();
     out.influences.clear();
@@ -234,6 +232,12 @@ Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::v
     out.normals = std::move(posed.normals);
     out.tangents = std::move(posed.tangents);
     return out;
+}
+
+Mesh posedMesh(const Mesh& mesh, const std::vector<float>& weights, const std::vector<glm::mat4>& joints) {
+    PosedVertices posed;
+    poseVertices(mesh, weights, joints, posed);
+    return withPose(mesh, std::move(posed));
 }
 
 bool Scene::deforms(const Instance& instance) const {

@@ -25,11 +25,9 @@ inline std::int64_t floorDiv(std::int64_t a, std::int64_t b) {
 // operations, fused when the kernels fuse, clamped as MAXPS/MINPS clamp (a NaN gives 0), rounded to
 // nearest even as CVTPS2DQ rounds.
 inline std::uint32_t planeDepth(const Triangle& t, int px, int py, bool fused) {
-    float z = fused ? std::fma(t.dzdy, float(py), std::fma(t.dzdx, float(px), t.z0))
-                    : t.dzdy * float(py) + (t.dzdx * float(px) + t.z0);
-    z = z > 0.0f ? z : 0.0f;
-    z = z < 1.0f ? z : 1.0f;
-    return std::uint32_t(std::nearbyint(z * 16777215.0f));
+    return storedDepth(fused ? std::fma(t.dzdy, float(py), std::fma(t.dzdx, float(px), t.z0))
+                             : t.dzdy * float(py) + (t.dzdx * float(px) + t.z0),
+                       DepthFormat::D24);
 }
 
 }  // namespace

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cmath>
-#include <cstring>
 #include <functional>
 #include <iterator>
 #include <new>
@@ -219,16 +217,12 @@ void Pipeline::setupShapes(const SetupJob& job, DrawRecord& record, std::uint64_
         assert(false && "draw: out of memory");
         return;
     }
-    // The vertex made by the clipper at t from `out` toward `in` (raster/PointsLines.h, 2.).
+    // The vertex made by the clipper at t from `out` toward `in` (raster/PointsLines.h, 2.): the
+    // triangle clipper's interpolation.
     const auto clipped = [&](std::uint32_t out, std::uint32_t in, float t) {
-        const glm::vec4& a = record.clip[out];
-        const glm::vec4& b = record.clip[in];
-        glm::vec4 clip;
-        for (int i = 0; i < 4; ++i) clip[i] = a[i] + t * (b[i] - a[i]);
-        SetupVertex v = clippedWindowVertex(clip, job.viewport);
-        const SetupVertex &va = record.vertices[out], &vb = record.vertices[in];
-        for (int i = 0; i < kAttributes; ++i) v.a[i] = va.a[i] + t * (vb.a[i] - va.a[i]);
-        return v;
+        return *detail::interpolate({record.clip[out], &record.vertices[out]}, t,
+                                    {record.clip[in], &record.vertices[in]}, job.viewport, segment.pool)
+                    .vertex;
     };
     for (const Run& run : *job.runs)
         for (std::uint32_t p = run.first; p < run.end; ++p) {
@@ -300,23 +294,11 @@ void Pipeline::rasterShape(const Triangle& t, TileState& tile) const {
             for (int x = x0; x <= x1; ++x) {
                 if (!shapeCovers(shape, x, y, sample, samples)) continue;
                 const std::size_t at = plane + std::size_t(y) * stride + std::size_t(x);
-                if (t.depthTest) {  // as the kernels' raster() stores a triangle's depth
-                    const float z = shapeDepth(shape, float(x) + sx, float(y) + sy, fused_);
-                    if (reversed) {
-                        // minps then maxps, as the kernels: NaN becomes 1, −0 becomes 0.
-                        float clamped = z < 1.0f ? z : 1.0f;
-                        clamped = clamped > 0.0f ? clamped : 0.0f;
-                        std::uint32_t bits;
-                        std::memcpy(&bits, &clamped, sizeof bits);
-                        if (!(bits > target.depth[at])) continue;
-                        target.depth[at] = bits;
-                    } else {
-                        float clamped = z > 0.0f ? z : 0.0f;  // maxps then minps: NaN becomes 0
-                        clamped = clamped < 1.0f ? clamped : 1.0f;
-                        const auto zi = std::uint32_t(std::nearbyint(clamped * 16777215.0f));
-                        if (!(target.depth[at] > zi)) continue;
-                        target.depth[at] = zi;
-                    }
+                if (t.depthTest) {  // nearer passes: D24 "<", D32F (reversed) ">"
+                    const std::uint32_t z =
+                        storedDepth(shapeDepth(shape, float(x) + sx, float(y) + sy, fused_), target.depthFormat);
+                    if (!(reversed ? z > target.depth[at] : target.depth[at] > z)) continue;
+                    target.depth[at] = z;
                 }
                 if (myIndex == kNoWinner) {
                     myIndex = std::uint32_t(tile.won.size());

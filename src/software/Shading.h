@@ -277,6 +277,20 @@ inline void resolveLinear(const float* sample, int count, std::size_t sampleStri
     }
 }
 
+// The value a fragment of depth `z` stores (Rasterizer.h, 5.), as the kernels' raster() computes it
+// lane by lane: D24 clamped as MAXPS then MINPS clamp (a NaN gives 0) and rounded to nearest even as
+// CVTPS2DQ rounds z · 16777215; D32F clamped as lp_build_depth_clamp does, min(z, 1) then max(·, 0)
+// (a NaN gives 1, −0 gives 0), its bits, which order as the floats do.
+inline std::uint32_t storedDepth(float z, DepthFormat format) {
+    if (format == DepthFormat::D32F) {
+        z = z < 1.0f ? z : 1.0f;
+        return std::bit_cast<std::uint32_t>(z > 0.0f ? z : 0.0f);
+    }
+    z = z > 0.0f ? z : 0.0f;
+    z = z < 1.0f ? z : 1.0f;
+    return std::uint32_t(std::nearbyint(z * 16777215.0f));
+}
+
 // A multisampled D24 target's depth (sample 0) after the resolve blit, which fetches it as a float,
 // float(d) · (1/16777215) as gallivm converts 24-bit unorm, and writes that as a fragment's depth,
 // round_even(z · 16777215) (Rasterizer.h, 5.): not every value survives the round trip. D32F's
@@ -307,13 +321,7 @@ inline std::uint32_t clearDepthWhole(float z, DepthFormat format) {
 inline std::uint32_t clearDepthQuad(float z, bool fused, DepthFormat format) {
     z = std::fmin(std::fmax(z, 0.0f), 1.0f);
     const float ndc = z * 2.0f - 1.0f;
-    float window = fused ? std::fma(ndc, 0.5f, 0.5f) : ndc * 0.5f + 0.5f;
-    if (format == DepthFormat::D32F) {
-        window = window < 1.0f ? window : 1.0f;
-        return std::bit_cast<std::uint32_t>(window > 0.0f ? window : 0.0f);
-    }
-    window = std::fmin(std::fmax(window, 0.0f), 1.0f);
-    return std::uint32_t(std::nearbyint(window * 16777215.0f));
+    return storedDepth(fused ? std::fma(ndc, 0.5f, 0.5f) : ndc * 0.5f + 0.5f, format);
 }
 
 // The environment map's specular levels at (u, v) and level `lod`, as llvmpipe filters the GL
